@@ -1,0 +1,29 @@
+# nano_add_shaders(TARGET name SOURCES a.comp b.comp)
+# Compiles GLSL to SPIR-V with glslangValidator (Vulkan 1.2 target) and embeds each module in a
+# static library as `extern const uint32_t nano_spv_<stem>[]` with `nano_spv_<stem>_words`,
+# so the runtime never looks for shader files on disk.
+function(nano_add_shaders)
+  cmake_parse_arguments(ARG "" "TARGET" "SOURCES" ${ARGN})
+  set(generated)
+  file(GLOB_RECURSE shared_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/shaders/shared/*.h ${PROJECT_SOURCE_DIR}/shaders/*.glsl)
+  foreach(src IN LISTS ARG_SOURCES)
+    get_filename_component(abs ${src} ABSOLUTE)
+    get_filename_component(name ${src} NAME)
+    string(MAKE_C_IDENTIFIER ${name} stem)
+    set(spv ${CMAKE_CURRENT_BINARY_DIR}/${name}.spv)
+    set(cpp ${CMAKE_CURRENT_BINARY_DIR}/${stem}_spv.cpp)
+    add_custom_command(
+      OUTPUT ${spv}
+      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.2 -V -I${PROJECT_SOURCE_DIR}/shaders -o ${spv} ${abs}
+      DEPENDS ${abs} ${shared_headers}
+      COMMENT "glslang ${name}"
+      VERBATIM)
+    add_custom_command(
+      OUTPUT ${cpp}
+      COMMAND ${CMAKE_COMMAND} -DSPV=${spv} -DOUT=${cpp} -DSTEM=${stem} -P ${PROJECT_SOURCE_DIR}/cmake/EmbedSpirv.cmake
+      DEPENDS ${spv} ${PROJECT_SOURCE_DIR}/cmake/EmbedSpirv.cmake
+      VERBATIM)
+    list(APPEND generated ${cpp})
+  endforeach()
+  add_library(${ARG_TARGET} STATIC ${generated})
+endfunction()
