@@ -1,0 +1,107 @@
+#include "runtime/vk/buffer.hpp"
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "runtime/vk/error.hpp"
+
+namespace nano::vk {
+
+Buffer::Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use) : size_(size) {
+  if (size == 0) throw std::invalid_argument("nano::vk::Buffer: size must be positive");
+  VkDevice vk_device = device.handle();
+
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  check(vkCreateBuffer(vk_device, &info, nullptr, &buffer), "vkCreateBuffer");
+  buffer_ = DeviceHandle<VkBuffer>(vk_device, buffer, vkDestroyBuffer);
+
+  VkMemoryRequirements requirements{};
+  vkGetBufferMemoryRequirements(vk_device, buffer, &requirements);
+  const VkMemoryPropertyFlags properties = use == MemoryUse::HostVisible
+                                               ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                               : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+
+  const bool wants_address = (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0;
+  VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  allocate.pNext = wants_address ? &flags : nullptr;
+  allocate.allocationSize = requirements.size;
+  allocate.memoryTypeIndex = device.find_memory_type(requirements.memoryTypeBits, properties);
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  check(vkAllocateMemory(vk_device, &allocate, nullptr, &memory), "vkAllocateMemory");
+  memory_ = DeviceHandle<VkDeviceMemory>(vk_device, memory, vkFreeMemory);
+  check(vkBindBufferMemory(vk_device, buffer, memory, 0), "vkBindBufferMemory");
+
+  if (use == MemoryUse::HostVisible) check(vkMapMemory(vk_device, memory, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+  if (wants_address) {
+    VkBufferDeviceAddressInfo address_info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    address_info.buffer = buffer;
+    address_ = vkGetBufferDeviceAddress(vk_device, &address_info);
+  }
+}
+
+Buffer::Buffer(Buffer&& other) noexcept
+    : memory_(std::move(other.memory_)),
+      buffer_(std::move(other.buffer_)),
+      size_(std::exchange(other.size_, 0)),
+      address_(std::exchange(other.address_, 0)),
+      mapped_(std::exchange(other.mapped_, nullptr)) {}
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept {
+  if (this != &other) {
+    buffer_ = std::move(other.buffer_);
+    memory_ = std::move(other.memory_);
+    size_ = std::exchange(other.size_, 0);
+    address_ = std::exchange(other.address_, 0);
+    mapped_ = std::exchange(other.mapped_, nullptr);
+  }
+  return *this;
+}
+
+Buffer Buffer::with_data(const Device& device, std::span<const std::byte> bytes, VkBufferUsageFlags usage, MemoryUse use) {
+  if (use == MemoryUse::HostVisible) {
+    Buffer buffer(device, bytes.size(), usage, use);
+    buffer.write(bytes);
+    return buffer;
+  }
+  Buffer staging(device, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostVisible);
+  staging.write(bytes);
+  Buffer buffer(device, bytes.size(), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, use);
+  device.submit_once([&](VkCommandBuffer commands) {
+    VkBufferCopy region{0, 0, bytes.size()};
+    vkCmdCopyBuffer(commands, staging.handle(), buffer.handle(), 1, &region);
+    // Later submissions read the data in any stage (build input, shader, copy).
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0,
+                         nullptr, 0, nullptr);
+  });
+  return buffer;
+}
+
+void Buffer::check_host_range(std::size_t count, VkDeviceSize offset) const {
+  if (mapped_ == nullptr) throw std::logic_error("nano::vk::Buffer: host access to a buffer that is not host-visible");
+  if (offset > size_ || count > size_ - offset)
+    throw std::out_of_range("nano::vk::Buffer: host access of " + std::to_string(count) + " bytes at offset " +
+                            std::to_string(offset) + " exceeds size " + std::to_string(size_));
+}
+
+void Buffer::write(std::span<const std::byte> bytes, VkDeviceSize offset) {
+  check_host_range(bytes.size(), offset);
+  std::memcpy(static_cast<std::byte*>(mapped_) + offset, bytes.data(), bytes.size());
+}
+
+void Buffer::read(std::span<std::byte> bytes, VkDeviceSize offset) const {
+  check_host_range(bytes.size(), offset);
+  std::memcpy(bytes.data(), static_cast<const std::byte*>(mapped_) + offset, bytes.size());
+}
+
+}  // namespace nano::vk

@@ -1,0 +1,159 @@
+#include "runtime/vk/device.hpp"
+
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "runtime/vk/device_selection.hpp"
+#include "runtime/vk/error.hpp"
+
+namespace nano::vk {
+namespace {
+
+template <typename Pfn>
+Pfn load(VkDevice device, const char* name) {
+  auto function = reinterpret_cast<Pfn>(vkGetDeviceProcAddr(device, name));
+  if (function == nullptr) throw std::runtime_error(std::string("vkGetDeviceProcAddr returned no ") + name);
+  return function;
+}
+
+}  // namespace
+
+Device::Device(VkPhysicalDevice physical_device, DeviceReport report)
+    : physical_device_(physical_device), report_(std::move(report)) {
+  if (!report_.qualifies())
+    throw DeviceSelectionError("device cannot run ray queries: " + report_.name + " lacks " + report_.missing.front());
+
+  acceleration_properties_.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR;
+  VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  properties2.pNext = &acceleration_properties_;
+  vkGetPhysicalDeviceProperties2(physical_device_, &properties2);
+  properties_ = properties2.properties;
+  acceleration_properties_.pNext = nullptr;
+  vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
+
+  VkPhysicalDeviceRayQueryFeaturesKHR ray_query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  ray_query.rayQuery = VK_TRUE;
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR acceleration{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  acceleration.accelerationStructure = VK_TRUE;
+  acceleration.pNext = &ray_query;
+  VkPhysicalDeviceVulkan12Features vulkan12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  vulkan12.bufferDeviceAddress = VK_TRUE;
+  vulkan12.pNext = &acceleration;
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  features.features.shaderInt64 = report_.shader_int64 ? VK_TRUE : VK_FALSE;
+  features.pNext = &vulkan12;
+
+  const float priority = 1.0f;
+  VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queue_info.queueFamilyIndex = report_.compute_queue_family;
+  queue_info.queueCount = 1;
+  queue_info.pQueuePriorities = &priority;
+
+  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  info.pNext = &features;
+  info.queueCreateInfoCount = 1;
+  info.pQueueCreateInfos = &queue_info;
+  info.enabledExtensionCount = static_cast<std::uint32_t>(std::size(kRequiredDeviceExtensions));
+  info.ppEnabledExtensionNames = kRequiredDeviceExtensions;
+  check(vkCreateDevice(physical_device_, &info, nullptr, &device_), "vkCreateDevice");
+
+  try {
+    vkGetDeviceQueue(device_, report_.compute_queue_family, 0, &queue_);
+    as_functions_.create = load<PFN_vkCreateAccelerationStructureKHR>(device_, "vkCreateAccelerationStructureKHR");
+    as_functions_.destroy = load<PFN_vkDestroyAccelerationStructureKHR>(device_, "vkDestroyAccelerationStructureKHR");
+    as_functions_.get_build_sizes =
+        load<PFN_vkGetAccelerationStructureBuildSizesKHR>(device_, "vkGetAccelerationStructureBuildSizesKHR");
+    as_functions_.cmd_build = load<PFN_vkCmdBuildAccelerationStructuresKHR>(device_, "vkCmdBuildAccelerationStructuresKHR");
+    as_functions_.get_device_address =
+        load<PFN_vkGetAccelerationStructureDeviceAddressKHR>(device_, "vkGetAccelerationStructureDeviceAddressKHR");
+
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pool_info.queueFamilyIndex = report_.compute_queue_family;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    check(vkCreateCommandPool(device_, &pool_info, nullptr, &pool), "vkCreateCommandPool");
+    command_pool_ = DeviceHandle<VkCommandPool>(device_, pool, vkDestroyCommandPool);
+  } catch (...) {
+    vkDestroyDevice(device_, nullptr);
+    throw;
+  }
+}
+
+Device::Device(Device&& other) noexcept
+    : physical_device_(other.physical_device_),
+      report_(std::move(other.report_)),
+      properties_(other.properties_),
+      acceleration_properties_(other.acceleration_properties_),
+      memory_properties_(other.memory_properties_),
+      device_(std::exchange(other.device_, VK_NULL_HANDLE)),
+      queue_(other.queue_),
+      as_functions_(other.as_functions_),
+      command_pool_(std::move(other.command_pool_)) {}
+
+Device::~Device() {
+  if (device_ == VK_NULL_HANDLE) return;
+  // Destructors must not throw; a lost device here changes nothing for the caller.
+  vkDeviceWaitIdle(device_);
+  command_pool_.reset();
+  vkDestroyDevice(device_, nullptr);
+}
+
+std::uint32_t Device::find_memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required) const {
+  for (std::uint32_t i = 0; i < memory_properties_.memoryTypeCount; ++i)
+    if ((type_bits & (1u << i)) && (memory_properties_.memoryTypes[i].propertyFlags & required) == required) return i;
+  throw std::runtime_error("no Vulkan memory type with property flags " + std::to_string(required) +
+                           " among allowed types mask " + std::to_string(type_bits) + " on " + report_.name);
+}
+
+void Device::submit_once(const std::function<void(VkCommandBuffer)>& record) const {
+  VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  allocate.commandPool = command_pool_.get();
+  allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocate.commandBufferCount = 1;
+  VkCommandBuffer commands = VK_NULL_HANDLE;
+  check(vkAllocateCommandBuffers(device_, &allocate, &commands), "vkAllocateCommandBuffers");
+  struct FreeOnExit {
+    VkDevice device;
+    VkCommandPool pool;
+    VkCommandBuffer commands;
+    ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &commands); }
+  } free_on_exit{device_, command_pool_.get(), commands};
+
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(commands, &begin), "vkBeginCommandBuffer");
+  record(commands);
+  check(vkEndCommandBuffer(commands), "vkEndCommandBuffer");
+
+  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence raw_fence = VK_NULL_HANDLE;
+  check(vkCreateFence(device_, &fence_info, nullptr, &raw_fence), "vkCreateFence");
+  DeviceHandle<VkFence> fence(device_, raw_fence, vkDestroyFence);
+
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &commands;
+  check(vkQueueSubmit(queue_, 1, &submit, fence.get()), "vkQueueSubmit");
+  check(vkWaitForFences(device_, 1, &raw_fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+}
+
+std::string Device::description() const {
+  std::string driver = report_.driver_name.empty() ? std::string("unknown driver") : report_.driver_name;
+  if (!report_.driver_info.empty()) driver += ", " + report_.driver_info;
+  return report_.name + " (" + driver + ", API " + api_version_string(report_.api_version) + ")";
+}
+
+Device open_ray_query_device(const Instance& instance, const std::optional<std::string>& override_spec) {
+  const auto physical_devices = enumerate_physical_devices(instance.handle());
+  std::vector<DeviceReport> reports;
+  for (std::uint32_t i = 0; i < physical_devices.size(); ++i) reports.push_back(survey_device(physical_devices[i], i));
+  const std::size_t chosen = choose_device(reports, override_spec);
+  return Device(physical_devices[reports[chosen].index], reports[chosen]);
+}
+
+Device open_ray_query_device(const Instance& instance) {
+  return open_ray_query_device(instance, device_override_from_environment());
+}
+
+}  // namespace nano::vk

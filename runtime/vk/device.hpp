@@ -1,0 +1,72 @@
+#pragma once
+// The logical device: one compute queue, a command pool for one-shot work, the KHR entry points
+// loaded with vkGetDeviceProcAddr, and the limits later code needs (scratch alignment, ...).
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+#include "runtime/vk/device_report.hpp"
+#include "runtime/vk/handle.hpp"
+#include "runtime/vk/instance.hpp"
+
+namespace nano::vk {
+
+// Extension entry points are not exported by the loader; they are fetched per device.
+struct AccelerationStructureFunctions {
+  PFN_vkCreateAccelerationStructureKHR create = nullptr;
+  PFN_vkDestroyAccelerationStructureKHR destroy = nullptr;
+  PFN_vkGetAccelerationStructureBuildSizesKHR get_build_sizes = nullptr;
+  PFN_vkCmdBuildAccelerationStructuresKHR cmd_build = nullptr;
+  PFN_vkGetAccelerationStructureDeviceAddressKHR get_device_address = nullptr;
+};
+
+class Device {
+public:
+  Device(VkPhysicalDevice physical_device, DeviceReport report);
+  Device(Device&& other) noexcept;
+  Device& operator=(Device&&) = delete;
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+  ~Device();
+
+  VkDevice handle() const { return device_; }
+  VkPhysicalDevice physical_device() const { return physical_device_; }
+  VkQueue queue() const { return queue_; }
+  std::uint32_t queue_family() const { return report_.compute_queue_family; }
+  const DeviceReport& report() const { return report_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  const VkPhysicalDeviceAccelerationStructurePropertiesKHR& acceleration_structure_properties() const {
+    return acceleration_properties_;
+  }
+  const AccelerationStructureFunctions& acceleration_structure_functions() const { return as_functions_; }
+
+  // First memory type allowed by `type_bits` that has all of `required`; throws if none.
+  std::uint32_t find_memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
+
+  // Records commands into a fresh primary command buffer, submits it and waits on a fence.
+  void submit_once(const std::function<void(VkCommandBuffer)>& record) const;
+
+  // "llvmpipe (LLVM 15.0.6, 256 bits) (llvmpipe, Mesa 25.0.7, API 1.3.296)"
+  std::string description() const;
+
+private:
+  VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
+  DeviceReport report_;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceAccelerationStructurePropertiesKHR acceleration_properties_{};
+  VkPhysicalDeviceMemoryProperties memory_properties_{};
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  AccelerationStructureFunctions as_functions_;
+  DeviceHandle<VkCommandPool> command_pool_;
+};
+
+// Surveys every physical device, applies the selection policy (NANO_DEVICE override unless
+// `override_spec` is given) and opens the chosen one.
+Device open_ray_query_device(const Instance& instance, const std::optional<std::string>& override_spec);
+Device open_ray_query_device(const Instance& instance);
+
+}  // namespace nano::vk
