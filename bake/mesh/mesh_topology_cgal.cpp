@@ -1,0 +1,62 @@
+// The only translation unit that includes CGAL (see mesh_topology_cgal.hpp).
+#include "bake/mesh/mesh_topology_cgal.hpp"
+
+#include <iterator>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+namespace nano::mesh {
+
+namespace {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point3 = Kernel::Point_3;
+using SurfaceMesh = CGAL::Surface_mesh<Point3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+Point3 to_cgal(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
+}  // namespace
+
+bool exactly_collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  return CGAL::collinear(to_cgal(a), to_cgal(b), to_cgal(c));
+}
+
+int exact_orientation_2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+  using Point2 = Kernel::Point_2;
+  return static_cast<int>(CGAL::orientation(Point2(a.x, a.y), Point2(b.x, b.y), Point2(c.x, c.y)));
+}
+
+SolidProperties analyse_solid(const ProxyMesh& mesh, bool check_intersections) {
+  SolidProperties result;
+  std::vector<Point3> points;
+  points.reserve(mesh.positions.size());
+  for (const glm::dvec3& p : mesh.positions) points.push_back(to_cgal(p));
+  std::vector<std::vector<std::size_t>> polygons;
+  polygons.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles) polygons.push_back({t[0], t[1], t[2]});
+
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return result;
+  result.polygon_mesh = true;
+  SurfaceMesh surface;
+  // Faces are added in soup order, so Surface_mesh face i is triangle i.
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, surface);
+  result.area = CGAL::to_double(PMP::area(surface));
+  result.closed = CGAL::is_closed(surface);
+  if (!result.closed) return result;
+  result.volume = CGAL::to_double(PMP::volume(surface));
+  result.outward = PMP::is_outward_oriented(surface);
+  if (check_intersections) {
+    std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> pairs;
+    PMP::self_intersections(surface, std::back_inserter(pairs));
+    for (const auto& [f, g] : pairs)
+      result.self_intersections.emplace_back(static_cast<std::uint32_t>(f.idx()), static_cast<std::uint32_t>(g.idx()));
+  }
+  return result;
+}
+
+}  // namespace nano::mesh

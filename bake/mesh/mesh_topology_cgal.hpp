@@ -1,0 +1,32 @@
+#pragma once
+// Exact predicates and solid properties through CGAL. This header exposes no CGAL type; all CGAL
+// code lives in mesh_topology_cgal.cpp so that only one translation unit pays its compile time.
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "bake/mesh/proxy_mesh.hpp"
+
+namespace nano::mesh {
+
+// Exact (filtered) predicates on the double coordinates: no tolerance, no false verdict.
+bool exactly_collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+int exact_orientation_2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c);  // +1 ccw, −1 cw, 0
+
+struct SolidProperties {
+  bool polygon_mesh = false;  // CGAL accepts the soup as an oriented 2-manifold (with or without border)
+  bool closed = false;        // polygon mesh without border edges
+  bool outward = false;       // closed and CGAL's is_outward_oriented
+  double area = 0.0;
+  std::optional<double> volume;  // signed; only for closed meshes
+  // Pairs of faces whose interiors intersect; only computed when `closed` and `check_intersections`.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersections;
+};
+
+// Builds a CGAL Surface_mesh from the soup when PMP::is_polygon_soup_a_polygon_mesh allows it
+// and measures it. Pass check_intersections = false when the mesh has degenerate triangles
+// (CGAL's self-intersection test requires non-degenerate faces).
+SolidProperties analyse_solid(const ProxyMesh& mesh, bool check_intersections);
+
+}  // namespace nano::mesh

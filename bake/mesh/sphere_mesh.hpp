@@ -1,0 +1,17 @@
+#pragma once
+#include "bake/mesh/proxy_mesh.hpp"
+
+namespace nano::mesh {
+
+// Virion proxy: an equal-angle cube-sphere. Each cube face is an n×n grid whose parameters
+// (a, b) ∈ [−1, 1]² map to the cube point tan(a·π/4), tan(b·π/4) before projection onto the
+// sphere; that warp makes the grid lines equally spaced in angle, so cells vary in area by
+// ~1.4× instead of the ~5× of a plain gnomonic cube map.
+// UV layout: the 6 face charts are squares in a 3×2 atlas (cells of 1/3 × 1/3, so v ∈ [0, 2/3]),
+// each inset by a gutter of 0.02, linear in (a, b) and not mirrored (UV winding = outward
+// winding). Seams: all 12 cube edges. Positions are shared along them; UVs are not.
+// 12·n² triangles with n = round(sqrt(target / 12)); normals are angle-weighted vertex normals.
+// Throws nano::InputError when target < 48 or radius is not positive and finite.
+ProxyMesh make_sphere_mesh(int target_triangles, double radius);
+
+}  // namespace nano::mesh

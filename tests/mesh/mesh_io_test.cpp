@@ -1,0 +1,175 @@
+// Loading through OpenMesh (OBJ, PLY, OFF), the OBJ writer, normals, and bad input.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "bake/mesh/mesh_reader.hpp"
+#include "bake/mesh/obj_writer.hpp"
+#include "bake/mesh/sphere_mesh.hpp"
+#include "bake/mesh/vertex_normals.hpp"
+#include "common/error.hpp"
+#include "tests/mesh/test_obj.hpp"
+
+namespace nano::mesh {
+namespace {
+
+using testing::TempDir;
+
+void expect_input_error(const std::filesystem::path& file, const std::string& where, const std::string& rule_part) {
+  try {
+    read_proxy_mesh(file);
+    ADD_FAILURE() << "no InputError for " << file;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), file.string());
+    EXPECT_EQ(e.where(), where);
+    EXPECT_NE(e.rule().find(rule_part), std::string::npos) << e.what();
+  }
+}
+
+TEST(MeshReader, ObjKeepsPerCornerUvsAndSeams) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write("octa.obj", testing::octahedron));
+  ASSERT_EQ(mesh.triangles.size(), 8u);
+  EXPECT_EQ(mesh.positions.size(), 6u);
+  ASSERT_TRUE(mesh.has_uvs());
+  // Face 4 is "2/2 1/1 6/6", face 7 is "1/1 4/4 6/9": vertex 6 (−Z) has different UVs in each.
+  EXPECT_EQ(mesh.corner_position(4, 2), glm::dvec3(0, 0, -1));
+  EXPECT_EQ(mesh.corner_uv(4, 2), glm::dvec2(1, 1));
+  EXPECT_EQ(mesh.corner_uv(7, 2), glm::dvec2(1, 0));
+  EXPECT_EQ(mesh.corner_uv(0, 1), glm::dvec2(0.5, 1));
+  // No normals in the file: computed. At +Z (a vertex with four symmetric faces) the
+  // angle-weighted normal is exactly up.
+  ASSERT_TRUE(mesh.has_normals());
+  EXPECT_NEAR(glm::length(mesh.corner_normal(0, 2) - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
+}
+
+TEST(MeshReader, PolygonsAreFanTriangulated) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(
+      dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n"));
+  ASSERT_EQ(mesh.triangles.size(), 2u);
+  EXPECT_EQ(mesh.triangles[0], (Triangle{0, 1, 2}));
+  EXPECT_EQ(mesh.triangles[1], (Triangle{0, 2, 3}));
+  EXPECT_EQ(mesh.corner_uv(1, 2), glm::dvec2(0, 1));
+}
+
+TEST(MeshReader, ObjNormalsPerCornerAreKept) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write(
+      "n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvn 1 0 0\nvn 0 0 2\n"
+               "f 1//1 2//1 3//1\nf 1//2 4//2 2//3\n"));
+  ASSERT_TRUE(mesh.has_normals());
+  EXPECT_FALSE(mesh.has_uvs());
+  EXPECT_EQ(mesh.corner_normal(0, 0), glm::dvec3(0, 0, 1));
+  EXPECT_EQ(mesh.corner_normal(1, 0), glm::dvec3(1, 0, 0));  // same vertex, another normal
+  EXPECT_EQ(mesh.corner_normal(1, 2), glm::dvec3(0, 0, 1));  // normalised on load
+}
+
+TEST(MeshReader, PlyWithPerVertexUvs) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write("t.ply",
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float u\nproperty float v\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n1 1 0 1 1\n3 0 1 2\n3 1 3 2\n"));
+  ASSERT_EQ(mesh.triangles.size(), 2u);
+  ASSERT_TRUE(mesh.has_uvs());
+  EXPECT_EQ(mesh.corner_uv(1, 1), glm::dvec2(1, 1));
+  EXPECT_EQ(mesh.corner_position(1, 1), glm::dvec3(1, 1, 0));
+}
+
+TEST(MeshReader, OffWithoutUvsLoadsWithoutUvs) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write("t.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_FALSE(mesh.has_uvs());
+  EXPECT_NEAR(glm::length(mesh.normals.at(0) - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
+}
+
+TEST(MeshReader, CoincidentVerticesAreWelded) {
+  // Two triangles that share an edge through duplicated vertices (as PLY exporters write seams).
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write("w.obj",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 4 6 5\n"));
+  EXPECT_EQ(mesh.positions.size(), 4u);
+  EXPECT_EQ(mesh.triangles[1], (Triangle{1, 3, 2}));
+}
+
+TEST(MeshReader, BadInputNamesFileAndRule) {
+  TempDir dir;
+  expect_input_error(dir.path() / "missing.obj", "", "no such file");
+  expect_input_error(dir.write("garbage.obj", "this is not\n\x01\x02 a mesh at all\n"), "", "no faces");
+  expect_input_error(dir.write("empty.obj", ""), "", "no faces");
+  expect_input_error(dir.write("points.obj", "v 0 0 0\nv 1 0 0\n"), "", "no faces");
+  expect_input_error(dir.write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n"), "face 1", "does not exist");
+  expect_input_error(dir.write("repeat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 3\nf 2 2 3\n"), "face 2",
+                     "repeated vertex");
+  // OBJ text cannot carry a NaN past OpenMesh's stream parser (the vertex is skipped instead);
+  // a binary PLY can.
+  expect_input_error(dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), "face 0", "does not exist");
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const float coordinates[9] = {0, 0, 0, std::nanf(""), 0, 0, 0, 1, 0};
+  ply.append(reinterpret_cast<const char*>(coordinates), sizeof coordinates);
+  const unsigned char count = 3;
+  const std::int32_t indices[3] = {0, 1, 2};
+  ply.append(reinterpret_cast<const char*>(&count), 1);
+  ply.append(reinterpret_cast<const char*>(indices), sizeof indices);
+  expect_input_error(dir.write("nan.ply", ply), "vertex 1", "finite");
+  expect_input_error(dir.write("mesh.stl", "solid x\nendsolid x\n"), "", "unsupported mesh format");
+  expect_input_error(dir.write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n"), "", "");
+}
+
+TEST(ObjWriter, FormatsPerCornerIndices) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write("octa.obj", testing::octahedron));
+  const std::string text = format_obj(mesh);
+  EXPECT_NE(text.find("\nv 1 0 0\n"), std::string::npos);
+  EXPECT_NE(text.find("\nvt 0.5 0.5\n"), std::string::npos);
+  // Face 5 of the octahedron: vertex 6 (−Z) with its own UV (0, 1) — a seam corner.
+  EXPECT_NE(text.find("\nvt 0 1\n"), std::string::npos);
+  EXPECT_EQ(std::count(text.begin(), text.end(), 'f'), 8);
+}
+
+TEST(ObjWriter, RoundTripPreservesPositionsUvsAndNormals) {
+  TempDir dir;
+  const ProxyMesh original = make_sphere_mesh(432, 500.0);
+  const auto file = dir.path() / "sphere.obj";
+  write_obj(file, original);
+  const ProxyMesh loaded = read_proxy_mesh(file);
+  ASSERT_EQ(loaded.triangles.size(), original.triangles.size());
+  ASSERT_EQ(loaded.positions.size(), original.positions.size());
+  ASSERT_TRUE(loaded.has_uvs());
+  ASSERT_TRUE(loaded.has_normals());
+  // OpenMesh's OBJ reader parses into 32-bit floats: agreement to float precision.
+  for (std::size_t t = 0; t < original.triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(glm::length(loaded.corner_position(t, c) - original.corner_position(t, c)), 0.0, 500.0 * 1e-7);
+      EXPECT_NEAR(glm::length(loaded.corner_uv(t, c) - original.corner_uv(t, c)), 0.0, 1e-7);
+      EXPECT_NEAR(glm::length(loaded.corner_normal(t, c) - original.corner_normal(t, c)), 0.0, 1e-6);
+    }
+  }
+}
+
+TEST(ObjWriter, UnwritablePathThrowsAndLeavesNothing) {
+  TempDir dir;
+  const ProxyMesh mesh = make_sphere_mesh(48, 1.0);
+  EXPECT_THROW(write_obj(dir.path() / "no_such_dir" / "x.obj", mesh), InputError);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+TEST(VertexNormals, AngleWeightedNormalOfCubeCornerIsTheDiagonal) {
+  // Three faces of a cube meet at the origin, split into triangles unevenly (two triangles on
+  // one face): angle weighting still gives the symmetric diagonal, area weighting would not.
+  ProxyMesh mesh;
+  mesh.positions = {{0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}, {-1, -1, 0}};
+  mesh.triangles = {{0, 4, 2}, {0, 1, 4}, {0, 2, 3}, {0, 3, 1}};  // all wind towards +x, +y, +z
+  compute_angle_weighted_normals(mesh);
+  const glm::dvec3 expected = glm::normalize(glm::dvec3(1, 1, 1));
+  EXPECT_NEAR(glm::length(mesh.normals[0] - expected), 0.0, 1e-12);
+  EXPECT_EQ(mesh.normal_triangles, mesh.triangles);
+}
+
+}  // namespace
+}  // namespace nano::mesh
