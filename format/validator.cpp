@@ -1,0 +1,385 @@
+#include "format/validator.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "format/checked_math.hpp"
+
+namespace nano::format {
+namespace {
+
+using glm::uvec4;
+using glm::vec2;
+using glm::vec4;
+
+std::string str(std::uint64_t v) { return std::to_string(v); }
+
+class SemanticCheck {
+public:
+  explicit SemanticCheck(const Package& p) : p_(p) {}
+
+  void run() {
+    check_strings_refs_and_molecules();
+    check_atoms();
+    check_atom_info();
+    check_tiles<SectionKind::tiles2d>();
+    check_tiles<SectionKind::tiles3d>();
+    check_instances();
+    check_recipes();
+    check_meshes();
+    check_vertices();
+    check_triangle_shells();
+    check_compartments();
+    check_occupancy();
+    check_scene();
+    check_compartment_instances();
+    check_provenance();
+  }
+
+private:
+  // The record being checked, so failures can name its byte offset.
+  struct Cursor {
+    SectionKind kind;
+    std::uint64_t index;
+    std::uint64_t record_size;
+  };
+
+  [[noreturn]] void fail(const Cursor& c, std::uint64_t member_offset, Rule rule, const std::string& detail) const {
+    const std::string what = section_kind_name(c.kind) + "[" + str(c.index) + "]: " + detail;
+    throw PackageError(p_.name(), rule, p_.locate(c.kind, c.index * c.record_size + member_offset), what);
+  }
+
+  template <SectionKind K> auto cursor(std::uint64_t i) const { return Cursor{K, i, sizeof(record_t<K>)}; }
+
+  // A section that records of `user` refer to must exist when there is at least one such record.
+  void require(SectionKind user, SectionKind needed) const {
+    if (p_.record_count(user) > 0 && !p_.has(needed))
+      throw PackageError(p_.name(), Rule::missing_section, p_.locate(user, 0),
+                         "section " + section_kind_name(user) + " refers to section " + section_kind_name(needed) +
+                             ", which is absent");
+  }
+
+  void finite(const Cursor& c, std::uint64_t off, const float* v, int n, const char* what) const {
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(v[i])) fail(c, off + 4 * i, Rule::non_finite, std::string(what) + " is not finite");
+  }
+  void finite(const Cursor& c, std::uint64_t off, const vec4& v, const char* what) const { finite(c, off, &v.x, 4, what); }
+
+  void zero(const Cursor& c, std::uint64_t off, std::uint32_t v) const {
+    if (v != 0) fail(c, off, Rule::nonzero_reserved, "reserved member is not zero");
+  }
+
+  void ordered_aabb(const Cursor& c, std::uint64_t off_min, const vec4& lo, const vec4& hi) const {
+    finite(c, off_min, lo, "AABB minimum");
+    finite(c, off_min + 16, hi, "AABB maximum");
+    for (int a = 0; a < 3; ++a)
+      if (lo[a] > hi[a]) fail(c, off_min + 4 * a, Rule::inverted_aabb, "AABB minimum exceeds maximum on axis " + str(a));
+  }
+
+  void range(const Cursor& c, std::uint64_t off, std::uint64_t first, std::uint64_t count, SectionKind target,
+             const char* what) const {
+    const std::uint64_t size = p_.record_count(target);
+    if (!range_within(first, count, size))
+      fail(c, off, Rule::index_out_of_range,
+           std::string(what) + " [" + str(first) + ", +" + str(count) + ") exceeds the " + str(size) + " records of " +
+               section_kind_name(target));
+  }
+
+  void index(const Cursor& c, std::uint64_t off, std::uint64_t i, SectionKind target, const char* what) const {
+    const std::uint64_t size = p_.record_count(target);
+    if (i >= size)
+      fail(c, off, Rule::index_out_of_range,
+           std::string(what) + " " + str(i) + " is not below the " + str(size) + " records of " + section_kind_name(target));
+  }
+
+  void string_ref(const Cursor& c, std::uint64_t off, std::uint32_t first, std::uint32_t length, const char* what) const {
+    if (length == 0 && first == 0) return;  // no string
+    range(c, off, first, length, SectionKind::strings, what);
+  }
+
+  void check_strings_refs_and_molecules() {
+    require(SectionKind::molecules, SectionKind::atoms);
+    const auto mols = p_.records<SectionKind::molecules>();
+    for (std::uint64_t i = 0; i < mols.size(); ++i) {
+      const gpu::MoleculeType& m = mols[i];
+      const Cursor c = cursor<SectionKind::molecules>(i);
+      ordered_aabb(c, 0, m.aabb_min, m.aabb_max);
+      if (m.aabb_min.w < 0) fail(c, 12, Rule::bad_value, "bounding radius is negative");
+      finite(c, 32, m.up_axis, "up axis");
+      if (glm::dot(glm::vec3(m.up_axis), glm::vec3(m.up_axis)) == 0) fail(c, 32, Rule::bad_value, "up axis is zero");
+      finite(c, 48, m.colour, "colour");
+      for (int k = 0; k < 4; ++k)
+        if (m.colour[k] < 0 || m.colour[k] > 1) fail(c, 48 + 4 * k, Rule::bad_value, "colour component outside [0, 1]");
+      if (m.atom_count == 0) fail(c, 68, Rule::bad_value, "molecule type without atoms");
+      range(c, 64, m.first_atom, m.atom_count, SectionKind::atoms, "atom range");
+      string_ref(c, 72, m.name_offset, m.name_length, "name");
+      string_ref(c, 80, m.source_offset, m.source_length, "source id");
+      zero(c, 88, m.reserved0);
+      zero(c, 92, m.reserved1);
+    }
+  }
+
+  void check_atoms() {
+    const auto atoms = p_.records<SectionKind::atoms>();
+    for (std::uint64_t i = 0; i < atoms.size(); ++i) {
+      const Cursor c = cursor<SectionKind::atoms>(i);
+      finite(c, 0, atoms[i].centre_radius, "atom");
+      if (!(atoms[i].centre_radius.w > 0)) fail(c, 12, Rule::bad_value, "atom radius is not positive");
+    }
+  }
+
+  void check_atom_info() {
+    if (!p_.has(SectionKind::atom_info)) return;
+    const auto info = p_.records<SectionKind::atom_info>();
+    if (info.size() != p_.record_count(SectionKind::atoms))
+      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::atom_info, 0),
+                         "atom_info has " + str(info.size()) + " records for " +
+                             str(p_.record_count(SectionKind::atoms)) + " atoms");
+    for (std::uint64_t i = 0; i < info.size(); ++i) {
+      const Cursor c = cursor<SectionKind::atom_info>(i);
+      // Text members: printable ASCII, then only NUL padding.
+      const auto* bytes = reinterpret_cast<const unsigned char*>(&info[i]);
+      for (std::uint64_t off = 0; off < offsetof(AtomInfo, residue_number); ++off) {
+        const unsigned char ch = bytes[off];
+        if (ch != 0 && (ch < 0x20 || ch > 0x7e)) fail(c, off, Rule::bad_value, "non-printable character in atom text");
+      }
+    }
+  }
+
+  template <SectionKind K> void check_tiles() {
+    require(K, SectionKind::instances);
+    const auto tiles = p_.template records<K>();
+    for (std::uint64_t i = 0; i < tiles.size(); ++i) {
+      const auto& t = tiles[i];
+      const Cursor c = cursor<K>(i);
+      const std::uint64_t size_at = offsetof(record_t<K>, size);
+      finite(c, size_at, t.size, "tile size");
+      const int axes = K == SectionKind::tiles2d ? 2 : 3;
+      for (int a = 0; a < axes; ++a)
+        if (!(t.size[a] > 0)) fail(c, size_at + 4 * a, Rule::bad_value, "tile size is not positive");
+      range(c, offsetof(record_t<K>, first_instance), t.first_instance, t.instance_count, SectionKind::instances,
+            "instance range");
+      zero(c, offsetof(record_t<K>, reserved0), t.reserved0);
+      zero(c, offsetof(record_t<K>, reserved1), t.reserved1);
+      if constexpr (K == SectionKind::tiles3d) {
+        zero(c, offsetof(gpu::Tile3D, face_colours_z) + 8, t.face_colours_z.z);
+        zero(c, offsetof(gpu::Tile3D, face_colours_z) + 12, t.face_colours_z.w);
+      }
+    }
+  }
+
+  void check_instances() {
+    require(SectionKind::instances, SectionKind::molecules);
+    const auto inst = p_.records<SectionKind::instances>();
+    for (std::uint64_t i = 0; i < inst.size(); ++i) {
+      const gpu::MoleculeInstance& m = inst[i];
+      const Cursor c = cursor<SectionKind::instances>(i);
+      finite(c, 0, m.rotation, "rotation");
+      if (std::abs(glm::dot(m.rotation, m.rotation) - 1.0f) > 1e-3f) fail(c, 0, Rule::bad_value, "rotation is not a unit quaternion");
+      finite(c, 16, m.position, "position");
+      ordered_aabb(c, 32, m.aabb_min, m.aabb_max);
+      index(c, 64, m.molecule_type, SectionKind::molecules, "molecule type");
+      zero(c, 68, m.reserved0);
+      zero(c, 72, m.reserved1);
+      zero(c, 76, m.reserved2);
+    }
+  }
+
+  void check_recipes() {
+    require(SectionKind::recipes, SectionKind::recipe_indices);
+    const auto recipes = p_.records<SectionKind::recipes>();
+    const auto indices = p_.records<SectionKind::recipe_indices>();
+    for (std::uint64_t i = 0; i < recipes.size(); ++i) {
+      const gpu::Recipe& r = recipes[i];
+      const Cursor c = cursor<SectionKind::recipes>(i);
+      if (r.dims.w != gpu::NANO_RECIPE_2D && r.dims.w != gpu::NANO_RECIPE_3D)
+        fail(c, 12, Rule::bad_value, "dimensionality " + str(r.dims.w) + " is neither 2 nor 3");
+      if (r.dims.x == 0 || r.dims.y == 0 || r.dims.z == 0) fail(c, 0, Rule::bad_value, "recipe dimension is zero");
+      if (r.dims.w == gpu::NANO_RECIPE_2D && r.dims.z != 1) fail(c, 8, Rule::bad_value, "2D recipe with depth other than 1");
+      const std::uint64_t cells = std::uint64_t{r.dims.x} * r.dims.y * r.dims.z;  // < 2^96 impossible: checked below
+      const auto xy = checked_mul(r.dims.x, r.dims.y);
+      const auto xyz = xy ? checked_mul(*xy, r.dims.z) : std::nullopt;
+      if (!xyz || *xyz != r.index_count)
+        fail(c, 20, Rule::record_size,
+             "index count " + str(r.index_count) + " differs from dims product " + (xyz ? str(cells) : std::string("(overflow)")));
+      range(c, 16, r.first_index, r.index_count, SectionKind::recipe_indices, "tile index range");
+      const SectionKind tiles = r.dims.w == gpu::NANO_RECIPE_2D ? SectionKind::tiles2d : SectionKind::tiles3d;
+      const std::uint64_t tile_count = p_.record_count(tiles);
+      for (std::uint64_t k = r.first_index; k < std::uint64_t{r.first_index} + r.index_count; ++k)
+        if (indices[k] >= tile_count) {
+          const Cursor ic = cursor<SectionKind::recipe_indices>(k);
+          fail(ic, 0, Rule::index_out_of_range,
+               "tile index " + str(indices[k]) + " of recipe " + str(i) + " is not below the " + str(tile_count) +
+                   " records of " + section_kind_name(tiles));
+        }
+      zero(c, 24, r.reserved0);
+      zero(c, 28, r.reserved1);
+    }
+  }
+
+  void check_meshes() {
+    const auto meshes = p_.records<SectionKind::meshes>();
+    if (!meshes.empty()) {
+      for (SectionKind k : {SectionKind::vertex_positions, SectionKind::vertex_normals, SectionKind::vertex_uvs,
+                            SectionKind::triangles, SectionKind::triangle_shells})
+        require(SectionKind::meshes, k);
+    }
+    const std::uint64_t vertices = p_.record_count(SectionKind::vertex_positions);
+    for (SectionKind k : {SectionKind::vertex_normals, SectionKind::vertex_uvs})
+      if (p_.has(k) && p_.record_count(k) != vertices)
+        throw PackageError(p_.name(), Rule::record_size, p_.locate(k, 0),
+                           section_kind_name(k) + " has " + str(p_.record_count(k)) + " records for " + str(vertices) +
+                               " vertex positions");
+    if (p_.has(SectionKind::triangle_shells) &&
+        p_.record_count(SectionKind::triangle_shells) != p_.record_count(SectionKind::triangles))
+      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::triangle_shells, 0),
+                         "triangle_shells has " + str(p_.record_count(SectionKind::triangle_shells)) +
+                             " records for " + str(p_.record_count(SectionKind::triangles)) + " triangles");
+    const auto tris = p_.records<SectionKind::triangles>();
+    for (std::uint64_t i = 0; i < meshes.size(); ++i) {
+      const gpu::Mesh& m = meshes[i];
+      const Cursor c = cursor<SectionKind::meshes>(i);
+      ordered_aabb(c, 0, m.aabb_min, m.aabb_max);
+      range(c, 32, m.first_vertex, m.vertex_count, SectionKind::vertex_positions, "vertex range");
+      range(c, 40, m.first_triangle, m.triangle_count, SectionKind::triangles, "triangle range");
+      for (std::uint64_t t = m.first_triangle; t < std::uint64_t{m.first_triangle} + m.triangle_count; ++t) {
+        const std::uint32_t v[3] = {tris[t].v0, tris[t].v1, tris[t].v2};
+        for (int k = 0; k < 3; ++k)
+          if (v[k] >= m.vertex_count)
+            fail(cursor<SectionKind::triangles>(t), 4 * k, Rule::index_out_of_range,
+                 "vertex index " + str(v[k]) + " is not below mesh " + str(i) + "'s " + str(m.vertex_count) + " vertices");
+      }
+    }
+  }
+
+  void check_vertices() {
+    const auto pos = p_.records<SectionKind::vertex_positions>();
+    for (std::uint64_t i = 0; i < pos.size(); ++i) finite(cursor<SectionKind::vertex_positions>(i), 0, pos[i], "position");
+    const auto nrm = p_.records<SectionKind::vertex_normals>();
+    for (std::uint64_t i = 0; i < nrm.size(); ++i) finite(cursor<SectionKind::vertex_normals>(i), 0, nrm[i], "normal");
+    const auto uvs = p_.records<SectionKind::vertex_uvs>();
+    for (std::uint64_t i = 0; i < uvs.size(); ++i) finite(cursor<SectionKind::vertex_uvs>(i), 0, &uvs[i].x, 2, "UV");
+  }
+
+  void check_triangle_shells() {
+    const auto shells = p_.records<SectionKind::triangle_shells>();
+    for (std::uint64_t i = 0; i < shells.size(); ++i) {
+      const gpu::TriangleShell& s = shells[i];
+      const Cursor c = cursor<SectionKind::triangle_shells>(i);
+      finite(c, 0, s.uv_min_max, "UV box");
+      finite(c, 16, &s.h_plus, 3, "shell offset");
+      if (s.uv_min_max.x > s.uv_min_max.z || s.uv_min_max.y > s.uv_min_max.w)
+        fail(c, 0, Rule::inverted_aabb, "UV minimum exceeds maximum");
+      if (s.h_plus < 0 || s.h_minus < 0 || s.side_offset < 0) fail(c, 16, Rule::bad_value, "negative shell offset");
+      zero(c, 28, s.reserved0);
+    }
+  }
+
+  // A compartment's tile set must lie in its tile section, and its recipe must be of the right
+  // dimensionality and use only tiles of that set.
+  void check_tile_set(const Cursor& c, std::uint64_t off, std::uint32_t first, std::uint32_t count, std::uint32_t recipe,
+                      SectionKind tiles, std::uint32_t dimensionality) const {
+    if (recipe == gpu::NANO_NO_INDEX) return;
+    if (count == 0) fail(c, off + 4, Rule::bad_value, "empty tile set");
+    range(c, off, first, count, tiles, "tile set");
+    index(c, off + 8, recipe, SectionKind::recipes, "recipe");
+    const gpu::Recipe& r = p_.records<SectionKind::recipes>()[recipe];
+    if (r.dims.w != dimensionality) fail(c, off, Rule::bad_value, "recipe " + str(recipe) + " has the wrong dimensionality");
+    const auto indices = p_.records<SectionKind::recipe_indices>();
+    for (std::uint64_t k = r.first_index; k < std::uint64_t{r.first_index} + r.index_count; ++k)
+      if (indices[k] < first || indices[k] - first >= count)
+        fail(c, off, Rule::index_out_of_range,
+             "recipe " + str(recipe) + " uses tile " + str(indices[k]) + " outside the tile set [" + str(first) + ", +" +
+                 str(count) + ")");
+  }
+
+  void check_compartments() {
+    require(SectionKind::compartments, SectionKind::meshes);
+    const auto comps = p_.records<SectionKind::compartments>();
+    for (std::uint64_t i = 0; i < comps.size(); ++i) {
+      const gpu::Compartment& k = comps[i];
+      const Cursor c = cursor<SectionKind::compartments>(i);
+      finite(c, 0, k.grid_min, "core-grid origin");
+      finite(c, 32, k.scales, "scales");
+      index(c, 48, k.mesh, SectionKind::meshes, "mesh");
+      check_tile_set(c, 52, k.membrane_first_tile, k.membrane_tile_count, k.membrane_recipe, SectionKind::tiles2d,
+                     gpu::NANO_RECIPE_2D);
+      check_tile_set(c, 64, k.soluble_first_tile, k.soluble_tile_count, k.soluble_recipe, SectionKind::tiles3d,
+                     gpu::NANO_RECIPE_3D);
+      if (k.membrane_recipe != gpu::NANO_NO_INDEX) {
+        if (k.replication_width == 0 || k.replication_height == 0)
+          fail(c, 76, Rule::bad_value, "replication area is empty");
+        if (!(k.scales.x > 0) || !(k.scales.y > 0)) fail(c, 32, Rule::bad_value, "UV scale and tile size must be positive");
+      }
+      if (k.soluble_recipe != gpu::NANO_NO_INDEX) {
+        if (!(k.grid_min.w > 0)) fail(c, 12, Rule::bad_value, "box size is not positive");
+        if (!(k.scales.z > 0)) fail(c, 40, Rule::bad_value, "cube size is not positive");
+        if (k.grid_dims.x == 0 || k.grid_dims.y == 0 || k.grid_dims.z == 0) fail(c, 16, Rule::bad_value, "core grid is empty");
+        const auto boxes = checked_mul(std::uint64_t{k.grid_dims.x} * k.grid_dims.y, k.grid_dims.z);
+        if (!boxes || !range_within(k.grid_dims.w, *boxes, p_.record_count(SectionKind::occupancy)))
+          fail(c, 28, Rule::index_out_of_range,
+               "occupancy range of the core grid exceeds the " + str(p_.record_count(SectionKind::occupancy)) +
+                   " bytes of section occupancy");
+      }
+      string_ref(c, 84, k.name_offset, k.name_length, "name");
+      zero(c, 92, k.reserved0);
+    }
+  }
+
+  void check_occupancy() {
+    const auto occ = p_.records<SectionKind::occupancy>();
+    for (std::uint64_t i = 0; i < occ.size(); ++i)
+      if (occ[i] > gpu::NANO_BOX_BOUNDARY)
+        fail(cursor<SectionKind::occupancy>(i), 0, Rule::bad_value, "occupancy value " + str(occ[i]) + " is not 0, 1 or 2");
+  }
+
+  void check_scene() {
+    const auto scene = p_.records<SectionKind::scene>();
+    if (!p_.has(SectionKind::scene)) return;
+    if (scene.size() != 1)
+      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::scene, 0),
+                         "section scene must hold exactly one record, not " + str(scene.size()));
+    const gpu::SceneSettings& s = scene[0];
+    const Cursor c = cursor<SectionKind::scene>(0);
+    finite(c, 0, s.camera_eye, "camera position");
+    finite(c, 16, s.camera_target, "camera target");
+    finite(c, 32, s.camera_up, "camera up");
+    if (!(s.camera_eye.w > 0 && s.camera_eye.w < 3.14159265f)) fail(c, 12, Rule::bad_value, "field of view outside (0, pi)");
+    zero(c, 52, s.reserved0);
+    zero(c, 56, s.reserved1);
+    zero(c, 60, s.reserved2);
+  }
+
+  void check_compartment_instances() {
+    require(SectionKind::compartment_instances, SectionKind::compartments);
+    const auto inst = p_.records<SectionKind::compartment_instances>();
+    for (std::uint64_t i = 0; i < inst.size(); ++i) {
+      const Cursor c = cursor<SectionKind::compartment_instances>(i);
+      for (int row = 0; row < 3; ++row) finite(c, 16 * row, inst[i].transform[row], "transform");
+      index(c, 48, inst[i].compartment, SectionKind::compartments, "compartment");
+      zero(c, 52, inst[i].reserved0);
+      zero(c, 56, inst[i].reserved1);
+      zero(c, 60, inst[i].reserved2);
+    }
+  }
+
+  void check_provenance() {
+    const auto text = p_.records<SectionKind::provenance>();
+    for (std::uint64_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\0') fail(cursor<SectionKind::provenance>(i), 0, Rule::bad_value, "NUL byte in provenance text");
+  }
+
+  const Package& p_;
+};
+
+}  // namespace
+
+void validate_semantics(const Package& package) { SemanticCheck(package).run(); }
+
+Package open_validated(const std::filesystem::path& path) {
+  Package p = Package::open(path);
+  validate_semantics(p);
+  return p;
+}
+
+}  // namespace nano::format

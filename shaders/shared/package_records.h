@@ -1,0 +1,224 @@
+// Records of the .nup package that shaders read in place (std430) and C++ reads from the memory map.
+// One definition serves both: every vec4/uvec4 member sits at a multiple of 16 bytes and every struct
+// holding one is a multiple of 16 bytes long, so std430's offsets and array strides equal the C++
+// layout (GLM's vec4 is 16 bytes with 4-byte alignment). The C++ static_asserts at the end pin it.
+// Reserved members must be zero: a later minor version may give them a meaning. The byte layout of
+// every section is documented in docs/format.md.
+#ifndef NANO_PACKAGE_RECORDS_H
+#define NANO_PACKAGE_RECORDS_H
+
+#include "glsl_cpp.h"
+
+NANO_BEGIN
+
+// "No such record" in an optional index (a compartment without membrane, for instance).
+NANO_CONST uint NANO_NO_INDEX = 0xFFFFFFFFu;
+
+// Scene effect flags (SceneSettings.effect_flags). Unknown bits are ignored by readers.
+NANO_CONST uint NANO_EFFECT_CLIPPING_PLANES = 1u;
+NANO_CONST uint NANO_EFFECT_PROXY_ANIMATION = 2u;
+NANO_CONST uint NANO_EFFECT_JITTER = 4u;
+NANO_CONST uint NANO_EFFECT_AMBIENT_OCCLUSION = 8u;
+NANO_CONST uint NANO_EFFECT_SHADOWS = 16u;
+
+// Box occupancy values (one byte per core-grid box).
+NANO_CONST uint NANO_BOX_OUTSIDE = 0u;
+NANO_CONST uint NANO_BOX_INSIDE = 1u;
+NANO_CONST uint NANO_BOX_BOUNDARY = 2u;
+
+// Recipe dimensionality.
+NANO_CONST uint NANO_RECIPE_2D = 2u;
+NANO_CONST uint NANO_RECIPE_3D = 3u;
+
+// Section "molecules": one record per molecule type, in molecule (object) space, Å.
+struct MoleculeType {
+  vec4 aabb_min;     // xyz: AABB minimum over atom spheres; w: bounding radius about the origin
+  vec4 aabb_max;     // xyz: AABB maximum; w: reserved
+  vec4 up_axis;      // xyz: unit axis that membrane placement aligns with the surface normal; w: reserved
+  vec4 colour;       // linear RGBA in [0, 1]
+  uint first_atom;   // range in section "atoms"
+  uint atom_count;
+  uint name_offset;  // name: bytes [offset, offset+length) of section "strings"
+  uint name_length;
+  uint source_offset;  // source id (PDB/mmCIF id or file name) in section "strings"
+  uint source_length;
+  uint reserved0;
+  uint reserved1;
+};
+
+// Section "atoms": object-space centre (xyz, Å) and radius (w, Å), float32, no quantisation.
+struct Atom {
+  vec4 centre_radius;
+};
+
+// Section "tiles2d": Wang squares of the membrane shells.
+struct Tile2D {
+  uvec4 edge_colours;  // N, E, S, W
+  vec4 size;           // x, y: tile extent in tile space (Å); z: shell thickness (Å); w: reserved
+  uint first_instance; // range in section "instances", positions in this tile's space
+  uint instance_count;
+  uint reserved0;
+  uint reserved1;
+};
+
+// Section "tiles3d": Wang cubes of the core grids.
+struct Tile3D {
+  uvec4 face_colours_xy;  // -x, +x, -y, +y
+  uvec4 face_colours_z;   // x: -z, y: +z, zw: reserved
+  vec4 size;              // xyz: cube extent in tile space (Å); w: reserved
+  uint first_instance;    // range in section "instances"
+  uint instance_count;
+  uint reserved0;
+  uint reserved1;
+};
+
+// Section "instances": a molecule placed in a tile's space.
+struct MoleculeInstance {
+  vec4 rotation;   // unit quaternion (x, y, z, w), molecule space -> tile space
+  vec4 position;   // xyz: molecule origin in tile space; w: reserved
+  vec4 aabb_min;   // xyz: tile-space AABB of the placed molecule; w: reserved
+  vec4 aabb_max;
+  uint molecule_type;  // index into section "molecules"
+  uint reserved0;
+  uint reserved1;
+  uint reserved2;
+};
+
+// Section "recipes": a 2D or 3D array of tile indices, x fastest, stored in "recipe_indices".
+struct Recipe {
+  uvec4 dims;        // xyz: tiles per axis (z = 1 for 2D); w: NANO_RECIPE_2D or NANO_RECIPE_3D
+  uint first_index;  // range in section "recipe_indices"; index_count = dims.x * dims.y * dims.z
+  uint index_count;
+  uint reserved0;
+  uint reserved1;
+};
+
+// Section "meshes": proxy geometry ranges. Triangle vertex indices are local to the mesh's range.
+struct Mesh {
+  vec4 aabb_min;  // xyz: mesh-space AABB; w: reserved
+  vec4 aabb_max;
+  uint first_vertex;  // range in "vertex_positions" / "vertex_normals" / "vertex_uvs"
+  uint vertex_count;
+  uint first_triangle;  // range in "triangles" and "triangle_shells"
+  uint triangle_count;
+};
+
+// Section "vertex_positions" (xyz, w reserved) and "vertex_normals" (unit xyz, w reserved): vec4.
+// Section "vertex_uvs": vec2.
+
+// Section "triangles": three vertex indices, tightly packed so it doubles as a Vulkan index buffer.
+struct Triangle {
+  uint v0;
+  uint v1;
+  uint v2;
+};
+
+// Section "triangle_shells": the prism built over each triangle, parallel to "triangles".
+struct TriangleShell {
+  vec4 uv_min_max;    // u_min, v_min, u_max, v_max of the triangle's UV box
+  float h_plus;       // shell extent above the surface along vertex normals (Å, >= 0)
+  float h_minus;      // extent below (Å, >= 0)
+  float side_offset;  // outward offset of the side walls (Å, >= 0)
+  uint reserved0;
+};
+
+// Section "compartments": a mesh with its membrane shell and its soluble core grid.
+struct Compartment {
+  vec4 grid_min;   // xyz: core-grid AABB minimum (mesh space); w: box edge length (Å)
+  uvec4 grid_dims; // xyz: boxes per axis; w: first byte of this grid in section "occupancy"
+  vec4 scales;     // x: UV scale k (Å of surface per UV unit); y: Wang square size (Å);
+                   // z: Wang cube size (Å); w: reserved
+  uint mesh;               // index into "meshes"
+  uint membrane_first_tile;  // tile set: range in "tiles2d"
+  uint membrane_tile_count;
+  uint membrane_recipe;      // index into "recipes" (2D), or NANO_NO_INDEX for no membrane
+  uint soluble_first_tile;   // cube set: range in "tiles3d"
+  uint soluble_tile_count;
+  uint soluble_recipe;       // index into "recipes" (3D), or NANO_NO_INDEX for no core grid
+  uint replication_width;    // replication area W x H, in tiles
+  uint replication_height;
+  uint name_offset;          // name in section "strings"
+  uint name_length;
+  uint reserved0;
+};
+
+// Section "scene": exactly one record.
+struct SceneSettings {
+  vec4 camera_eye;     // xyz: default camera position (world, Å); w: vertical field of view (radians)
+  vec4 camera_target;  // xyz: point looked at; w: reserved
+  vec4 camera_up;      // xyz: up direction; w: reserved
+  uint effect_flags;   // NANO_EFFECT_* bits
+  uint reserved0;
+  uint reserved1;
+  uint reserved2;
+};
+
+// Section "compartment_instances": where each compartment is placed in the world.
+struct CompartmentInstance {
+  vec4 transform[3];  // rows of a 3x4 row-major affine transform, compartment space -> world
+  uint compartment;   // index into "compartments"
+  uint reserved0;
+  uint reserved1;
+  uint reserved2;
+};
+
+NANO_END
+
+#ifdef __cplusplus
+#include <cstddef>
+// std430 offsets and strides, pinned for C++ so a member added in the wrong place fails to compile.
+#define NANO_PIN(T, size) static_assert(sizeof(nano::gpu::T) == (size), #T " size");
+#define NANO_AT(T, m, off) static_assert(offsetof(nano::gpu::T, m) == (off), #T "." #m " offset");
+NANO_PIN(MoleculeType, 96)
+NANO_AT(MoleculeType, aabb_min, 0) NANO_AT(MoleculeType, aabb_max, 16) NANO_AT(MoleculeType, up_axis, 32)
+NANO_AT(MoleculeType, colour, 48) NANO_AT(MoleculeType, first_atom, 64) NANO_AT(MoleculeType, atom_count, 68)
+NANO_AT(MoleculeType, name_offset, 72) NANO_AT(MoleculeType, name_length, 76)
+NANO_AT(MoleculeType, source_offset, 80) NANO_AT(MoleculeType, source_length, 84)
+NANO_AT(MoleculeType, reserved0, 88) NANO_AT(MoleculeType, reserved1, 92)
+NANO_PIN(Atom, 16)
+NANO_AT(Atom, centre_radius, 0)
+NANO_PIN(Tile2D, 48)
+NANO_AT(Tile2D, edge_colours, 0) NANO_AT(Tile2D, size, 16) NANO_AT(Tile2D, first_instance, 32)
+NANO_AT(Tile2D, instance_count, 36) NANO_AT(Tile2D, reserved0, 40) NANO_AT(Tile2D, reserved1, 44)
+NANO_PIN(Tile3D, 64)
+NANO_AT(Tile3D, face_colours_xy, 0) NANO_AT(Tile3D, face_colours_z, 16) NANO_AT(Tile3D, size, 32)
+NANO_AT(Tile3D, first_instance, 48) NANO_AT(Tile3D, instance_count, 52) NANO_AT(Tile3D, reserved0, 56)
+NANO_AT(Tile3D, reserved1, 60)
+NANO_PIN(MoleculeInstance, 80)
+NANO_AT(MoleculeInstance, rotation, 0) NANO_AT(MoleculeInstance, position, 16)
+NANO_AT(MoleculeInstance, aabb_min, 32) NANO_AT(MoleculeInstance, aabb_max, 48)
+NANO_AT(MoleculeInstance, molecule_type, 64) NANO_AT(MoleculeInstance, reserved0, 68)
+NANO_AT(MoleculeInstance, reserved1, 72) NANO_AT(MoleculeInstance, reserved2, 76)
+NANO_PIN(Recipe, 32)
+NANO_AT(Recipe, dims, 0) NANO_AT(Recipe, first_index, 16) NANO_AT(Recipe, index_count, 20)
+NANO_AT(Recipe, reserved0, 24) NANO_AT(Recipe, reserved1, 28)
+NANO_PIN(Mesh, 48)
+NANO_AT(Mesh, aabb_min, 0) NANO_AT(Mesh, aabb_max, 16) NANO_AT(Mesh, first_vertex, 32)
+NANO_AT(Mesh, vertex_count, 36) NANO_AT(Mesh, first_triangle, 40) NANO_AT(Mesh, triangle_count, 44)
+NANO_PIN(Triangle, 12)
+NANO_AT(Triangle, v0, 0) NANO_AT(Triangle, v1, 4) NANO_AT(Triangle, v2, 8)
+NANO_PIN(TriangleShell, 32)
+NANO_AT(TriangleShell, uv_min_max, 0) NANO_AT(TriangleShell, h_plus, 16) NANO_AT(TriangleShell, h_minus, 20)
+NANO_AT(TriangleShell, side_offset, 24) NANO_AT(TriangleShell, reserved0, 28)
+NANO_PIN(Compartment, 96)
+NANO_AT(Compartment, grid_min, 0) NANO_AT(Compartment, grid_dims, 16) NANO_AT(Compartment, scales, 32)
+NANO_AT(Compartment, mesh, 48) NANO_AT(Compartment, membrane_first_tile, 52)
+NANO_AT(Compartment, membrane_tile_count, 56) NANO_AT(Compartment, membrane_recipe, 60)
+NANO_AT(Compartment, soluble_first_tile, 64) NANO_AT(Compartment, soluble_tile_count, 68)
+NANO_AT(Compartment, soluble_recipe, 72) NANO_AT(Compartment, replication_width, 76)
+NANO_AT(Compartment, replication_height, 80) NANO_AT(Compartment, name_offset, 84)
+NANO_AT(Compartment, name_length, 88) NANO_AT(Compartment, reserved0, 92)
+NANO_PIN(SceneSettings, 64)
+NANO_AT(SceneSettings, camera_eye, 0) NANO_AT(SceneSettings, camera_target, 16)
+NANO_AT(SceneSettings, camera_up, 32) NANO_AT(SceneSettings, effect_flags, 48)
+NANO_AT(SceneSettings, reserved0, 52) NANO_AT(SceneSettings, reserved1, 56) NANO_AT(SceneSettings, reserved2, 60)
+NANO_PIN(CompartmentInstance, 64)
+NANO_AT(CompartmentInstance, transform, 0) NANO_AT(CompartmentInstance, compartment, 48)
+NANO_AT(CompartmentInstance, reserved0, 52) NANO_AT(CompartmentInstance, reserved1, 56)
+NANO_AT(CompartmentInstance, reserved2, 60)
+static_assert(sizeof(glm::vec4) == 16 && sizeof(glm::uvec4) == 16 && sizeof(glm::vec2) == 8, "GLM vector sizes");
+#undef NANO_PIN
+#undef NANO_AT
+#endif
+
+#endif

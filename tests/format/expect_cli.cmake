@@ -1,0 +1,18 @@
+# Runs a command and checks its exit code and that its combined output matches a regex:
+#   cmake -DEXPECT_CODE=1 -DEXPECT_OUTPUT=regex -P expect_cli.cmake -- COMMAND ARGS...
+set(cmd)
+set(collect OFF)
+foreach(i RANGE ${CMAKE_ARGC})
+  if(collect)
+    list(APPEND cmd "${CMAKE_ARGV${i}}")
+  elseif("${CMAKE_ARGV${i}}" STREQUAL "--")
+    set(collect ON)
+  endif()
+endforeach()
+execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc STREQUAL "${EXPECT_CODE}")
+  message(FATAL_ERROR "exit code ${rc}, expected ${EXPECT_CODE}\nstdout:\n${out}\nstderr:\n${err}")
+endif()
+if(NOT "${out}${err}" MATCHES "${EXPECT_OUTPUT}")
+  message(FATAL_ERROR "output does not match '${EXPECT_OUTPUT}'\nstdout:\n${out}\nstderr:\n${err}")
+endif()

@@ -1,0 +1,109 @@
+#include "tests/format/sample_scene.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace nano::format::test {
+namespace {
+
+using glm::uvec4;
+using glm::vec2;
+using glm::vec4;
+
+AtomInfo atom_info(const char* chain, const char* residue, int number, const char* name, const char* element) {
+  AtomInfo a{};
+  // NUL-padded fixed fields, not NUL-terminated when full (as the format says).
+  std::memcpy(a.chain, chain, std::min(std::strlen(chain), sizeof a.chain));
+  std::memcpy(a.residue_name, residue, std::min(std::strlen(residue), sizeof a.residue_name));
+  std::memcpy(a.atom_name, name, std::min(std::strlen(name), sizeof a.atom_name));
+  std::memcpy(a.element, element, std::min(std::strlen(element), sizeof a.element));
+  a.residue_number = number;
+  return a;
+}
+
+template <class T> SectionSource source(SectionKind kind, const std::vector<T>& v, Compression c) {
+  return section_source(kind, std::span<const T>(v), c);
+}
+
+SectionSource text_source(SectionKind kind, const std::string& s, Compression c) {
+  return section_source(kind, std::span<const char>(s.data(), s.size()), c);
+}
+
+}  // namespace
+
+SampleScene make_sample_scene() {
+  SampleScene s;
+  s.strings = "haemoglobin2HHBband3membrane";
+  // Type 0: three atoms; type 1: two atoms.
+  s.molecules.push_back({vec4(-2, -1, -1, 2.5f), vec4(2, 1, 1.5f, 0), vec4(0, 0, 1, 0), vec4(0.8f, 0.1f, 0.1f, 1),
+                         0, 3, 0, 11, 11, 4, 0, 0});
+  s.molecules.push_back({vec4(-1, -1, -1, 1.8f), vec4(1, 1, 1, 0), vec4(0, 1, 0, 0), vec4(0.2f, 0.3f, 0.9f, 1),
+                         3, 2, 15, 5, 0, 0, 0, 0});
+  s.atoms = {{vec4(-1, 0, 0, 1)}, {vec4(1, 0, 0, 1)}, {vec4(0, 0, 0.5f, 1)}, {vec4(0, 0, 0, 1)}, {vec4(0.5f, 0, 0, 0.5f)}};
+  s.atom_info = {atom_info("A", "HEM", 1, "FE", "FE"), atom_info("A", "HEM", 1, "NA", "N"), atom_info("B", "LYS", 42, "CA", "C"),
+                 atom_info("C", "GLY", -3, "O", "O"), atom_info("C", "GLY", 7, "N", "N")};
+  s.atom_info[2].insertion_code = 'A';
+  const vec4 q(0, 0, 0.70710678f, 0.70710678f);
+  s.instances = {{q, vec4(1, 1, 0, 0), vec4(0, 0, -1, 0), vec4(2, 2, 1, 0), 0, 0, 0, 0},
+                 {vec4(0, 0, 0, 1), vec4(3, 3, 0, 0), vec4(2, 2, -1, 0), vec4(4, 4, 1, 0), 1, 0, 0, 0},
+                 {vec4(0, 0, 0, 1), vec4(5, 5, 0, 0), vec4(4, 4, -1, 0), vec4(6, 6, 1, 0), 1, 0, 0, 0},
+                 {q, vec4(2, 2, 2, 0), vec4(1, 1, 1, 0), vec4(3, 3, 3, 0), 0, 0, 0, 0}};
+  s.tiles2d = {{uvec4(0, 1, 1, 0), vec4(6, 6, 4, 0), 0, 2, 0, 0}, {uvec4(1, 0, 0, 1), vec4(6, 6, 4, 0), 2, 1, 0, 0}};
+  s.tiles3d = {{uvec4(0, 0, 1, 1), uvec4(0, 1, 0, 0), vec4(5, 5, 5, 0), 3, 1, 0, 0}};
+  s.recipes = {{uvec4(2, 2, 1, gpu::NANO_RECIPE_2D), 0, 4, 0, 0}, {uvec4(1, 1, 2, gpu::NANO_RECIPE_3D), 4, 2, 0, 0}};
+  s.recipe_indices = {0, 1, 1, 0, 0, 0};
+  s.meshes = {{vec4(0, 0, 0, 0), vec4(1, 1, 1, 0), 0, 4, 0, 4}};
+  s.vertex_positions = {vec4(0, 0, 0, 0), vec4(1, 0, 0, 0), vec4(0, 1, 0, 0), vec4(0, 0, 1, 0)};
+  s.vertex_normals = {vec4(-0.57735f, -0.57735f, -0.57735f, 0), vec4(1, 0, 0, 0), vec4(0, 1, 0, 0), vec4(0, 0, 1, 0)};
+  s.vertex_uvs = {vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(1, 1)};
+  s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (int t = 0; t < 4; ++t) s.triangle_shells.push_back({vec4(0, 0, 1, 1), 3.0f + t, 1.0f, 0.25f, 0});
+  // An 8x8x8 core grid: mostly outside, so the occupancy section compresses.
+  s.occupancy.assign(512, gpu::NANO_BOX_OUTSIDE);
+  for (int i = 200; i < 260; ++i) s.occupancy[i] = gpu::NANO_BOX_INSIDE;
+  s.occupancy[199] = s.occupancy[260] = gpu::NANO_BOX_BOUNDARY;
+  s.compartments = {{vec4(0, 0, 0, 0.125f), uvec4(8, 8, 8, 0), vec4(100, 6, 5, 0), 0, 0, 2, 0, 0, 1, 1, 3, 3, 20, 8, 0}};
+  s.scene = {{vec4(0, 0, 10, 0.8f), vec4(0, 0, 0, 0), vec4(0, 1, 0, 0),
+              gpu::NANO_EFFECT_AMBIENT_OCCLUSION | gpu::NANO_EFFECT_SHADOWS, 0, 0, 0}};
+  s.compartment_instances = {{{vec4(1, 0, 0, 0), vec4(0, 1, 0, 0), vec4(0, 0, 1, 0)}, 0, 0, 0, 0},
+                             {{vec4(0, -1, 0, 50), vec4(1, 0, 0, 0), vec4(0, 0, 1, -5)}, 0, 0, 0, 0}};
+  s.provenance = R"({"baker":"nanobake 0.1.0","inputs":{"2HHB.cif":"xxh3:0123456789abcdef"},)"
+                 R"("parameters":{"tile_size":6,"cube_size":5,"seed":1,"notes":"the same words again and again and again"}})";
+  return s;
+}
+
+std::vector<SectionSource> sections_of(const SampleScene& s, Compression c, std::optional<SectionKind> without) {
+  using K = SectionKind;
+  std::vector<SectionSource> all = {
+      text_source(K::strings, s.strings, c),
+      source(K::molecules, s.molecules, c),
+      source(K::atoms, s.atoms, c),
+      source(K::atom_info, s.atom_info, c),
+      source(K::tiles2d, s.tiles2d, c),
+      source(K::tiles3d, s.tiles3d, c),
+      source(K::instances, s.instances, c),
+      source(K::recipes, s.recipes, c),
+      source(K::recipe_indices, s.recipe_indices, c),
+      source(K::meshes, s.meshes, c),
+      source(K::vertex_positions, s.vertex_positions, c),
+      source(K::vertex_normals, s.vertex_normals, c),
+      source(K::vertex_uvs, s.vertex_uvs, c),
+      source(K::triangles, s.triangles, c),
+      source(K::triangle_shells, s.triangle_shells, c),
+      source(K::compartments, s.compartments, c),
+      source(K::occupancy, s.occupancy, c),
+      source(K::scene, s.scene, c),
+      source(K::compartment_instances, s.compartment_instances, c),
+      text_source(K::provenance, s.provenance, c),
+  };
+  std::vector<SectionSource> out;
+  for (const SectionSource& src : all)
+    if (!without || src.kind != static_cast<std::uint32_t>(*without)) out.push_back(src);
+  return out;
+}
+
+std::vector<std::byte> build(const SampleScene& scene, Compression compression) {
+  return build_package(sections_of(scene, compression));
+}
+
+}  // namespace nano::format::test

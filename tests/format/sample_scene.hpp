@@ -1,0 +1,43 @@
+#pragma once
+// A small but complete and consistent scene holding every section kind, as plain vectors the tests
+// keep as the oracle for what was written.
+#include <string>
+#include <vector>
+
+#include "format/writer.hpp"
+
+namespace nano::format::test {
+
+struct SampleScene {
+  std::string strings;
+  std::vector<gpu::MoleculeType> molecules;
+  std::vector<gpu::Atom> atoms;
+  std::vector<AtomInfo> atom_info;
+  std::vector<gpu::Tile2D> tiles2d;
+  std::vector<gpu::Tile3D> tiles3d;
+  std::vector<gpu::MoleculeInstance> instances;
+  std::vector<gpu::Recipe> recipes;
+  std::vector<std::uint32_t> recipe_indices;
+  std::vector<gpu::Mesh> meshes;
+  std::vector<glm::vec4> vertex_positions;
+  std::vector<glm::vec4> vertex_normals;
+  std::vector<glm::vec2> vertex_uvs;
+  std::vector<gpu::Triangle> triangles;
+  std::vector<gpu::TriangleShell> triangle_shells;
+  std::vector<gpu::Compartment> compartments;
+  std::vector<std::uint8_t> occupancy;
+  std::vector<gpu::SceneSettings> scene;
+  std::vector<gpu::CompartmentInstance> compartment_instances;
+  std::string provenance;
+};
+
+SampleScene make_sample_scene();
+
+// One SectionSource per non-empty section (spans into `scene`, which must outlive them), in kind
+// order, optionally leaving one kind out.
+std::vector<SectionSource> sections_of(const SampleScene& scene, Compression compression,
+                                       std::optional<SectionKind> without = std::nullopt);
+
+std::vector<std::byte> build(const SampleScene& scene, Compression compression = Compression::zstd_if_smaller);
+
+}  // namespace nano::format::test

@@ -1,0 +1,173 @@
+// Packages that are structurally sound but whose contents break a semantic rule: each is
+// rejected with the right rule, naming the right section and the byte of the broken member.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "tests/format/package_bytes.hpp"
+#include "tests/format/sample_scene.hpp"
+
+namespace nano::format::test {
+namespace {
+
+struct Case {
+  const char* name;
+  std::function<void(SampleScene&)> corrupt;
+  Rule rule;
+  SectionKind section;
+  std::uint64_t record_offset;  // byte of the broken member within the uncompressed section
+};
+
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+const Case kCases[] = {
+    {"atom range past the atoms", [](SampleScene& s) { s.molecules[1].atom_count = 3; }, Rule::index_out_of_range,
+     SectionKind::molecules, 96 + 64},
+    {"atom range start overflow", [](SampleScene& s) { s.molecules[0].first_atom = 0xffffffffu; },
+     Rule::index_out_of_range, SectionKind::molecules, 64},
+    {"molecule without atoms", [](SampleScene& s) { s.molecules[0].atom_count = 0; }, Rule::bad_value,
+     SectionKind::molecules, 68},
+    {"inverted molecule AABB", [](SampleScene& s) { s.molecules[1].aabb_min.y = 5; }, Rule::inverted_aabb,
+     SectionKind::molecules, 96 + 4},
+    {"name outside the string table", [](SampleScene& s) { s.molecules[0].name_length = 100; },
+     Rule::index_out_of_range, SectionKind::molecules, 72},
+    {"NaN atom", [](SampleScene& s) { s.atoms[2].centre_radius.z = kNaN; }, Rule::non_finite, SectionKind::atoms,
+     2 * 16 + 8},
+    {"infinite atom radius", [](SampleScene& s) { s.atoms[4].centre_radius.w = INFINITY; }, Rule::non_finite,
+     SectionKind::atoms, 4 * 16 + 12},
+    {"zero atom radius", [](SampleScene& s) { s.atoms[0].centre_radius.w = 0; }, Rule::bad_value, SectionKind::atoms, 12},
+    {"atom info count", [](SampleScene& s) { s.atom_info.pop_back(); }, Rule::record_size, SectionKind::atom_info, 0},
+    {"control character in atom name", [](SampleScene& s) { s.atom_info[1].atom_name[0] = '\n'; }, Rule::bad_value,
+     SectionKind::atom_info, 24 + 12},
+    {"instance molecule type", [](SampleScene& s) { s.instances[2].molecule_type = 2; }, Rule::index_out_of_range,
+     SectionKind::instances, 2 * 80 + 64},
+    {"non-unit quaternion", [](SampleScene& s) { s.instances[0].rotation = glm::vec4(0, 0, 0, 2); }, Rule::bad_value,
+     SectionKind::instances, 0},
+    {"NaN instance position", [](SampleScene& s) { s.instances[1].position.x = kNaN; }, Rule::non_finite,
+     SectionKind::instances, 80 + 16},
+    {"reserved instance member", [](SampleScene& s) { s.instances[3].reserved1 = 1; }, Rule::nonzero_reserved,
+     SectionKind::instances, 3 * 80 + 72},
+    {"tile instance range", [](SampleScene& s) { s.tiles2d[1].instance_count = 3; }, Rule::index_out_of_range,
+     SectionKind::tiles2d, 48 + 32},
+    {"negative tile size", [](SampleScene& s) { s.tiles3d[0].size.z = -1; }, Rule::bad_value, SectionKind::tiles3d, 32 + 8},
+    {"recipe tile index", [](SampleScene& s) { s.recipe_indices[2] = 2; }, Rule::index_out_of_range,
+     SectionKind::recipe_indices, 2 * 4},
+    {"3D recipe tile index", [](SampleScene& s) { s.recipe_indices[5] = 1; }, Rule::index_out_of_range,
+     SectionKind::recipe_indices, 5 * 4},
+    {"recipe dims vs count", [](SampleScene& s) { s.recipes[0].dims.x = 3; }, Rule::record_size, SectionKind::recipes, 20},
+    {"recipe dims overflow", [](SampleScene& s) { s.recipes[1].dims = glm::uvec4(0x10000, 0x10000, 2, 3); },
+     Rule::record_size, SectionKind::recipes, 32 + 20},
+    {"recipe past the index array", [](SampleScene& s) { s.recipes[1].first_index = 5; }, Rule::index_out_of_range,
+     SectionKind::recipes, 32 + 16},
+    {"recipe dimensionality", [](SampleScene& s) { s.recipes[0].dims.w = 4; }, Rule::bad_value, SectionKind::recipes, 12},
+    {"mesh triangle range", [](SampleScene& s) { s.meshes[0].triangle_count = 5; }, Rule::index_out_of_range,
+     SectionKind::meshes, 40},
+    {"mesh vertex range", [](SampleScene& s) { s.meshes[0].first_vertex = 1; }, Rule::index_out_of_range,
+     SectionKind::meshes, 32},
+    {"triangle vertex index", [](SampleScene& s) { s.triangles[3].v2 = 4; }, Rule::index_out_of_range,
+     SectionKind::triangles, 3 * 12 + 8},
+    {"NaN vertex", [](SampleScene& s) { s.vertex_positions[1].y = kNaN; }, Rule::non_finite, SectionKind::vertex_positions,
+     16 + 4},
+    {"NaN UV", [](SampleScene& s) { s.vertex_uvs[3].x = kNaN; }, Rule::non_finite, SectionKind::vertex_uvs, 3 * 8},
+    {"normal count", [](SampleScene& s) { s.vertex_normals.pop_back(); }, Rule::record_size, SectionKind::vertex_normals, 0},
+    {"inverted UV box", [](SampleScene& s) { s.triangle_shells[2].uv_min_max.x = 2; }, Rule::inverted_aabb,
+     SectionKind::triangle_shells, 2 * 32},
+    {"negative shell", [](SampleScene& s) { s.triangle_shells[0].h_minus = -1; }, Rule::bad_value,
+     SectionKind::triangle_shells, 16},
+    {"compartment mesh index", [](SampleScene& s) { s.compartments[0].mesh = 1; }, Rule::index_out_of_range,
+     SectionKind::compartments, 48},
+    {"compartment recipe index", [](SampleScene& s) { s.compartments[0].soluble_recipe = 2; }, Rule::index_out_of_range,
+     SectionKind::compartments, 72},
+    {"membrane recipe is 3D", [](SampleScene& s) { s.compartments[0].membrane_recipe = 1; }, Rule::bad_value,
+     SectionKind::compartments, 52},
+    {"recipe outside the tile set", [](SampleScene& s) { s.compartments[0].membrane_tile_count = 1; },
+     Rule::index_out_of_range, SectionKind::compartments, 52},
+    {"occupancy range", [](SampleScene& s) { s.compartments[0].grid_dims.w = 1; }, Rule::index_out_of_range,
+     SectionKind::compartments, 28},
+    {"zero box size", [](SampleScene& s) { s.compartments[0].grid_min.w = 0; }, Rule::bad_value, SectionKind::compartments, 12},
+    {"occupancy value", [](SampleScene& s) { s.occupancy[300] = 3; }, Rule::bad_value, SectionKind::occupancy, 300},
+    {"two scene records", [](SampleScene& s) { s.scene.push_back(s.scene[0]); }, Rule::record_size, SectionKind::scene, 0},
+    {"field of view", [](SampleScene& s) { s.scene[0].camera_eye.w = 0; }, Rule::bad_value, SectionKind::scene, 12},
+    {"scene compartment index", [](SampleScene& s) { s.compartment_instances[1].compartment = 1; },
+     Rule::index_out_of_range, SectionKind::compartment_instances, 64 + 48},
+    {"NaN transform", [](SampleScene& s) { s.compartment_instances[0].transform[2].w = kNaN; }, Rule::non_finite,
+     SectionKind::compartment_instances, 32 + 12},
+    {"NUL in provenance", [](SampleScene& s) { s.provenance[5] = '\0'; }, Rule::bad_value, SectionKind::provenance, 5},
+};
+
+class Semantic : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Semantic, RejectedWithRuleSectionAndOffset) {
+  const Case& c = GetParam();
+  SampleScene s = make_sample_scene();
+  c.corrupt(s);
+  const std::vector<std::byte> bytes = build(s, Compression::none);
+  const Package p = Package::from_bytes(bytes, "semantic.nup");
+  try {
+    validate_semantics(p);
+    FAIL() << c.name << ": accepted";
+  } catch (const PackageError& e) {
+    EXPECT_EQ(e.code(), c.rule) << e.what();
+    ASSERT_TRUE(e.location().section_kind.has_value()) << e.what();
+    EXPECT_EQ(*e.location().section_kind, static_cast<std::uint32_t>(c.section)) << e.what();
+    EXPECT_FALSE(e.location().decompressed);
+    EXPECT_EQ(e.location().offset, p.entry(c.section)->offset + c.record_offset) << e.what();
+    EXPECT_NE(std::string(e.what()).find("section " + section_kind_name(c.section)), std::string::npos) << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, Semantic, ::testing::ValuesIn(kCases), [](const auto& info) {
+  std::string n = info.param.name;
+  for (char& ch : n)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return n;
+});
+
+TEST(SemanticCompressed, OffsetIsIntoTheDecompressedBytes) {
+  SampleScene s = make_sample_scene();
+  s.occupancy[300] = 7;
+  const Package p = Package::from_bytes(build(s, Compression::zstd_if_smaller));
+  ASSERT_EQ(p.entry(SectionKind::occupancy)->codec, static_cast<std::uint16_t>(Codec::zstd));
+  try {
+    validate_semantics(p);
+    FAIL();
+  } catch (const PackageError& e) {
+    EXPECT_EQ(e.code(), Rule::bad_value);
+    EXPECT_TRUE(e.location().decompressed);
+    EXPECT_EQ(e.location().offset, 300u);
+  }
+}
+
+TEST(SemanticMissing, ReferencedSectionsMustBePresent) {
+  const SampleScene s = make_sample_scene();
+  for (auto [without, user] : {std::pair{SectionKind::atoms, SectionKind::molecules},
+                               {SectionKind::molecules, SectionKind::instances},
+                               {SectionKind::instances, SectionKind::tiles2d},
+                               {SectionKind::recipe_indices, SectionKind::recipes},
+                               {SectionKind::meshes, SectionKind::compartments},
+                               {SectionKind::triangle_shells, SectionKind::meshes},
+                               {SectionKind::compartments, SectionKind::compartment_instances}}) {
+    const Package p = Package::from_bytes(build_package(sections_of(s, Compression::none, without)));
+    try {
+      validate_semantics(p);
+      ADD_FAILURE() << "without " << section_kind_name(without) << ": accepted";
+    } catch (const PackageError& e) {
+      EXPECT_EQ(e.code(), Rule::missing_section) << e.what();
+      EXPECT_EQ(e.location().section_kind, static_cast<std::uint32_t>(user)) << e.what();
+      EXPECT_NE(std::string(e.what()).find(section_kind_name(without)), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SemanticOptional, NoMembraneAndNoCoreGrid) {
+  SampleScene s = make_sample_scene();
+  s.compartments[0].membrane_recipe = gpu::NANO_NO_INDEX;
+  s.compartments[0].soluble_recipe = gpu::NANO_NO_INDEX;
+  s.compartments[0].grid_dims = glm::uvec4(0);
+  EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
+}
+
+}  // namespace
+}  // namespace nano::format::test
