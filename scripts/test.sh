@@ -7,4 +7,6 @@ bash "$here/scripts/setup.sh"
 # lavapipe spreads a dispatch over LP_NUM_THREADS threads; more threads than cores still helps it.
 export LP_NUM_THREADS=${LP_NUM_THREADS:-4}
 cd "$build_dir"
+# Name the Vulkan device every rendering test runs on, so the log says what was tested.
+"$build_dir/runtime/nanoview" devices
 ctest --output-on-failure -j "${NANO_TEST_JOBS:-2}" "$@"
