@@ -1,0 +1,147 @@
+#include "bake/scene/effects_parser.hpp"
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "bake/scene/transform_parser.hpp"
+
+namespace nano::scene {
+namespace {
+
+// Stored with a unit normal, so that n·p + d is a signed distance in Å.
+glm::dvec4 parse_plane(const JsonCursor& c) {
+  const glm::dvec4 p = c.vec4();
+  const double length = glm::length(glm::dvec3(p));
+  if (length == 0.0) c.fail("the plane normal [nx, ny, nz] must be non-zero, got " + c.shown());
+  return p / length;
+}
+
+Clipping parse_clipping(const JsonCursor& c) {
+  c.only_keys({"planes", "box"});
+  if (!c.has("planes") && !c.has("box")) c.fail("expected \"planes\", \"box\" or both");
+  Clipping clipping;
+  if (const auto planes = c.optional("planes"))
+    for (const JsonCursor& plane : planes->elements(1)) clipping.planes.push_back(parse_plane(plane));
+  if (const auto box = c.optional("box")) clipping.box = parse_box(*box);
+  return clipping;
+}
+
+SteadyMotion parse_steady_motion(const JsonCursor& c) {
+  c.only_keys({"spin_axis", "spin_degrees_per_second", "velocity"});
+  if (!c.has("spin_degrees_per_second") && !c.has("velocity"))
+    c.fail("expected \"spin_degrees_per_second\", \"velocity\" or both");
+  SteadyMotion m;
+  if (const auto axis = c.optional("spin_axis")) m.spin_axis = axis->unit_vec3();
+  if (const auto spin = c.optional("spin_degrees_per_second")) m.spin_degrees_per_second = spin->number();
+  if (const auto velocity = c.optional("velocity")) m.velocity = velocity->vec3();
+  return m;
+}
+
+std::vector<InstanceKeyframes> parse_keyframes(const JsonCursor& c, std::size_t instance_count) {
+  std::vector<InstanceKeyframes> all;
+  std::set<std::size_t> seen;
+  for (const JsonCursor& track : c.elements(1)) {
+    track.only_keys({"instance", "keys"});
+    const JsonCursor index = track.required("instance");
+    if (instance_count == 0) index.fail("the scene has no instances to animate");
+    InstanceKeyframes k;
+    k.instance = static_cast<std::size_t>(index.integer_between(0, static_cast<std::int64_t>(instance_count) - 1));
+    if (!seen.insert(k.instance).second)
+      index.fail("instance " + std::to_string(k.instance) + " already has keyframes");
+    for (const JsonCursor& key : track.required("keys").elements(1)) {
+      key.only_keys({"time", "transform", "matrix"});
+      const JsonCursor time = key.required("time");
+      Keyframe frame{time.number_at_least(0.0), parse_placement_transform(key)};
+      if (!k.keys.empty() && !(frame.time > k.keys.back().time))
+        time.fail("keyframe times must increase strictly, got " + time.shown() + " after " +
+                  std::to_string(k.keys.back().time));
+      k.keys.push_back(frame);
+    }
+    all.push_back(std::move(k));
+  }
+  return all;
+}
+
+Jitter parse_jitter(const JsonCursor& c) {
+  c.only_keys({"amplitude_degrees", "frequency_hz"});
+  Jitter j;
+  j.amplitude_degrees = c.required("amplitude_degrees").number_between(0.0, 180.0);
+  j.frequency_hz = c.required("frequency_hz").number_greater_than(0.0);
+  return j;
+}
+
+// Validated in full even when disabled, so a typo never hides behind "enabled": false.
+std::optional<Animation> parse_animation(const JsonCursor& c, std::size_t instance_count) {
+  c.only_keys({"enabled", "proxy_motion", "jitter"});
+  const bool enabled = c.has("enabled") ? c.required("enabled").boolean() : true;
+  Animation a;
+  if (const auto motion = c.optional("proxy_motion")) {
+    motion->only_keys({"steady", "keyframes"});
+    const bool steady = motion->has("steady"), keyed = motion->has("keyframes");
+    if (steady == keyed) motion->fail("expected exactly one of \"steady\" and \"keyframes\"");
+    if (steady) a.steady = parse_steady_motion(motion->required("steady"));
+    else a.keyframes = parse_keyframes(motion->required("keyframes"), instance_count);
+  }
+  if (const auto jitter = c.optional("jitter")) a.jitter = parse_jitter(*jitter);
+  if (!c.has("proxy_motion") && !c.has("jitter")) c.fail("expected \"proxy_motion\", \"jitter\" or both");
+  if (!enabled) return std::nullopt;
+  return a;
+}
+
+AmbientOcclusion parse_ambient_occlusion(const JsonCursor& c) {
+  c.only_keys({"rays", "radius"});
+  AmbientOcclusion ao;
+  ao.rays = static_cast<int>(c.required("rays").integer_between(1, 1024));
+  ao.radius = c.required("radius").number_greater_than(0.0);
+  return ao;
+}
+
+Shadows parse_shadows(const JsonCursor& c) {
+  c.only_keys({"light_direction"});
+  return Shadows{c.required("light_direction").unit_vec3()};
+}
+
+}  // namespace
+
+Box parse_box(const JsonCursor& c) {
+  const auto corners = c.elements();
+  if (corners.size() != 2) c.fail("expected [[xmin, ymin, zmin], [xmax, ymax, zmax]], got " + c.shown());
+  const Box box{corners[0].vec3(), corners[1].vec3()};
+  if (!(box.min.x < box.max.x && box.min.y < box.max.y && box.min.z < box.max.z))
+    c.fail("expected min < max on every axis, got " + c.shown());
+  return box;
+}
+
+Effects parse_effects(const JsonCursor& c, std::size_t instance_count) {
+  c.only_keys({"clipping", "animation", "ambient_occlusion", "shadows"});
+  Effects e;
+  if (const auto clipping = c.optional("clipping")) e.clipping = parse_clipping(*clipping);
+  if (const auto animation = c.optional("animation")) e.animation = parse_animation(*animation, instance_count);
+  if (const auto ao = c.optional("ambient_occlusion")) e.ambient_occlusion = parse_ambient_occlusion(*ao);
+  if (const auto shadows = c.optional("shadows")) e.shadows = parse_shadows(*shadows);
+  return e;
+}
+
+Camera parse_camera(const JsonCursor& c) {
+  c.only_keys({"position", "look_at", "up", "fov_degrees"});
+  Camera cam;
+  cam.position = c.required("position").vec3();
+  const JsonCursor look_at = c.required("look_at");
+  cam.look_at = look_at.vec3();
+  if (cam.look_at == cam.position) look_at.fail("look_at must differ from position");
+  const auto up = c.optional("up");
+  if (up) cam.up = up->unit_vec3();
+  const glm::dvec3 view = glm::normalize(cam.look_at - cam.position);
+  // Nearly parallel up and view directions leave the camera's roll undefined.
+  if (glm::length(glm::cross(view, cam.up)) < 1e-6) {
+    if (up) up->fail("up must not be parallel to the view direction");
+    c.fail("the view direction is parallel to the default up [0, 1, 0]; give \"up\"");
+  }
+  if (const auto fov = c.optional("fov_degrees")) cam.fov_degrees = fov->number_strictly_between(0.0, 180.0);
+  return cam;
+}
+
+}  // namespace nano::scene

@@ -1,0 +1,134 @@
+#include "bake/scene/random_placement.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "common/error.hpp"
+
+namespace nano::scene {
+namespace {
+
+// splitmix64 (Steele, Lea, Flood 2014): tiny, fast, and defined bit for bit, unlike the
+// standard library's distributions.
+class SplitMix64 {
+public:
+  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  // Uniform in [0, 1): the top 53 bits as a double.
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+private:
+  std::uint64_t state_;
+};
+
+// Uniform over rotations (Shoemake, Graphics Gems III, 1992); returned as (w, x, y, z).
+glm::dvec4 random_unit_quaternion(SplitMix64& rng) {
+  const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  const double t2 = 2.0 * std::numbers::pi * u2, t3 = 2.0 * std::numbers::pi * u3;
+  return {b * std::cos(t3), a * std::sin(t2), a * std::cos(t2), b * std::sin(t3)};
+}
+
+struct Sphere {
+  glm::dvec3 centre;
+  double radius;
+};
+
+std::string format(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+bool clear_of_all(const std::vector<Sphere>& placed, const Sphere& candidate, double gap) {
+  for (const Sphere& s : placed)
+    if (glm::distance(s.centre, candidate.centre) < s.radius + candidate.radius + gap) return false;
+  return true;
+}
+
+void place_copies(const RandomPlacement& entry, std::size_t entry_index, double radius,
+                  const std::string& scene_file, std::vector<Sphere>& placed,
+                  std::vector<PlacedInstance>& out) {
+  const std::string where = "instances[" + std::to_string(entry_index) + "]";
+  const glm::dvec3 lo = entry.box.min + radius, hi = entry.box.max - radius;
+  if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z)
+    throw InputError(scene_file, where,
+                     "a bounding sphere of compartment \"" + entry.compartment.name + "\" (radius " + format(radius) +
+                         " Å) does not fit inside the box; enlarge the box");
+  SplitMix64 rng(entry.seed);
+  for (int copy = 0; copy < entry.count; ++copy) {
+    bool done = false;
+    for (int attempt = 0; attempt < placement_attempts_per_copy && !done; ++attempt) {
+      const glm::dvec3 u(rng.uniform(), rng.uniform(), rng.uniform());
+      const Sphere candidate{lo + u * (hi - lo), radius};
+      if (!clear_of_all(placed, candidate, entry.min_gap)) continue;
+      placed.push_back(candidate);
+      out.push_back({entry.compartment, rigid_transform(random_unit_quaternion(rng), candidate.centre)});
+      done = true;
+    }
+    if (!done)
+      throw InputError(scene_file, where,
+                       "placed only " + std::to_string(copy) + " of " + std::to_string(entry.count) +
+                           " copies of compartment \"" + entry.compartment.name + "\" (bounding radius " +
+                           format(radius) + " Å, min_gap " + format(entry.min_gap) + " Å) without overlap; " +
+                           std::to_string(placement_attempts_per_copy) +
+                           " random positions for the next copy all collided. Enlarge the box, or lower count "
+                           "or min_gap");
+  }
+}
+
+}  // namespace
+
+std::uint64_t derive_placement_seed(std::uint64_t scene_seed, std::size_t entry_index) {
+  // One splitmix step from a state that mixes both inputs: distinct entries get unrelated streams.
+  SplitMix64 mix(scene_seed ^ (0xD1B54A32D192ED03ull * (static_cast<std::uint64_t>(entry_index) + 1)));
+  return mix.next();
+}
+
+std::size_t expanded_instance_count(const SceneDescription& scene) {
+  std::size_t n = 0;
+  for (const InstanceEntry& e : scene.instances)
+    n += std::holds_alternative<RandomPlacement>(e) ? static_cast<std::size_t>(std::get<RandomPlacement>(e).count) : 1;
+  return n;
+}
+
+std::vector<PlacedInstance> expand_random_instances(const SceneDescription& scene,
+                                                    const std::vector<double>& bounding_radius) {
+  if (bounding_radius.size() != scene.compartments.size())
+    throw std::invalid_argument("expand_random_instances: one bounding radius per compartment is needed");
+  for (double r : bounding_radius)
+    if (!(r > 0.0) || !std::isfinite(r))
+      throw std::invalid_argument("expand_random_instances: bounding radii must be finite and > 0");
+
+  const std::string scene_file = scene.source.string();
+  std::vector<Sphere> placed;
+  std::vector<PlacedInstance> out;
+  out.reserve(expanded_instance_count(scene));
+  // Explicit instances claim their space first, wherever they appear in the list, so a random
+  // entry never lands on an explicit instance that happens to come later in the file.
+  for (const InstanceEntry& e : scene.instances)
+    if (const auto* fixed = std::get_if<ExplicitInstance>(&e))
+      placed.push_back({transform_point(fixed->transform, glm::dvec3(0.0)),
+                        bounding_radius.at(fixed->compartment.index) * largest_stretch(fixed->transform)});
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    if (const auto* fixed = std::get_if<ExplicitInstance>(&scene.instances[i]))
+      out.push_back({fixed->compartment, fixed->transform});
+    else {
+      const auto& entry = std::get<RandomPlacement>(scene.instances[i]);
+      place_copies(entry, i, bounding_radius.at(entry.compartment.index), scene_file, placed, out);
+    }
+  }
+  return out;
+}
+
+}  // namespace nano::scene

@@ -1,0 +1,223 @@
+#pragma once
+// scene.json as plain data (docs/scene.md). Named maps become vectors in the file's order, so
+// everything baked from them is deterministic; a reference keeps both the name (for messages)
+// and the index into its vector (for the baker). Lengths in Å, angles in degrees, times in s.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "bake/scene/transform.hpp"
+
+namespace nano::scene {
+
+inline constexpr const char* scene_format_marker = "nanouniverse-scene";
+inline constexpr int scene_format_version = 1;
+
+struct NameRef {
+  std::string name;
+  std::size_t index = 0;  // into the vector of the map the name belongs to
+  bool operator==(const NameRef&) const = default;
+};
+
+struct Box {
+  glm::dvec3 min{0.0};
+  glm::dvec3 max{0.0};
+  bool operator==(const Box&) const = default;
+};
+
+struct MoleculeDescription {
+  std::string name;
+  std::filesystem::path file;          // resolved against the scene file's folder
+  std::optional<glm::dvec3> colour;    // sRGB components in [0, 1]; absent: the baker picks one
+  std::optional<glm::dvec3> up_axis;   // unit vector; absent ("principal"): from the structure
+  bool all_models = false;
+  bool keep_water = false;
+  bool keep_hydrogens = true;
+  bool operator==(const MoleculeDescription&) const = default;
+};
+
+struct SurfaceAbundance {
+  enum class Unit { per_um2, per_tile };
+  Unit unit = Unit::per_um2;
+  double value = 0.0;  // copies per µm² of membrane, or (average) copies per Wang tile
+  bool operator==(const SurfaceAbundance&) const = default;
+};
+
+struct MembraneProtein {
+  NameRef molecule;
+  SurfaceAbundance abundance;
+  double depth = 0.0;  // molecule centre along the outward membrane normal, Å
+  bool operator==(const MembraneProtein&) const = default;
+};
+
+struct LipidFill {
+  NameRef molecule;
+  double area_per_lipid = 0.0;  // Å² per lipid in one leaflet
+  double leaflet_offset = 0.0;  // distance of each leaflet's lipid centres from the mid-plane, Å
+  bool operator==(const LipidFill&) const = default;
+};
+
+struct MembraneDescription {
+  std::string name;
+  double tile_size = 0.0;  // edge of a Wang square, Å
+  int edge_colours = 2;
+  int tiles = 16;
+  std::vector<MembraneProtein> proteins;
+  std::optional<LipidFill> lipids;
+  bool operator==(const MembraneDescription&) const = default;
+};
+
+struct VolumeAbundance {
+  enum class Unit { millimolar, per_um3 };
+  Unit unit = Unit::millimolar;
+  double value = 0.0;
+  bool operator==(const VolumeAbundance&) const = default;
+};
+
+struct SolubleMolecule {
+  NameRef molecule;
+  VolumeAbundance abundance;
+  bool operator==(const SolubleMolecule&) const = default;
+};
+
+struct SolubleDescription {
+  std::string name;
+  double cube_size = 0.0;  // edge of a Wang cube, Å
+  int face_colours = 2;
+  int cubes = 16;
+  std::vector<SolubleMolecule> molecules;
+  double clearance = 0.0;  // gap kept between solubles and the membrane shell, Å
+  bool operator==(const SolubleDescription&) const = default;
+};
+
+struct MeshSource {
+  enum class Kind { file, sphere, rbc };
+  Kind kind = Kind::file;
+  std::filesystem::path file;  // Kind::file, resolved against the scene file's folder
+  int triangles = 0;           // generated meshes: target triangle count
+  double radius = 0.0;         // Kind::sphere, Å
+  bool operator==(const MeshSource&) const = default;
+};
+
+struct CompartmentDescription {
+  std::string name;
+  MeshSource mesh;
+  std::optional<NameRef> membrane;  // into SceneDescription::membranes
+  std::optional<NameRef> soluble;   // into SceneDescription::solubles
+  double scale = 1.0;               // applied to the mesh: compartment space = scale × mesh space
+  bool operator==(const CompartmentDescription&) const = default;
+};
+
+struct ExplicitInstance {
+  NameRef compartment;
+  Matrix3x4 transform = identity_transform();  // compartment space -> world
+  bool operator==(const ExplicitInstance&) const = default;
+};
+
+// Expanded into `count` explicit instances by expand_random_instances().
+struct RandomPlacement {
+  NameRef compartment;
+  int count = 0;
+  Box box;                 // every placed bounding sphere lies inside
+  std::uint64_t seed = 0;  // given, or derived from the scene seed and the entry's index
+  double min_gap = 0.0;    // least distance between bounding spheres, Å
+  bool operator==(const RandomPlacement&) const = default;
+};
+
+using InstanceEntry = std::variant<ExplicitInstance, RandomPlacement>;
+
+struct Clipping {
+  std::vector<glm::dvec4> planes;  // unit normal n and d: points with n·p + d >= 0 stay visible
+  std::optional<Box> box;          // only points inside stay visible
+  bool operator==(const Clipping&) const = default;
+};
+
+// Every instance spins about its own origin and drifts at a constant velocity.
+struct SteadyMotion {
+  glm::dvec3 spin_axis{0.0, 0.0, 1.0};  // unit
+  double spin_degrees_per_second = 0.0;
+  glm::dvec3 velocity{0.0};  // Å per second
+  bool operator==(const SteadyMotion&) const = default;
+};
+
+struct Keyframe {
+  double time = 0.0;                           // seconds, strictly increasing per instance
+  Matrix3x4 transform = identity_transform();  // replaces the instance's transform at `time`
+  bool operator==(const Keyframe&) const = default;
+};
+
+struct InstanceKeyframes {
+  std::size_t instance = 0;  // index into the expanded instance list
+  std::vector<Keyframe> keys;
+  bool operator==(const InstanceKeyframes&) const = default;
+};
+
+struct Jitter {
+  double amplitude_degrees = 0.0;
+  double frequency_hz = 0.0;
+  bool operator==(const Jitter&) const = default;
+};
+
+struct Animation {
+  std::optional<SteadyMotion> steady;       // at most one of steady and keyframes is used
+  std::vector<InstanceKeyframes> keyframes;
+  std::optional<Jitter> jitter;
+  bool operator==(const Animation&) const = default;
+};
+
+struct AmbientOcclusion {
+  int rays = 0;
+  double radius = 0.0;  // Å
+  bool operator==(const AmbientOcclusion&) const = default;
+};
+
+struct Shadows {
+  glm::dvec3 light_direction{0.0};  // unit, from the scene towards the light
+  bool operator==(const Shadows&) const = default;
+};
+
+// Each absent effect is off.
+struct Effects {
+  std::optional<Clipping> clipping;
+  std::optional<Animation> animation;
+  std::optional<AmbientOcclusion> ambient_occlusion;
+  std::optional<Shadows> shadows;
+  bool operator==(const Effects&) const = default;
+};
+
+struct Camera {
+  glm::dvec3 position{0.0};
+  glm::dvec3 look_at{0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};  // unit
+  double fov_degrees = 45.0;     // vertical
+  bool operator==(const Camera&) const = default;
+};
+
+struct SceneDescription {
+  std::filesystem::path source;  // the scene file, for messages
+  std::uint64_t seed = 0;
+  std::vector<MoleculeDescription> molecules;
+  std::vector<MembraneDescription> membranes;
+  std::vector<SolubleDescription> solubles;
+  std::vector<CompartmentDescription> compartments;
+  std::vector<InstanceEntry> instances;
+  Effects effects;
+  std::optional<Camera> camera;  // absent: derived from the scene bounds by the baker
+  bool operator==(const SceneDescription&) const = default;
+};
+
+// Instances after random placement is expanded, in the order of SceneDescription::instances.
+struct PlacedInstance {
+  NameRef compartment;
+  Matrix3x4 transform;
+  bool operator==(const PlacedInstance&) const = default;
+};
+
+}  // namespace nano::scene

@@ -1,0 +1,277 @@
+#include "bake/scene/scene_parser.hpp"
+
+#include <cstdint>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "bake/scene/effects_parser.hpp"
+#include "bake/scene/json_cursor.hpp"
+#include "bake/scene/random_placement.hpp"
+#include "bake/scene/transform_parser.hpp"
+
+namespace nano::scene {
+namespace {
+
+constexpr std::int64_t max_tile_colours = 16;
+constexpr std::int64_t max_triangles = 100'000'000;
+constexpr std::int64_t max_copies_per_placement = 10'000'000;
+
+// Names appear in key paths, so they may not contain the path separators "." "[" "]".
+void check_name(const JsonCursor& map, const std::string& name) {
+  const bool ok = !name.empty() && name.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
+                                                          "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") == std::string::npos;
+  if (!ok)
+    map.fail("name \"" + name + "\" must be non-empty and use only letters, digits, '_' and '-'");
+}
+
+std::filesystem::path resolve_path(const JsonCursor& c, const std::filesystem::path& folder) {
+  const std::filesystem::path p(c.non_empty_string());
+  return p.is_absolute() ? p.lexically_normal() : (folder / p).lexically_normal();
+}
+
+template <class Named>
+NameRef resolve(const JsonCursor& c, const std::vector<Named>& defined, const std::string& kind) {
+  const std::string name = c.string();
+  for (std::size_t i = 0; i < defined.size(); ++i)
+    if (defined[i].name == name) return {name, i};
+  std::string known;
+  for (const Named& d : defined) known += (known.empty() ? "" : ", ") + d.name;
+  c.fail("unknown " + kind + " \"" + name + "\" (" + (known.empty() ? "none are defined" : "defined: " + known) + ")");
+}
+
+int hex_digit(char ch) {
+  if (ch >= '0' && ch <= '9') return ch - '0';
+  if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
+  if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
+  return -1;
+}
+
+glm::dvec3 parse_colour(const JsonCursor& c) {
+  if (c.json().is_string()) {
+    const std::string s = c.string();
+    glm::dvec3 rgb(0.0);
+    bool ok = s.size() == 7 && s[0] == '#';
+    for (int i = 0; ok && i < 3; ++i) {
+      const int hi = hex_digit(s[1 + 2 * i]), lo = hex_digit(s[2 + 2 * i]);
+      ok = hi >= 0 && lo >= 0;
+      rgb[i] = (hi * 16 + lo) / 255.0;
+    }
+    if (!ok) c.fail("expected a colour \"#rrggbb\" or [r, g, b] in [0, 1], got " + c.shown());
+    return rgb;
+  }
+  if (!c.json().is_array() || c.json().size() != 3)
+    c.fail("expected a colour \"#rrggbb\" or [r, g, b] in [0, 1], got " + c.shown());
+  const auto e = c.elements();
+  return {e[0].number_between(0.0, 1.0), e[1].number_between(0.0, 1.0), e[2].number_between(0.0, 1.0)};
+}
+
+MoleculeDescription parse_molecule(const std::string& name, const JsonCursor& c, const std::filesystem::path& folder) {
+  c.only_keys({"file", "colour", "up", "all_models", "keep_water", "hydrogens"});
+  MoleculeDescription m;
+  m.name = name;
+  m.file = resolve_path(c.required("file"), folder);
+  if (const auto colour = c.optional("colour")) m.colour = parse_colour(*colour);
+  if (const auto up = c.optional("up")) {
+    if (up->json().is_string()) {
+      if (up->string() != "principal") up->fail("expected \"principal\" or [x, y, z], got " + up->shown());
+    } else {
+      m.up_axis = up->unit_vec3();
+    }
+  }
+  if (const auto v = c.optional("all_models")) m.all_models = v->boolean();
+  if (const auto v = c.optional("keep_water")) m.keep_water = v->boolean();
+  if (const auto v = c.optional("hydrogens")) m.keep_hydrogens = v->boolean();
+  return m;
+}
+
+// A Wang set with k colours on each of `sides` sides is complete at k^sides tiles; a scanline
+// (or voxel-order) fill knows `known_sides` sides of each new tile and needs at least one tile
+// for each of their k^known_sides combinations.
+int parse_tile_count(const JsonCursor& owner, const char* count_key, const char* colour_key, int colours,
+                     int default_count, int known_sides, int sides) {
+  std::int64_t min = 1, max = 1;
+  for (int i = 0; i < known_sides; ++i) min *= colours;
+  for (int i = 0; i < sides; ++i) max *= colours;
+  if (const auto count = owner.optional(count_key)) return static_cast<int>(count->integer_between(min, max));
+  if (default_count < min || default_count > max)
+    owner.required(colour_key).fail("with " + std::to_string(colours) + " colours the default of " +
+                                    std::to_string(default_count) + " is not a valid set size; give \"" + count_key +
+                                    "\" in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  return default_count;
+}
+
+// Exactly one of two keys that say the same amount in different units; returns which one and its value.
+std::pair<bool, double> parse_one_amount(const JsonCursor& c, const char* first, const char* second) {
+  const bool has_first = c.has(first), has_second = c.has(second);
+  if (has_first == has_second)
+    c.fail(std::string("expected exactly one of \"") + first + "\" and \"" + second + "\", got " +
+           (has_first ? "both" : "neither"));
+  return {has_first, c.required(has_first ? first : second).number_at_least(0.0)};
+}
+
+MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
+                                   const std::vector<MoleculeDescription>& molecules) {
+  c.only_keys({"tile_size", "edge_colours", "tiles", "proteins", "lipids"});
+  MembraneDescription m;
+  m.name = name;
+  m.tile_size = c.required("tile_size").number_greater_than(0.0);
+  if (const auto k = c.optional("edge_colours")) m.edge_colours = static_cast<int>(k->integer_between(1, max_tile_colours));
+  m.tiles = parse_tile_count(c, "tiles", "edge_colours", m.edge_colours, m.tiles, 2, 4);
+  if (const auto proteins = c.optional("proteins")) {
+    for (const JsonCursor& p : proteins->elements()) {
+      p.only_keys({"molecule", "density_per_um2", "copies_per_tile", "depth"});
+      MembraneProtein protein;
+      protein.molecule = resolve(p.required("molecule"), molecules, "molecule");
+      const auto [per_area, value] = parse_one_amount(p, "density_per_um2", "copies_per_tile");
+      protein.abundance = {per_area ? SurfaceAbundance::Unit::per_um2 : SurfaceAbundance::Unit::per_tile, value};
+      if (const auto depth = p.optional("depth")) protein.depth = depth->number();
+      m.proteins.push_back(protein);
+    }
+  }
+  if (const auto lipids = c.optional("lipids")) {
+    lipids->only_keys({"molecule", "area_per_lipid", "leaflet_offset"});
+    LipidFill fill;
+    fill.molecule = resolve(lipids->required("molecule"), molecules, "molecule");
+    fill.area_per_lipid = lipids->required("area_per_lipid").number_greater_than(0.0);
+    fill.leaflet_offset = lipids->required("leaflet_offset").number_at_least(0.0);
+    m.lipids = fill;
+  }
+  if (m.proteins.empty() && !m.lipids) c.fail("a membrane needs \"proteins\", \"lipids\" or both");
+  return m;
+}
+
+SolubleDescription parse_soluble(const std::string& name, const JsonCursor& c,
+                                 const std::vector<MoleculeDescription>& molecules) {
+  c.only_keys({"cube_size", "face_colours", "cubes", "molecules", "clearance"});
+  SolubleDescription s;
+  s.name = name;
+  s.cube_size = c.required("cube_size").number_greater_than(0.0);
+  if (const auto k = c.optional("face_colours")) s.face_colours = static_cast<int>(k->integer_between(1, max_tile_colours));
+  s.cubes = parse_tile_count(c, "cubes", "face_colours", s.face_colours, s.cubes, 3, 6);
+  for (const JsonCursor& e : c.required("molecules").elements(1)) {
+    e.only_keys({"molecule", "concentration_mM", "copies_per_um3"});
+    SolubleMolecule molecule;
+    molecule.molecule = resolve(e.required("molecule"), molecules, "molecule");
+    const auto [molar, value] = parse_one_amount(e, "concentration_mM", "copies_per_um3");
+    molecule.abundance = {molar ? VolumeAbundance::Unit::millimolar : VolumeAbundance::Unit::per_um3, value};
+    s.molecules.push_back(molecule);
+  }
+  if (const auto clearance = c.optional("clearance")) s.clearance = clearance->number_at_least(0.0);
+  return s;
+}
+
+MeshSource parse_mesh(const JsonCursor& c, const std::filesystem::path& folder) {
+  const bool from_file = c.has("file"), generated = c.has("generate");
+  if (from_file == generated) c.fail("expected exactly one of \"file\" and \"generate\"");
+  MeshSource mesh;
+  if (from_file) {
+    c.only_keys({"file"});
+    mesh.file = resolve_path(c.required("file"), folder);
+    return mesh;
+  }
+  const JsonCursor kind = c.required("generate");
+  const std::string name = kind.string();
+  if (name == "sphere") {
+    c.only_keys({"generate", "triangles", "radius"});
+    mesh.kind = MeshSource::Kind::sphere;
+    mesh.radius = c.required("radius").number_greater_than(0.0);
+  } else if (name == "rbc") {
+    c.only_keys({"generate", "triangles"});
+    mesh.kind = MeshSource::Kind::rbc;
+  } else {
+    kind.fail("expected \"sphere\" or \"rbc\", got " + kind.shown());
+  }
+  mesh.triangles = static_cast<int>(c.required("triangles").integer_between(1, max_triangles));
+  return mesh;
+}
+
+CompartmentDescription parse_compartment(const std::string& name, const JsonCursor& c, const SceneDescription& scene,
+                                         const std::filesystem::path& folder) {
+  c.only_keys({"mesh", "membrane", "soluble", "scale"});
+  CompartmentDescription comp;
+  comp.name = name;
+  comp.mesh = parse_mesh(c.required("mesh"), folder);
+  if (const auto m = c.optional("membrane")) comp.membrane = resolve(*m, scene.membranes, "membrane");
+  if (const auto s = c.optional("soluble")) comp.soluble = resolve(*s, scene.solubles, "soluble");
+  if (!comp.membrane && !comp.soluble) c.fail("a compartment needs a \"membrane\", a \"soluble\" or both");
+  if (const auto scale = c.optional("scale")) comp.scale = scale->number_greater_than(0.0);
+  return comp;
+}
+
+InstanceEntry parse_instance(const JsonCursor& c, std::size_t index, const SceneDescription& scene) {
+  const bool random = c.has("count") || c.has("box") || c.has("seed") || c.has("min_gap");
+  if (!random) {
+    c.only_keys({"compartment", "transform", "matrix"});
+    ExplicitInstance e;
+    e.compartment = resolve(c.required("compartment"), scene.compartments, "compartment");
+    e.transform = parse_placement_transform(c);
+    return e;
+  }
+  c.only_keys({"compartment", "count", "box", "seed", "min_gap"});
+  RandomPlacement r;
+  r.compartment = resolve(c.required("compartment"), scene.compartments, "compartment");
+  r.count = static_cast<int>(c.required("count").integer_between(1, max_copies_per_placement));
+  r.box = parse_box(c.required("box"));
+  r.seed = c.has("seed") ? c.required("seed").unsigned_integer() : derive_placement_seed(scene.seed, index);
+  if (const auto gap = c.optional("min_gap")) r.min_gap = gap->number_at_least(0.0);
+  return r;
+}
+
+// Calls parse(name, value) for every member of the optional named map `key`, in file order.
+template <class Parse>
+void for_each_named(const JsonCursor& root, const char* key, Parse parse) {
+  const auto map = root.optional(key);
+  if (!map) return;
+  for (const auto& [name, value] : map->members()) {
+    check_name(value, name);
+    parse(name, value);
+  }
+}
+
+}  // namespace
+
+SceneDescription parse_scene_description(const Json& document, const std::filesystem::path& scene_file) {
+  const std::string file = scene_file.string();
+  const std::filesystem::path folder = scene_file.parent_path();
+  const JsonCursor root(document, file);
+  root.only_keys({"format", "version", "description", "seed", "molecules", "membranes", "solubles", "compartments",
+                  "instances", "effects", "camera"});
+
+  const JsonCursor format = root.required("format");
+  if (format.string() != scene_format_marker)
+    format.fail(std::string("expected \"") + scene_format_marker + "\", got " + format.shown());
+  const JsonCursor version = root.required("version");
+  if (version.integer_between(1, 1'000'000) != scene_format_version)
+    version.fail("unsupported version " + version.shown() + "; this program reads version " +
+                 std::to_string(scene_format_version));
+  if (const auto description = root.optional("description")) description->string();
+
+  SceneDescription scene;
+  scene.source = scene_file;
+  if (const auto seed = root.optional("seed")) scene.seed = seed->unsigned_integer();
+  for_each_named(root, "molecules", [&](const std::string& name, const JsonCursor& c) {
+    scene.molecules.push_back(parse_molecule(name, c, folder));
+  });
+  for_each_named(root, "membranes", [&](const std::string& name, const JsonCursor& c) {
+    scene.membranes.push_back(parse_membrane(name, c, scene.molecules));
+  });
+  for_each_named(root, "solubles", [&](const std::string& name, const JsonCursor& c) {
+    scene.solubles.push_back(parse_soluble(name, c, scene.molecules));
+  });
+  if (root.required("compartments").members().empty()) root.required("compartments").fail("expected at least one compartment");
+  for_each_named(root, "compartments", [&](const std::string& name, const JsonCursor& c) {
+    scene.compartments.push_back(parse_compartment(name, c, scene, folder));
+  });
+  const auto instances = root.required("instances").elements(1);
+  for (std::size_t i = 0; i < instances.size(); ++i) scene.instances.push_back(parse_instance(instances[i], i, scene));
+  if (const auto effects = root.optional("effects")) scene.effects = parse_effects(*effects, expanded_instance_count(scene));
+  if (const auto camera = root.optional("camera")) scene.camera = parse_camera(*camera);
+  return scene;
+}
+
+SceneDescription load_scene_description(const std::filesystem::path& scene_file) {
+  return parse_scene_description(read_json_file(scene_file), scene_file);
+}
+
+}  // namespace nano::scene

@@ -1,0 +1,199 @@
+// Every kind of bad scene.json is an InputError that names the exact key path.
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "bake/scene/scene_parser.hpp"
+#include "tests/scene/input_error_matchers.hpp"
+
+namespace nano::scene {
+namespace {
+
+// A small valid scene; each test breaks one thing in it.
+Json valid_scene() {
+  return parse_json_text(R"({
+    "format": "nanouniverse-scene", "version": 1, "seed": 1,
+    "molecules": {"spike": {"file": "s.pdb"}, "popc": {"file": "p.pdb"}, "hb": {"file": "h.pdb"}},
+    "membranes": {"envelope": {"tile_size": 200,
+                               "proteins": [{"molecule": "spike", "density_per_um2": 100}],
+                               "lipids": {"molecule": "popc", "area_per_lipid": 65, "leaflet_offset": 12}}},
+    "solubles": {"lumen": {"cube_size": 100, "molecules": [{"molecule": "hb", "concentration_mM": 1}]}},
+    "compartments": {"virion": {"mesh": {"generate": "sphere", "triangles": 1000, "radius": 500},
+                                "membrane": "envelope", "soluble": "lumen"}},
+    "instances": [{"compartment": "virion", "transform": {"rotate": {"axis": [0, 0, 1], "degrees": 10}}},
+                  {"compartment": "virion", "count": 2, "box": [[0, 0, 0], [9000, 9000, 9000]]}],
+    "effects": {"clipping": {"planes": [[1, 0, 0, 0]]},
+                "animation": {"jitter": {"amplitude_degrees": 5, "frequency_hz": 1}}},
+    "camera": {"position": [0, 0, -10], "look_at": [0, 0, 0]}
+  })", "scene.json");
+}
+
+void parse_modified(const std::function<void(Json&)>& modify) {
+  Json doc = valid_scene();
+  modify(doc);
+  parse_scene_description(doc, "scene.json");
+}
+
+TEST(SceneErrors, TheBaseSceneIsValid) { EXPECT_NO_THROW(parse_modified([](Json&) {})); }
+
+TEST(SceneErrors, MessageHasTheFileThePathAndTheRule) {
+  const InputError e = testing::expect_input_error([] {
+    parse_modified([](Json& d) { d["membranes"]["envelope"]["proteins"][0]["density_per_um2"] = "lots"; });
+  });
+  EXPECT_STREQ(e.what(), "scene.json:membranes.envelope.proteins[0].density_per_um2: expected a number >= 0, got \"lots\"");
+}
+
+TEST(SceneErrors, UnknownKeysAtEveryDepth) {
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["colour"] = 1; }), "colour", "unknown key; allowed here: format");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["thickness"] = 40; }),
+                     "membranes.envelope.thickness", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["proteins"][0]["densty"] = 1; }),
+                     "membranes.envelope.proteins[0].densty", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][0]["transform"]["rotate"]["angle"] = 1; }),
+                     "instances[0].transform.rotate.angle", "allowed here: axis, degrees");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["effects"]["animation"]["jitter"]["phase"] = 0; }),
+                     "effects.animation.jitter.phase", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["mesh"]["file"] = "x.obj"; }),
+                     "compartments.virion.mesh", "exactly one of \"file\" and \"generate\"");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["compartments"]["virion"]["mesh"] = Json{{"generate", "rbc"}, {"triangles", 900}, {"radius", 5}};
+                     }),
+                     "compartments.virion.mesh.radius", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][1]["transform"] = Json::object(); }),
+                     "instances[1].transform", "allowed here: compartment, count, box, seed, min_gap");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["camera"]["zoom"] = 2; }), "camera.zoom", "unknown key");
+}
+
+TEST(SceneErrors, WrongTypes) {
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["tile_size"] = "big"; }),
+                     "membranes.envelope.tile_size", "expected a number > 0, got \"big\"");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["spike"]["all_models"] = "yes"; }),
+                     "molecules.spike.all_models", "expected true or false");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"] = Json::object(); }), "instances", "expected an array");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"] = Json::array(); }), "molecules", "expected an object");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["spike"]["file"] = 3; }), "molecules.spike.file",
+                     "expected a string");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["seed"] = -1; }), "seed", "expected an integer");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][1]["count"] = 2.5; }), "instances[1].count",
+                     "expected an integer");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["spike"]["up"] = "vertical"; }),
+                     "molecules.spike.up", "expected \"principal\" or [x, y, z]");
+}
+
+TEST(SceneErrors, OutOfRangeValues) {
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["tile_size"] = 0; }),
+                     "membranes.envelope.tile_size", "expected a number > 0, got 0");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["proteins"][0]["density_per_um2"] = -1; }),
+                     "membranes.envelope.proteins[0].density_per_um2", "expected a number >= 0, got -1");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["camera"]["fov_degrees"] = 180; }), "camera.fov_degrees",
+                     "expected a number in (0, 180), got 180");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["spike"]["colour"] = {1.5, 0, 0}; }),
+                     "molecules.spike.colour[0]", "expected a number in [0, 1], got 1.5");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["spike"]["colour"] = "#12345g"; }),
+                     "molecules.spike.colour", "#rrggbb");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["spike"]["up"] = {0, 0, 0}; }), "molecules.spike.up",
+                     "non-zero");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["effects"]["clipping"]["planes"][0] = {0, 0, 0, 5}; }),
+                     "effects.clipping.planes[0]", "normal");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][1]["box"][1][2] = 0; }), "instances[1].box",
+                     "min < max on every axis");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["tiles"] = 17; }),
+                     "membranes.envelope.tiles", "expected an integer in [4, 16], got 17");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["solubles"]["lumen"]["cubes"] = 7; }), "solubles.lumen.cubes",
+                     "expected an integer in [8, 64], got 7");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["edge_colours"] = 5; }),
+                     "membranes.envelope.edge_colours", "give \"tiles\" in [25, 625]");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["mesh"]["triangles"] = 0; }),
+                     "compartments.virion.mesh.triangles", "expected an integer in [1,");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["scale"] = -1; }),
+                     "compartments.virion.scale", "> 0");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][0]["transform"]["scale"] = 0; }),
+                     "instances[0].transform.scale", "> 0");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][1]["min_gap"] = -5; }), "instances[1].min_gap", ">= 0");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["instances"][0] = Json{{"compartment", "virion"},
+                                                {"matrix", {{-1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}}};
+                     }),
+                     "instances[0].matrix", "positive determinant");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["instances"][0] = Json{{"compartment", "virion"}, {"matrix", {{1, 0, 0, 0}, {0, 1, 0, 0}}}};
+                     }),
+                     "instances[0].matrix", "3 rows of 4 numbers");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["version"] = 2; }), "version", "unsupported version 2");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["format"] = "other"; }), "format", "expected \"nanouniverse-scene\"");
+}
+
+TEST(SceneErrors, UnresolvedReferencesNameThePathAndTheMissingName) {
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["membrane"] = "envelop"; }),
+                     "compartments.virion.membrane", "unknown membrane \"envelop\" (defined: envelope)");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["soluble"] = "cytosol"; }),
+                     "compartments.virion.soluble", "unknown soluble \"cytosol\"");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["proteins"][0]["molecule"] = "spik"; }),
+                     "membranes.envelope.proteins[0].molecule", "unknown molecule \"spik\" (defined: spike, popc, hb)");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["lipids"]["molecule"] = "dppc"; }),
+                     "membranes.envelope.lipids.molecule", "unknown molecule \"dppc\"");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["solubles"]["lumen"]["molecules"][0]["molecule"] = "n"; }),
+                     "solubles.lumen.molecules[0].molecule", "unknown molecule \"n\"");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][1]["compartment"] = "cell"; }),
+                     "instances[1].compartment", "unknown compartment \"cell\" (defined: virion)");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d.erase("solubles");
+                     }),
+                     "compartments.virion.soluble", "unknown soluble \"lumen\" (none are defined)");
+}
+
+TEST(SceneErrors, MissingRequiredKeys) {
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d.erase("format"); }), "format", "missing required key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d.erase("instances"); }), "instances", "missing required key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"].erase("tile_size"); }),
+                     "membranes.envelope.tile_size", "missing required key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["mesh"].erase("radius"); }),
+                     "compartments.virion.mesh.radius", "missing required key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][0].erase("compartment"); }),
+                     "instances[0].compartment", "missing required key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][1].erase("count"); }), "instances[1].count",
+                     "missing required key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["camera"].erase("position"); }), "camera.position",
+                     "missing required key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["lipids"].erase("leaflet_offset"); }),
+                     "membranes.envelope.lipids.leaflet_offset", "missing required key");
+}
+
+TEST(SceneErrors, ExactlyOneAmountPerMolecule) {
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["proteins"][0]["copies_per_tile"] = 2; }),
+                     "membranes.envelope.proteins[0]", "exactly one of \"density_per_um2\" and \"copies_per_tile\", got both");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["proteins"][0].erase("density_per_um2"); }),
+                     "membranes.envelope.proteins[0]", "got neither");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["solubles"]["lumen"]["molecules"][0]["copies_per_um3"] = 2; }),
+                     "solubles.lumen.molecules[0]", "exactly one of \"concentration_mM\" and \"copies_per_um3\", got both");
+}
+
+TEST(SceneErrors, StructuralRules) {
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["membranes"]["envelope"].erase("proteins");
+                       d["membranes"]["envelope"].erase("lipids");
+                     }),
+                     "membranes.envelope", "needs \"proteins\", \"lipids\" or both");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["compartments"]["virion"].erase("membrane");
+                       d["compartments"]["virion"].erase("soluble");
+                     }),
+                     "compartments.virion", "needs a \"membrane\", a \"soluble\" or both");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"] = Json::array(); }), "instances", "at least 1 element");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"] = Json::object(); }), "compartments",
+                     "at least one compartment");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["instances"][0]["matrix"] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}; }),
+                     "instances[0]", "either \"transform\" or \"matrix\", not both");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["a.b"] = Json{{"file", "x.pdb"}}; }), "molecules.a.b",
+                     "only letters, digits");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["mesh"]["generate"] = "cube"; }),
+                     "compartments.virion.mesh.generate", "expected \"sphere\" or \"rbc\"");
+}
+
+TEST(SceneErrors, MalformedJsonNamesLineAndColumn) {
+  const std::string text = "{\n  \"format\": \"nanouniverse-scene\",\n  \"version\": 1,,\n}";
+  EXPECT_INPUT_ERROR(parse_json_text(text, "scene.json"), "3:16", "invalid JSON");
+}
+
+}  // namespace
+}  // namespace nano::scene
