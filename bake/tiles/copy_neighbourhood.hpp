@@ -1,0 +1,34 @@
+#pragma once
+// The copies a candidate must not touch, hashed by centre so a test only visits copies whose
+// bounding spheres can reach the candidate.
+#include "bake/tiles/collision_shape.hpp"
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace nano::tiles {
+
+class CopyNeighbourhood {
+public:
+  // `shapes` must outlive this object; `cell` is the hash cell edge (Å), > 0.
+  CopyNeighbourhood(const std::vector<CollisionShape>& shapes, float cell);
+
+  void add(uint32_t type, const Pose& pose);
+  bool collides(uint32_t type, const Pose& pose, float clearance) const;
+  size_t size() const { return copies_.size(); }
+
+private:
+  struct Copy {
+    uint32_t type;
+    Pose pose;
+  };
+  uint64_t key(const glm::ivec3& c) const;
+  const std::vector<CollisionShape>& shapes_;
+  float cell_;
+  float max_radius_ = 0.f;
+  std::vector<Copy> copies_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
+};
+
+}  // namespace nano::tiles

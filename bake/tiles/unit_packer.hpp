@@ -1,0 +1,61 @@
+#pragma once
+// Fills the units of a geometric Wang set (ALGORITHMS.md §2), generic over the lattice dimension D.
+//
+// A unit is anchored at a lattice point; its "mask" lists the lattice axes whose planes through the
+// anchor its copies may cross:
+//   mask with >= 2 axes: shared units (D = 2: the vertex unit; D = 3: the vertex unit and one edge
+//                        unit per axis), identical at every anchor: they fill the corners;
+//   mask of one axis a : one unit per (a, colour) — the copies straddling a face of that colour;
+//   empty mask         : the interior unit of one tile.
+// Per type, a copy's centre lies within `band` (its extent radius along lattice axes, at most
+// edge/2) of the anchor along the mask axes and at least `band` inside the tile along the others, so
+// its atoms stay in the tiles around the anchor (the unit's "support") and the zones of all units
+// partition space. Units are filled in order shared -> faces -> interiors by random sequential
+// addition, each candidate checked at atom level against every earlier unit (and itself) placed at
+// every lattice offset where the two can meet in SOME valid tiling with overlapping supports:
+// faces of the same axis at the same place must share the colour, an interior meets only its own
+// faces, interiors never meet. Hence every valid tiling is collision-free.
+// Counts: a unit's target is density x zone volume; the shortfall of each unit (rounding, or
+// space) is carried to the next units in copies per tile, weighted by how often a unit occurs per
+// tile (shared 1, face 1/C, interior 1/tiles), so the set's mean density meets the request.
+#include "bake/tiles/collision_shape.hpp"
+#include "bake/tiles/wang_set.hpp"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <string>
+#include <vector>
+
+namespace nano::tiles {
+
+struct PlacementSpec {
+  uint32_t type = 0;
+  double copies_per_volume = 0.0;  // per Å^D of lattice measure (Å² for squares, Å³ for cubes)
+  float band = 0.f;                // extent radius of any copy along the lattice axes (Å)
+  bool uniform_rotation = false;   // cubes: uniform on SO(3); squares: spin about z after `base`
+  glm::quat base{1.f, 0.f, 0.f, 0.f};
+  float z = 0.f;                   // D = 2: tile-space z of the centre (membrane depth)
+};
+
+struct PackerSettings {
+  float edge = 0.f;
+  float clearance = 1.f;  // atoms of different copies stay >= clearance * (sum of radii) apart
+  uint64_t seed = 1;
+  int attempts_per_copy = 200;          // candidate budget per targeted copy in a unit
+  int max_consecutive_failures = 1500;  // a unit gives up on a type after this many misses in a row
+};
+
+struct PackedUnits {
+  std::vector<WangTile> tiles;
+  std::vector<double> achieved_per_volume;  // per spec, same unit as copies_per_volume
+};
+
+// Specs are filled in the given order (put large molecules first). The caller has checked
+// 0 < band <= edge / 2 for every spec.
+PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std::vector<PlacementSpec>& specs,
+                            const WangColouring& colouring, const PackerSettings& settings);
+
+// Tile-space box of all atoms of the instances (empty tile: a zero box at the origin).
+void compute_atom_bounds(WangTile& tile, const std::vector<CollisionShape>& shapes);
+
+}  // namespace nano::tiles

@@ -1,0 +1,174 @@
+#include "bake/tiles/wang_sets.hpp"
+
+#include "bake/tiles/rotation_sampling.hpp"
+#include "bake/tiles/unit_packer.hpp"
+#include "common/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace nano::tiles {
+namespace {
+
+constexpr double kAvogadro = 6.02214076e23;
+constexpr double kA2PerUm2 = 1e8, kA3PerUm3 = 1e12;
+
+struct Wanted {
+  PlacementSpec spec;
+  double requested_per_um;  // per µm² or µm³
+  bool required;
+};
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+void check_common(const char* what, float edge, const std::vector<MoleculeType>& types, const GenerationBudget& b) {
+  if (!(edge > 0.f) || !std::isfinite(edge)) throw InputError(what, "edge", "tile edge must be a positive length (Å)");
+  if (!(b.clearance > 0.f) || b.clearance > 2.f) throw InputError(what, "clearance", "clearance must be in (0, 2]");
+  if (b.attempts_per_copy < 1 || b.max_consecutive_failures < 1)
+    throw InputError(what, "budget", "attempt budgets must be positive");
+  if (types.empty()) throw InputError(what, "types", "no molecule types given");
+}
+
+void check_type(const char* what, const std::vector<MoleculeType>& types, uint32_t type, double density) {
+  if (type >= types.size()) throw InputError(what, "molecules", "molecule type index " + std::to_string(type) + " out of range");
+  if (!(density >= 0.0) || !std::isfinite(density))
+    throw InputError(what, types[type].name, "density must be a finite number >= 0");
+}
+
+void check_fits(const char* what, const MoleculeType& type, float band, float edge) {
+  if (2.f * band > edge)
+    throw InputError(what, type.name,
+                     "molecule spans " + number(2.0 * band) + " Å across the tile lattice, more than the tile edge " +
+                         number(edge) + " Å");
+}
+
+// Largest molecules first: dart throwing places big ones while there is room.
+WangSet pack(const char* what, int dims, float edge, const WangColouring& colouring,
+             const std::vector<MoleculeType>& types, const std::vector<CollisionShape>& shapes,
+             std::vector<Wanted> wanted, uint64_t seed, const GenerationBudget& budget) {
+  std::stable_sort(wanted.begin(), wanted.end(), [&](const Wanted& a, const Wanted& b) {
+    if (a.required != b.required) return a.required;
+    return shapes[a.spec.type].radius() > shapes[b.spec.type].radius();
+  });
+  std::vector<PlacementSpec> specs;
+  for (const Wanted& w : wanted) specs.push_back(w.spec);
+  const PackedUnits packed = pack_wang_units(
+      shapes, specs, colouring, {edge, budget.clearance, seed, budget.attempts_per_copy, budget.max_consecutive_failures});
+
+  WangSet set{dims, edge, colouring, packed.tiles, {}};
+  const double scale = dims == 2 ? kA2PerUm2 : kA3PerUm3;
+  for (size_t i = 0; i < wanted.size(); ++i) {
+    const uint32_t type = wanted[i].spec.type;
+    auto it = std::find_if(set.densities.begin(), set.densities.end(), [&](const MoleculeDensity& d) { return d.type == type; });
+    if (it == set.densities.end()) {
+      set.densities.push_back({types[type].name, type, 0.0, 0.0, 0});
+      it = set.densities.end() - 1;
+    }
+    it->requested += wanted[i].requested_per_um;
+    it->achieved += packed.achieved_per_volume[i] * scale;
+  }
+  for (const WangTile& tile : set.tiles)
+    for (const Instance& in : tile.instances)
+      for (MoleculeDensity& d : set.densities)
+        if (d.type == in.type) ++d.copies_in_set;
+  for (size_t i = 0; i < wanted.size(); ++i) {
+    if (!wanted[i].required) continue;
+    const MoleculeDensity& d = *std::find_if(set.densities.begin(), set.densities.end(),
+                                             [&](const MoleculeDensity& m) { return m.type == wanted[i].spec.type; });
+    if (d.achieved < 0.9 * d.requested)
+      throw InputError(what, d.name,
+                       "requested " + number(d.requested) + (dims == 2 ? " copies/µm²" : " copies/µm³") +
+                           " cannot be reached without collisions; best achieved " + number(d.achieved));
+  }
+  return set;
+}
+
+std::vector<CollisionShape> shapes_of(const std::vector<MoleculeType>& types) {
+  std::vector<CollisionShape> shapes;
+  for (const MoleculeType& t : types) shapes.emplace_back(t);
+  return shapes;
+}
+
+}  // namespace
+
+double copies_per_um3_from_millimolar(double millimolar) { return millimolar * 1e-3 * kAvogadro / 1e27 * kA3PerUm3; }
+
+WangSet make_membrane_tiles(const MembraneTileRequest& r) {
+  const char* what = "membrane tiles";
+  check_common(what, r.edge, r.types, r.budget);
+  const std::vector<CollisionShape> shapes = shapes_of(r.types);
+  const glm::vec3 z(0.f, 0.f, 1.f);
+  std::vector<Wanted> wanted;
+  for (const MembraneMolecule& m : r.molecules) {
+    check_type(what, r.types, m.type, m.copies_per_um2);
+    if (!std::isfinite(m.depth)) throw InputError(what, r.types[m.type].name, "depth must be finite");
+    PlacementSpec s;
+    s.type = m.type;
+    s.copies_per_volume = m.copies_per_um2 / kA2PerUm2;
+    s.band = shapes[m.type].radius_about_axis(r.types[m.type].up_axis) * 1.0001f;
+    s.base = rotation_between(r.types[m.type].up_axis, z);
+    s.z = m.depth;
+    check_fits(what, r.types[m.type], s.band, r.edge);
+    wanted.push_back({s, m.copies_per_um2, true});
+  }
+  if (r.lipids) {
+    const LipidFill& l = *r.lipids;
+    check_type(what, r.types, l.type, 1.0);
+    if (!(l.area_per_lipid > 0.f) || !std::isfinite(l.leaflet_offset))
+      throw InputError(what, "lipids", "area per lipid must be > 0 and the leaflet offset finite");
+    const glm::vec3 up = r.types[l.type].up_axis;
+    PlacementSpec upper;
+    upper.type = l.type;
+    upper.copies_per_volume = 1.0 / l.area_per_lipid;
+    upper.band = shapes[l.type].radius_about_axis(up) * 1.0001f;
+    upper.base = rotation_between(up, z);
+    upper.z = l.leaflet_offset;
+    check_fits(what, r.types[l.type], upper.band, r.edge);
+    PlacementSpec lower = upper;
+    lower.base = rotation_between(up, -z);
+    lower.z = -l.leaflet_offset;
+    const double per_um2 = kA2PerUm2 / l.area_per_lipid;
+    wanted.push_back({upper, per_um2, false});
+    wanted.push_back({lower, per_um2, false});
+  }
+  return pack(what, 2, r.edge, make_complete_colouring(2, r.colours), r.types, shapes, wanted, r.seed, r.budget);
+}
+
+WangSet make_soluble_cubes(const SolubleCubeRequest& r) {
+  const char* what = "soluble cubes";
+  check_common(what, r.edge, r.types, r.budget);
+  if (r.variants < 0) throw InputError(what, "variants", "variants must be >= 0 (0 = complete set)");
+  const std::vector<CollisionShape> shapes = shapes_of(r.types);
+  std::vector<Wanted> wanted;
+  for (const SolubleMolecule& m : r.molecules) {
+    check_type(what, r.types, m.type, m.copies_per_um3);
+    PlacementSpec s;
+    s.type = m.type;
+    s.copies_per_volume = m.copies_per_um3 / kA3PerUm3;
+    s.band = shapes[m.type].radius() * 1.0001f;
+    s.uniform_rotation = true;
+    check_fits(what, r.types[m.type], s.band, r.edge);
+    wanted.push_back({s, m.copies_per_um3, true});
+  }
+  const WangColouring colouring = r.variants == 0 ? make_complete_colouring(3, r.colours)
+                                                  : make_variant_colouring(3, r.colours, r.variants, r.seed);
+  return pack(what, 3, r.edge, colouring, r.types, shapes, wanted, r.seed, r.budget);
+}
+
+float WangSet::max_overhang() const {
+  float over = 0.f;
+  for (const WangTile& t : tiles) {
+    if (t.instances.empty()) continue;
+    for (int a = 0; a < dims; ++a) over = std::max({over, -t.atoms_min[a], t.atoms_max[a] - edge});
+  }
+  return over;
+}
+
+}  // namespace nano::tiles

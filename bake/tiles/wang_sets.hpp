@@ -1,0 +1,66 @@
+#pragma once
+// The two sets the scene baker asks for: Wang squares for a membrane and Wang cubes for solubles.
+// Both are collision-free at atom level (clearance x sum of radii) in EVERY valid tiling.
+#include "bake/tiles/wang_set.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace nano::tiles {
+
+// Copies per Å³ of a concentration: mM * 1e-3 mol/L * N_A / (1e27 Å³/L); returned per µm³ (1e12 Å³).
+double copies_per_um3_from_millimolar(double millimolar);
+
+struct GenerationBudget {
+  float clearance = 1.0f;               // atoms of different copies stay >= clearance * (r1 + r2) apart
+  int attempts_per_copy = 200;          // dart-throwing candidates per wanted copy and unit
+  int max_consecutive_failures = 1500;  // give up on a unit after this many misses in a row
+};
+
+struct MembraneMolecule {
+  uint32_t type = 0;           // index into the request's types
+  double copies_per_um2 = 0.0;
+  float depth = 0.f;           // tile-space z of the centre (Å along the membrane normal)
+};
+
+// Two leaflets at z = ±leaflet_offset; upper copies stand along +z, lower ones are flipped.
+struct LipidFill {
+  uint32_t type = 0;
+  float area_per_lipid = 65.f;  // Å² per lipid per leaflet (the target; reached as far as space allows)
+  float leaflet_offset = 20.f;  // Å
+};
+
+struct MembraneTileRequest {
+  std::vector<MoleculeType> types;
+  float edge = 200.f;  // Å
+  int colours = 2;     // per edge: a complete set of colours^4 squares
+  std::vector<MembraneMolecule> molecules;
+  std::optional<LipidFill> lipids;
+  uint64_t seed = 1;
+  GenerationBudget budget;
+};
+
+struct SolubleMolecule {
+  uint32_t type = 0;
+  double copies_per_um3 = 0.0;  // see copies_per_um3_from_millimolar
+};
+
+struct SolubleCubeRequest {
+  std::vector<MoleculeType> types;
+  float edge = 250.f;  // Å
+  int colours = 2;     // per face direction
+  int variants = 2;    // K tiles per incoming colour triple (K*C^3 cubes); 0 = complete set (C^6)
+  std::vector<SolubleMolecule> molecules;
+  uint64_t seed = 1;
+  GenerationBudget budget;
+};
+
+// Throw InputError for a bad request (unknown type, negative density, a molecule wider than the
+// tile edge, ...) and when a requested molecule ends more than 10% below its density
+// (the message names it and the best density reached). The lipid fill never throws for density:
+// its achieved value is in `densities` (both leaflets together).
+WangSet make_membrane_tiles(const MembraneTileRequest& request);
+WangSet make_soluble_cubes(const SolubleCubeRequest& request);
+
+}  // namespace nano::tiles

@@ -1,0 +1,106 @@
+#include "bake/tiles/collision_shape.hpp"
+#include "bake/tiles/copy_neighbourhood.hpp"
+#include "bake/tiles/rotation_sampling.hpp"
+#include "common/error.hpp"
+#include "tests/tiles/tiles_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+namespace nano::tiles {
+namespace {
+
+// Brute force over all atom pairs, with the test's own rotation.
+bool brute_force_collide(const MoleculeType& a, const Instance& ia, const MoleculeType& b, const Instance& ib, float f) {
+  for (const AtomSphere& x : a.atoms)
+    for (const AtomSphere& y : b.atoms) {
+      const glm::vec3 px = ia.position + test::rotate(ia.rotation, x.centre);
+      const glm::vec3 py = ib.position + test::rotate(ib.rotation, y.centre);
+      if (glm::length(px - py) < f * (x.radius + y.radius)) return true;
+    }
+  return false;
+}
+
+Pose pose(const Instance& in) { return {in.position, glm::mat3_cast(in.rotation)}; }
+
+TEST(CollisionShape, RadiiMatchTheAtoms) {
+  const MoleculeType lipid = test::make_lipid();
+  const CollisionShape s(lipid);
+  float r = 0.f, rz = 0.f;
+  for (const AtomSphere& a : lipid.atoms) {
+    r = std::max(r, glm::length(a.centre) + a.radius);
+    rz = std::max(rz, glm::length(glm::vec2(a.centre)) + a.radius);
+  }
+  EXPECT_FLOAT_EQ(s.radius(), r);
+  EXPECT_NEAR(s.radius_about_axis({0, 0, 2}), rz, 1e-5f);
+  EXPECT_FLOAT_EQ(s.max_atom_radius(), 1.7f);
+  EXPECT_EQ(s.atoms().size(), lipid.atoms.size());
+}
+
+TEST(CollisionShape, TouchesAgreesWithBruteForce) {
+  const MoleculeType blob = test::make_protein();
+  const CollisionShape s(blob);
+  test::TestRng rng{5};
+  int hits = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const glm::vec3 p(60 * rng.next() - 30, 60 * rng.next() - 30, 60 * rng.next() - 30);
+    const float r = 0.5f + 2.f * float(rng.next());
+    bool expect = false;
+    for (const AtomSphere& a : blob.atoms) expect |= glm::length(p - a.centre) < 0.8f * (r + a.radius);
+    ASSERT_EQ(s.touches(p, r, 0.8f), expect) << i;
+    hits += expect;
+  }
+  EXPECT_GT(hits, 300);
+  EXPECT_LT(hits, 2700);
+}
+
+TEST(CollisionShape, CopiesCollideAgreesWithBruteForce) {
+  const MoleculeType a = test::make_protein(), b = test::make_lipid();
+  const CollisionShape sa(a), sb(b);
+  SplitMix64 rng(77);
+  int hits = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Instance ia{0, {0, 0, 0}, uniform_rotation(rng)};
+    const Instance ib{1, {float(rng.uniform(-45, 45)), float(rng.uniform(-45, 45)), float(rng.uniform(-45, 45))},
+                      uniform_rotation(rng)};
+    const bool expect = brute_force_collide(a, ia, b, ib, 1.f);
+    ASSERT_EQ(copies_collide(sa, pose(ia), sb, pose(ib), 1.f), expect) << i;
+    ASSERT_EQ(copies_collide(sb, pose(ib), sa, pose(ia), 1.f), expect) << i;
+    hits += expect;
+  }
+  EXPECT_GT(hits, 40);
+  EXPECT_LT(hits, 360);
+}
+
+TEST(CollisionShape, RejectsEmptyOrBadAtoms) {
+  EXPECT_THROW(CollisionShape(MoleculeType{"empty", {}, 0.f, {0, 0, 1}}), InputError);
+  EXPECT_THROW(CollisionShape(MoleculeType{"zero", {{{0, 0, 0}, 0.f}}, 0.f, {0, 0, 1}}), InputError);
+  EXPECT_THROW(CollisionShape(MoleculeType{"nan", {{{NAN, 0, 0}, 1.f}}, 0.f, {0, 0, 1}}), InputError);
+}
+
+TEST(CopyNeighbourhood, FindsExactlyTheCollidingPlacedCopies) {
+  const std::vector<MoleculeType> types{test::make_protein(), test::make_lipid()};
+  const std::vector<CollisionShape> shapes{CollisionShape(types[0]), CollisionShape(types[1])};
+  CopyNeighbourhood hood(shapes, 40.f);
+  std::vector<Instance> placed;
+  SplitMix64 rng(8);
+  for (int i = 0; i < 30; ++i) {
+    const Instance in{uint32_t(i % 2), {float(rng.uniform(-150, 150)), float(rng.uniform(-150, 150)), float(rng.uniform(-20, 20))},
+                      uniform_rotation(rng)};
+    placed.push_back(in);
+    hood.add(in.type, pose(in));
+  }
+  EXPECT_EQ(hood.size(), 30u);
+  int hits = 0;
+  for (int i = 0; i < 120; ++i) {
+    const Instance c{uint32_t(i % 2), {float(rng.uniform(-150, 150)), float(rng.uniform(-150, 150)), float(rng.uniform(-20, 20))},
+                     uniform_rotation(rng)};
+    bool expect = false;
+    for (const Instance& p : placed) expect = expect || brute_force_collide(types[c.type], c, types[p.type], p, 0.9f);
+    ASSERT_EQ(hood.collides(c.type, pose(c), 0.9f), expect) << i;
+    hits += expect;
+  }
+  EXPECT_GT(hits, 5);
+}
+
+}  // namespace
+}  // namespace nano::tiles

@@ -1,0 +1,165 @@
+#include "bake/tiles/wang_sets.hpp"
+#include "common/error.hpp"
+#include "tests/tiles/tiles_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+namespace nano::tiles {
+namespace {
+
+constexpr float kEdge = 120.f;
+constexpr double kProteinPerUm2 = 0.5 / (kEdge * kEdge * 1e-8);  // one copy per two tiles
+
+MembraneTileRequest membrane_request(uint64_t seed) {
+  MembraneTileRequest r;
+  r.types = {test::make_protein(), test::make_lipid()};
+  r.edge = kEdge;
+  r.molecules = {{0, kProteinPerUm2, 0.f}};
+  r.lipids = LipidFill{1, 65.f, 16.f};
+  r.seed = seed;
+  return r;
+}
+
+// A periodic recipe repeated `times` along each lattice axis: explicit tiling across the wrap.
+TilingRecipe repeated(const TilingRecipe& r, int times) {
+  TilingRecipe big = r;
+  for (int a = 0; a < r.dims; ++a) big.size[a] *= times;
+  big.cells.resize(size_t(big.size[0]) * big.size[1] * big.size[2]);
+  for (int k = 0; k < big.size[2]; ++k)
+    for (int j = 0; j < big.size[1]; ++j)
+      for (int i = 0; i < big.size[0]; ++i)
+        big.cells[(size_t(k) * big.size[1] + j) * big.size[0] + i] = r.at(i % r.size[0], j % r.size[1], k % r.size[2]);
+  return big;
+}
+
+class MembraneTilesSeeds : public testing::TestWithParam<uint64_t> {};
+
+TEST_P(MembraneTilesSeeds, EveryRandomTilingIsCollisionFreeAtAtomLevel) {
+  {
+    const uint64_t seed = GetParam();
+    const MembraneTileRequest req = membrane_request(seed);
+    const WangSet set = make_membrane_tiles(req);
+    ASSERT_EQ(set.tiles.size(), 16u);
+    for (uint64_t recipe_seed : {seed, seed + 100}) {
+      const TilingRecipe recipe = make_tiling_recipe(set.colouring, {6, 6, 1}, recipe_seed, false);
+      const test::ExplicitTiling tiling = test::instantiate(set, recipe, req.types);
+      EXPECT_TRUE(tiling.ownership_ok);
+      EXPECT_GT(tiling.copies_per_type[0], 0u);
+      EXPECT_GT(tiling.copies_per_type[1], 36u * 100);
+      const test::ClosePair p = test::find_close_pair(tiling.atoms, 0.6f);
+      EXPECT_FALSE(p.found) << "seed " << seed << ": atoms " << p.distance << " Å apart, limit " << p.limit;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, MembraneTilesSeeds, testing::Values(1u, 2u, 3u));
+
+TEST(MembraneTiles, PeriodicRecipesAreCollisionFreeAcrossTheWrap) {
+  const MembraneTileRequest req = membrane_request(4);
+  const WangSet set = make_membrane_tiles(req);
+  const TilingRecipe recipe = make_tiling_recipe(set.colouring, {3, 3, 1}, 4, true);
+  const test::ExplicitTiling tiling = test::instantiate(set, repeated(recipe, 2), req.types);
+  EXPECT_FALSE(test::find_close_pair(tiling.atoms, 0.6f).found);
+}
+
+// Densities counted in explicit tilings: proteins within 10% of the request; the report agrees
+// with the count (lipids are best effort, so only the agreement is checked for them).
+TEST(MembraneTiles, ExplicitDensityMatchesRequestAndReport) {
+  for (uint64_t seed : {1u, 5u}) {
+    const MembraneTileRequest req = membrane_request(seed);
+    const WangSet set = make_membrane_tiles(req);
+    const TilingRecipe recipe = make_tiling_recipe(set.colouring, {64, 64, 1}, seed, false);
+    const test::ExplicitTiling tiling = test::instantiate(set, recipe, req.types, false);
+    const double area_um2 = 64.0 * 64.0 * kEdge * kEdge * 1e-8;
+    const double protein = tiling.copies_per_type[0] / area_um2, lipid = tiling.copies_per_type[1] / area_um2;
+    EXPECT_NEAR(protein, kProteinPerUm2, 0.1 * kProteinPerUm2);
+    ASSERT_EQ(set.densities.size(), 2u);
+    for (const MoleculeDensity& d : set.densities) {
+      const double counted = d.type == 0 ? protein : lipid;
+      EXPECT_NEAR(d.achieved, counted, 0.05 * counted) << d.name;
+    }
+    EXPECT_EQ(set.densities[1].name, "lipid");
+    EXPECT_DOUBLE_EQ(set.densities[1].requested, 2e8 / 65.0);
+    // The lipid fill reaches a real membrane-like coverage, even if not the full 65 Å² per lipid.
+    EXPECT_GT(lipid, 0.5 * 2e8 / 65.0);
+  }
+}
+
+TEST(MembraneTiles, ProteinsStandAlongTheNormalAndLeafletsAreFlipped) {
+  MembraneTileRequest req = membrane_request(6);
+  req.types[0].up_axis = {1.f, 0.f, 0.f};  // this protein's "up" is its local x
+  const WangSet set = make_membrane_tiles(req);
+  int upper = 0, lower = 0;
+  for (const WangTile& t : set.tiles)
+    for (const Instance& in : t.instances) {
+      const glm::vec3 up = test::rotate(in.rotation, req.types[in.type].up_axis);
+      if (in.type == 0) {
+        EXPECT_NEAR(up.z, 1.f, 1e-4f);
+        EXPECT_FLOAT_EQ(in.position.z, 0.f);
+      } else if (in.position.z > 0.f) {
+        ++upper;
+        EXPECT_NEAR(up.z, 1.f, 1e-4f);
+        EXPECT_FLOAT_EQ(in.position.z, 16.f);
+      } else {
+        ++lower;
+        EXPECT_NEAR(up.z, -1.f, 1e-4f);
+        EXPECT_FLOAT_EQ(in.position.z, -16.f);
+      }
+    }
+  EXPECT_GT(upper, 1000);
+  EXPECT_NEAR(upper, lower, 0.1 * upper);
+}
+
+// The reported per-tile atom box is the true one (recomputed here), and the overhang is its excess.
+TEST(MembraneTiles, TileAtomBoxesAndOverhang) {
+  const MembraneTileRequest req = membrane_request(7);
+  const WangSet set = make_membrane_tiles(req);
+  float overhang = 0.f;
+  for (const WangTile& t : set.tiles) {
+    glm::vec3 lo(1e9f), hi(-1e9f);
+    for (const Instance& in : t.instances)
+      for (const AtomSphere& a : req.types[in.type].atoms) {
+        const glm::vec3 c = in.position + test::rotate(in.rotation, a.centre);
+        lo = glm::min(lo, c - a.radius);
+        hi = glm::max(hi, c + a.radius);
+      }
+    EXPECT_NEAR(glm::length(lo - t.atoms_min), 0.f, 1e-3f);
+    EXPECT_NEAR(glm::length(hi - t.atoms_max), 0.f, 1e-3f);
+    overhang = std::max({overhang, -lo.x, -lo.y, hi.x - kEdge, hi.y - kEdge});
+  }
+  EXPECT_NEAR(set.max_overhang(), overhang, 1e-3f);
+  EXPECT_GT(overhang, 0.f);  // copies do straddle tile edges
+}
+
+TEST(MembraneTiles, SameSeedSameBytesOtherSeedOtherTiles) {
+  const WangSet a = make_membrane_tiles(membrane_request(9));
+  const WangSet b = make_membrane_tiles(membrane_request(9));
+  const WangSet c = make_membrane_tiles(membrane_request(10));
+  EXPECT_EQ(test::set_bytes(a), test::set_bytes(b));
+  EXPECT_NE(test::set_bytes(a), test::set_bytes(c));
+}
+
+TEST(MembraneTiles, ImpossibleRequestsThrowInputError) {
+  MembraneTileRequest dense = membrane_request(1);
+  dense.lipids.reset();
+  dense.molecules[0].copies_per_um2 = 1e8 / (30.0 * 30.0);  // one 50 Å protein per 900 Å²
+  try {
+    make_membrane_tiles(dense);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "protein");
+    EXPECT_NE(e.rule().find("best achieved"), std::string::npos) << e.what();
+  }
+  MembraneTileRequest wide = membrane_request(1);
+  wide.edge = 40.f;  // narrower than the protein
+  EXPECT_THROW(make_membrane_tiles(wide), InputError);
+  MembraneTileRequest bad = membrane_request(1);
+  bad.molecules[0].type = 7;
+  EXPECT_THROW(make_membrane_tiles(bad), InputError);
+  bad = membrane_request(1);
+  bad.molecules[0].copies_per_um2 = -1.0;
+  EXPECT_THROW(make_membrane_tiles(bad), InputError);
+}
+
+}  // namespace
+}  // namespace nano::tiles
