@@ -1,0 +1,245 @@
+// Tile mapper vs a double-precision oracle built independently from barycentric interpolation
+// (X = Σλᵢ Pᵢ, n = normalize(Σλᵢ nᵢ)), double matrix inverses and glm::dquat rotations.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "shared/tile_mapper.h"
+#include "test_util.hpp"
+
+namespace {
+using namespace placement_test;
+namespace g = nano::gpu;
+
+struct Case {
+  glm::vec3 P[3], n[3];
+  glm::vec2 t[3];
+};
+
+// Double oracle of one triangle.
+struct Oracle {
+  dvec3 P[3], n[3];
+  dvec2 t[3];
+  explicit Oracle(const Case& c) {
+    for (int i = 0; i < 3; ++i) P[i] = D(c.P[i]), n[i] = D(c.n[i]), t[i] = D(c.t[i]);
+  }
+  double cross2(dvec2 a, dvec2 b) const { return a.x * b.y - a.y * b.x; }
+  dvec3 bary(dvec2 p) const {  // areas ratio (Cramer)
+    double area = cross2(t[1] - t[0], t[2] - t[0]);
+    double l1 = cross2(p - t[0], t[2] - t[0]) / area;
+    double l2 = cross2(t[1] - t[0], p - t[0]) / area;
+    return dvec3(1 - l1 - l2, l1, l2);
+  }
+  dvec3 X(dvec2 p) const {
+    dvec3 l = bary(p);
+    return l.x * P[0] + l.y * P[1] + l.z * P[2];
+  }
+  dvec3 normal(dvec2 p) const {
+    dvec3 l = bary(p);
+    return glm::normalize(l.x * n[0] + l.y * n[1] + l.z * n[2]);
+  }
+  dvec3 face() const { return glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0])); }
+  // ∂X/∂u by central difference of the exactly affine X (exact up to rounding).
+  dvec3 ju() const { return X(dvec2(1, 0)) - X(dvec2(0, 0)); }
+  dvec3 jv() const { return X(dvec2(0, 1)) - X(dvec2(0, 0)); }
+  double diameter() const {
+    return std::max({glm::length(P[1] - P[0]), glm::length(P[2] - P[0]), glm::length(P[2] - P[1])});
+  }
+};
+
+Case random_case(Rng& rng, glm::vec3 offset, bool mirrored) {
+  for (;;) {
+    Case c;
+    for (int i = 0; i < 3; ++i) c.P[i] = offset + rng.in_box(-100, 100);
+    glm::vec3 f = glm::cross(c.P[1] - c.P[0], c.P[2] - c.P[0]);
+    if (glm::length(f) < 2000) continue;  // skip near-degenerate world triangles here
+    f = glm::normalize(f);
+    for (int i = 0; i < 3; ++i) c.n[i] = glm::normalize(f + 0.3f * rng.unit_vector());
+    for (int i = 0; i < 3; ++i) c.t[i] = glm::vec2(float(rng.uniform(0.05, 0.95)), float(rng.uniform(0.05, 0.95)));
+    glm::vec2 a = c.t[1] - c.t[0], b = c.t[2] - c.t[0];
+    float det = a.x * b.y - a.y * b.x;
+    if (std::abs(det) < 0.02f) continue;
+    if ((det < 0) != mirrored) std::swap(c.t[1], c.t[2]);
+    return c;
+  }
+}
+
+g::TriangleChart make(const Case& c) {
+  return g::chart_make(c.P[0], c.P[1], c.P[2], c.t[0], c.t[1], c.t[2], c.n[0], c.n[1], c.n[2]);
+}
+
+TEST(TileMapper, PositionBarycentricNormalMatchOracleIncludingOverhang) {
+  Rng rng(31);
+  double worst_x = 0, worst_b = 0, worst_n = 0;
+  for (int i = 0; i < 3000; ++i) {
+    Case c = random_case(rng, glm::vec3(0), i % 2 == 1);
+    Oracle o(c);
+    g::TriangleChart ch = make(c);
+    ASSERT_TRUE(g::chart_valid(ch));
+    EXPECT_EQ(ch.det_e < 0, i % 2 == 1);
+    for (int k = 0; k < 3; ++k) {  // corners map to corners
+      worst_x = std::max(worst_x, glm::length(D(g::chart_position(ch, c.t[k])) - o.P[k]) / o.diameter());
+    }
+    for (int k = 0; k < 5; ++k) {
+      // points of the UV box widened by 0.1 (tiles hang over edges: negative barycentrics)
+      glm::vec2 uv(float(rng.uniform(-0.05, 1.05)), float(rng.uniform(-0.05, 1.05)));
+      dvec3 lb = o.bary(D(uv));
+      double lmax = std::max({1.0, std::abs(lb.x), std::abs(lb.y), std::abs(lb.z)});
+      worst_x = std::max(worst_x, glm::length(D(g::chart_position(ch, uv)) - o.X(D(uv))) / (o.diameter() * lmax));
+      worst_b = std::max(worst_b, glm::length(D(g::chart_barycentric(ch, uv)) - lb) / lmax);
+      if (std::abs(glm::length(lb.x * o.n[0] + lb.y * o.n[1] + lb.z * o.n[2])) > 0.3)
+        worst_n = std::max(worst_n, glm::length(D(g::chart_normal(ch, uv)) - o.normal(D(uv))));
+    }
+  }
+  EXPECT_LT(worst_x, 2e-5);
+  EXPECT_LT(worst_b, 2e-5);
+  EXPECT_LT(worst_n, 2e-5);
+  RecordProperty("max_rel_position_error", std::to_string(worst_x));
+  std::printf("tile mapper: max rel X error %.3g, barycentric %.3g, normal %.3g\n", worst_x, worst_b, worst_n);
+}
+
+TEST(TileMapper, TileFrameMapsTileSquareOntoUvSquareAndInvertsAnalytically) {
+  Rng rng(32);
+  double worst_fwd = 0, worst_inv = 0, worst_dir = 0;
+  for (int i = 0; i < 3000; ++i) {
+    bool mirrored = i % 2 == 1;
+    Case c = random_case(rng, glm::vec3(0), mirrored);
+    Oracle o(c);
+    g::TriangleChart ch = make(c);
+    float S = float(rng.uniform(200, 800));   // tile size, Å
+    float s = float(rng.uniform(0.02, 0.3));  // tile UV size
+    float r = s / S;
+    glm::vec2 gg = glm::vec2(float(rng.integer(-2, 8)), float(rng.integer(-2, 8))) * s;
+    g::Affine3 m1 = g::chart_tile_frame(ch, gg, r);
+    // det M1 has the sign of det E (mirrored chart ⇒ reflection).
+    EXPECT_EQ(glm::determinant(glm::dmat3(m1.linear)) < 0, mirrored);
+    double scale = o.diameter() + S;
+    for (int k = 0; k < 4; ++k) {
+      glm::vec3 x(float(rng.uniform(0, S)), float(rng.uniform(0, S)), float(rng.uniform(-60, 60)));
+      if (k == 0) x = glm::vec3(S, 0, 0);
+      if (k == 1) x = glm::vec3(0, S, 0);
+      dvec3 want = o.X(D(gg) + double(r) * dvec2(x.x, x.y)) + double(x.z) * o.face();
+      worst_fwd = std::max(worst_fwd, glm::length(D(g::affine_point(m1, x)) - want) / scale);
+    }
+    // Inverse vs double inverse of the double-built frame.
+    glm::dmat3 L(o.ju() * double(r), o.jv() * double(r), o.face());
+    glm::dmat3 Li = glm::inverse(L);
+    dvec3 X0 = o.X(D(gg));
+    glm::vec3 ro = rng.in_box(-300, 300), rd = rng.unit_vector() * float(rng.uniform(0.1, 10));
+    glm::vec3 ot, dt;
+    g::chart_tile_inverse_ray(ch, gg, r, ro, rd, ot, dt);
+    dvec3 want_o = Li * (D(ro) - X0), want_d = Li * D(rd);
+    worst_inv = std::max(worst_inv, glm::length(D(ot) - want_o) / (glm::length(want_o) + S));
+    worst_dir = std::max(worst_dir, glm::length(D(dt) - want_d) / glm::length(want_d));
+    g::Affine3 m1i = g::chart_tile_frame_inverse(ch, gg, r);
+    worst_inv = std::max(worst_inv, glm::length(D(g::affine_point(m1i, ro)) - want_o) / (glm::length(want_o) + S));
+  }
+  EXPECT_LT(worst_fwd, 2e-5);
+  EXPECT_LT(worst_inv, 5e-5);
+  EXPECT_LT(worst_dir, 5e-5);
+  std::printf("tile frame: max rel fwd %.3g, inverse point %.3g, inverse dir %.3g\n", worst_fwd, worst_inv, worst_dir);
+}
+
+TEST(TileMapper, MembraneMoleculeTransformAndRayMatchOracle) {
+  Rng rng(33);
+  double worst_p = 0, worst_r = 0, worst_ray = 0;
+  for (int i = 0; i < 3000; ++i) {
+    Case c = random_case(rng, glm::vec3(0), i % 3 == 0);
+    Oracle o(c);
+    g::TriangleChart ch = make(c);
+    float S = 500, s = float(rng.uniform(0.02, 0.3)), r = s / S;
+    glm::vec2 gg = glm::vec2(float(rng.integer(0, 5)), float(rng.integer(0, 5))) * s;
+    glm::vec3 pos(float(rng.uniform(0, S)), float(rng.uniform(0, S)), float(rng.uniform(-50, 50)));
+    glm::vec3 axis = rng.unit_vector();
+    float ang = float(rng.uniform(-3.14, 3.14));
+    glm::vec4 q = g::quat_from_axis_angle(axis, ang);
+    glm::vec2 uvm;
+    g::Affine3 m = g::chart_membrane_molecule(ch, gg, r, pos, q, uvm);
+    dvec2 uv_o = D(gg) + double(r) * dvec2(pos.x, pos.y);
+    ASSERT_LT(glm::length(D(uvm) - uv_o), 1e-6);
+    dvec3 n = o.normal(D(uvm));
+    dvec3 want_p = o.X(D(uvm)) + double(pos.z) * n;
+    worst_p = std::max(worst_p, glm::length(D(m.translation) - want_p) / (o.diameter() + 50));
+    dvec3 ju = o.ju();
+    dvec3 fx = glm::normalize(ju - glm::dot(ju, n) * n);
+    glm::dmat3 frame(fx, glm::cross(n, fx), n);
+    glm::dmat3 rq = glm::mat3_cast(glm::angleAxis(double(ang), glm::normalize(D(axis))));
+    glm::dmat3 want_r = frame * rq;
+    for (int col = 0; col < 3; ++col) worst_r = std::max(worst_r, glm::length(dvec3(m.linear[col]) - want_r[col]));
+    ASSERT_GT(glm::determinant(glm::dmat3(m.linear)), 0.999);  // proper rotation even when mirrored
+    // Rays: world point at t maps to the local point at the same t.
+    glm::vec3 ro = rng.in_box(-300, 300), rd = rng.unit_vector() * float(rng.uniform(0.1, 10));
+    glm::vec3 ol, dl;
+    g::molecule_inverse_ray(m, ro, rd, ol, dl);
+    for (double t : {0.0, 3.0, 40.0}) {
+      dvec3 wp = D(ro) + t * D(rd);
+      dvec3 want_l = glm::transpose(want_r) * (wp - want_p);
+      dvec3 got_l = D(ol) + t * D(dl);
+      worst_ray = std::max(worst_ray, glm::length(got_l - want_l) / (glm::length(wp - want_p) + 1.0));
+    }
+  }
+  EXPECT_LT(worst_p, 2e-5);
+  EXPECT_LT(worst_r, 2e-5);
+  EXPECT_LT(worst_ray, 5e-5);
+  std::printf("membrane M2: max rel position %.3g, rotation %.3g, local ray %.3g\n", worst_p, worst_r, worst_ray);
+}
+
+TEST(TileMapper, SolubleMoleculeInCoreBox) {
+  Rng rng(34);
+  double worst = 0;
+  for (int i = 0; i < 2000; ++i) {
+    glm::vec3 gmin = rng.in_box(-1000, 1000), box(float(rng.uniform(100, 400)));
+    glm::ivec3 ijk(rng.integer(0, 30), rng.integer(0, 30), rng.integer(0, 30));
+    glm::vec3 pos = rng.in_box(0, 100);
+    glm::vec3 axis = rng.unit_vector();
+    float ang = float(rng.uniform(-3.14, 3.14));
+    g::Affine3 inst;
+    inst.linear = glm::mat3(2.0f) * g::quat_to_mat3(g::quat_from_axis_angle(rng.unit_vector(), 0.7f));
+    inst.translation = rng.in_box(-500, 500);
+    g::Affine3 m = g::affine_compose(inst, g::core_soluble_molecule(g::core_box_min(gmin, box, ijk), pos,
+                                                                    g::quat_from_axis_angle(axis, ang)));
+    dvec3 local = D(rng.in_box(-20, 20));
+    dvec3 box_min = D(gmin) + dvec3(ijk) * D(box);
+    dvec3 want = glm::dmat3(inst.linear) * (box_min + D(pos) + glm::mat3_cast(glm::angleAxis(double(ang), glm::normalize(D(axis)))) * local) +
+                 D(inst.translation);
+    dvec3 got = D(g::affine_point(m, glm::vec3(local)));
+    worst = std::max(worst, glm::length(got - want) / glm::length(want));
+    // and back with the general inverse ray
+    glm::vec3 ol, dl;
+    g::affine_inverse_ray(m, glm::vec3(want), glm::vec3(1, 2, 3), ol, dl);
+    worst = std::max(worst, glm::length(D(ol) - local) / glm::length(want));
+  }
+  EXPECT_LT(worst, 2e-6);
+}
+
+TEST(TileMapper, ReplicationAreaCoversEveryTouchedTile) {
+  Rng rng(35);
+  int max_excess = 0;
+  for (int i = 0; i < 20000; ++i) {
+    float s = float(rng.uniform(0.003, 0.25));
+    glm::vec2 t[3];
+    for (auto& x : t) x = glm::vec2(float(rng.uniform(0, 1)), float(rng.uniform(0, 1)));
+    if (i % 4 == 0)  // tiles starting exactly on tile boundaries
+      for (auto& x : t) x = glm::vec2(float(rng.integer(0, 10)) * s, float(rng.integer(0, 10)) * s);
+    glm::vec2 lo = glm::min(t[0], glm::min(t[1], t[2])), hi = glm::max(t[0], glm::max(t[1], t[2]));
+    glm::ivec2 org = g::replication_origin(lo, s), ext = g::replication_extent(lo, hi, s);
+    glm::ivec2 bound = g::replication_extent_bound(lo, hi, s);
+    for (int a = 0; a < 2; ++a) {
+      // brute force in double: cells k whose half-open UV interval [k s, (k+1) s) meets [lo, hi]
+      double dl = lo[a], dh = hi[a], ds = s;
+      for (int k = int(std::floor(dl / ds)) - 2; k <= int(std::floor(dh / ds)) + 2; ++k) {
+        bool touches = (k + 1) * ds > dl && k * ds <= dh;
+        bool inside = k >= org[a] && k < org[a] + ext[a];
+        if (touches) {
+          ASSERT_TRUE(inside) << "tile " << k << " of axis " << a << " missing; lo " << dl << " hi " << dh << " s " << ds << " org " << org[a] << " ext " << ext[a] << " case " << i;
+        }
+      }
+      ASSERT_LE(ext[a], bound[a]);
+      max_excess = std::max(max_excess, ext[a] - int(std::ceil((dh - dl) / ds)));
+      // the UV origin of slot 0 is at or below uv_min
+      ASSERT_LE(g::replication_tile_uv(g::replication_tile_index(org, glm::ivec2(0)), s)[a], lo[a]);
+    }
+  }
+  EXPECT_LE(max_excess, 2);  // +1 of ALGORITHMS.md, +1 more only when an edge is within the slack of a boundary
+}
+}  // namespace
