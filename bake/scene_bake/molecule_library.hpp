@@ -1,0 +1,38 @@
+#pragma once
+// The scene's molecule types, read from their structure files and put into molecule space:
+// origin at the centroid, so a rotation about the origin turns a molecule in place and the
+// bounding radius about the origin is the tight one the tile packer and the shell sizes need.
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "bake/scene/scene_description.hpp"
+#include "bake/structure/atom.hpp"
+#include "bake/structure/molecule_properties.hpp"
+
+namespace nano::bake {
+
+struct BakedMolecule {
+  std::string name;                         // the scene's name for the type
+  std::string source;                       // structure file name, as provenance and for picking
+  std::vector<structure::Atom> atoms;       // positions in molecule space (centroid at the origin)
+  structure::MoleculeProperties properties; // computed in molecule space
+  glm::dvec3 up{0.0, 0.0, 1.0};             // unit: the scene's axis, else the principal axis
+  glm::dvec3 linear_colour{0.7};            // linear RGB in [0, 1]
+};
+
+// sRGB component in [0, 1] to linear light, as the package stores colours for shading.
+double srgb_to_linear(double c);
+
+// A distinct colour for type `index` when the scene names none (sRGB, deterministic).
+glm::dvec3 default_molecule_colour(std::size_t index);
+
+// Reads every molecule of the scene, in the scene's order. Throws InputError naming the
+// structure file (and the scene key) for unreadable structures.
+std::vector<BakedMolecule> load_molecule_library(const scene::SceneDescription& scene);
+
+// One molecule from its description (exposed for tests).
+BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description, std::size_t index);
+
+}  // namespace nano::bake
