@@ -15,6 +15,11 @@
 #define NANO_IN(T) const T&
 #define NANO_CONST constexpr
 #define NANO_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
+// Functions defined in shared headers are included by many translation units.
+#define NANO_FN inline
+// GLSL `precise` forbids fma contraction and reassociation where a value decides a sign; the C++
+// side gets the same guarantee from -ffp-contract=off, set for the whole project.
+#define NANO_PRECISE
 #else
 #define NANO_BEGIN
 #define NANO_END
@@ -23,6 +28,8 @@
 #define NANO_IN(T) in T
 #define NANO_CONST const
 #define NANO_STATIC_ASSERT(cond, msg)
+#define NANO_FN
+#define NANO_PRECISE precise
 #endif
 
 #endif

@@ -5,27 +5,6 @@
 #define NANO_PLACEMENT_COMMON_H
 #include "shared/glsl_cpp.h"
 
-// NANO_PRECISE marks a variable whose value decides a sign: GLSL `precise` forbids contraction
-// (fma fusion) and reassociation, so every invocation evaluates the expression the same way.
-// C++: empty (the tests build with -ffp-contract=off so the host never contracts either).
-#ifndef NANO_PRECISE
-#ifdef __cplusplus
-#define NANO_PRECISE
-#else
-#define NANO_PRECISE precise
-#endif
-#endif
-
-// NANO_FN prefixes every function defined in a shared placement header: `inline` in C++ (headers are
-// included by many translation units), nothing in GLSL.
-#ifndef NANO_FN
-#ifdef __cplusplus
-#define NANO_FN inline
-#else
-#define NANO_FN
-#endif
-#endif
-
 NANO_BEGIN
 
 // Machine epsilon of float as used by pbrt: 2^-24.
