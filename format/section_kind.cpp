@@ -36,6 +36,8 @@ constexpr std::array kKinds = {
     info<SectionKind::scene>("scene"),
     info<SectionKind::compartment_instances>("compartment_instances"),
     info<SectionKind::provenance>("provenance"),
+    info<SectionKind::boundary_boxes>("boundary_boxes"),
+    info<SectionKind::mask_words>("mask_words"),
 };
 static_assert(kKinds.size() == std::size(kAllSectionKinds), "every kind has a name");
 

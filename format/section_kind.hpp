@@ -31,6 +31,8 @@ enum class SectionKind : std::uint32_t {
   scene = 18,
   compartment_instances = 19,
   provenance = 20,
+  boundary_boxes = 21,
+  mask_words = 22,
 };
 
 // Every kind this reader knows, in numeric order.
@@ -41,7 +43,8 @@ inline constexpr SectionKind kAllSectionKinds[] = {
     SectionKind::meshes,          SectionKind::vertex_positions, SectionKind::vertex_normals,
     SectionKind::vertex_uvs,      SectionKind::triangles,       SectionKind::triangle_shells,
     SectionKind::compartments,    SectionKind::occupancy,       SectionKind::scene,
-    SectionKind::compartment_instances, SectionKind::provenance,
+    SectionKind::compartment_instances, SectionKind::provenance,  SectionKind::boundary_boxes,
+    SectionKind::mask_words,
 };
 
 bool is_known_section_kind(std::uint32_t kind);
@@ -74,6 +77,8 @@ template <> struct RecordOf<SectionKind::occupancy> { using type = std::uint8_t;
 template <> struct RecordOf<SectionKind::scene> { using type = gpu::SceneSettings; };
 template <> struct RecordOf<SectionKind::compartment_instances> { using type = gpu::CompartmentInstance; };
 template <> struct RecordOf<SectionKind::provenance> { using type = char; };
+template <> struct RecordOf<SectionKind::boundary_boxes> { using type = gpu::BoundaryBox; };
+template <> struct RecordOf<SectionKind::mask_words> { using type = std::uint32_t; };
 template <SectionKind K> using record_t = typename RecordOf<K>::type;
 
 }  // namespace nano::format

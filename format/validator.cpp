@@ -1,5 +1,6 @@
 #include "format/validator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -31,6 +32,7 @@ public:
     check_triangle_shells();
     check_compartments();
     check_occupancy();
+    check_core_masks();
     check_scene();
     check_compartment_instances();
     check_provenance();
@@ -323,6 +325,11 @@ private:
       }
       string_ref(c, 84, k.name_offset, k.name_length, "name");
       zero(c, 92, k.reserved0);
+      if (k.soluble_recipe == gpu::NANO_NO_INDEX && k.core_masks.y != 0)
+        fail(c, 100, Rule::bad_value, "boundary boxes without a core grid");
+      range(c, 96, k.core_masks.x, k.core_masks.y, SectionKind::boundary_boxes, "boundary-box range");
+      zero(c, 104, k.core_masks.z);
+      zero(c, 108, k.core_masks.w);
     }
   }
 
@@ -331,6 +338,61 @@ private:
     for (std::uint64_t i = 0; i < occ.size(); ++i)
       if (occ[i] > gpu::NANO_BOX_BOUNDARY)
         fail(cursor<SectionKind::occupancy>(i), 0, Rule::bad_value, "occupancy value " + str(occ[i]) + " is not 0, 1 or 2");
+  }
+
+  // The keep-masks of each core grid (ranges, grid and occupancy range already checked by
+  // check_compartments): one sorted record per BOUNDARY box and nothing else, and W words per box,
+  // W being fixed per compartment so a shader can index the words without finding the largest cube.
+  void check_core_masks() {
+    const auto comps = p_.records<SectionKind::compartments>();
+    const auto cubes = p_.records<SectionKind::tiles3d>();
+    const auto boxes = p_.records<SectionKind::boundary_boxes>();
+    const auto words = p_.records<SectionKind::mask_words>();
+    const auto occ = p_.records<SectionKind::occupancy>();
+    for (std::uint64_t i = 0; i < comps.size(); ++i) {
+      const gpu::Compartment& k = comps[i];
+      if (k.soluble_recipe == gpu::NANO_NO_INDEX) continue;
+      std::uint64_t largest = 0;
+      for (std::uint64_t t = k.soluble_first_tile; t < std::uint64_t{k.soluble_first_tile} + k.soluble_tile_count; ++t)
+        largest = std::max<std::uint64_t>(largest, cubes[t].instance_count);
+      const std::uint64_t per_box = (largest + 31) / 32;
+      const std::uint64_t cells = std::uint64_t{k.grid_dims.x} * k.grid_dims.y * k.grid_dims.z;
+      const std::string whose = " of compartment " + str(i);
+      for (std::uint64_t r = k.core_masks.x; r < std::uint64_t{k.core_masks.x} + k.core_masks.y; ++r) {
+        const gpu::BoundaryBox& b = boxes[r];
+        const Cursor c = cursor<SectionKind::boundary_boxes>(r);
+        if (b.box >= cells)
+          fail(c, 0, Rule::index_out_of_range, "box " + str(b.box) + " is not below the " + str(cells) + " boxes" + whose);
+        const bool first = r == k.core_masks.x;
+        if (!first && b.box <= boxes[r - 1].box)
+          fail(c, 0, Rule::bad_value, "box " + str(b.box) + " does not follow box " + str(boxes[r - 1].box) + whose);
+        if (occ[k.grid_dims.w + b.box] != gpu::NANO_BOX_BOUNDARY)
+          fail(c, 0, Rule::bad_value, "box " + str(b.box) + whose + " is not a boundary box");
+        if (!first && b.first_word != std::uint64_t{boxes[r - 1].first_word} + per_box)
+          fail(c, 4, Rule::bad_value,
+               "first word " + str(b.first_word) + " is not the previous box's plus " + str(per_box) + whose);
+        if (!range_within(b.first_word, per_box, words.size()))
+          fail(c, 4, Rule::index_out_of_range,
+               "mask words [" + str(b.first_word) + ", +" + str(per_box) + ") exceed the " + str(words.size()) +
+                   " records of mask_words");
+        // Only the last word can hold bits past the largest cube; a reader counting kept copies
+        // by popcount over the words would count them.
+        const std::uint64_t last = b.first_word + per_box - 1;
+        if (largest % 32 != 0 && words[last] >> (largest % 32) != 0)
+          fail(cursor<SectionKind::mask_words>(last), 0, Rule::bad_value,
+               "keep bit beyond the " + str(largest) + " molecules of the largest cube" + whose);
+      }
+      // Conversely every BOUNDARY box is listed: one merge pass over the grid's occupancy bytes.
+      std::uint64_t next = k.core_masks.x;
+      const std::uint64_t end = std::uint64_t{k.core_masks.x} + k.core_masks.y;
+      for (std::uint64_t box = 0; box < cells; ++box) {
+        if (occ[k.grid_dims.w + box] != gpu::NANO_BOX_BOUNDARY) continue;
+        if (next == end || boxes[next].box != box)
+          fail(cursor<SectionKind::occupancy>(k.grid_dims.w + box), 0, Rule::bad_value,
+               "boundary box " + str(box) + whose + " has no record in boundary_boxes");
+        ++next;
+      }
+    }
   }
 
   void check_scene() {

@@ -140,7 +140,22 @@ struct Compartment {
   uint name_offset;          // name in section "strings"
   uint name_length;
   uint reserved0;
+  uvec4 core_masks;          // keep-masks of the core grid's BOUNDARY boxes: x: first record in
+                             // "boundary_boxes", y: count (0 without a core grid); zw: reserved
 };
+
+// Section "boundary_boxes": one record per BOUNDARY box of a core grid, ascending `box` within each
+// compartment's range, so a shader finds a box's mask by binary search. Every box of one compartment
+// has the same number of mask words, W = ceil(largest instance_count of its cube set / 32), and
+// consecutive records' first_word differ by exactly W: whichever cube the recipe puts in the box, a
+// shader reads mask_words[first_word + m / 32] for its molecule m without reading the cube first.
+struct BoundaryBox {
+  uint box;         // linear index in the compartment's core grid, i + X * (j + Y * k)
+  uint first_word;  // the box's W words in section "mask_words"; bit m % 32 of word m / 32 = keep
+                    // molecule m (the m-th instance of the box's cube)
+};
+
+// Section "mask_words": uint array, the keep-mask words of all boundary boxes.
 
 // Section "scene": exactly one record.
 struct SceneSettings {
@@ -200,14 +215,16 @@ NANO_AT(Triangle, v0, 0) NANO_AT(Triangle, v1, 4) NANO_AT(Triangle, v2, 8)
 NANO_PIN(TriangleShell, 32)
 NANO_AT(TriangleShell, uv_min_max, 0) NANO_AT(TriangleShell, h_plus, 16) NANO_AT(TriangleShell, h_minus, 20)
 NANO_AT(TriangleShell, side_offset, 24) NANO_AT(TriangleShell, reserved0, 28)
-NANO_PIN(Compartment, 96)
+NANO_PIN(Compartment, 112)
 NANO_AT(Compartment, grid_min, 0) NANO_AT(Compartment, grid_dims, 16) NANO_AT(Compartment, scales, 32)
 NANO_AT(Compartment, mesh, 48) NANO_AT(Compartment, membrane_first_tile, 52)
 NANO_AT(Compartment, membrane_tile_count, 56) NANO_AT(Compartment, membrane_recipe, 60)
 NANO_AT(Compartment, soluble_first_tile, 64) NANO_AT(Compartment, soluble_tile_count, 68)
 NANO_AT(Compartment, soluble_recipe, 72) NANO_AT(Compartment, replication_width, 76)
 NANO_AT(Compartment, replication_height, 80) NANO_AT(Compartment, name_offset, 84)
-NANO_AT(Compartment, name_length, 88) NANO_AT(Compartment, reserved0, 92)
+NANO_AT(Compartment, name_length, 88) NANO_AT(Compartment, reserved0, 92) NANO_AT(Compartment, core_masks, 96)
+NANO_PIN(BoundaryBox, 8)
+NANO_AT(BoundaryBox, box, 0) NANO_AT(BoundaryBox, first_word, 4)
 NANO_PIN(SceneSettings, 64)
 NANO_AT(SceneSettings, camera_eye, 0) NANO_AT(SceneSettings, camera_target, 16)
 NANO_AT(SceneSettings, camera_up, 32) NANO_AT(SceneSettings, effect_flags, 48)

@@ -15,9 +15,11 @@ foreach(expect
     "meshes.triangle_count: offset 44,[^\n]*topLevelArrayStride 48"
     "triangles.v2: offset 8,[^\n]*topLevelArrayStride 12"
     "shells.reserved0: offset 28,[^\n]*topLevelArrayStride 32"
-    "compartments.reserved0: offset 92,[^\n]*topLevelArrayStride 96"
+    "compartments.reserved0: offset 92,[^\n]*topLevelArrayStride 112"
+    "compartments.core_masks: offset 96,[^\n]*topLevelArrayStride 112"
     "scene.reserved2: offset 60,[^\n]*topLevelArrayStride 64"
-    "compartment_instances.reserved2: offset 60,[^\n]*topLevelArrayStride 64")
+    "compartment_instances.reserved2: offset 60,[^\n]*topLevelArrayStride 64"
+    "boundary_boxes.first_word: offset 4,[^\n]*topLevelArrayStride 8")
   if(NOT out MATCHES "${expect}")
     message(FATAL_ERROR "std430 layout differs from C++: no match for '${expect}' in\n${out}")
   endif()

@@ -16,12 +16,13 @@ layout(std430, binding = 8) readonly buffer Shells { TriangleShell shells[]; };
 layout(std430, binding = 9) readonly buffer Compartments { Compartment compartments[]; };
 layout(std430, binding = 10) readonly buffer Scene { SceneSettings scene[]; };
 layout(std430, binding = 11) readonly buffer CInstances { CompartmentInstance compartment_instances[]; };
-layout(std430, binding = 12) writeonly buffer Out { uint sink[]; };
+layout(std430, binding = 12) readonly buffer BoundaryBoxes { BoundaryBox boundary_boxes[]; };
+layout(std430, binding = 13) writeonly buffer Out { uint sink[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   sink[i] = molecules[i].reserved1 + floatBitsToUint(atoms[i].centre_radius.w) + tiles2d[i].reserved1 +
             tiles3d[i].reserved1 + instances[i].reserved2 + recipes[i].reserved1 + meshes[i].triangle_count +
-            triangles[i].v2 + shells[i].reserved0 + compartments[i].reserved0 + scene[i].reserved2 +
-            compartment_instances[i].reserved2 + NANO_NO_INDEX;
+            triangles[i].v2 + shells[i].reserved0 + compartments[i].reserved0 + compartments[i].core_masks.w +
+            scene[i].reserved2 + compartment_instances[i].reserved2 + boundary_boxes[i].first_word + NANO_NO_INDEX;
 }

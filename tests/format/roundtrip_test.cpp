@@ -41,8 +41,9 @@ auto fields(const gpu::TriangleShell& s) { return std::tie(s.uv_min_max, s.h_plu
 auto fields(const gpu::Compartment& c) {
   return std::tie(c.grid_min, c.grid_dims, c.scales, c.mesh, c.membrane_first_tile, c.membrane_tile_count,
                   c.membrane_recipe, c.soluble_first_tile, c.soluble_tile_count, c.soluble_recipe, c.replication_width,
-                  c.replication_height, c.name_offset, c.name_length, c.reserved0);
+                  c.replication_height, c.name_offset, c.name_length, c.reserved0, c.core_masks);
 }
+auto fields(const gpu::BoundaryBox& b) { return std::tie(b.box, b.first_word); }
 auto fields(const gpu::SceneSettings& s) {
   return std::tie(s.camera_eye, s.camera_target, s.camera_up, s.effect_flags, s.reserved0, s.reserved1, s.reserved2);
 }
@@ -84,6 +85,8 @@ void expect_scene(const Package& p, const SampleScene& s) {
   expect_section<K::scene>(p, s.scene);
   expect_section<K::compartment_instances>(p, s.compartment_instances);
   expect_section<K::provenance>(p, s.provenance);
+  expect_section<K::boundary_boxes>(p, s.boundary_boxes);
+  expect_section<K::mask_words>(p, s.mask_words);
 }
 
 TEST(RoundTrip, EverySectionKindUncompressed) {
@@ -189,7 +192,7 @@ TEST(SectionKinds, NamesRoundTripAndRecordSizes) {
     EXPECT_EQ(section_kind_from_name(section_kind_name(k)), k);
   }
   EXPECT_FALSE(is_known_section_kind(0));
-  EXPECT_FALSE(is_known_section_kind(21));
+  EXPECT_FALSE(is_known_section_kind(23));
   EXPECT_EQ(section_kind_name(4711u), "kind 4711");
   EXPECT_EQ(section_kind_from_name("nonsense"), std::nullopt);
   EXPECT_EQ(record_size(SectionKind::molecules), 96u);
@@ -199,6 +202,9 @@ TEST(SectionKinds, NamesRoundTripAndRecordSizes) {
   EXPECT_EQ(record_size(SectionKind::vertex_uvs), 8u);
   EXPECT_EQ(record_size(SectionKind::occupancy), 1u);
   EXPECT_EQ(record_size(SectionKind::provenance), 1u);
+  EXPECT_EQ(record_size(SectionKind::compartments), 112u);
+  EXPECT_EQ(record_size(SectionKind::boundary_boxes), 8u);
+  EXPECT_EQ(record_size(SectionKind::mask_words), 4u);
 }
 
 }  // namespace

@@ -62,7 +62,12 @@ SampleScene make_sample_scene() {
   s.occupancy.assign(512, gpu::NANO_BOX_OUTSIDE);
   for (int i = 200; i < 260; ++i) s.occupancy[i] = gpu::NANO_BOX_INSIDE;
   s.occupancy[199] = s.occupancy[260] = gpu::NANO_BOX_BOUNDARY;
-  s.compartments = {{vec4(0, 0, 0, 0.125f), uvec4(8, 8, 8, 0), vec4(100, 6, 5, 0), 0, 0, 2, 0, 0, 1, 1, 3, 3, 20, 8, 0}};
+  s.compartments = {{vec4(0, 0, 0, 0.125f), uvec4(8, 8, 8, 0), vec4(100, 6, 5, 0), 0, 0, 2, 0, 0, 1, 1, 3, 3, 20, 8, 0,
+                     uvec4(0, 2, 0, 0)}};
+  // The two BOUNDARY boxes' keep-masks: the cube set's largest cube has one molecule, so one word
+  // per box; box 199 keeps it, box 260 does not.
+  s.boundary_boxes = {{199, 0}, {260, 1}};
+  s.mask_words = {1, 0};
   s.scene = {{vec4(0, 0, 10, 0.8f), vec4(0, 0, 0, 0), vec4(0, 1, 0, 0),
               gpu::NANO_EFFECT_AMBIENT_OCCLUSION | gpu::NANO_EFFECT_SHADOWS, 0, 0, 0}};
   s.compartment_instances = {{{vec4(1, 0, 0, 0), vec4(0, 1, 0, 0), vec4(0, 0, 1, 0)}, 0, 0, 0, 0},
@@ -95,6 +100,8 @@ std::vector<SectionSource> sections_of(const SampleScene& s, Compression c, std:
       source(K::scene, s.scene, c),
       source(K::compartment_instances, s.compartment_instances, c),
       text_source(K::provenance, s.provenance, c),
+      source(K::boundary_boxes, s.boundary_boxes, c),
+      source(K::mask_words, s.mask_words, c),
   };
   std::vector<SectionSource> out;
   for (const SectionSource& src : all)

@@ -29,6 +29,8 @@ struct SampleScene {
   std::vector<gpu::SceneSettings> scene;
   std::vector<gpu::CompartmentInstance> compartment_instances;
   std::string provenance;
+  std::vector<gpu::BoundaryBox> boundary_boxes;
+  std::vector<std::uint32_t> mask_words;
 };
 
 SampleScene make_sample_scene();

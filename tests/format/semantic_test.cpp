@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <utility>
 
 #include "tests/format/package_bytes.hpp"
 #include "tests/format/sample_scene.hpp"
@@ -21,6 +22,20 @@ struct Case {
 };
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// The sample's only cube grows from 1 to 33 molecules (copies of its instance), so the keep-masks
+// need two words per box instead of one.
+void grow_cube_past_one_word(SampleScene& s) {
+  for (int i = 0; i < 32; ++i) s.instances.push_back(s.instances[3]);
+  s.tiles3d[0].instance_count = 33;
+}
+
+// The grown cube with masks rewritten to match: box 199 keeps all 33 molecules, box 260 none.
+void two_words_per_box(SampleScene& s) {
+  grow_cube_past_one_word(s);
+  s.boundary_boxes = {{199, 0}, {260, 2}};
+  s.mask_words = {0xffffffffu, 1, 0, 0};
+}
 
 const Case kCases[] = {
     {"atom range past the atoms", [](SampleScene& s) { s.molecules[1].atom_count = 3; }, Rule::index_out_of_range,
@@ -88,6 +103,43 @@ const Case kCases[] = {
      SectionKind::compartments, 28},
     {"zero box size", [](SampleScene& s) { s.compartments[0].grid_min.w = 0; }, Rule::bad_value, SectionKind::compartments, 12},
     {"occupancy value", [](SampleScene& s) { s.occupancy[300] = 3; }, Rule::bad_value, SectionKind::occupancy, 300},
+    {"boundary-box range past the section", [](SampleScene& s) { s.compartments[0].core_masks.y = 3; },
+     Rule::index_out_of_range, SectionKind::compartments, 96},
+    {"boundary-box range start overflow", [](SampleScene& s) { s.compartments[0].core_masks.x = 0xffffffffu; },
+     Rule::index_out_of_range, SectionKind::compartments, 96},
+    {"boundary boxes without a core grid", [](SampleScene& s) { s.compartments[0].soluble_recipe = gpu::NANO_NO_INDEX; },
+     Rule::bad_value, SectionKind::compartments, 100},
+    {"reserved core-mask member", [](SampleScene& s) { s.compartments[0].core_masks.w = 1; }, Rule::nonzero_reserved,
+     SectionKind::compartments, 108},
+    {"boundary box outside the grid", [](SampleScene& s) { s.boundary_boxes[1].box = 512; }, Rule::index_out_of_range,
+     SectionKind::boundary_boxes, 8},
+    {"boundary boxes not ascending",
+     [](SampleScene& s) { std::swap(s.boundary_boxes[0].box, s.boundary_boxes[1].box); }, Rule::bad_value,
+     SectionKind::boundary_boxes, 8},
+    {"listed box is inside", [](SampleScene& s) { s.boundary_boxes[1].box = 230; }, Rule::bad_value,
+     SectionKind::boundary_boxes, 8},
+    {"listed box is outside", [](SampleScene& s) { s.boundary_boxes[0].box = 10; }, Rule::bad_value,
+     SectionKind::boundary_boxes, 0},
+    {"boundary box not listed", [](SampleScene& s) { s.occupancy[300] = gpu::NANO_BOX_BOUNDARY; }, Rule::bad_value,
+     SectionKind::occupancy, 300},
+    {"boundary-box list cut short", [](SampleScene& s) { s.compartments[0].core_masks.y = 1; }, Rule::bad_value,
+     SectionKind::occupancy, 260},
+    {"mask words past the section", [](SampleScene& s) { s.mask_words.pop_back(); }, Rule::index_out_of_range,
+     SectionKind::boundary_boxes, 8 + 4},
+    {"first mask word overflow", [](SampleScene& s) { s.boundary_boxes[0].first_word = 0xffffffffu; },
+     Rule::index_out_of_range, SectionKind::boundary_boxes, 4},
+    {"masks sharing words", [](SampleScene& s) { s.boundary_boxes[1].first_word = 0; }, Rule::bad_value,
+     SectionKind::boundary_boxes, 8 + 4},
+    {"keep bit beyond the largest cube", [](SampleScene& s) { s.mask_words[1] = 2; }, Rule::bad_value,
+     SectionKind::mask_words, 4},
+    {"cube past 32 molecules with one-word masks", grow_cube_past_one_word, Rule::bad_value, SectionKind::boundary_boxes,
+     8 + 4},
+    {"keep bit beyond a 33-molecule cube",
+     [](SampleScene& s) {
+       two_words_per_box(s);
+       s.mask_words[3] = 2;
+     },
+     Rule::bad_value, SectionKind::mask_words, 3 * 4},
     {"two scene records", [](SampleScene& s) { s.scene.push_back(s.scene[0]); }, Rule::record_size, SectionKind::scene, 0},
     {"field of view", [](SampleScene& s) { s.scene[0].camera_eye.w = 0; }, Rule::bad_value, SectionKind::scene, 12},
     {"scene compartment index", [](SampleScene& s) { s.compartment_instances[1].compartment = 1; },
@@ -166,6 +218,15 @@ TEST(SemanticOptional, NoMembraneAndNoCoreGrid) {
   s.compartments[0].membrane_recipe = gpu::NANO_NO_INDEX;
   s.compartments[0].soluble_recipe = gpu::NANO_NO_INDEX;
   s.compartments[0].grid_dims = glm::uvec4(0);
+  s.compartments[0].core_masks = glm::uvec4(0);
+  EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
+}
+
+// The valid counterpart of the 33-molecule cases above: it is the mask width, not the cube size,
+// that those reject.
+TEST(SemanticCoreMasks, TwoWordsPerBoxForACubeOfMoreThan32Molecules) {
+  SampleScene s = make_sample_scene();
+  two_words_per_box(s);
   EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
 }
 
