@@ -21,6 +21,7 @@ struct Unit {
   uint32_t tile = 0;  // Interior
   double per_tile = 1.0;  // how often the unit occurs per tile of a uniform tiling
   std::vector<Instance> copies;  // positions relative to the anchor
+  std::vector<uint32_t> spec_of;  // per copy: the spec it was placed for
 };
 
 using Offset = std::array<int, 3>;
@@ -90,10 +91,250 @@ bool owner_shift(const Instance& copy, unsigned mask, int D, float edge, Offset&
   return true;
 }
 
+// Zone of a unit for one spec: centre within `band` of the anchor along mask axes, `band` inside
+// the tile along the others. Zero volume when the tile is too small for an interior.
+double zone_measure(unsigned mask, double band, int D, float edge) {
+  double zone = 1.0;
+  for (int a = 0; a < D; ++a) zone *= ((mask >> a) & 1u) ? 2.0 * band : std::max(0.0, edge - 2.0 * band);
+  return zone;
+}
+
+bool in_zone(const glm::vec3& p, unsigned mask, double band, int D, float edge) {
+  for (int a = 0; a < D; ++a) {
+    const double v = p[a];
+    if ((mask >> a) & 1u ? (v < -band || v > band) : (v < band || v > edge - band)) return false;
+  }
+  return true;
+}
+
+glm::quat random_orientation(const PlacementSpec& spec, SplitMix64& rng) {
+  return spec.uniform_rotation ? uniform_rotation(rng)
+                               : glm::normalize(spin_about_z(rng.uniform(0.0, 2.0 * M_PI)) * spec.base);
+}
+
+Instance random_copy(const PlacementSpec& spec, unsigned mask, int D, float edge, SplitMix64& rng) {
+  const double b = spec.band;
+  Instance copy{spec.type};
+  for (int a = 0; a < D; ++a)
+    copy.position[a] = static_cast<float>(((mask >> a) & 1u) ? rng.uniform(-b, b) : rng.uniform(b, edge - b));
+  if (D == 2) copy.position.z = spec.z;
+  copy.rotation = random_orientation(spec, rng);
+  return copy;
+}
+
+// Symmetric, small random turn: about the tile z axis for membrane copies (they keep standing along
+// the normal), about a uniformly random axis for solubles.
+glm::quat small_turn(SplitMix64& rng, double max_angle, bool about_z_only) {
+  const float angle = static_cast<float>(rng.uniform(-max_angle, max_angle));
+  if (about_z_only) return spin_about_z(angle);
+  const double z = rng.uniform(-1.0, 1.0), phi = rng.uniform(0.0, 2.0 * M_PI), r = std::sqrt(1.0 - z * z);
+  return glm::angleAxis(angle, glm::vec3(static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)),
+                                         static_cast<float>(z)));
+}
+
+// Every unit with the (unit, offset) pairs that can meet in some valid tiling, in both directions:
+// exactly the pairs the sequential fill checks (it asks the later unit about the earlier one), so a
+// copy moved, inserted or laid against all of them keeps every valid tiling collision-free.
+class UnitWorld {
+public:
+  UnitWorld(std::vector<Unit>& units, const std::vector<CollisionShape>& shapes,
+            const std::vector<PlacementSpec>& specs, const WangColouring& set, const PackerSettings& settings)
+      : units_(units), shapes_(shapes), specs_(specs), D_(set.dims), S_(settings.edge), settings_(settings) {
+    const size_t n = units_.size();
+    meets_.resize(n * n);
+    for (size_t a = 0; a < n; ++a)
+      for (size_t b = 0; b < n; ++b)
+        for (const Offset& d : neighbour_offsets(D_)) {
+          const Offset back{-d[0], -d[1], -d[2]};
+          // The sequential fill asks the later unit about the earlier one.
+          const bool meet = a >= b ? can_meet(units_[a], units_[b], d, set) : can_meet(units_[b], units_[a], back, set);
+          if (meet) meets_[a * n + b].push_back(d);
+        }
+    poses_.resize(n);
+    lo_.assign(n, glm::vec3(INFINITY));
+    hi_.assign(n, glm::vec3(-INFINITY));
+    reach_.assign(n, 0.f);
+    for (size_t a = 0; a < n; ++a)
+      for (const Instance& copy : units_[a].copies) track(a, copy);
+  }
+
+  // Densification. Random sequential addition jams well below the densities of real cells
+  // (haemoglobin at 5 mM: ~87%), worst in the interiors: the thin face and shared zones were filled
+  // without seeing the interiors that will sit against them. Every copy of a `densify` spec may
+  // move (hard-body Monte Carlo: a small random move is kept only when it stays in its zone and
+  // clear of every copy it can meet), which turns the jammed packing into a fluid whose gaps wander
+  // and merge, and new copies go where the gaps are largest. Adds the copies per tile it inserts to
+  // achieved_per_tile (per spec).
+  void run(std::vector<double>& achieved_per_tile, SplitMix64& rng) {
+    const double measure = std::pow(static_cast<double>(S_), D_);
+    for (int round = 0; round < settings_.relaxation_rounds; ++round) {
+      bool short_any = false;
+      for (size_t si = 0; si < specs_.size(); ++si)
+        short_any |= specs_[si].densify && achieved_per_tile[si] < specs_[si].copies_per_volume * measure - 1e-9;
+      if (!short_any) return;
+      shake(rng);
+      for (size_t si = 0; si < specs_.size(); ++si) {
+        const double wanted = specs_[si].copies_per_volume * measure;
+        if (!specs_[si].densify) continue;
+        const int darts = static_cast<int>(std::ceil(settings_.relaxation_darts * static_cast<double>(units_.size())));
+        for (int k = 0; k < darts && achieved_per_tile[si] < wanted - 1e-9; ++k)
+          achieved_per_tile[si] += insert(si, rng);
+      }
+    }
+  }
+
+  // Decides every layer copy in every unit instance against the packed copies only (the layer is
+  // clash-free with itself), then adds the kept ones. Returns kept copies per tile, per type.
+  std::vector<double> lay(const FixedLayer& layer) {
+    std::vector<std::pair<size_t, Instance>> kept;
+    std::vector<double> per_tile(shapes_.size(), 0.0);
+    constexpr size_t kNone = ~size_t(0);
+    for (const Instance& copy : layer.copies) {
+      unsigned mask = 0;
+      Instance local = copy;  // relative to the anchor of the unit holding it
+      for (int k = 0; k < D_; ++k) {
+        if (copy.position[k] < layer.band) mask |= 1u << k;
+        if (copy.position[k] >= S_ - layer.band) {
+          mask |= 1u << k;
+          local.position[k] -= S_;
+        }
+      }
+      for (size_t a = 0; a < units_.size(); ++a) {
+        if (units_[a].mask != mask || !fits(a, local, kNone)) continue;
+        kept.emplace_back(a, local);
+        per_tile[copy.type] += units_[a].per_tile;
+      }
+    }
+    for (const auto& [a, copy] : kept) {
+      units_[a].copies.push_back(copy);
+      units_[a].spec_of.push_back(kLayerSpec);
+      track(a, copy);
+    }
+    const double measure = std::pow(static_cast<double>(S_), D_);
+    for (double& v : per_tile) v /= measure;
+    return per_tile;
+  }
+
+private:
+  static constexpr uint32_t kLayerSpec = ~0u;  // never shaken: the layer comes last
+
+  void track(size_t a, const Instance& copy) {
+    poses_[a].push_back(pose_of(copy, {0, 0, 0}, D_, S_));
+    widen(a, copy);
+  }
+  // Boxes only grow, so they stay conservative as copies move.
+  void widen(size_t a, const Instance& copy) {
+    lo_[a] = glm::min(lo_[a], copy.position);
+    hi_[a] = glm::max(hi_[a], copy.position);
+    reach_[a] = std::max(reach_[a], shapes_[copy.type].radius());
+  }
+
+  // Calls f(pose of another copy) for every copy that unit a's candidate at p could touch, within
+  // `reach` of p (beyond the other's bounding sphere), skipping copy `skip` of unit a itself; stops
+  // when f returns true.
+  template <class F>
+  bool any_near(size_t a, const glm::vec3& p, float reach, size_t skip, F&& f) const {
+    const size_t n = units_.size();
+    for (size_t b = 0; b < n; ++b) {
+      if (poses_[b].empty()) continue;
+      for (const Offset& d : meets_[a * n + b]) {
+        glm::vec3 shift(0.f);
+        for (int k = 0; k < D_; ++k) shift[k] = S_ * static_cast<float>(d[k]);
+        const glm::vec3 gap = glm::max(glm::max(lo_[b] + shift - p, p - hi_[b] - shift), glm::vec3(0.f));
+        const float limit = reach + reach_[b];
+        if (glm::dot(gap, gap) >= limit * limit) continue;
+        for (size_t j = 0; j < poses_[b].size(); ++j) {
+          if (b == a && j == skip) continue;
+          Pose other = poses_[b][j];
+          other.position += shift;
+          if (f(units_[b].copies[j].type, other)) return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  bool fits(size_t a, const Instance& copy, size_t skip) const {
+    Offset owner;
+    if (!owner_shift(copy, units_[a].mask, D_, S_, owner)) return false;
+    const CollisionShape& shape = shapes_[copy.type];
+    const Pose pose = pose_of(copy, {0, 0, 0}, D_, S_);
+    return !any_near(a, pose.position, shape.radius(), skip, [&](uint32_t type, const Pose& other) {
+      return copies_collide(shape, pose, shapes_[type], other, settings_.clearance);
+    });
+  }
+
+  void shake(SplitMix64& rng) {
+    for (size_t a = 0; a < units_.size(); ++a)
+      for (size_t i = 0; i < units_[a].copies.size(); ++i) {
+        const PlacementSpec& spec = specs_[units_[a].spec_of[i]];
+        if (!spec.densify) continue;
+        Instance moved = units_[a].copies[i];
+        const double step = settings_.relaxation_step * spec.band;
+        for (int k = 0; k < D_; ++k) moved.position[k] += static_cast<float>(rng.uniform(-step, step));
+        moved.rotation =
+            glm::normalize(small_turn(rng, 2.0 * settings_.relaxation_step, !spec.uniform_rotation) * moved.rotation);
+        if (!in_zone(moved.position, units_[a].mask, spec.band, D_, S_) || !fits(a, moved, i)) continue;
+        units_[a].copies[i] = moved;
+        poses_[a][i] = pose_of(moved, {0, 0, 0}, D_, S_);
+        widen(a, moved);
+      }
+  }
+
+  // One insertion attempt for spec si: a unit drawn in proportion to how much of a tile its zone
+  // covers, the emptiest of a few random points of the zone (largest distance to the bounding
+  // spheres around it), a few orientations there. Returns the copies per tile added.
+  double insert(size_t si, SplitMix64& rng) {
+    const PlacementSpec& spec = specs_[si];
+    double total = 0.0;
+    std::vector<double> weight(units_.size());
+    for (size_t a = 0; a < units_.size(); ++a)
+      total += weight[a] = units_[a].per_tile * zone_measure(units_[a].mask, spec.band, D_, S_);
+    if (!(total > 0.0)) return 0.0;
+    double pick = rng.uniform(0.0, total);
+    size_t a = 0;
+    while (a + 1 < units_.size() && (pick -= weight[a]) >= 0.0) ++a;
+    const float radius = shapes_[spec.type].radius();
+    constexpr size_t kNone = ~size_t(0);
+    Instance best;
+    float best_room = -INFINITY;
+    for (int k = 0; k < kVoidProbes; ++k) {
+      const Instance probe = random_copy(spec, units_[a].mask, D_, S_, rng);
+      float room = INFINITY;
+      any_near(a, probe.position, 2.f * radius, kNone, [&](uint32_t type, const Pose& other) {
+        room = std::min(room, glm::length(other.position - probe.position) - shapes_[type].radius());
+        return false;
+      });
+      if (room > best_room) best_room = room, best = probe;
+    }
+    for (int k = 0; k < kTurns; ++k) {
+      if (k > 0) best.rotation = random_orientation(spec, rng);
+      if (!fits(a, best, kNone)) continue;
+      units_[a].copies.push_back(best);
+      units_[a].spec_of.push_back(static_cast<uint32_t>(si));
+      track(a, best);
+      return units_[a].per_tile;
+    }
+    return 0.0;
+  }
+
+  static constexpr int kVoidProbes = 8, kTurns = 6;
+  std::vector<Unit>& units_;
+  const std::vector<CollisionShape>& shapes_;
+  const std::vector<PlacementSpec>& specs_;
+  int D_;
+  float S_;
+  const PackerSettings& settings_;
+  std::vector<std::vector<Offset>> meets_;
+  std::vector<std::vector<Pose>> poses_;
+  std::vector<glm::vec3> lo_, hi_;
+  std::vector<float> reach_;
+};
+
 }  // namespace
 
 PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std::vector<PlacementSpec>& specs,
-                            const WangColouring& set, const PackerSettings& settings) {
+                            const WangColouring& set, const PackerSettings& settings, const FixedLayer& layer) {
   const int D = set.dims;
   const float S = settings.edge;
   std::vector<Unit> units = make_units(set);
@@ -118,9 +359,7 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
 
     for (size_t si = 0; si < specs.size(); ++si) {
       const PlacementSpec& spec = specs[si];
-      const double b = spec.band;
-      double zone = 1.0;
-      for (int a = 0; a < D; ++a) zone *= ((u.mask >> a) & 1u) ? 2.0 * b : std::max(0.0, S - 2.0 * b);
+      const double zone = zone_measure(u.mask, spec.band, D, S);
       const double ideal = spec.copies_per_volume * zone;
       const double want = ideal + carry[si] / u.per_tile;
       const long target = zone > 0.0 ? std::max(0L, static_cast<long>(std::floor(want + 0.5))) : 0L;
@@ -128,12 +367,7 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
       long placed = 0, misses = 0;
       for (double attempts = 0; placed < target && attempts < budget && misses < settings.max_consecutive_failures;
            ++attempts) {
-        Instance copy{spec.type};
-        for (int a = 0; a < D; ++a)
-          copy.position[a] = static_cast<float>(((u.mask >> a) & 1u) ? rng.uniform(-b, b) : rng.uniform(b, S - b));
-        if (D == 2) copy.position.z = spec.z;
-        copy.rotation = spec.uniform_rotation ? uniform_rotation(rng)
-                                              : glm::normalize(spin_about_z(rng.uniform(0.0, 2.0 * M_PI)) * spec.base);
+        const Instance copy = random_copy(spec, u.mask, D, S, rng);
         Offset shift;
         if (!owner_shift(copy, u.mask, D, S, shift) ||
             context.collides(copy.type, pose_of(copy, {0, 0, 0}, D, S), settings.clearance)) {
@@ -143,6 +377,7 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
         misses = 0;
         ++placed;
         u.copies.push_back(copy);
+        u.spec_of.push_back(static_cast<uint32_t>(si));
         for (const Offset& d : self) context.add(copy.type, pose_of(copy, d, D, S));
       }
       carry[si] += u.per_tile * (ideal - static_cast<double>(placed));
@@ -151,6 +386,11 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
   }
 
   PackedUnits out;
+  if (settings.relaxation_rounds > 0 || !layer.copies.empty()) {
+    UnitWorld world(units, shapes, specs, set, settings);
+    if (settings.relaxation_rounds > 0) world.run(achieved, rng);
+    if (!layer.copies.empty()) out.layer_per_volume = world.lay(layer);
+  }
   out.tiles.resize(set.tile_count());
   for (uint32_t t = 0; t < set.tile_count(); ++t) {
     WangTile& tile = out.tiles[t];

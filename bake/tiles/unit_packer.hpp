@@ -35,6 +35,7 @@ struct PlacementSpec {
   bool uniform_rotation = false;   // cubes: uniform on SO(3); squares: spin about z after `base`
   glm::quat base{1.f, 0.f, 0.f, 0.f};
   float z = 0.f;                   // D = 2: tile-space z of the centre (membrane depth)
+  bool densify = true;             // shaken and topped up by the densification pass (if enabled)
 };
 
 struct PackerSettings {
@@ -43,17 +44,35 @@ struct PackerSettings {
   uint64_t seed = 1;
   int attempts_per_copy = 200;          // candidate budget per targeted copy in a unit
   int max_consecutive_failures = 1500;  // a unit gives up on a type after this many misses in a row
+  // Densification after the sequential fill while a `densify` spec is short of its density: up to
+  // this many rounds of one shaking sweep over all copies of such specs followed by
+  // relaxation_darts x (number of units) insertion attempts per short spec. 0 = off.
+  int relaxation_rounds = 0;
+  float relaxation_step = 0.25f;  // largest move per sweep, in bands (and twice that in radians)
+  float relaxation_darts = 4.f;
+};
+
+// A layer laid over every tile after the specs are packed (a lipid bilayer cut from a periodic
+// patch): tile-space copies forming one pattern periodic with the tile edge and clash-free with
+// itself and its images one edge away. Each copy joins the unit whose zone (with `band`) holds its
+// centre, and each instance of that unit keeps it unless it touches a packed copy the unit can meet
+// in some tiling: one decision per unit instance, so neighbouring tiles always agree.
+struct FixedLayer {
+  std::vector<Instance> copies;  // x, y (and z for cubes) in [0, edge)
+  float band = 0.f;              // extent radius of any copy along the lattice axes, <= edge / 2
 };
 
 struct PackedUnits {
   std::vector<WangTile> tiles;
   std::vector<double> achieved_per_volume;  // per spec, same unit as copies_per_volume
+  std::vector<double> layer_per_volume;     // per molecule type: kept layer copies (empty without a layer)
 };
 
 // Specs are filled in the given order (put large molecules first). The caller has checked
-// 0 < band <= edge / 2 for every spec.
+// 0 < band <= edge / 2 for every spec and the layer.
 PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std::vector<PlacementSpec>& specs,
-                            const WangColouring& colouring, const PackerSettings& settings);
+                            const WangColouring& colouring, const PackerSettings& settings,
+                            const FixedLayer& layer = {});
 
 // Tile-space box of all atoms of the instances (empty tile: a zero box at the origin).
 void compute_atom_bounds(WangTile& tile, const std::vector<CollisionShape>& shapes);

@@ -1,5 +1,6 @@
 #include "bake/tiles/wang_sets.hpp"
 
+#include "bake/tiles/copy_neighbourhood.hpp"
 #include "bake/tiles/rotation_sampling.hpp"
 #include "bake/tiles/unit_packer.hpp"
 #include "common/error.hpp"
@@ -31,8 +32,8 @@ std::string number(double v) {
 void check_common(const char* what, float edge, const std::vector<MoleculeType>& types, const GenerationBudget& b) {
   if (!(edge > 0.f) || !std::isfinite(edge)) throw InputError(what, "edge", "tile edge must be a positive length (Å)");
   if (!(b.clearance > 0.f) || b.clearance > 2.f) throw InputError(what, "clearance", "clearance must be in (0, 2]");
-  if (b.attempts_per_copy < 1 || b.max_consecutive_failures < 1)
-    throw InputError(what, "budget", "attempt budgets must be positive");
+  if (b.attempts_per_copy < 1 || b.max_consecutive_failures < 1 || b.relaxation_rounds < 0)
+    throw InputError(what, "budget", "attempt budgets must be positive (relaxation rounds >= 0)");
   if (types.empty()) throw InputError(what, "types", "no molecule types given");
 }
 
@@ -52,7 +53,8 @@ void check_fits(const char* what, const MoleculeType& type, float band, float ed
 // Largest molecules first: dart throwing places big ones while there is room.
 WangSet pack(const char* what, int dims, float edge, const WangColouring& colouring,
              const std::vector<MoleculeType>& types, const std::vector<CollisionShape>& shapes,
-             std::vector<Wanted> wanted, uint64_t seed, const GenerationBudget& budget) {
+             std::vector<Wanted> wanted, uint64_t seed, const GenerationBudget& budget,
+             const FixedLayer& layer = {}, const std::vector<double>& layer_requested = {}) {
   std::stable_sort(wanted.begin(), wanted.end(), [&](const Wanted& a, const Wanted& b) {
     if (a.required != b.required) return a.required;
     return shapes[a.spec.type].radius() > shapes[b.spec.type].radius();
@@ -60,7 +62,10 @@ WangSet pack(const char* what, int dims, float edge, const WangColouring& colour
   std::vector<PlacementSpec> specs;
   for (const Wanted& w : wanted) specs.push_back(w.spec);
   const PackedUnits packed = pack_wang_units(
-      shapes, specs, colouring, {edge, budget.clearance, seed, budget.attempts_per_copy, budget.max_consecutive_failures});
+      shapes, specs, colouring,
+      {edge, budget.clearance, seed, budget.attempts_per_copy, budget.max_consecutive_failures,
+       budget.relaxation_rounds},
+      layer);
 
   WangSet set{dims, edge, colouring, packed.tiles, {}};
   const double scale = dims == 2 ? kA2PerUm2 : kA3PerUm3;
@@ -74,6 +79,10 @@ WangSet pack(const char* what, int dims, float edge, const WangColouring& colour
     it->requested += wanted[i].requested_per_um;
     it->achieved += packed.achieved_per_volume[i] * scale;
   }
+  for (uint32_t type = 0; type < packed.layer_per_volume.size(); ++type)
+    if (layer_requested[type] > 0.0)
+      set.densities.push_back(
+          {types[type].name, type, layer_requested[type], packed.layer_per_volume[type] * scale, 0});
   for (const WangTile& tile : set.tiles)
     for (const Instance& in : tile.instances)
       for (MoleculeDensity& d : set.densities)
@@ -94,6 +103,59 @@ std::vector<CollisionShape> shapes_of(const std::vector<MoleculeType>& types) {
   std::vector<CollisionShape> shapes;
   for (const MoleculeType& t : types) shapes.emplace_back(t);
   return shapes;
+}
+
+// The patch repeated over one tile with centres rescaled to the tile edge, minus the lipids that
+// clash with kept ones (in patch order) or with their images one edge away.
+FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, const std::vector<MoleculeType>& types,
+                     const std::vector<CollisionShape>& shapes, std::vector<double>& requested) {
+  const float period[2] = {patch.period_x, patch.period_y};
+  for (float p : period)
+    if (!(p > 0.f) || !std::isfinite(p)) throw InputError(what, "lipid patch", "the patch period must be positive");
+  if (patch.lipids.empty()) throw InputError(what, "lipid patch", "the patch has no lipids");
+  if (!(patch.clearance > 0.f) || patch.clearance > 2.f)
+    throw InputError(what, "lipid patch", "the patch clearance must be in (0, 2]");
+  requested.assign(types.size(), 0.0);
+  FixedLayer layer;
+  float largest = 0.f;
+  for (const Instance& l : patch.lipids) {
+    check_type(what, types, l.type, 1.0);
+    if (!std::isfinite(l.position.x) || !std::isfinite(l.position.y) || !std::isfinite(l.position.z))
+      throw InputError(what, types[l.type].name, "patch lipid positions must be finite");
+    requested[l.type] += kA2PerUm2 / (static_cast<double>(period[0]) * period[1]);
+    const glm::quat q = glm::normalize(l.rotation);
+    const glm::vec3 up = glm::conjugate(q) * glm::vec3(0.f, 0.f, 1.f);  // the normal in the lipid's frame
+    layer.band = std::max(layer.band, shapes[l.type].radius_about_axis(up) * 1.0001f);
+    largest = std::max(largest, shapes[l.type].radius());
+    check_fits(what, types[l.type], layer.band, edge);
+  }
+  int repeats[2];
+  float scale[2];
+  for (int a = 0; a < 2; ++a) {
+    repeats[a] = std::max(1, static_cast<int>(std::lround(edge / period[a])));
+    scale[a] = edge / (static_cast<float>(repeats[a]) * period[a]);
+  }
+  CopyNeighbourhood kept(shapes, 2.f * largest);
+  for (int j = 0; j < repeats[1]; ++j)
+    for (int i = 0; i < repeats[0]; ++i)
+      for (const Instance& l : patch.lipids) {
+        Instance copy = l;
+        copy.rotation = glm::normalize(l.rotation);
+        const int cell[2] = {i, j};
+        for (int a = 0; a < 2; ++a) {
+          double p = std::fmod(static_cast<double>(l.position[a]), static_cast<double>(period[a]));
+          if (p < 0.0) p += period[a];
+          copy.position[a] = static_cast<float>((p + cell[a] * static_cast<double>(period[a])) * scale[a]);
+          if (!(copy.position[a] < edge)) copy.position[a] = 0.f;  // rounded onto the edge: its periodic twin
+        }
+        const glm::mat3 rotation = glm::mat3_cast(copy.rotation);
+        if (kept.collides(copy.type, {copy.position, rotation}, patch.clearance)) continue;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            kept.add(copy.type, {copy.position + edge * glm::vec3(dx, dy, 0), rotation});
+        layer.copies.push_back(copy);
+      }
+  return layer;
 }
 
 }  // namespace
@@ -130,6 +192,7 @@ WangSet make_membrane_tiles(const MembraneTileRequest& r) {
     upper.band = shapes[l.type].radius_about_axis(up) * 1.0001f;
     upper.base = rotation_between(up, z);
     upper.z = l.leaflet_offset;
+    upper.densify = false;  // fills what room is left; not worth shaking thousands of copies for
     check_fits(what, r.types[l.type], upper.band, r.edge);
     PlacementSpec lower = upper;
     lower.base = rotation_between(up, -z);
@@ -138,7 +201,14 @@ WangSet make_membrane_tiles(const MembraneTileRequest& r) {
     wanted.push_back({upper, per_um2, false});
     wanted.push_back({lower, per_um2, false});
   }
-  return pack(what, 2, r.edge, make_complete_colouring(2, r.colours), r.types, shapes, wanted, r.seed, r.budget);
+  FixedLayer layer;
+  std::vector<double> layer_requested;
+  if (r.lipid_patch) {
+    if (r.lipids) throw InputError(what, "lipids", "give either a lipid fill or a lipid patch, not both");
+    layer = lay_patch(what, *r.lipid_patch, r.edge, r.types, shapes, layer_requested);
+  }
+  return pack(what, 2, r.edge, make_complete_colouring(2, r.colours), r.types, shapes, wanted, r.seed, r.budget,
+              layer, layer_requested);
 }
 
 WangSet make_soluble_cubes(const SolubleCubeRequest& r) {

@@ -139,6 +139,60 @@ TEST(MembraneTiles, SameSeedSameBytesOtherSeedOtherTiles) {
   EXPECT_NE(test::set_bytes(a), test::set_bytes(c));
 }
 
+// A periodic bilayer patch of lipid sticks, 5 x 5 per leaflet in a 39.5 Å box (62 Å² per lipid),
+// spun and jittered so that a few neighbours clash and must be dropped from the tiled pattern.
+LipidPatch stick_patch() {
+  LipidPatch patch;
+  patch.period_x = patch.period_y = 39.5f;
+  test::TestRng rng{77};
+  const glm::quat flip(0.f, 1.f, 0.f, 0.f);  // 180° about x: tails up, for the lower leaflet
+  for (int leaflet = 0; leaflet < 2; ++leaflet)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i) {
+        const float angle = static_cast<float>(2.0 * M_PI * rng.next());
+        const glm::quat spin(std::cos(angle / 2), 0.f, 0.f, std::sin(angle / 2));
+        const glm::vec3 at(7.9f * i + 1.5f * float(rng.next()) + (leaflet ? 3.f : 0.f),
+                           7.9f * j + 1.5f * float(rng.next()) - 50.f, leaflet ? -16.f : 16.f);
+        patch.lipids.push_back({1, at, leaflet ? spin * flip : spin});
+      }
+  return patch;
+}
+
+// Patch lipids around proteins in explicit random tilings: no two lipid atoms closer than the
+// patch clearance, no protein atom closer to anything than the generator's clearance (a lipid kept
+// on one side of an edge against the other side's protein, or laid twice, would show), and the
+// lipid density counted over a large tiling is the reported one and most of the patch's.
+TEST(MembraneTiles, LipidPatchIsCollisionFreeAndDense) {
+  MembraneTileRequest req = membrane_request(11);
+  req.lipids.reset();
+  req.lipid_patch = stick_patch();
+  req.lipid_patch->clearance = 0.85f;
+  const WangSet set = make_membrane_tiles(req);
+  for (uint64_t recipe_seed : {11u, 12u}) {
+    const TilingRecipe recipe = make_tiling_recipe(set.colouring, {6, 6, 1}, recipe_seed, false);
+    test::ExplicitTiling tiling = test::instantiate(set, recipe, req.types);
+    EXPECT_TRUE(tiling.ownership_ok);
+    EXPECT_GT(tiling.copies_per_type[0], 0u);
+    const test::ClosePair all = test::find_close_pair(tiling.atoms, 0.849f);
+    EXPECT_FALSE(all.found) << "atoms " << all.distance << " Å apart, limit " << all.limit;
+    for (test::WorldAtom& a : tiling.atoms)
+      if (a.type == 1) a.copy = ~0u;  // lipid pairs out: one copy for the oracle
+    const test::ClosePair protein = test::find_close_pair(tiling.atoms, 0.999f);
+    EXPECT_FALSE(protein.found) << "atoms " << protein.distance << " Å apart, limit " << protein.limit;
+  }
+  const TilingRecipe recipe = make_tiling_recipe(set.colouring, {64, 64, 1}, 13, false);
+  const test::ExplicitTiling counts = test::instantiate(set, recipe, req.types, false);
+  const double lipids = counts.copies_per_type[1] / (64.0 * 64.0 * kEdge * kEdge * 1e-8);
+  const double in_patch = 50.0 / (39.5 * 39.5 * 1e-8);
+  ASSERT_EQ(set.densities.size(), 2u);
+  EXPECT_EQ(set.densities[1].type, 1u);
+  EXPECT_DOUBLE_EQ(set.densities[1].requested, in_patch);
+  EXPECT_NEAR(set.densities[1].achieved, lipids, 0.03 * lipids);
+  EXPECT_GT(lipids, 0.8 * in_patch);
+  EXPECT_LT(lipids, in_patch);
+  EXPECT_EQ(test::set_bytes(make_membrane_tiles(req)), test::set_bytes(set));
+}
+
 TEST(MembraneTiles, ImpossibleRequestsThrowInputError) {
   MembraneTileRequest dense = membrane_request(1);
   dense.lipids.reset();
@@ -158,6 +212,12 @@ TEST(MembraneTiles, ImpossibleRequestsThrowInputError) {
   EXPECT_THROW(make_membrane_tiles(bad), InputError);
   bad = membrane_request(1);
   bad.molecules[0].copies_per_um2 = -1.0;
+  EXPECT_THROW(make_membrane_tiles(bad), InputError);
+  bad = membrane_request(1);
+  bad.lipid_patch = stick_patch();  // together with the lipid fill
+  EXPECT_THROW(make_membrane_tiles(bad), InputError);
+  bad.lipids.reset();
+  bad.lipid_patch->period_y = 0.f;
   EXPECT_THROW(make_membrane_tiles(bad), InputError);
 }
 

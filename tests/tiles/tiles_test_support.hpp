@@ -60,6 +60,7 @@ struct WorldAtom {
   glm::vec3 centre;
   float radius;
   uint32_t copy;
+  uint32_t type = 0;
 };
 
 struct ExplicitTiling {
@@ -86,7 +87,7 @@ inline ExplicitTiling instantiate(const WangSet& set, const TilingRecipe& recipe
           ++out.copies_per_type[in.type];
           if (!with_atoms) continue;
           for (const AtomSphere& a : types[in.type].atoms)
-            out.atoms.push_back({offset + in.position + rotate(in.rotation, a.centre), a.radius, copy});
+            out.atoms.push_back({offset + in.position + rotate(in.rotation, a.centre), a.radius, copy, in.type});
         }
       }
   return out;
