@@ -7,5 +7,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   nano::view::add_validate_command(app);
   nano::view::add_devices_command(app);
+  nano::view::add_export_command(app);
   return nano::run_cli(app, argc, argv);
 }
