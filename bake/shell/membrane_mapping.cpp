@@ -1,0 +1,87 @@
+#include "bake/shell/membrane_mapping.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace nano::shell {
+
+namespace {
+
+constexpr double kGridStep = 0x1.0p-24;  // ownership grid (ownership.h kOwnQuantScale)
+constexpr double kUvLimit = 16.0;        // own_quantize clamps beyond
+
+[[noreturn]] void fail(const std::string& context, const std::string& where, const std::string& rule) {
+  throw InputError(context, where, rule);
+}
+
+}  // namespace
+
+float snap_uv(double uv) {
+  // Below 0.5 float can hold finer values than the grid; from 0.5 on its spacing is a multiple of it.
+  if (std::abs(uv) < 0.5) return static_cast<float>(std::nearbyint(uv / kGridStep) * kGridStep);
+  return static_cast<float>(uv);
+}
+
+glm::vec2 snap_uv(const glm::dvec2& uv) { return {snap_uv(uv.x), snap_uv(uv.y)}; }
+
+MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangSet& set,
+                                 const tiles::TilingRecipe& recipe, double k, std::string context)
+    : set_(&set), recipe_(&recipe) {
+  if (!mesh.has_uvs() || mesh.uv_triangles.size() != mesh.triangles.size())
+    fail(context, "mesh", "the membrane mapping needs per-corner UVs on every triangle");
+  if (!mesh.has_normals() || mesh.normal_triangles.size() != mesh.triangles.size())
+    fail(context, "mesh", "the membrane mapping needs per-corner normals on every triangle");
+  if (set.dims != 2) fail(context, "tile set", "the membrane needs a Wang square set (dims 2)");
+  if (!(set.edge > 0.f) || !std::isfinite(set.edge)) fail(context, "tile set", "tile edge must be positive and finite");
+  if (!(k > 0.0) || !std::isfinite(k)) fail(context, "scale", "global UV scale k must be positive and finite");
+  if (recipe.dims != 2 || recipe.size[0] <= 0 || recipe.size[1] <= 0 || recipe.size[2] != 1 ||
+      recipe.cells.size() != static_cast<std::size_t>(recipe.size[0]) * recipe.size[1])
+    fail(context, "recipe", "the membrane needs a non-empty 2D recipe");
+  for (std::size_t c = 0; c < recipe.cells.size(); ++c)
+    if (recipe.cells[c] >= set.tiles.size())
+      fail(context, "recipe cell " + std::to_string(c), "names tile " + std::to_string(recipe.cells[c]) +
+                                                           " of a set with " + std::to_string(set.tiles.size()));
+
+  s_ = static_cast<float>(set.edge / k);
+  s_over_S_ = s_ / set.edge;
+  if (!(s_ > 0.f) || !std::isfinite(s_) || !(s_over_S_ > 0.f))
+    fail(context, "scale", "tile UV size S/k is not a positive finite float");
+
+  snapped_uvs_.reserve(mesh.uvs.size());
+  for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
+    const glm::dvec2 uv = mesh.uvs[i];
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || std::abs(uv.x) >= kUvLimit || std::abs(uv.y) >= kUvLimit)
+      fail(context, "uv " + std::to_string(i), "UVs must be finite with |u|, |v| < 16 (ownership grid)");
+    snapped_uvs_.push_back(snap_uv(uv));
+  }
+
+  triangles_.resize(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    TriangleMapping& tm = triangles_[t];
+    for (int c = 0; c < 3; ++c) {
+      tm.position[c] = glm::vec3(mesh.corner_position(t, c));
+      tm.normal[c] = glm::normalize(glm::vec3(mesh.corner_normal(t, c)));
+      tm.uv[c] = snapped_uvs_[mesh.uv_triangles[t][c]];
+    }
+    tm.chart = gpu::chart_make(tm.position[0], tm.position[1], tm.position[2], tm.uv[0], tm.uv[1], tm.uv[2],
+                               tm.normal[0], tm.normal[1], tm.normal[2]);
+    tm.valid = gpu::chart_valid(tm.chart);
+    tm.uv_min = glm::min(tm.uv[0], glm::min(tm.uv[1], tm.uv[2]));
+    tm.uv_max = glm::max(tm.uv[0], glm::max(tm.uv[1], tm.uv[2]));
+    if (!tm.valid) continue;  // owns nothing: no replication area, not part of W×H
+    tm.origin = gpu::replication_origin(tm.uv_min, s_);
+    tm.extent = gpu::replication_extent(tm.uv_min, tm.uv_max, s_);
+    area_ = glm::max(area_, gpu::replication_extent_bound(tm.uv_min, tm.uv_max, s_));
+  }
+}
+
+std::uint32_t MembraneMapping::tile_at(glm::ivec2 cell) const {
+  const int x = recipe_->size[0];
+  const int y = recipe_->size[1];
+  const int a = ((cell.x % x) + x) % x;
+  const int b = ((cell.y % y) + y) % y;
+  return recipe_->at(a, b);
+}
+
+}  // namespace nano::shell

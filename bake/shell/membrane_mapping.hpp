@@ -1,0 +1,119 @@
+#pragma once
+// The membrane mapping of one compartment (ALGORITHMS.md §1): the proxy mesh's UV chart tiled with a
+// Wang square set through a 2D recipe. Per triangle: its chart (tile_mapper.h) on snapped UVs, its
+// replication origin and extent; for the compartment the replication area W×H. The enumerator
+// for_each_owned_membrane_molecule is the explicit-instancing definition of the membrane — the same
+// loop over the shared-header functions that the shader runs — so the export oracle, the shell
+// offsets and the renderer all agree on which molecule belongs to which triangle and where it is.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bake/mesh/proxy_mesh.hpp"
+#include "bake/tiles/tiling_recipe.hpp"
+#include "bake/tiles/wang_set.hpp"
+#include "shared/ownership.h"
+#include "shared/tile_mapper.h"
+
+namespace nano::shell {
+
+// UV snapped to a multiple of 2^-24 (the ownership grid, ownership.h) and stored as float: below 0.5
+// in magnitude it is rounded to the nearest multiple of 2^-24 (|Δ| ≤ 2^-25, exact in float); from
+// 0.5 on every float is already such a multiple, so it is the nearest float (|Δ| ≤ half an ulp, i.e.
+// ≤ 2^-25 below 1 and ≤ 2^-21 below 16). Then own_quantize sees exactly the stored chart.
+float snap_uv(double uv);
+glm::vec2 snap_uv(const glm::dvec2& uv);
+
+struct TriangleMapping {
+  std::array<glm::vec3, 3> position;  // compartment space, Å
+  std::array<glm::vec3, 3> normal;    // unit corner normals
+  std::array<glm::vec2, 3> uv;        // snapped
+  gpu::TriangleChart chart;           // chart_make of the above
+  bool valid = false;                 // chart_valid: an unusable triangle owns nothing
+  glm::vec2 uv_min{0.f}, uv_max{0.f};
+  glm::ivec2 origin{0};               // replication_origin
+  glm::ivec2 extent{0};               // replication_extent: the tiles this triangle walks
+};
+
+// One membrane molecule as the triangle that owns it sees it.
+struct OwnedMolecule {
+  glm::ivec2 cell{0};         // UV tile cell (a, b), not wrapped; its tile origin is g = cell·s
+  std::uint32_t tile = 0;     // index into the Wang set: recipe.at(a mod X, b mod Y)
+  std::uint32_t instance = 0; // index into that tile's instances
+  std::uint32_t type = 0;     // molecule type of the instance
+  glm::vec2 uv{0.f};          // uv_m, the point ownership decided on
+  gpu::Affine3 transform;     // compartment space (chart_membrane_molecule)
+};
+
+class MembraneMapping {
+public:
+  // `mesh` in compartment space with per-corner UVs and unit normals; `set` a Wang square set
+  // (dims 2) and `recipe` a 2D recipe over it; k = global scale (Å per UV unit), so the tile UV size
+  // is s = set.edge / k. The mapping keeps references to `set` and `recipe` (they must outlive it);
+  // the mesh is copied into per-triangle data. Throws InputError(context, ...) for a mesh without UVs
+  // or normals, a UV that is not finite or has |uv| ≥ 16, a non-positive or non-finite k or edge, a
+  // recipe that is not 2D or names a missing tile, or a non-finite tile UV size.
+  MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangSet& set, const tiles::TilingRecipe& recipe,
+                  double k, std::string context = "membrane");
+
+  std::size_t triangle_count() const { return triangles_.size(); }
+  const TriangleMapping& triangle(std::size_t t) const { return triangles_[t]; }
+  const std::vector<glm::vec2>& snapped_uvs() const { return snapped_uvs_; }
+  const tiles::WangSet& set() const { return *set_; }
+
+  float tile_edge() const { return set_->edge; }  // S, Å
+  float tile_uv_size() const { return s_; }       // s = S/k rounded to float: the value to store
+  float s_over_S() const { return s_over_S_; }    // s/S in float, as the shader forms it
+  // W×H: the maximum of replication_extent_bound over the valid triangles.
+  glm::ivec2 replication_area() const { return area_; }
+
+  // Tile of UV cell (a, b): recipe.at(a mod X, b mod Y) with a non-negative modulo, so a recipe
+  // smaller than the chart repeats.
+  std::uint32_t tile_at(glm::ivec2 cell) const;
+
+  // Calls f(const OwnedMolecule&) for every molecule of the replication area of triangle t that t
+  // owns (own_triangle_owns on its snapped UVs), in slot order (v outer, u inner), then instance
+  // order. Walks the triangle's own extent: slots of W×H beyond it hold no molecule inside the
+  // triangle's UV box (replication slack), which the tests check.
+  template <class F>
+  void for_each_owned_membrane_molecule(std::size_t t, F&& f) const {
+    const TriangleMapping& tm = triangles_[t];
+    if (!tm.valid) return;
+    for (int j = 0; j < tm.extent.y; ++j)
+      for (int i = 0; i < tm.extent.x; ++i) {
+        const glm::ivec2 cell = gpu::replication_tile_index(tm.origin, glm::ivec2(i, j));
+        const glm::vec2 g = gpu::replication_tile_uv(cell, s_);
+        const std::uint32_t tile = tile_at(cell);
+        const std::vector<tiles::Instance>& instances = set_->tiles[tile].instances;
+        for (std::size_t k = 0; k < instances.size(); ++k) {
+          const tiles::Instance& in = instances[k];
+          // Ownership first on the uv alone: most candidates of the box are not owned.
+          if (!gpu::own_triangle_owns(tm.uv[0], tm.uv[1], tm.uv[2], gpu::chart_molecule_uv(g, s_over_S_, in.position)))
+            continue;
+          OwnedMolecule m;
+          m.cell = cell;
+          m.tile = tile;
+          m.instance = static_cast<std::uint32_t>(k);
+          m.type = in.type;
+          const glm::vec4 q(in.rotation.x, in.rotation.y, in.rotation.z, in.rotation.w);  // glm quat is (w,x,y,z)
+          m.transform = gpu::chart_membrane_molecule(tm.chart, g, s_over_S_, in.position, q, m.uv);
+          f(static_cast<const OwnedMolecule&>(m));
+        }
+      }
+  }
+
+private:
+  const tiles::WangSet* set_;
+  const tiles::TilingRecipe* recipe_;
+  float s_ = 0.f;
+  float s_over_S_ = 0.f;
+  glm::ivec2 area_{0};
+  std::vector<glm::vec2> snapped_uvs_;
+  std::vector<TriangleMapping> triangles_;
+};
+
+}  // namespace nano::shell

@@ -1,0 +1,168 @@
+#include "bake/shell/shell_offsets.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "common/error.hpp"
+
+namespace nano::shell {
+
+namespace {
+
+constexpr double kMinNormalCos = 0.1;   // vertex normals tilted > 84° from the face: treat as 84°
+constexpr int kMaxGrowIterations = 64;
+constexpr double kGrowSlack = 1e-3;     // Å added per growth step so float rounding cannot stall it
+
+struct Sphere {
+  glm::dvec3 centre;
+  double radius;
+  glm::dvec3 bary;  // barycentrics of uv_m
+};
+
+struct Plane {  // inside: dot(normal, x) <= offset
+  glm::dvec3 normal;
+  double offset;
+  double margin(const glm::dvec3& p) const { return offset - glm::dot(normal, p); }
+};
+
+// Five conservative half-spaces of the prism (see header): bottom, top, walls 0..2.
+std::array<Plane, 5> prism_half_spaces(const gpu::Prism& pr) {
+  std::array<glm::dvec3, 6> v;
+  for (int i = 0; i < 6; ++i) v[i] = glm::dvec3(pr.v[i]);
+  glm::dvec3 centroid(0.0);
+  for (const glm::dvec3& p : v) centroid += p / 6.0;
+  auto oriented = [&](glm::dvec3 n, const glm::dvec3* corners, int count) {
+    n = glm::normalize(n);
+    glm::dvec3 mid(0.0);
+    for (int i = 0; i < count; ++i) mid += corners[i] / double(count);
+    if (glm::dot(n, mid - centroid) < 0.0) n = -n;
+    double off = glm::dot(n, corners[0]);
+    for (int i = 1; i < count; ++i) off = std::min(off, glm::dot(n, corners[i]));
+    return Plane{n, off};
+  };
+  std::array<Plane, 5> h;
+  const glm::dvec3 bottom[3] = {v[0], v[1], v[2]};
+  const glm::dvec3 top[3] = {v[3], v[4], v[5]};
+  h[0] = oriented(glm::cross(v[1] - v[0], v[2] - v[0]), bottom, 3);
+  h[1] = oriented(glm::cross(v[4] - v[3], v[5] - v[3]), top, 3);
+  for (int w = 0; w < 3; ++w) {
+    const int j = (w + 1) % 3;
+    const glm::dvec3 c[4] = {v[w], v[j], v[w + 3], v[j + 3]};
+    // Normal of the bilinear patch at (½, ½): mean u-edge × mean v-edge.
+    h[2 + w] = oriented(glm::cross((c[1] - c[0]) + (c[3] - c[2]), (c[2] - c[0]) + (c[3] - c[1])), c, 4);
+  }
+  return h;
+}
+
+// prism_intersect parity from p in three fixed, non-axis directions; true only if all say inside.
+bool point_inside(const gpu::Prism& pr, const glm::dvec3& p) {
+  static const glm::vec3 dirs[3] = {{0.267f, 0.535f, 0.802f}, {-0.707f, 0.123f, -0.697f}, {0.455f, -0.873f, 0.176f}};
+  for (const glm::vec3& d : dirs) {
+    gpu::PrismInterval r;
+    gpu::prism_intersect(pr, glm::vec3(p), d, 0.f, gpu::placement_inf(), r);
+    if (!r.origin_inside) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+float molecule_origin_radius(const tiles::MoleculeType& type) {
+  double r = 0.0;
+  for (const tiles::AtomSphere& a : type.atoms)
+    r = std::max(r, glm::length(glm::dvec3(a.centre)) + double(a.radius));
+  // Rounded up so the float radius is never smaller than the double one.
+  float f = static_cast<float>(r);
+  if (double(f) < r) f = std::nextafter(f, INFINITY);
+  return f;
+}
+
+gpu::ShellOffsets fixed_offsets(const std::vector<gpu::ShellOffsets>& offsets) {
+  gpu::ShellOffsets f{0.f, 0.f, 0.f};
+  for (const gpu::ShellOffsets& o : offsets) f = gpu::shell_offsets_max(f, o);
+  return f;
+}
+
+gpu::Prism triangle_prism(const MembraneMapping& mapping, std::size_t t, const gpu::ShellOffsets& offsets) {
+  const TriangleMapping& tm = mapping.triangle(t);
+  return gpu::shell_prism_make(tm.position[0], tm.position[1], tm.position[2], tm.normal[0], tm.normal[1],
+                               tm.normal[2], offsets);
+}
+
+ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vector<tiles::MoleculeType>& types) {
+  std::vector<double> radius(types.size());
+  for (std::size_t i = 0; i < types.size(); ++i) radius[i] = molecule_origin_radius(types[i]);
+
+  ShellResult out;
+  out.offsets.assign(mapping.triangle_count(), gpu::ShellOffsets{0.f, 0.f, 0.f});
+  std::vector<Sphere> spheres;
+  for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
+    spheres.clear();
+    mapping.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule& m) {
+      if (m.type >= types.size())
+        throw InputError("shell", "tile " + std::to_string(m.tile) + " instance " + std::to_string(m.instance),
+                         "molecule type " + std::to_string(m.type) + " is not among the " +
+                             std::to_string(types.size()) + " types given");
+      spheres.push_back({glm::dvec3(m.transform.translation), radius[m.type],
+                         glm::dvec3(gpu::chart_barycentric(mapping.triangle(t).chart, m.uv))});
+    });
+    if (spheres.empty()) continue;  // offsets stay zero: a flat prism the runtime can skip
+    out.stats.owned_molecules += spheres.size();
+    out.stats.triangles_with_molecules += 1;
+
+    const TriangleMapping& tm = mapping.triangle(t);
+    const glm::dvec3 p0(tm.position[0]), p1(tm.position[1]), p2(tm.position[2]);
+    const glm::dvec3 face = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    double cmin = 1.0;
+    for (int c = 0; c < 3; ++c) cmin = std::min(cmin, glm::dot(glm::dvec3(tm.normal[c]), face));
+    out.stats.min_vertex_normal_cos = std::min(out.stats.min_vertex_normal_cos, cmin);
+    cmin = std::max(cmin, kMinNormalCos);
+    // Altitude onto the edge opposite corner k: 2·area / |edge|.
+    const double area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
+    const glm::dvec3 alt(area2 / glm::length(p2 - p1), area2 / glm::length(p0 - p2), area2 / glm::length(p1 - p0));
+
+    double hp = 0.0, hm = 0.0, side = 0.0;
+    for (const Sphere& s : spheres) {
+      const double z = glm::dot(s.centre - p0, face);
+      hp = std::max(hp, (z + s.radius) / cmin);
+      hm = std::max(hm, (s.radius - z) / cmin);
+      for (int k = 0; k < 3; ++k) side = std::max(side, (s.radius - s.bary[k] * alt[k]) / cmin);
+    }
+
+    gpu::ShellOffsets off{float(hp), float(hm), float(side)};
+    int iterations = 0;
+    bool contained = false;
+    for (; iterations <= kMaxGrowIterations; ++iterations) {
+      const gpu::Prism pr = triangle_prism(mapping, t, off);
+      const std::array<Plane, 5> hs = prism_half_spaces(pr);
+      double deficit[5] = {0, 0, 0, 0, 0};
+      for (const Sphere& s : spheres)
+        for (int f = 0; f < 5; ++f)
+          deficit[f] = std::max(deficit[f], s.radius + kShellContainmentMargin - hs[f].margin(s.centre));
+      const double wall = std::max(deficit[2], std::max(deficit[3], deficit[4]));
+      if (deficit[0] <= 0.0 && deficit[1] <= 0.0 && wall <= 0.0) {
+        contained = point_inside(pr, spheres.front().centre);
+        break;
+      }
+      if (deficit[0] > 0.0) off.h_minus = float(off.h_minus + deficit[0] / cmin + kGrowSlack);
+      if (deficit[1] > 0.0) off.h_plus = float(off.h_plus + deficit[1] / cmin + kGrowSlack);
+      if (wall > 0.0) off.side = float(off.side + wall / cmin + kGrowSlack);
+    }
+    if (iterations > 0) out.stats.grown_triangles += 1;
+    out.stats.max_grow_iterations = std::max(out.stats.max_grow_iterations, iterations);
+    if (!contained) out.stats.uncontained_triangles += 1;
+
+    // The prism contract of ray_prism.h: neither cap may face against the face normal.
+    const gpu::Prism pr = triangle_prism(mapping, t, off);
+    const glm::dvec3 nb = glm::cross(glm::dvec3(pr.v[1] - pr.v[0]), glm::dvec3(pr.v[2] - pr.v[0]));
+    const glm::dvec3 nt = glm::cross(glm::dvec3(pr.v[4] - pr.v[3]), glm::dvec3(pr.v[5] - pr.v[3]));
+    if (!(glm::dot(nb, face) > 0.0) || !(glm::dot(nt, face) > 0.0)) out.stats.inverted_caps += 1;
+    out.offsets[t] = off;
+  }
+  out.fixed = fixed_offsets(out.offsets);
+  return out;
+}
+
+}  // namespace nano::shell

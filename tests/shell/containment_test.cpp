@@ -1,0 +1,147 @@
+// Adaptive shell offsets: every atom sphere of every owned molecule lies inside its triangle's
+// prism, by an independent double ray oracle (14 directions per atom centre: odd crossing count and
+// nearest crossing ≥ radius). Negative control: the no-overlap prisms (side 0) must fail it.
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "shell_test_support.hpp"
+
+using namespace shell_test;
+using nano::shell::OwnedMolecule;
+namespace g = nano::gpu;
+
+namespace {
+
+struct Tally {
+  size_t atoms = 0, failures = 0;
+};
+
+// Every `stride`-th triangle (the variants need not revisit every atom to make their point).
+Tally check_atoms(const Scene& sc, const std::vector<g::ShellOffsets>& offsets, size_t stride = 1) {
+  const auto& map = *sc.mapping;
+  Tally tally;
+  for (size_t t = 0; t < map.triangle_count(); t += stride) {
+    const g::Prism pr = nano::shell::triangle_prism(map, t, offsets[t]);
+    dvec3 v[6];
+    for (int i = 0; i < 6; ++i) v[i] = dvec3(pr.v[i]);
+    map.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule& m) {
+      const glm::dmat3 lin(m.transform.linear);
+      const dvec3 tr(m.transform.translation);
+      for (const auto& atom : sc.types[m.type].atoms) {
+        ++tally.atoms;
+        if (!sphere_in_prism_oracle(v, lin * dvec3(atom.centre) + tr, atom.radius)) ++tally.failures;
+      }
+    });
+  }
+  return tally;
+}
+
+void check_scene(const Scene& sc, const char* name) {
+  const auto r = nano::shell::compute_shell_offsets(*sc.mapping, sc.types);
+  const auto& st = r.stats;
+  float hp[2] = {1e30f, 0}, hm[2] = {1e30f, 0}, sd[2] = {1e30f, 0};
+  for (size_t t = 0; t < r.offsets.size(); ++t) {
+    const auto& o = r.offsets[t];
+    if (o.h_plus == 0 && o.h_minus == 0 && o.side == 0) continue;
+    hp[0] = std::min(hp[0], o.h_plus), hp[1] = std::max(hp[1], o.h_plus);
+    hm[0] = std::min(hm[0], o.h_minus), hm[1] = std::max(hm[1], o.h_minus);
+    sd[0] = std::min(sd[0], o.side), sd[1] = std::max(sd[1], o.side);
+  }
+  std::printf("%s: %zu molecules in %zu/%zu triangles; h+ %.2f..%.2f, h- %.2f..%.2f, side %.2f..%.2f Å; "
+              "grown %zu (max %d iterations), min cos(n_i, N) %.4f\n",
+              name, st.owned_molecules, st.triangles_with_molecules, r.offsets.size(), hp[0], hp[1], hm[0], hm[1],
+              sd[0], sd[1], st.grown_triangles, st.max_grow_iterations, st.min_vertex_normal_cos);
+  EXPECT_EQ(st.uncontained_triangles, 0u);
+  EXPECT_EQ(st.inverted_caps, 0u);
+  EXPECT_GT(st.owned_molecules, 1000u);
+
+  const Tally adaptive = check_atoms(sc, r.offsets);
+  EXPECT_EQ(adaptive.failures, 0u) << "of " << adaptive.atoms << " atoms";
+
+  // Fixed shells (the maxima) contain at least as much.
+  const std::vector<g::ShellOffsets> fixed(r.offsets.size(), r.fixed);
+  EXPECT_EQ(check_atoms(sc, fixed, 4).failures, 0u);
+
+  // Without overlap, molecules on edges stick out of their prism: the oracle must see it.
+  std::vector<g::ShellOffsets> no_overlap = r.offsets;
+  for (auto& o : no_overlap) o.side = 0.f;
+  const Tally flat = check_atoms(sc, no_overlap, 4);
+  std::printf("%s: %zu atoms contained; without side offset %zu atoms of every 4th triangle stick out\n", name, adaptive.atoms,
+              flat.failures);
+  EXPECT_GT(flat.failures, 0u);
+}
+
+}  // namespace
+
+TEST(ShellContainment, SphereVirion) { check_scene(*sphere_scene(), "sphere r=500 Å"); }
+
+TEST(ShellContainment, RedBloodCell) { check_scene(*rbc_scene(), "RBC R0=2000 Å"); }
+
+TEST(ShellContainment, OracleRejectsASpherePokingThroughAWall) {
+  // Face-parallel unit prism over the right triangle of legs 10, height [−1, 2].
+  const dvec3 v[6] = {{0, 0, -1}, {10, 0, -1}, {0, 10, -1}, {0, 0, 2}, {10, 0, 2}, {0, 10, 2}};
+  EXPECT_TRUE(sphere_in_prism_oracle(v, {2, 2, 0.5}, 1.4));
+  EXPECT_FALSE(sphere_in_prism_oracle(v, {2, 2, 0.5}, 1.6));   // reaches the top cap at 2
+  EXPECT_FALSE(sphere_in_prism_oracle(v, {0.5, 3, 0.5}, 0.6));  // reaches the wall x = 0
+  EXPECT_FALSE(sphere_in_prism_oracle(v, {-1, 3, 0.5}, 0.1));   // outside
+}
+
+TEST(ShellOffsets, MoleculeOriginRadius) {
+  nano::tiles::MoleculeType m{"m", {{{3.f, 4.f, 0.f}, 1.f}, {{0.f, 0.f, -2.f}, 3.f}}, 0.f, {0, 0, 1}};
+  EXPECT_NEAR(nano::shell::molecule_origin_radius(m), 6.0, 1e-6);
+  EXPECT_GE(double(nano::shell::molecule_origin_radius(m)), 6.0);
+  m.atoms.push_back({{0.f, 0.f, -6.f}, 1.5f});
+  EXPECT_NEAR(nano::shell::molecule_origin_radius(m), 7.5, 1e-6);
+  EXPECT_EQ(nano::shell::molecule_origin_radius(nano::tiles::MoleculeType{}), 0.f);
+}
+
+TEST(ShellOffsets, FixedIsTheMaximum) {
+  const std::vector<g::ShellOffsets> v = {{1.f, 4.f, 0.f}, {3.f, 2.f, 1.5f}, {0.f, 0.f, 0.f}};
+  const g::ShellOffsets f = nano::shell::fixed_offsets(v);
+  EXPECT_EQ(f.h_plus, 3.f);
+  EXPECT_EQ(f.h_minus, 4.f);
+  EXPECT_EQ(f.side, 1.5f);
+  const g::ShellOffsets z = nano::shell::fixed_offsets({});
+  EXPECT_EQ(z.h_plus + z.h_minus + z.side, 0.f);
+}
+
+TEST(ShellOffsets, UnknownMoleculeTypeIsAnInputError) {
+  const auto sc = sphere_scene();
+  EXPECT_THROW(nano::shell::compute_shell_offsets(*sc->mapping, {sc->types[0]}), nano::InputError);
+}
+
+TEST(ShellOffsets, FaceParallelTriangleGetsTheMoleculeReachAndEmptyTrianglesStayFlat) {
+  // Flat triangle, normals = face normal (cos = 1): h+ = max(depth + r), h− = max(r − depth) exactly,
+  // up to the containment margin and the growth slack.
+  nano::tiles::WangSet set;
+  set.dims = 2;
+  set.edge = 200.f;
+  set.tiles.resize(1);
+  set.tiles[0].instances = {{0, {100.f, 100.f, 0.f}, glm::quat(1, 0, 0, 0)}, {1, {50.f, 60.f, 5.f}, glm::quat(1, 0, 0, 0)}};
+  nano::tiles::TilingRecipe recipe;
+  recipe.dims = 2;
+  recipe.size = {1, 1, 1};
+  recipe.cells = {0};
+  const std::vector<nano::tiles::MoleculeType> types = {
+      {"a", {{{0.f, 0.f, 0.f}, 2.f}}, 0.f, {0, 0, 1}}, {"b", {{{0.f, 0.f, 1.f}, 2.f}}, 0.f, {0, 0, 1}}};
+  nano::mesh::ProxyMesh m;
+  // Triangle 0 (UV 0..0.2 with s = 0.1) owns molecules; triangle 1 lies inside cell (5, 5) between them.
+  m.positions = {{0, 0, 0}, {400, 0, 0}, {0, 400, 0}, {1000, 1000, 0}, {1010, 1000, 0}, {1000, 1010, 0}};
+  m.triangles = {{0, 1, 2}, {3, 4, 5}};
+  m.uvs = {{0, 0}, {0.2, 0}, {0, 0.2}, {0.5001, 0.5001}, {0.5011, 0.5001}, {0.5001, 0.5011}};
+  m.uv_triangles = {{0, 1, 2}, {3, 4, 5}};
+  m.normals = {{0, 0, 1}};
+  m.normal_triangles = {{0, 0, 0}, {0, 0, 0}};
+  const nano::shell::MembraneMapping map(m, set, recipe, 2000.0);
+  const auto r = nano::shell::compute_shell_offsets(map, types);
+  EXPECT_EQ(r.stats.triangles_with_molecules, 1u);
+  EXPECT_GE(r.offsets[0].h_plus, 5.0 + 3.0);
+  EXPECT_LE(r.offsets[0].h_plus, 5.0 + 3.0 + 0.05);
+  EXPECT_GE(r.offsets[0].h_minus, 2.0);
+  EXPECT_LE(r.offsets[0].h_minus, 2.0 + 0.05);
+  EXPECT_EQ(r.offsets[1].h_plus, 0.f);
+  EXPECT_EQ(r.offsets[1].h_minus, 0.f);
+  EXPECT_EQ(r.offsets[1].side, 0.f);
+}
