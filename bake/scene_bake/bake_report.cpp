@@ -1,0 +1,78 @@
+#include "bake/scene_bake/bake_report.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "format/section_kind.hpp"
+
+namespace nano::bake {
+namespace {
+
+nlohmann::ordered_json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Package& package) {
+  nlohmann::ordered_json j;
+  j["represented_atoms"] = scene.represented_atoms;
+  j["hydrogens"] = "counted when the structure files hold them (see each molecule's reader flags)";
+  auto& compartments = j["compartments"] = nlohmann::ordered_json::array();
+  for (const CompartmentSummary& c : scene.compartments) {
+    nlohmann::ordered_json copies = nlohmann::ordered_json::object();
+    for (const auto& [name, n] : c.copies) copies[name] = n;
+    compartments.push_back({{"name", c.name},
+                            {"mesh", c.mesh_origin},
+                            {"triangles", c.triangles},
+                            {"represented_atoms", c.represented_atoms},
+                            {"copies", copies},
+                            {"core_boxes", {{"inside", c.core_boxes_inside}, {"boundary", c.core_boxes_boundary}}},
+                            {"replication_area", {c.replication_width, c.replication_height}}});
+  }
+  auto& instances = j["instances"] = nlohmann::ordered_json::array();
+  for (const InstanceSummary& i : scene.instances)
+    instances.push_back({{"compartment", i.compartment}, {"aabb", {vec(i.aabb_min), vec(i.aabb_max)}}});
+  auto& densities = j["densities"] = nlohmann::ordered_json::array();
+  for (const WangSetSummary& s : scene.wang_sets)
+    for (const tiles::MoleculeDensity& d : s.densities)
+      densities.push_back({{"set", s.name}, {"molecule", d.name}, {"requested", d.requested}, {"achieved", d.achieved}});
+  auto& sections = j["sections"] = nlohmann::ordered_json::object();
+  for (const format::SectionEntry& e : package.entries())
+    sections[format::section_kind_name(e.kind)] = e.stored_size;
+  j["package_bytes"] = package.file_size();
+  auto& stages = j["stages"] = nlohmann::ordered_json::object();
+  for (const auto& [name, seconds] : scene.stage_seconds) stages[name] = seconds;
+  return j;
+}
+
+std::string bake_summary(const BakedScene& scene, const format::Package& package) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%s: %zu compartment(s), %zu instance(s), %.3g represented atoms, %.2f MB\n",
+                package.name().c_str(), scene.compartments.size(), scene.instances.size(),
+                static_cast<double>(scene.represented_atoms), package.file_size() / 1e6);
+  out << line;
+  for (const CompartmentSummary& c : scene.compartments) {
+    std::snprintf(line, sizeof line, "  %s: %.3g atoms per copy", c.name.c_str(), static_cast<double>(c.represented_atoms));
+    out << line;
+    for (const auto& [name, n] : c.copies) {
+      std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), static_cast<double>(n));
+      out << line;
+    }
+    out << "\n";
+  }
+  for (const WangSetSummary& s : scene.wang_sets)
+    for (const tiles::MoleculeDensity& d : s.densities) {
+      std::snprintf(line, sizeof line, "  %s/%s: density %.4g of %.4g requested\n", s.name.c_str(), d.name.c_str(),
+                    d.achieved, d.requested);
+      out << line;
+    }
+  out << "  stages:";
+  for (const auto& [name, seconds] : scene.stage_seconds) {
+    std::snprintf(line, sizeof line, " %s %.2fs;", name.c_str(), seconds);
+    out << line;
+  }
+  out << "\n";
+  return out.str();
+}
+
+}  // namespace nano::bake

@@ -1,0 +1,25 @@
+#pragma once
+// A compartment's proxy mesh in compartment space: read or generated as the scene says, scaled,
+// and checked — an unusable mesh stops the bake with every problem listed, naming the file.
+#include <string>
+
+#include "bake/mesh/mesh_check.hpp"
+#include "bake/mesh/proxy_mesh.hpp"
+#include "bake/scene/scene_description.hpp"
+
+namespace nano::bake {
+
+struct CompartmentMesh {
+  mesh::ProxyMesh mesh;     // compartment space (scale applied)
+  mesh::MeshReport report;  // check-mesh report of the scaled mesh
+  std::string origin;       // file name or "generated sphere (N triangles, radius R)"
+};
+
+// Reads or generates the mesh, multiplies positions by the compartment's scale and checks it.
+// Throws InputError naming the mesh (and the compartment) with all problems when unusable.
+CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment);
+
+// Positions multiplied by `scale` (> 0); UVs and normals unchanged.
+void scale_mesh(mesh::ProxyMesh& mesh, double scale);
+
+}  // namespace nano::bake

@@ -1,0 +1,76 @@
+#include "bake/scene_bake/membrane_bake.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bake/mesh/uv_distortion.hpp"
+#include "bake/shell/membrane_mapping.hpp"
+#include "bake/shell/shell_offsets.hpp"
+#include "common/error.hpp"
+
+namespace nano::bake {
+
+float stored_uv_scale(float tile_size, float tile_uv_size) {
+  // The renderer derives s = S / k in float; pick the float k for which that gives exactly the s
+  // the bake placed molecules with, so oracle and shader walk identical tile origins.
+  float k = tile_size / tile_uv_size;
+  for (int step = 0; step < 8 && tile_size / k != tile_uv_size; ++step)
+    k = std::nextafter(k, tile_size / k > tile_uv_size ? INFINITY : 0.f);
+  if (tile_size / k != tile_uv_size)
+    throw InputError("", "membrane", "no float UV scale reproduces the tile UV size " + std::to_string(tile_uv_size));
+  return k;
+}
+
+BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
+                            std::uint64_t seed, int /*threads*/) {
+  BakedMembrane baked;
+  const double k = mesh::uv_scale(mesh);
+  baked.tile_size = tiles.set.edge;
+  baked.recipe = membrane_recipe(tiles.set, tiles.set.edge / k, seed);
+  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, "membrane");
+  baked.uv_scale = stored_uv_scale(tiles.set.edge, mapping.tile_uv_size());
+  // The package stores the UVs ownership was decided on.
+  const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();
+  for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = glm::dvec2(snapped[i]);
+
+  std::vector<tiles::MoleculeType> types;
+  for (const std::uint32_t m : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[m]));
+  const shell::ShellResult shells = shell::compute_shell_offsets(mapping, types);
+  if (shells.stats.uncontained_triangles > 0)
+    throw InputError("", "membrane", std::to_string(shells.stats.uncontained_triangles) +
+                                         " triangles could not be given a prism that contains their molecules");
+
+  baked.copies_by_molecule.assign(library.size(), 0);
+  baked.shells.resize(mapping.triangle_count());
+  for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
+    const shell::TriangleMapping& tm = mapping.triangle(t);
+    gpu::TriangleShell& s = baked.shells[t];
+    s.uv_min_max = glm::vec4(tm.uv_min, tm.uv_max);
+    s.h_plus = shells.offsets[t].h_plus;
+    s.h_minus = shells.offsets[t].h_minus;
+    s.side_offset = shells.offsets[t].side;
+    baked.inner_height = std::max(baked.inner_height, double(s.h_minus));
+    mapping.for_each_owned_membrane_molecule(
+        t, [&](const shell::OwnedMolecule& m) { ++baked.copies_by_molecule[tiles.molecule_of_type[m.type]]; });
+  }
+  const glm::ivec2 area = mapping.replication_area();
+  baked.replication_width = static_cast<std::uint32_t>(area.x);
+  baked.replication_height = static_cast<std::uint32_t>(area.y);
+  return baked;
+}
+
+std::vector<gpu::TriangleShell> empty_shells(const mesh::ProxyMesh& mesh) {
+  std::vector<gpu::TriangleShell> shells(mesh.triangles.size());
+  if (!mesh.has_uvs()) return shells;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    glm::dvec2 lo = mesh.corner_uv(t, 0), hi = lo;
+    for (int c = 1; c < 3; ++c) {
+      lo = glm::min(lo, mesh.corner_uv(t, c));
+      hi = glm::max(hi, mesh.corner_uv(t, c));
+    }
+    shells[t].uv_min_max = glm::vec4(glm::vec2(lo), glm::vec2(hi));
+  }
+  return shells;
+}
+
+}  // namespace nano::bake

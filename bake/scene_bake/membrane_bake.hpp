@@ -1,0 +1,35 @@
+#pragma once
+// A compartment's shell space: the membrane's tiles mapped through the mesh's UV chart, the
+// adaptive prism of every triangle, and how many copies that represents.
+#include <cstdint>
+#include <vector>
+
+#include "bake/mesh/proxy_mesh.hpp"
+#include "bake/scene_bake/molecule_library.hpp"
+#include "bake/scene_bake/wang_bake.hpp"
+#include "shared/package_records.h"
+
+namespace nano::bake {
+
+struct BakedMembrane {
+  tiles::TilingRecipe recipe;
+  double uv_scale = 0.0;   // k, Å of surface per UV unit
+  double tile_size = 0.0;  // S, Å
+  std::uint32_t replication_width = 0, replication_height = 0;
+  std::vector<gpu::TriangleShell> shells;         // one per mesh triangle
+  std::vector<std::uint64_t> copies_by_molecule;  // indexed like the molecule library
+  double inner_height = 0.0;                      // largest h₋: how deep the shell reaches
+};
+
+// The float UV scale k stored in the package: float(S) / k == s exactly, as the renderer computes it.
+float stored_uv_scale(float tile_size, float tile_uv_size);
+
+// Snaps the mesh's UVs in place (the ownership contract) and computes everything above.
+BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
+                            std::uint64_t seed, int threads);
+
+// Shells of a compartment without a membrane: flat prisms of zero height, so the core renderer
+// still has the mesh's front/back intervals and no membrane copy is ever looked for.
+std::vector<gpu::TriangleShell> empty_shells(const mesh::ProxyMesh& mesh);
+
+}  // namespace nano::bake

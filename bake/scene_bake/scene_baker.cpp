@@ -1,0 +1,263 @@
+#include "bake/scene_bake/scene_baker.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "bake/scene/random_placement.hpp"
+#include "bake/scene_bake/compartment_mesh.hpp"
+#include "bake/scene_bake/core_bake.hpp"
+#include "bake/scene_bake/membrane_bake.hpp"
+#include "bake/scene_bake/provenance.hpp"
+#include "bake/tiles/tile_random.hpp"
+
+namespace nano::bake {
+namespace {
+
+// Every random choice of the bake derives from the scene seed and a tag naming what it seeds.
+enum class SeedTag : std::uint64_t { membrane_tiles = 1, soluble_cubes, membrane_recipe, soluble_recipe };
+
+std::uint64_t derive_seed(std::uint64_t seed, SeedTag tag, std::size_t index) {
+  return tiles::mix64(seed ^ tiles::mix64(static_cast<std::uint64_t>(tag) * 0x100000001B3ull + index));
+}
+
+class StageClock {
+public:
+  StageClock(BakedScene& scene, const BakeOptions& options) : scene_(scene), options_(options) {}
+
+  template <class F>
+  auto run(const std::string& stage, F&& work) {
+    if (options_.progress) options_.progress(stage);
+    const auto start = std::chrono::steady_clock::now();
+    struct Record {
+      StageClock& clock;
+      const std::string& stage;
+      std::chrono::steady_clock::time_point start;
+      ~Record() { clock.add(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()); }
+    } record{*this, stage, start};
+    return work();
+  }
+
+private:
+  void add(const std::string& stage, double seconds) {
+    for (auto& [name, total] : scene_.stage_seconds)
+      if (name == stage) {
+        total += seconds;
+        return;
+      }
+    scene_.stage_seconds.emplace_back(stage, seconds);
+  }
+  BakedScene& scene_;
+  const BakeOptions& options_;
+};
+
+struct CompartmentBake {
+  CompartmentMesh mesh;
+  std::optional<BakedMembrane> membrane;
+  std::optional<BakedCore> core;
+  double shell_margin = 0.0;  // how far copies reach outside the mesh (Å)
+};
+
+double mesh_bounding_radius(const mesh::ProxyMesh& mesh) {
+  double r2 = 0.0;
+  for (const glm::dvec3& p : mesh.positions) r2 = std::max(r2, glm::dot(p, p));
+  return std::sqrt(r2);
+}
+
+std::uint32_t largest_tile(const BakedWangSet& set) {
+  std::size_t largest = 0;
+  for (const tiles::WangTile& t : set.set.tiles) largest = std::max(largest, t.instances.size());
+  return static_cast<std::uint32_t>(largest);
+}
+
+void world_aabb(const scene::Matrix3x4& m, const glm::dvec3& lo, const glm::dvec3& hi, InstanceSummary& out) {
+  out.aabb_min = glm::dvec3(std::numeric_limits<double>::max());
+  out.aabb_max = glm::dvec3(-std::numeric_limits<double>::max());
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 p{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+    const glm::dvec3 w = scene::transform_point(m, p);
+    out.aabb_min = glm::min(out.aabb_min, w);
+    out.aabb_max = glm::max(out.aabb_max, w);
+  }
+}
+
+std::uint32_t effect_flags(const scene::Effects& effects) {
+  std::uint32_t flags = 0;
+  if (effects.clipping) flags |= gpu::NANO_EFFECT_CLIPPING_PLANES;
+  if (effects.animation) {
+    if (effects.animation->steady || !effects.animation->keyframes.empty()) flags |= gpu::NANO_EFFECT_PROXY_ANIMATION;
+    if (effects.animation->jitter) flags |= gpu::NANO_EFFECT_JITTER;
+  }
+  if (effects.ambient_occlusion) flags |= gpu::NANO_EFFECT_AMBIENT_OCCLUSION;
+  if (effects.shadows) flags |= gpu::NANO_EFFECT_SHADOWS;
+  return flags;
+}
+
+gpu::SceneSettings scene_settings(const scene::SceneDescription& scene, const std::vector<InstanceSummary>& instances) {
+  gpu::SceneSettings settings{};
+  settings.effect_flags = effect_flags(scene.effects);
+  scene::Camera camera;
+  if (scene.camera) {
+    camera = *scene.camera;
+  } else {
+    // Frame every instance from +z with a little margin.
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const InstanceSummary& i : instances) {
+      lo = glm::min(lo, i.aabb_min);
+      hi = glm::max(hi, i.aabb_max);
+    }
+    if (instances.empty()) lo = hi = glm::dvec3(0.0);
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    const double radius = std::max(0.5 * glm::length(hi - lo), 1.0);
+    camera.fov_degrees = 45.0;
+    camera.look_at = centre;
+    camera.position = centre + glm::dvec3(0.0, 0.0, 1.1 * radius / std::tan(glm::radians(camera.fov_degrees) / 2));
+    camera.up = {0.0, 1.0, 0.0};
+  }
+  settings.camera_eye = glm::vec4(glm::vec3(camera.position), static_cast<float>(glm::radians(camera.fov_degrees)));
+  settings.camera_target = glm::vec4(glm::vec3(camera.look_at), 0.f);
+  settings.camera_up = glm::vec4(glm::vec3(camera.up), 0.f);
+  return settings;
+}
+
+}  // namespace
+
+BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& options) {
+  BakedScene baked;
+  StageClock clock(baked, options);
+  const std::uint64_t seed = options.seed.value_or(scene.seed);
+  const int threads = std::max(1, options.jobs);
+
+  const std::vector<BakedMolecule> library = clock.run("molecules", [&] { return load_molecule_library(scene); });
+
+  std::vector<BakedWangSet> membrane_sets, soluble_sets;
+  clock.run("membrane tiles", [&] {
+    for (std::size_t i = 0; i < scene.membranes.size(); ++i) {
+      membrane_sets.push_back(bake_membrane_tiles(scene.membranes[i], library, derive_seed(seed, SeedTag::membrane_tiles, i)));
+      baked.wang_sets.push_back({scene.membranes[i].name, membrane_sets.back().set.densities});
+    }
+    return 0;
+  });
+  clock.run("soluble cubes", [&] {
+    for (std::size_t i = 0; i < scene.solubles.size(); ++i) {
+      soluble_sets.push_back(bake_soluble_cubes(scene.solubles[i], library, derive_seed(seed, SeedTag::soluble_cubes, i)));
+      baked.wang_sets.push_back({scene.solubles[i].name, soluble_sets.back().set.densities});
+    }
+    return 0;
+  });
+
+  std::vector<CompartmentBake> compartments(scene.compartments.size());
+  for (std::size_t c = 0; c < scene.compartments.size(); ++c) {
+    const scene::CompartmentDescription& description = scene.compartments[c];
+    CompartmentBake& bake = compartments[c];
+    bake.mesh = clock.run("meshes", [&] { return load_compartment_mesh(description); });
+    if (description.membrane) {
+      bake.membrane = clock.run("shells", [&] {
+        return bake_membrane(bake.mesh.mesh, membrane_sets[description.membrane->index], library,
+                             derive_seed(seed, SeedTag::membrane_recipe, c), threads);
+      });
+      for (const gpu::TriangleShell& s : bake.membrane->shells)
+        bake.shell_margin = std::max({bake.shell_margin, double(s.h_plus), double(s.side_offset)});
+    }
+    if (description.soluble) {
+      const double inner = bake.membrane ? bake.membrane->inner_height : 0.0;
+      bake.core = clock.run("core grids", [&] {
+        return bake_core(bake.mesh.mesh, soluble_sets[description.soluble->index], scene.solubles[description.soluble->index],
+                         library, inner, derive_seed(seed, SeedTag::soluble_recipe, c), threads);
+      });
+    }
+  }
+
+  const std::vector<scene::PlacedInstance> placed = clock.run("instances", [&] {
+    std::vector<double> radii;
+    for (const CompartmentBake& c : compartments) radii.push_back(mesh_bounding_radius(c.mesh.mesh) + c.shell_margin);
+    return scene::expand_random_instances(scene, radii);
+  });
+
+  clock.run("package content", [&] {
+    PackageContent& content = baked.content;
+    for (const BakedMolecule& m : library) content.add_molecule(m);
+    std::vector<TileRange> membrane_ranges, soluble_ranges;
+    for (const BakedWangSet& s : membrane_sets) membrane_ranges.push_back(content.add_wang_set(s, library));
+    for (const BakedWangSet& s : soluble_sets) soluble_ranges.push_back(content.add_wang_set(s, library));
+
+    for (std::size_t c = 0; c < compartments.size(); ++c) {
+      const scene::CompartmentDescription& description = scene.compartments[c];
+      CompartmentBake& bake = compartments[c];
+      gpu::Compartment record{};
+      record.membrane_recipe = record.soluble_recipe = gpu::NANO_NO_INDEX;
+      const PackedMesh packed = pack_mesh(bake.mesh.mesh);
+      record.mesh = content.add_mesh(packed, bake.membrane ? bake.membrane->shells : empty_shells(bake.mesh.mesh));
+      std::tie(record.name_offset, record.name_length) = content.add_string(description.name);
+      std::vector<std::uint64_t> copies(library.size(), 0);
+      CompartmentSummary summary;
+      summary.name = description.name;
+      summary.mesh_origin = bake.mesh.origin;
+      summary.triangles = static_cast<std::uint32_t>(bake.mesh.mesh.triangles.size());
+      if (bake.membrane) {
+        const BakedMembrane& m = *bake.membrane;
+        const TileRange range = membrane_ranges[description.membrane->index];
+        record.membrane_first_tile = range.first;
+        record.membrane_tile_count = range.count;
+        record.membrane_recipe = content.add_recipe(m.recipe, range);
+        record.replication_width = m.replication_width;
+        record.replication_height = m.replication_height;
+        record.scales.x = static_cast<float>(m.uv_scale);
+        record.scales.y = static_cast<float>(m.tile_size);
+        for (std::size_t i = 0; i < copies.size(); ++i) copies[i] += m.copies_by_molecule[i];
+        summary.replication_width = m.replication_width;
+        summary.replication_height = m.replication_height;
+      }
+      if (bake.core) {
+        const BakedCore& core = *bake.core;
+        const grid::CoreGrid& grid = core.occupancy.grid;
+        const TileRange range = soluble_ranges[description.soluble->index];
+        record.soluble_first_tile = range.first;
+        record.soluble_tile_count = range.count;
+        record.soluble_recipe = content.add_recipe(core.recipe, range);
+        record.scales.z = static_cast<float>(grid.box_size);
+        record.grid_min = glm::vec4(glm::vec3(grid.min), static_cast<float>(grid.box_size));
+        std::vector<std::uint8_t> classes(core.occupancy.classes.size());
+        std::transform(core.occupancy.classes.begin(), core.occupancy.classes.end(), classes.begin(),
+                       [](grid::BoxClass b) { return static_cast<std::uint8_t>(b); });
+        record.grid_dims = glm::uvec4(glm::uvec3(grid.dims), content.add_occupancy(classes));
+        const auto [first, count] =
+            content.add_keep_masks(core.masks, largest_tile(soluble_sets[description.soluble->index]));
+        record.core_masks = glm::uvec4(first, count, 0u, 0u);
+        for (std::size_t i = 0; i < copies.size(); ++i) copies[i] += core.copies_by_molecule[i];
+        summary.core_boxes_inside = core.occupancy.inside;
+        summary.core_boxes_boundary = core.occupancy.boundary;
+      }
+      for (std::size_t i = 0; i < library.size(); ++i) {
+        if (copies[i] == 0) continue;
+        summary.copies.emplace_back(library[i].name, copies[i]);
+        summary.represented_atoms += copies[i] * library[i].atoms.size();
+      }
+      content.compartments.push_back(record);
+      baked.compartments.push_back(std::move(summary));
+    }
+
+    for (const scene::PlacedInstance& p : placed) {
+      gpu::CompartmentInstance record{};
+      for (int row = 0; row < 3; ++row) record.transform[row] = glm::vec4(p.transform[row]);
+      record.compartment = static_cast<std::uint32_t>(p.compartment.index);
+      content.compartment_instances.push_back(record);
+      const CompartmentBake& bake = compartments[p.compartment.index];
+      const glm::dvec3 margin(bake.shell_margin);
+      InstanceSummary summary;
+      summary.compartment = p.compartment.name;
+      const glm::vec3 lo = glm::vec3(content.meshes[content.compartments[p.compartment.index].mesh].aabb_min);
+      const glm::vec3 hi = glm::vec3(content.meshes[content.compartments[p.compartment.index].mesh].aabb_max);
+      world_aabb(p.transform, glm::dvec3(lo) - margin, glm::dvec3(hi) + margin, summary);
+      baked.instances.push_back(summary);
+      baked.represented_atoms += baked.compartments[p.compartment.index].represented_atoms;
+    }
+    content.scene = scene_settings(scene, baked.instances);
+    content.provenance = provenance_json(scene, seed);
+    return 0;
+  });
+  return baked;
+}
+
+}  // namespace nano::bake

@@ -1,0 +1,53 @@
+#pragma once
+// nanobake's pipeline: scene description -> molecule library -> Wang sets -> per compartment
+// (mesh, shell, core grid) -> placed instances -> package content, timing every stage.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bake/scene/scene_description.hpp"
+#include "bake/scene_bake/package_content.hpp"
+
+namespace nano::bake {
+
+struct BakeOptions {
+  std::optional<std::uint64_t> seed;  // overrides the scene's seed
+  int jobs = 1;                       // worker threads for the heavy stages
+  std::function<void(const std::string&)> progress;  // stage announcements; may be empty
+};
+
+struct CompartmentSummary {
+  std::string name;
+  std::string mesh_origin;
+  std::uint32_t triangles = 0;
+  std::uint64_t represented_atoms = 0;  // one copy of the compartment
+  std::vector<std::pair<std::string, std::uint64_t>> copies;  // molecule name -> copies (one compartment)
+  std::uint64_t core_boxes_inside = 0, core_boxes_boundary = 0;
+  std::uint32_t replication_width = 0, replication_height = 0;
+};
+
+struct InstanceSummary {
+  std::string compartment;
+  glm::dvec3 aabb_min{0.0}, aabb_max{0.0};  // world
+};
+
+struct WangSetSummary {
+  std::string name;  // membrane or soluble name
+  std::vector<tiles::MoleculeDensity> densities;
+};
+
+struct BakedScene {
+  PackageContent content;
+  std::vector<CompartmentSummary> compartments;
+  std::vector<InstanceSummary> instances;
+  std::vector<WangSetSummary> wang_sets;
+  std::uint64_t represented_atoms = 0;  // the whole scene
+  std::vector<std::pair<std::string, double>> stage_seconds;
+};
+
+BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& options);
+
+}  // namespace nano::bake

@@ -1,0 +1,122 @@
+#include "bake/scene_bake/wang_bake.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bake/tiles/wang_sets.hpp"
+#include "common/error.hpp"
+
+namespace nano::bake {
+namespace {
+
+constexpr double kSquareAngstromPerSquareMicrometre = 1e8;
+
+// The set's own type list holds only the molecules it uses, in first-use order.
+std::uint32_t local_type(BakedWangSet& baked, std::vector<tiles::MoleculeType>& types,
+                         const std::vector<BakedMolecule>& library, std::size_t molecule) {
+  for (std::uint32_t i = 0; i < baked.molecule_of_type.size(); ++i)
+    if (baked.molecule_of_type[i] == molecule) return i;
+  baked.molecule_of_type.push_back(static_cast<std::uint32_t>(molecule));
+  types.push_back(to_tile_molecule(library[molecule]));
+  return static_cast<std::uint32_t>(types.size() - 1);
+}
+
+int integer_power(int base, int exponent) {
+  int r = 1;
+  for (int i = 0; i < exponent; ++i) r *= base;
+  return r;
+}
+
+}  // namespace
+
+tiles::MoleculeType to_tile_molecule(const BakedMolecule& molecule) {
+  tiles::MoleculeType type;
+  type.name = molecule.name;
+  type.atoms.reserve(molecule.atoms.size());
+  for (const structure::Atom& a : molecule.atoms)
+    type.atoms.push_back({glm::vec3(a.position), static_cast<float>(a.radius)});
+  type.bounding_radius = static_cast<float>(molecule.properties.bounding_radius);
+  type.up_axis = glm::vec3(molecule.up);
+  return type;
+}
+
+double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size) {
+  return copies_per_tile / (tile_size * tile_size / kSquareAngstromPerSquareMicrometre);
+}
+
+BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
+                                 const std::vector<BakedMolecule>& library, std::uint64_t seed) {
+  if (membrane.tiles != integer_power(membrane.edge_colours, 4))
+    throw InputError("", "membranes." + membrane.name + ".tiles",
+                     "Wang squares are generated as the complete set of colours^4 = " +
+                         std::to_string(integer_power(membrane.edge_colours, 4)) + " tiles");
+  BakedWangSet baked;
+  tiles::MembraneTileRequest request;
+  request.edge = static_cast<float>(membrane.tile_size);
+  request.colours = membrane.edge_colours;
+  request.seed = seed;
+  for (const scene::MembraneProtein& protein : membrane.proteins) {
+    tiles::MembraneMolecule m;
+    m.type = local_type(baked, request.types, library, protein.molecule.index);
+    m.copies_per_um2 = protein.abundance.unit == scene::SurfaceAbundance::Unit::per_um2
+                           ? protein.abundance.value
+                           : copies_per_um2_from_per_tile(protein.abundance.value, membrane.tile_size);
+    m.depth = static_cast<float>(protein.depth);
+    request.molecules.push_back(m);
+  }
+  if (membrane.lipids) {
+    tiles::LipidFill fill;
+    fill.type = local_type(baked, request.types, library, membrane.lipids->molecule.index);
+    fill.area_per_lipid = static_cast<float>(membrane.lipids->area_per_lipid);
+    fill.leaflet_offset = static_cast<float>(membrane.lipids->leaflet_offset);
+    request.lipids = fill;
+  }
+  baked.set = tiles::make_membrane_tiles(request);
+  return baked;
+}
+
+BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
+                                const std::vector<BakedMolecule>& library, std::uint64_t seed) {
+  const int complete = integer_power(soluble.face_colours, 6);
+  const int per_incoming = integer_power(soluble.face_colours, 3);
+  if (soluble.cubes != complete && soluble.cubes % per_incoming != 0)
+    throw InputError("", "solubles." + soluble.name + ".cubes",
+                     "a cube set holds colours^6 = " + std::to_string(complete) + " cubes (complete) or a multiple of colours^3 = " +
+                         std::to_string(per_incoming));
+  BakedWangSet baked;
+  tiles::SolubleCubeRequest request;
+  request.edge = static_cast<float>(soluble.cube_size);
+  request.colours = soluble.face_colours;
+  request.variants = soluble.cubes == complete ? 0 : soluble.cubes / per_incoming;
+  request.seed = seed;
+  for (const scene::SolubleMolecule& molecule : soluble.molecules) {
+    tiles::SolubleMolecule m;
+    m.type = local_type(baked, request.types, library, molecule.molecule.index);
+    m.copies_per_um3 = molecule.abundance.unit == scene::VolumeAbundance::Unit::millimolar
+                           ? tiles::copies_per_um3_from_millimolar(molecule.abundance.value)
+                           : molecule.abundance.value;
+    request.molecules.push_back(m);
+  }
+  baked.set = tiles::make_soluble_cubes(request);
+  return baked;
+}
+
+tiles::TilingRecipe membrane_recipe(const tiles::WangSet& set, double tile_uv_size, std::uint64_t seed) {
+  const int cells = std::clamp(static_cast<int>(std::ceil(1.0 / tile_uv_size)), 1, kMaxRecipe2DCells);
+  return tiles::make_tiling_recipe(set.colouring, {cells, cells, 1}, seed, /*periodic=*/true);
+}
+
+tiles::TilingRecipe soluble_recipe(const tiles::WangSet& set, std::array<int, 3> grid_dims, std::uint64_t seed,
+                                   const std::string& soluble_name) {
+  const bool fits = std::all_of(grid_dims.begin(), grid_dims.end(), [](int d) { return d <= kMaxRecipe3DCells; });
+  if (fits) return tiles::make_tiling_recipe(set.colouring, grid_dims, seed, /*periodic=*/set.colouring.complete());
+  if (!set.colouring.complete())
+    throw InputError("", "solubles." + soluble_name + ".cubes",
+                     "the core grid has more than " + std::to_string(kMaxRecipe3DCells) +
+                         " boxes along an axis, so its recipe must repeat: use the complete cube set (colours^6 cubes)");
+  std::array<int, 3> block{};
+  for (int a = 0; a < 3; ++a) block[a] = std::min(grid_dims[a], kMaxRecipe3DCells);
+  return tiles::make_tiling_recipe(set.colouring, block, seed, /*periodic=*/true);
+}
+
+}  // namespace nano::bake

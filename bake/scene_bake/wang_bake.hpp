@@ -1,0 +1,42 @@
+#pragma once
+// The scene's membranes and solubles turned into Wang sets (bake/tiles), and the tiling recipes a
+// compartment needs: a periodic 2D recipe over its UV square, a 3D recipe over its core grid.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "bake/scene/scene_description.hpp"
+#include "bake/scene_bake/molecule_library.hpp"
+#include "bake/tiles/tiling_recipe.hpp"
+#include "bake/tiles/wang_set.hpp"
+
+namespace nano::bake {
+
+struct BakedWangSet {
+  tiles::WangSet set;
+  std::vector<std::uint32_t> molecule_of_type;  // the set's type index -> index into the library
+};
+
+// A 2D recipe axis never needs more cells than this: beyond it the periodic recipe repeats.
+inline constexpr int kMaxRecipe2DCells = 1024;
+// A 3D recipe axis never holds more cells; larger core grids need a periodic (complete) cube set.
+inline constexpr int kMaxRecipe3DCells = 64;
+
+tiles::MoleculeType to_tile_molecule(const BakedMolecule& molecule);
+
+// Copies per µm² of a per-tile abundance on tiles of edge `tile_size` Å.
+double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size);
+
+BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
+                                 const std::vector<BakedMolecule>& library, std::uint64_t seed);
+BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
+                                const std::vector<BakedMolecule>& library, std::uint64_t seed);
+
+// Periodic recipe covering UV [0,1]² for tiles of UV size s (capped at kMaxRecipe2DCells per axis).
+tiles::TilingRecipe membrane_recipe(const tiles::WangSet& set, double tile_uv_size, std::uint64_t seed);
+// Recipe over a core grid of `dims` boxes: the whole grid when it fits kMaxRecipe3DCells per axis,
+// otherwise a periodic block (InputError naming the soluble when its cube set is not complete).
+tiles::TilingRecipe soluble_recipe(const tiles::WangSet& set, std::array<int, 3> grid_dims, std::uint64_t seed,
+                                   const std::string& soluble_name);
+
+}  // namespace nano::bake

@@ -1,0 +1,51 @@
+"""check_report.py REPORT.json KEY=EXPECTED[:TOLERANCE] ...
+
+Checks a nanobake --report against expectations written from the biology (BIOLOGY.md), not from
+the baker: `represented_atoms=1.2e12:0.10` means within 10 % of 1.2e12; `copies.rbc.haemoglobin=2.7e8:0.10`
+reads compartment rbc's copies of haemoglobin. Also checks the report's required keys.
+"""
+import json
+import sys
+
+
+def lookup(report, key):
+    if key == "represented_atoms":
+        return report["represented_atoms"]
+    kind, compartment, name = key.split(".", 2)
+    entry = next(c for c in report["compartments"] if c["name"] == compartment)
+    if kind == "copies":
+        return entry["copies"][name]
+    if kind == "atoms":
+        return entry["represented_atoms"]
+    raise KeyError(key)
+
+
+def main():
+    report = json.load(open(sys.argv[1]))
+    failures = 0
+    for key in ("represented_atoms", "compartments", "instances", "sections", "stages"):
+        if key not in report:
+            print(f"missing key {key}")
+            failures += 1
+    for c in report["compartments"]:
+        for key in ("name", "represented_atoms", "copies"):
+            if key not in c:
+                print(f"compartment without {key}")
+                failures += 1
+    for i in report["instances"]:
+        lo, hi = i["aabb"]
+        if not all(a < b for a, b in zip(lo, hi)):
+            print(f"empty instance aabb {i}")
+            failures += 1
+    for spec in sys.argv[2:]:
+        key, expectation = spec.split("=")
+        expected, tolerance = (float(x) for x in expectation.split(":"))
+        value = lookup(report, key)
+        ok = abs(value - expected) <= tolerance * expected
+        print(f"{key}: {value:.4g} (expected {expected:.4g} ± {tolerance:.0%}) {'ok' if ok else 'FAILED'}")
+        failures += not ok
+    print(f"{len(sys.argv) - 2 - failures if failures <= len(sys.argv) - 2 else 0} passed, {failures} failed")
+    sys.exit(1 if failures else 0)
+
+
+main()

@@ -1,0 +1,185 @@
+// Mesh packing, compartment meshes and the Wang-set glue of the scene baker.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "bake/mesh/sphere_mesh.hpp"
+#include "bake/scene_bake/compartment_mesh.hpp"
+#include "bake/scene_bake/mesh_packing.hpp"
+#include "bake/scene_bake/wang_bake.hpp"
+#include "bake/tiles/wang_colouring.hpp"
+#include "common/error.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace nano;
+
+TEST(MeshPacking, EveryCornerKeepsItsPositionUvAndNormal) {
+  const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(300, 100.0);
+  const bake::PackedMesh packed = bake::pack_mesh(sphere);
+  ASSERT_EQ(packed.triangles.size(), sphere.triangles.size());
+  std::set<std::array<std::uint32_t, 3>> distinct_corners;
+  for (std::size_t t = 0; t < sphere.triangles.size(); ++t) {
+    const std::uint32_t v[3] = {packed.triangles[t].v0, packed.triangles[t].v1, packed.triangles[t].v2};
+    for (int c = 0; c < 3; ++c) {
+      distinct_corners.insert({sphere.triangles[t][c], sphere.uv_triangles[t][c], sphere.normal_triangles[t][c]});
+      ASSERT_LT(v[c], packed.positions.size());
+      EXPECT_EQ(glm::vec3(packed.positions[v[c]]), glm::vec3(sphere.corner_position(t, c)));
+      EXPECT_EQ(packed.uvs[v[c]], glm::vec2(sphere.corner_uv(t, c)));
+      EXPECT_EQ(glm::vec3(packed.normals[v[c]]), glm::vec3(sphere.corner_normal(t, c)));
+    }
+  }
+  // One package vertex per distinct corner combination: seams split, nothing else does.
+  EXPECT_EQ(packed.positions.size(), distinct_corners.size());
+  EXPECT_GT(packed.positions.size(), sphere.positions.size());
+  for (const glm::vec4& p : packed.positions) {
+    EXPECT_LE(p.x, packed.aabb_max.x);
+    EXPECT_GE(p.z, packed.aabb_min.z);
+  }
+  double max_x = -1e300;
+  for (const glm::dvec3& p : sphere.positions) max_x = std::max(max_x, p.x);
+  EXPECT_FLOAT_EQ(packed.aabb_max.x, static_cast<float>(max_x));
+}
+
+TEST(MeshPacking, RefusesAMeshWithoutUvs) {
+  mesh::ProxyMesh sphere = mesh::make_sphere_mesh(48, 10.0);
+  sphere.uv_triangles.clear();
+  EXPECT_THROW(bake::pack_mesh(sphere), std::invalid_argument);
+}
+
+TEST(CompartmentMesh, ScalesPositionsOnly) {
+  mesh::ProxyMesh sphere = mesh::make_sphere_mesh(48, 10.0);
+  const auto uvs = sphere.uvs;
+  const auto normals = sphere.normals;
+  const glm::dvec3 p = sphere.positions[3];
+  bake::scale_mesh(sphere, 2.5);
+  EXPECT_EQ(sphere.positions[3], p * 2.5);
+  EXPECT_EQ(sphere.uvs, uvs);
+  EXPECT_EQ(sphere.normals, normals);
+}
+
+TEST(CompartmentMesh, GeneratedSphereIsScaledAndChecked) {
+  scene::CompartmentDescription c;
+  c.name = "virion";
+  c.mesh.kind = scene::MeshSource::Kind::sphere;
+  c.mesh.triangles = 300;
+  c.mesh.radius = 400.0;
+  c.scale = 1.5;
+  const bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  EXPECT_TRUE(m.report.usable());
+  double r = 0.0;
+  for (const glm::dvec3& p : m.mesh.positions) r = std::max(r, glm::length(p));
+  EXPECT_NEAR(r, 600.0, 1e-9);
+  EXPECT_NE(m.origin.find("sphere"), std::string::npos);
+}
+
+TEST(CompartmentMesh, UnusableMeshNamesTheFileAndTheProblem) {
+  const fs::path path = fs::temp_directory_path() / "nano_scene_bake_no_uvs.obj";
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+  scene::CompartmentDescription c;
+  c.name = "tetra";
+  c.mesh.kind = scene::MeshSource::Kind::file;
+  c.mesh.file = path;
+  try {
+    bake::load_compartment_mesh(c);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("nano_scene_bake_no_uvs.obj"), std::string::npos) << what;
+    EXPECT_NE(what.find("no UVs"), std::string::npos) << what;
+    EXPECT_NE(what.find("tetra"), std::string::npos) << what;
+  }
+}
+
+TEST(WangBake, PerTileAbundanceConvertsToSurfaceDensity) {
+  // 2 copies on a 200 Å tile: 2 / (4e4 Å²) = 2 / 4e-4 µm² = 5000 per µm².
+  EXPECT_DOUBLE_EQ(bake::copies_per_um2_from_per_tile(2.0, 200.0), 5000.0);
+}
+
+TEST(WangBake, TileMoleculeKeepsAtomsRadiusAndUpAxis) {
+  bake::BakedMolecule m;
+  m.name = "two";
+  structure::Atom a, b;
+  a.position = {1, 2, 3};
+  a.radius = 1.5;
+  b.position = {-1, 0, 0};
+  b.radius = 1.7;
+  m.atoms = {a, b};
+  m.properties.bounding_radius = 5.25;
+  m.up = {0, 1, 0};
+  const tiles::MoleculeType t = bake::to_tile_molecule(m);
+  ASSERT_EQ(t.atoms.size(), 2u);
+  EXPECT_EQ(t.atoms[0].centre, glm::vec3(1, 2, 3));
+  EXPECT_FLOAT_EQ(t.atoms[1].radius, 1.7f);
+  EXPECT_FLOAT_EQ(t.bounding_radius, 5.25f);
+  EXPECT_EQ(t.up_axis, glm::vec3(0, 1, 0));
+  EXPECT_EQ(t.name, "two");
+}
+
+TEST(WangBake, MembraneRecipeCoversTheUvSquareAndIsPeriodic) {
+  tiles::WangSet set;
+  set.dims = 2;
+  set.colouring = tiles::make_complete_colouring(2, 2);
+  const tiles::TilingRecipe r = bake::membrane_recipe(set, 0.03, 5);
+  EXPECT_EQ(r.size[0], 34);  // ceil(1 / 0.03)
+  EXPECT_EQ(r.size[1], 34);
+  EXPECT_TRUE(r.periodic);
+  const tiles::TilingRecipe capped = bake::membrane_recipe(set, 1e-5, 5);
+  EXPECT_EQ(capped.size[0], bake::kMaxRecipe2DCells);
+}
+
+TEST(WangBake, SolubleRecipeCoversSmallGridsAndRepeatsOnlyCompleteSets) {
+  tiles::WangSet complete;
+  complete.dims = 3;
+  complete.colouring = tiles::make_complete_colouring(3, 2);
+  const tiles::TilingRecipe small = bake::soluble_recipe(complete, {5, 6, 7}, 1, "s");
+  EXPECT_EQ(small.size, (std::array<int, 3>{5, 6, 7}));
+  const tiles::TilingRecipe big = bake::soluble_recipe(complete, {300, 300, 100}, 1, "s");
+  EXPECT_EQ(big.size, (std::array<int, 3>{64, 64, 64}));
+  EXPECT_TRUE(big.periodic);
+
+  tiles::WangSet variants;
+  variants.dims = 3;
+  variants.colouring = tiles::make_variant_colouring(3, 2, 2, 9);
+  EXPECT_EQ(bake::soluble_recipe(variants, {10, 10, 10}, 1, "s").size, (std::array<int, 3>{10, 10, 10}));
+  try {
+    bake::soluble_recipe(variants, {300, 300, 100}, 1, "cytoplasm");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("solubles.cytoplasm.cubes"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+#include "bake/scene_bake/membrane_bake.hpp"
+
+namespace {
+
+TEST(MembraneBake, StoredUvScaleReproducesTheTileUvSizeInFloat) {
+  for (const float s : {1.04e-3f, 0.0123f, 3.3e-5f, 0.25f}) {
+    const float k = nano::bake::stored_uv_scale(200.f, s);
+    EXPECT_EQ(200.f / k, s) << s;  // exactly what a shader computes from the package
+  }
+}
+
+TEST(MembraneBake, EmptyShellsAreFlatAndSpanEachTriangleUvBox) {
+  const nano::mesh::ProxyMesh sphere = nano::mesh::make_sphere_mesh(48, 10.0);
+  const auto shells = nano::bake::empty_shells(sphere);
+  ASSERT_EQ(shells.size(), sphere.triangles.size());
+  for (std::size_t t = 0; t < shells.size(); ++t) {
+    EXPECT_EQ(shells[t].h_plus, 0.f);
+    EXPECT_EQ(shells[t].side_offset, 0.f);
+    for (int c = 0; c < 3; ++c) {
+      const glm::vec2 uv(sphere.corner_uv(t, c));
+      EXPECT_GE(uv.x, shells[t].uv_min_max.x);
+      EXPECT_LE(uv.y, shells[t].uv_min_max.w);
+    }
+  }
+}
+
+}  // namespace

@@ -1,0 +1,176 @@
+// The scene baker's package content: what it writes must pass the independent validator, and the
+// records must say what was put in.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "bake/mesh/sphere_mesh.hpp"
+#include "bake/scene_bake/package_content.hpp"
+#include "bake/scene_bake/provenance.hpp"
+#include "bake/tiles/wang_colouring.hpp"
+#include "format/package.hpp"
+#include "format/validator.hpp"
+
+namespace {
+
+using namespace nano;
+
+bake::BakedMolecule two_atom_molecule() {
+  bake::BakedMolecule m;
+  m.name = "pair";
+  m.source = "pair.pdb";
+  structure::Atom a, b;
+  a.position = {-1, 0, 0};
+  a.radius = 1.5;
+  a.chain = "A";
+  a.residue_name = "GLY";
+  a.residue_number = 7;
+  a.atom_name = "CA";
+  a.element = "C";
+  b = a;
+  b.position = {1, 0, 0};
+  b.atom_name = "N";
+  b.element = "N";
+  m.atoms = {a, b};
+  m.properties.spheres.min = {-2.5, -1.5, -1.5};
+  m.properties.spheres.max = {2.5, 1.5, 1.5};
+  m.properties.bounding_radius = 2.5;
+  m.up = {0, 0, 1};
+  m.linear_colour = {0.5, 0.25, 1.0};
+  return m;
+}
+
+bake::BakedWangSet one_square_set() {
+  bake::BakedWangSet s;
+  s.set.dims = 2;
+  s.set.edge = 100.f;
+  s.set.colouring = tiles::make_complete_colouring(2, 1);
+  tiles::WangTile tile;
+  tile.instances.push_back({0, glm::vec3(10, 20, 0), glm::angleAxis(glm::radians(90.f), glm::vec3(0, 0, 1))});
+  tile.atoms_min = {7.5, 17.5, -1.5};
+  tile.atoms_max = {12.5, 22.5, 1.5};
+  s.set.tiles.push_back(tile);
+  s.molecule_of_type = {0};
+  return s;
+}
+
+TEST(PackageContent, MoleculesTilesAndMeshPassTheValidatorWithTheirValues) {
+  const std::vector<bake::BakedMolecule> library{two_atom_molecule()};
+  bake::PackageContent content;
+  EXPECT_EQ(content.add_molecule(library[0]), 0u);
+  const bake::TileRange range = content.add_wang_set(one_square_set(), library);
+  EXPECT_EQ(range.first, 0u);
+  EXPECT_EQ(range.count, 1u);
+  tiles::TilingRecipe recipe;
+  recipe.dims = 2;
+  recipe.size = {2, 2, 1};
+  recipe.cells = {0, 0, 0, 0};
+  const std::uint32_t recipe_index = content.add_recipe(recipe, range);
+
+  const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(48, 50.0);
+  const bake::PackedMesh packed = bake::pack_mesh(sphere);
+  std::vector<gpu::TriangleShell> shells(packed.triangles.size());
+  for (std::size_t t = 0; t < shells.size(); ++t) {
+    const auto& tri = packed.triangles[t];
+    glm::vec2 lo = glm::min(glm::min(packed.uvs[tri.v0], packed.uvs[tri.v1]), packed.uvs[tri.v2]);
+    glm::vec2 hi = glm::max(glm::max(packed.uvs[tri.v0], packed.uvs[tri.v1]), packed.uvs[tri.v2]);
+    shells[t].uv_min_max = glm::vec4(lo, hi);
+    shells[t].h_plus = shells[t].h_minus = 3.f;
+  }
+  gpu::Compartment compartment{};
+  compartment.mesh = content.add_mesh(packed, shells);
+  compartment.membrane_first_tile = range.first;
+  compartment.membrane_tile_count = range.count;
+  compartment.membrane_recipe = recipe_index;
+  compartment.soluble_recipe = gpu::NANO_NO_INDEX;
+  compartment.replication_width = compartment.replication_height = 2;
+  compartment.scales = glm::vec4(100.f, 100.f, 0.f, 0.f);
+  std::tie(compartment.name_offset, compartment.name_length) = content.add_string("virion");
+  content.compartments.push_back(compartment);
+  gpu::CompartmentInstance instance{};
+  instance.transform[0] = {1, 0, 0, 0};
+  instance.transform[1] = {0, 1, 0, 0};
+  instance.transform[2] = {0, 0, 1, 0};
+  content.compartment_instances.push_back(instance);
+  content.scene.camera_eye = {0, 0, 500, 0.8f};
+  content.scene.camera_up = {0, 1, 0, 0};
+  content.provenance = "{}";
+
+  const auto bytes = format::build_package(content.sections());
+  const format::Package package = format::Package::from_bytes(bytes);
+  EXPECT_NO_THROW(format::validate_semantics(package));
+
+  const auto molecules = package.records<format::SectionKind::molecules>();
+  ASSERT_EQ(molecules.size(), 1u);
+  EXPECT_EQ(molecules[0].atom_count, 2u);
+  EXPECT_FLOAT_EQ(molecules[0].aabb_min.w, 2.5f);
+  const auto strings = package.records<format::SectionKind::strings>();
+  EXPECT_EQ(std::string(strings.data() + molecules[0].name_offset, molecules[0].name_length), "pair");
+  const auto info = package.records<format::SectionKind::atom_info>();
+  ASSERT_EQ(info.size(), 2u);
+  EXPECT_EQ(std::string(info[1].atom_name, 1), "N");
+  EXPECT_EQ(info[0].residue_number, 7);
+  // The 90° turn about z takes the pair from the x axis onto the y axis: the tile-space box is
+  // (10 ± 1.5, 20 ± 2.5) by hand.
+  const auto instances = package.records<format::SectionKind::instances>();
+  ASSERT_EQ(instances.size(), 1u);
+  EXPECT_NEAR(instances[0].aabb_min.x, 8.5, 1e-5);
+  EXPECT_NEAR(instances[0].aabb_max.y, 22.5, 1e-5);
+  EXPECT_NEAR(instances[0].rotation.w, std::sqrt(0.5), 1e-6);
+  const auto tiles2d = package.records<format::SectionKind::tiles2d>();
+  EXPECT_FLOAT_EQ(tiles2d[0].size.x, 100.f);
+  EXPECT_EQ(package.records<format::SectionKind::triangles>().size(), sphere.triangles.size());
+}
+
+TEST(PackageContent, RecipesStoreAbsoluteTileIndices) {
+  bake::PackageContent content;
+  tiles::TilingRecipe recipe;
+  recipe.dims = 3;
+  recipe.size = {1, 1, 2};
+  recipe.cells = {0, 1};
+  content.add_recipe(recipe, bake::TileRange{5, 2});
+  EXPECT_EQ(content.recipe_indices, (std::vector<std::uint32_t>{5, 6}));
+  EXPECT_EQ(content.recipes[0].dims.w, gpu::NANO_RECIPE_3D);
+}
+
+TEST(PackageContent, KeepMasksArePaddedToTheLargestCube) {
+  grid::KeepMasks masks;
+  masks.boundary_boxes = {3, 9};
+  masks.word_offsets = {0, 1, 2};
+  masks.words = {0x5u, 0x1u};
+  bake::PackageContent content;
+  const auto [first, count] = content.add_keep_masks(masks, 40);  // 40 molecules: 2 words per box
+  EXPECT_EQ(first, 0u);
+  EXPECT_EQ(count, 2u);
+  ASSERT_EQ(content.boundary_boxes.size(), 2u);
+  EXPECT_EQ(content.boundary_boxes[1].box, 9u);
+  EXPECT_EQ(content.boundary_boxes[1].first_word, 2u);
+  EXPECT_EQ(content.mask_words, (std::vector<std::uint32_t>{0x5u, 0u, 0x1u, 0u}));
+}
+
+TEST(Provenance, HashesFilesAndNamesThemRelativeToTheScene) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "nano_provenance_test";
+  fs::create_directories(dir / "structures");
+  std::ofstream(dir / "scene.json") << "{}";
+  std::ofstream(dir / "structures" / "a.pdb") << "ATOM";
+  std::ofstream(dir / "structures" / "b.pdb") << "ATOX";
+  EXPECT_EQ(bake::file_hash(dir / "structures" / "a.pdb"), bake::file_hash(dir / "structures" / "a.pdb"));
+  EXPECT_NE(bake::file_hash(dir / "structures" / "a.pdb"), bake::file_hash(dir / "structures" / "b.pdb"));
+  EXPECT_EQ(bake::file_hash(dir / "structures" / "a.pdb").size(), 16u);
+  EXPECT_THROW(bake::file_hash(dir / "missing.pdb"), nano::InputError);
+
+  scene::SceneDescription s;
+  s.source = dir / "scene.json";
+  scene::MoleculeDescription m;
+  m.name = "a";
+  m.file = dir / "structures" / "a.pdb";
+  s.molecules.push_back(m);
+  const std::string json = bake::provenance_json(s, 42);
+  EXPECT_NE(json.find("\"structures/a.pdb\""), std::string::npos) << json;
+  EXPECT_EQ(json.find(dir.string()), std::string::npos) << "no absolute paths: " << json;
+  EXPECT_NE(json.find("\"seed\": 42"), std::string::npos) << json;
+}
+
+}  // namespace
