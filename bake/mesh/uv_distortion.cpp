@@ -50,6 +50,20 @@ double uv_scale(const ProxyMesh& mesh) {
   return uv > 0.0 ? std::sqrt(world / uv) : 0.0;
 }
 
+double smallest_stretch(const ProxyMesh& mesh) {
+  double smallest = 0.0;
+  bool any = false;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const std::optional<UvJacobian> j = uv_jacobian(mesh, t);
+    if (!j) continue;
+    const double minor = singular_values(*j).minor;
+    if (!(minor > 0.0)) continue;
+    smallest = any ? std::min(smallest, minor) : minor;
+    any = true;
+  }
+  return smallest;
+}
+
 int tiles_spanning(double extent, double s) { return static_cast<int>(std::ceil(extent / s)) + 1; }
 
 std::array<int, 2> triangle_tile_span(const ProxyMesh& mesh, std::size_t t, double s) {

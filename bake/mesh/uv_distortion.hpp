@@ -36,6 +36,12 @@ SingularValues singular_values(const UvJacobian& j);
 // singular values near 1 where the chart is faithful. 0 if the mesh has no UV area.
 double uv_scale(const ProxyMesh& mesh);
 
+// The smallest stretch σ2 of J over all triangles with a usable chart (Å per UV unit): used as the
+// tile scale, the UV→surface map never compresses a tile in any direction, so rigid molecules packed
+// collision-free in tile space stay collision-free on the surface (they only spread where σ > it).
+// 0 if no triangle has a usable chart.
+double smallest_stretch(const ProxyMesh& mesh);
+
 // Tiles of UV size s needed along one axis to cover an extent: ceil(extent / s) + 1, the +1
 // because a triangle's UV box rarely starts on a tile boundary.
 int tiles_spanning(double extent, double s);

@@ -73,6 +73,24 @@ TEST(UvScale, MirroredUvTriangleCountsItsArea) {
   EXPECT_DOUBLE_EQ(uv_scale(mesh), std::sqrt(6.0));
 }
 
+TEST(SmallestStretch, IsTheLeastSingularValueOverTriangles) {
+  ProxyMesh mesh = scaled_right_triangle();  // σ = 3, 2
+  EXPECT_DOUBLE_EQ(smallest_stretch(mesh), 2.0);
+  // A second triangle stretched by 0.5 and 4 (shear-free): its σ2 = 0.5 becomes the smallest.
+  mesh.positions.push_back({10, 0, 0});
+  mesh.positions.push_back({10.5, 0, 0});
+  mesh.positions.push_back({10, 4, 0});
+  mesh.triangles.push_back({3, 4, 5});
+  mesh.uv_triangles.push_back({0, 1, 2});
+  EXPECT_DOUBLE_EQ(smallest_stretch(mesh), 0.5);
+  // A zero-area UV triangle has no chart and is ignored.
+  mesh.uvs.push_back({0.5, 0.5});
+  mesh.positions.push_back({20, 0, 0});
+  mesh.triangles.push_back({0, 1, 6});
+  mesh.uv_triangles.push_back({3, 3, 3});
+  EXPECT_DOUBLE_EQ(smallest_stretch(mesh), 0.5);
+}
+
 TEST(ReplicationArea, CeilOfExtentOverTileSizePlusOne) {
   EXPECT_EQ(tiles_spanning(0.25, 0.1), 4);  // ceil(2.5) + 1
   EXPECT_EQ(tiles_spanning(0.05, 0.1), 2);
