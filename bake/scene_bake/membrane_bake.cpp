@@ -13,34 +13,47 @@ namespace nano::bake {
 float stored_uv_scale(float tile_size, float tile_uv_size) {
   // The renderer derives s = S / k in float; pick the float k for which that gives exactly the s
   // the bake placed molecules with, so oracle and shader walk identical tile origins.
+  // Division is monotone in k, so walk float neighbours towards the target; some quotients are
+  // unreachable (the map k -> S / k skips floats), then search a small window around it.
   float k = tile_size / tile_uv_size;
-  for (int step = 0; step < 8 && tile_size / k != tile_uv_size; ++step)
+  for (int step = 0; step < 64 && tile_size / k != tile_uv_size; ++step)
     k = std::nextafter(k, tile_size / k > tile_uv_size ? INFINITY : 0.f);
+  if (tile_size / k != tile_uv_size) {
+    float probe = tile_size / tile_uv_size;
+    for (int i = 0; i < 4096 && tile_size / probe != tile_uv_size; ++i) probe = std::nextafter(probe, 0.f);
+    if (tile_size / probe == tile_uv_size) k = probe;
+  }
   if (tile_size / k != tile_uv_size)
     throw InputError("", "membrane", "no float UV scale reproduces the tile UV size " + std::to_string(tile_uv_size));
   return k;
 }
 
 BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
-                            std::uint64_t seed, int /*threads*/) {
+                            std::uint64_t seed, int threads) {
   BakedMembrane baked;
-  const double k = mesh::uv_scale(mesh);
+  // The chart must never compress a tile: molecules are rigid, so where the map shrinks tile space
+  // (cube-sphere corners, σ_min ≈ 0.76 of the mean) copies packed collision-free would overlap.
+  // Scaling by the smallest singular value only spreads them, which costs density where σ is large.
+  const double k = mesh::smallest_stretch(mesh);
+  if (!(k > 0)) throw InputError("", "membrane", "the mesh has no triangle with a usable UV chart");
   baked.tile_size = tiles.set.edge;
   baked.recipe = membrane_recipe(tiles.set, tiles.set.edge / k, seed);
-  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, "membrane");
+  std::vector<tiles::MoleculeType> types;
+  for (const std::uint32_t m : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[m]));
+  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, types, "membrane");
   baked.uv_scale = stored_uv_scale(tiles.set.edge, mapping.tile_uv_size());
+  baked.seam_radius = mapping.seam_max_radius();
   // The package stores the UVs ownership was decided on.
   const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();
   for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = glm::dvec2(snapped[i]);
 
-  std::vector<tiles::MoleculeType> types;
-  for (const std::uint32_t m : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[m]));
-  const shell::ShellResult shells = shell::compute_shell_offsets(mapping, types);
+  const shell::ShellResult shells = shell::compute_shell_offsets(mapping, types, threads);
   if (shells.stats.uncontained_triangles > 0)
     throw InputError("", "membrane", std::to_string(shells.stats.uncontained_triangles) +
                                          " triangles could not be given a prism that contains their molecules");
 
   baked.copies_by_molecule.assign(library.size(), 0);
+  for (std::size_t i = 0; i < types.size(); ++i) baked.copies_by_molecule[tiles.molecule_of_type[i]] += shells.owned_by_type[i];
   baked.shells.resize(mapping.triangle_count());
   for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
     const shell::TriangleMapping& tm = mapping.triangle(t);
@@ -49,9 +62,8 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
     s.h_plus = shells.offsets[t].h_plus;
     s.h_minus = shells.offsets[t].h_minus;
     s.side_offset = shells.offsets[t].side;
+    s.seam_edges = mapping.seam_edges(t);
     baked.inner_height = std::max(baked.inner_height, double(s.h_minus));
-    mapping.for_each_owned_membrane_molecule(
-        t, [&](const shell::OwnedMolecule& m) { ++baked.copies_by_molecule[tiles.molecule_of_type[m.type]]; });
   }
   const glm::ivec2 area = mapping.replication_area();
   baked.replication_width = static_cast<std::uint32_t>(area.x);

@@ -1,7 +1,9 @@
 #include "bake/shell/membrane_mapping.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "bake/mesh/mesh_edges.hpp"
 #include "common/error.hpp"
 
 namespace nano::shell {
@@ -26,7 +28,8 @@ float snap_uv(double uv) {
 glm::vec2 snap_uv(const glm::dvec2& uv) { return {snap_uv(uv.x), snap_uv(uv.y)}; }
 
 MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangSet& set,
-                                 const tiles::TilingRecipe& recipe, double k, std::string context)
+                                 const tiles::TilingRecipe& recipe, double k,
+                                 const std::vector<tiles::MoleculeType>& types, std::string context)
     : set_(&set), recipe_(&recipe) {
   if (!mesh.has_uvs() || mesh.uv_triangles.size() != mesh.triangles.size())
     fail(context, "mesh", "the membrane mapping needs per-corner UVs on every triangle");
@@ -56,6 +59,32 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
     snapped_uvs_.push_back(snap_uv(uv));
   }
 
+  // Seam-rule radii: each type's bounding radius (the package's aabb_min.w), checked to cover its
+  // atoms about the origin (the proof in seam.h needs it), and the set's largest.
+  type_radius_.assign(types.size(), 0.f);
+  std::vector<bool> used(types.size(), false);
+  for (std::size_t t = 0; t < set.tiles.size(); ++t)
+    for (std::size_t i = 0; i < set.tiles[t].instances.size(); ++i) {
+      const std::uint32_t type = set.tiles[t].instances[i].type;
+      if (type >= types.size())
+        fail(context, "tile " + std::to_string(t) + " instance " + std::to_string(i),
+             "molecule type " + std::to_string(type) + " is not among the " + std::to_string(types.size()) + " types given");
+      used[type] = true;
+    }
+  for (std::size_t i = 0; i < types.size(); ++i) {
+    const float r = types[i].bounding_radius;
+    type_radius_[i] = r;
+    if (!used[i]) continue;
+    double reach = 0.0;
+    for (const tiles::AtomSphere& a : types[i].atoms)
+      reach = std::max(reach, glm::length(glm::dvec3(a.centre)) + double(a.radius));
+    if (!std::isfinite(r) || double(r) < reach - 1e-5 * (1.0 + reach))
+      fail(context, "molecule type " + std::to_string(i) + " (" + types[i].name + ")",
+           "bounding radius " + std::to_string(r) + " Å does not cover its atoms (" + std::to_string(reach) +
+               " Å about the origin); the seam rule needs it");
+    seam_max_radius_ = std::max(seam_max_radius_, r);
+  }
+
   triangles_.resize(mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     TriangleMapping& tm = triangles_[t];
@@ -74,6 +103,52 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
     tm.extent = gpu::replication_extent(tm.uv_min, tm.uv_max, s_);
     area_ = glm::max(area_, gpu::replication_extent_bound(tm.uv_min, tm.uv_max, s_));
   }
+
+  // Seams on the snapped UVs (what ownership sees): an edge of exactly two faces whose faces carry
+  // different UVs at one of its endpoints. The yielding face: the one in the UV chart with the larger
+  // id (mesh::uv_charts), so one side yields along the whole seam between two charts and, where
+  // three charts meet, the yields never form a cycle; the face with the larger index within one
+  // chart (a chart cut against itself). Its bit is the corner the edge starts from (EdgeUse.corner:
+  // from corner c to c + 1 mod 3).
+  const std::vector<mesh::MeshEdge> edges = mesh::collect_edges(mesh);
+  const std::vector<std::uint32_t> chart_of = mesh::uv_charts(mesh, edges);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> seam_ends;  // (position index, yielding face)
+  for (const mesh::MeshEdge& edge : edges) {
+    if (edge.uses.size() != 2) continue;
+    auto uv_at = [&](const mesh::EdgeUse& use, std::uint32_t vertex) {
+      const int c = mesh.triangles[use.face][use.corner] == vertex ? use.corner : (use.corner + 1) % 3;
+      return snapped_uvs_[mesh.uv_triangles[use.face][c]];
+    };
+    const mesh::EdgeUse& u0 = edge.uses[0];
+    const mesh::EdgeUse& u1 = edge.uses[1];
+    if (uv_at(u0, edge.a) == uv_at(u1, edge.a) && uv_at(u0, edge.b) == uv_at(u1, edge.b)) continue;
+    const std::uint32_t c0 = chart_of[u0.face], c1 = chart_of[u1.face];
+    const mesh::EdgeUse& yielding = c0 != c1 ? (c0 > c1 ? u0 : u1) : (u0.face > u1.face ? u0 : u1);
+    triangles_[yielding.face].seam_edges |= 1u << yielding.corner;
+    seam_ends.push_back({edge.a, yielding.face});
+    seam_ends.push_back({edge.b, yielding.face});
+  }
+  // Corner bits: a triangle of the yielding chart that touches a yielding seam edge only at a
+  // vertex (a fan triangle) drops molecules near that vertex (seam.h, bits 3-5).
+  std::vector<std::vector<std::uint32_t>> faces_at(mesh.positions.size());
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) faces_at[mesh.triangles[t][c]].push_back(t);
+  for (const auto& [vertex, face] : seam_ends)
+    for (const std::uint32_t t : faces_at[vertex]) {
+      if (chart_of[t] != chart_of[face]) continue;
+      for (int c = 0; c < 3; ++c)
+        if (mesh.triangles[t][c] == vertex) triangles_[t].seam_edges |= 1u << (3 + c);
+    }
+}
+
+std::size_t MembraneMapping::seam_dropped_count() const {
+  std::size_t all = 0, kept = 0;
+  for (std::size_t t = 0; t < triangles_.size(); ++t) {
+    if (triangles_[t].seam_edges == 0) continue;
+    for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++all; }, SeamRule::ignore);
+    for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++kept; });
+  }
+  return all - kept;
 }
 
 std::uint32_t MembraneMapping::tile_at(glm::ivec2 cell) const {

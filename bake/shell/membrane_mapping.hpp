@@ -14,9 +14,11 @@
 #include <glm/glm.hpp>
 
 #include "bake/mesh/proxy_mesh.hpp"
+#include "bake/tiles/molecule_type.hpp"
 #include "bake/tiles/tiling_recipe.hpp"
 #include "bake/tiles/wang_set.hpp"
 #include "shared/ownership.h"
+#include "shared/seam.h"
 #include "shared/tile_mapper.h"
 
 namespace nano::shell {
@@ -37,7 +39,14 @@ struct TriangleMapping {
   glm::vec2 uv_min{0.f}, uv_max{0.f};
   glm::ivec2 origin{0};               // replication_origin
   glm::ivec2 extent{0};               // replication_extent: the tiles this triangle walks
+  std::uint32_t seam_edges = 0;       // TriangleShell.seam_edges (shared/seam.h): bits 0-2 edge
+                                      // (k, k+1 mod 3) is a UV seam this triangle yields on; bits 3-5
+                                      // corner k touches a seam its chart yields on
 };
+
+// Whether the enumerator applies the seam rule (shared/seam.h). `ignore` yields the plain
+// ownership partition (every molecule of the chart exactly once), for tests of ownership itself.
+enum class SeamRule { apply, ignore };
 
 // One membrane molecule as the triangle that owns it sees it.
 struct OwnedMolecule {
@@ -57,8 +66,15 @@ public:
   // the mesh is copied into per-triangle data. Throws InputError(context, ...) for a mesh without UVs
   // or normals, a UV that is not finite or has |uv| ≥ 16, a non-positive or non-finite k or edge, a
   // recipe that is not 2D or names a missing tile, or a non-finite tile UV size.
+  // `types`: the molecule types the set's instances index. Their bounding_radius (the package's
+  // MoleculeType.aabb_min.w) is the seam rule's radius; it must cover the atoms about the origin
+  // (InputError otherwise, e.g. for a type whose radius was left 0). Seams: the edges of the mesh
+  // (by position index) shared by exactly two triangles that carry different snapped UVs at an
+  // endpoint; the triangle in the UV chart with the larger id yields (the larger triangle index
+  // within one chart), and every triangle of the yielding chart at the seam edge's endpoints gets
+  // the corner bit (seam.h).
   MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangSet& set, const tiles::TilingRecipe& recipe,
-                  double k, std::string context = "membrane");
+                  double k, const std::vector<tiles::MoleculeType>& types, std::string context = "membrane");
 
   std::size_t triangle_count() const { return triangles_.size(); }
   const TriangleMapping& triangle(std::size_t t) const { return triangles_[t]; }
@@ -71,16 +87,25 @@ public:
   // W×H: the maximum of replication_extent_bound over the valid triangles.
   glm::ivec2 replication_area() const { return area_; }
 
+  // Seam rule inputs: the radius of each type (bounding_radius) and the set's largest, r_max (the
+  // package's Compartment.scales.w).
+  float type_radius(std::uint32_t type) const { return type_radius_[type]; }
+  float seam_max_radius() const { return seam_max_radius_; }
+  std::uint32_t seam_edges(std::size_t t) const { return triangles_[t].seam_edges; }
+  // The number of (triangle, owned molecule) pairs the seam rule drops, over the whole mesh.
+  std::size_t seam_dropped_count() const;
+
   // Tile of UV cell (a, b): recipe.at(a mod X, b mod Y) with a non-negative modulo, so a recipe
   // smaller than the chart repeats.
   std::uint32_t tile_at(glm::ivec2 cell) const;
 
   // Calls f(const OwnedMolecule&) for every molecule of the replication area of triangle t that t
-  // owns (own_triangle_owns on its snapped UVs), in slot order (v outer, u inner), then instance
-  // order. Walks the triangle's own extent: slots of W×H beyond it hold no molecule inside the
-  // triangle's UV box (replication slack), which the tests check.
+  // owns (own_triangle_owns on its snapped UVs) and, with SeamRule::apply, the seam rule keeps
+  // (seam_drops of shared/seam.h on the molecule's centre), in slot order (v outer, u inner), then
+  // instance order. Walks the triangle's own extent: slots of W×H beyond it hold no molecule inside
+  // the triangle's UV box (replication slack), which the tests check.
   template <class F>
-  void for_each_owned_membrane_molecule(std::size_t t, F&& f) const {
+  void for_each_owned_membrane_molecule(std::size_t t, F&& f, SeamRule rule = SeamRule::apply) const {
     const TriangleMapping& tm = triangles_[t];
     if (!tm.valid) return;
     for (int j = 0; j < tm.extent.y; ++j)
@@ -101,6 +126,10 @@ public:
           m.type = in.type;
           const glm::vec4 q(in.rotation.x, in.rotation.y, in.rotation.z, in.rotation.w);  // glm quat is (w,x,y,z)
           m.transform = gpu::chart_membrane_molecule(tm.chart, g, s_over_S_, in.position, q, m.uv);
+          if (rule == SeamRule::apply &&
+              gpu::seam_drops(tm.seam_edges, tm.position[0], tm.position[1], tm.position[2], m.transform.translation,
+                              type_radius_[in.type], seam_max_radius_))
+            continue;
           f(static_cast<const OwnedMolecule&>(m));
         }
       }
@@ -112,6 +141,8 @@ private:
   float s_ = 0.f;
   float s_over_S_ = 0.f;
   glm::ivec2 area_{0};
+  std::vector<float> type_radius_;
+  float seam_max_radius_ = 0.f;
   std::vector<glm::vec2> snapped_uvs_;
   std::vector<TriangleMapping> triangles_;
 };

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <string>
+#include <thread>
 
 #include "common/error.hpp"
 
@@ -91,33 +93,53 @@ gpu::Prism triangle_prism(const MembraneMapping& mapping, std::size_t t, const g
                                tm.normal[2], offsets);
 }
 
-ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vector<tiles::MoleculeType>& types) {
-  std::vector<double> radius(types.size());
-  for (std::size_t i = 0; i < types.size(); ++i) radius[i] = molecule_origin_radius(types[i]);
+namespace {
 
-  ShellResult out;
-  out.offsets.assign(mapping.triangle_count(), gpu::ShellOffsets{0.f, 0.f, 0.f});
+// What one block of triangles contributes besides its offsets.
+struct BlockTotals {
+  ShellStats stats;
+  std::vector<std::size_t> owned_by_type;
+  std::exception_ptr error;  // the first failing triangle of the block; the block stops there
+};
+
+void merge(ShellStats& into, const ShellStats& s) {
+  into.owned_molecules += s.owned_molecules;
+  into.triangles_with_molecules += s.triangles_with_molecules;
+  into.grown_triangles += s.grown_triangles;
+  into.max_grow_iterations = std::max(into.max_grow_iterations, s.max_grow_iterations);
+  into.uncontained_triangles += s.uncontained_triangles;
+  into.inverted_caps += s.inverted_caps;
+  into.min_vertex_normal_cos = std::min(into.min_vertex_normal_cos, s.min_vertex_normal_cos);
+}
+
+// Triangles [begin, end): their offsets into `offsets`, the rest into `totals`.
+void shell_block(const MembraneMapping& mapping, const std::vector<double>& radius, std::size_t begin,
+                 std::size_t end, std::vector<gpu::ShellOffsets>& offsets, BlockTotals& totals) try {
+  const std::size_t type_count = radius.size();
+  ShellStats& stats = totals.stats;
+  totals.owned_by_type.assign(type_count, 0);
   std::vector<Sphere> spheres;
-  for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
+  for (std::size_t t = begin; t < end; ++t) {
     spheres.clear();
     mapping.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule& m) {
-      if (m.type >= types.size())
+      if (m.type >= type_count)
         throw InputError("shell", "tile " + std::to_string(m.tile) + " instance " + std::to_string(m.instance),
                          "molecule type " + std::to_string(m.type) + " is not among the " +
-                             std::to_string(types.size()) + " types given");
+                             std::to_string(type_count) + " types given");
+      ++totals.owned_by_type[m.type];
       spheres.push_back({glm::dvec3(m.transform.translation), radius[m.type],
                          glm::dvec3(gpu::chart_barycentric(mapping.triangle(t).chart, m.uv))});
     });
     if (spheres.empty()) continue;  // offsets stay zero: a flat prism the runtime can skip
-    out.stats.owned_molecules += spheres.size();
-    out.stats.triangles_with_molecules += 1;
+    stats.owned_molecules += spheres.size();
+    stats.triangles_with_molecules += 1;
 
     const TriangleMapping& tm = mapping.triangle(t);
     const glm::dvec3 p0(tm.position[0]), p1(tm.position[1]), p2(tm.position[2]);
     const glm::dvec3 face = glm::normalize(glm::cross(p1 - p0, p2 - p0));
     double cmin = 1.0;
     for (int c = 0; c < 3; ++c) cmin = std::min(cmin, glm::dot(glm::dvec3(tm.normal[c]), face));
-    out.stats.min_vertex_normal_cos = std::min(out.stats.min_vertex_normal_cos, cmin);
+    stats.min_vertex_normal_cos = std::min(stats.min_vertex_normal_cos, cmin);
     cmin = std::max(cmin, kMinNormalCos);
     // Altitude onto the edge opposite corner k: 2·area / |edge|.
     const double area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
@@ -150,16 +172,46 @@ ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vec
       if (deficit[1] > 0.0) off.h_plus = float(off.h_plus + deficit[1] / cmin + kGrowSlack);
       if (wall > 0.0) off.side = float(off.side + wall / cmin + kGrowSlack);
     }
-    if (iterations > 0) out.stats.grown_triangles += 1;
-    out.stats.max_grow_iterations = std::max(out.stats.max_grow_iterations, iterations);
-    if (!contained) out.stats.uncontained_triangles += 1;
+    if (iterations > 0) stats.grown_triangles += 1;
+    stats.max_grow_iterations = std::max(stats.max_grow_iterations, iterations);
+    if (!contained) stats.uncontained_triangles += 1;
 
     // The prism contract of ray_prism.h: neither cap may face against the face normal.
     const gpu::Prism pr = triangle_prism(mapping, t, off);
     const glm::dvec3 nb = glm::cross(glm::dvec3(pr.v[1] - pr.v[0]), glm::dvec3(pr.v[2] - pr.v[0]));
     const glm::dvec3 nt = glm::cross(glm::dvec3(pr.v[4] - pr.v[3]), glm::dvec3(pr.v[5] - pr.v[3]));
-    if (!(glm::dot(nb, face) > 0.0) || !(glm::dot(nt, face) > 0.0)) out.stats.inverted_caps += 1;
-    out.offsets[t] = off;
+    if (!(glm::dot(nb, face) > 0.0) || !(glm::dot(nt, face) > 0.0)) stats.inverted_caps += 1;
+    offsets[t] = off;
+  }
+} catch (...) {
+  totals.error = std::current_exception();
+}
+
+}  // namespace
+
+ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vector<tiles::MoleculeType>& types,
+                                  int threads) {
+  std::vector<double> radius(types.size());
+  for (std::size_t i = 0; i < types.size(); ++i) radius[i] = molecule_origin_radius(types[i]);
+
+  ShellResult out;
+  const std::size_t n = mapping.triangle_count();
+  out.offsets.assign(n, gpu::ShellOffsets{0.f, 0.f, 0.f});
+  const std::size_t blocks =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), 1, std::max<std::size_t>(n, 1));
+  std::vector<BlockTotals> totals(blocks);
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t b = 1; b < blocks; ++b)
+      pool.emplace_back(
+          [&, b] { shell_block(mapping, radius, n * b / blocks, n * (b + 1) / blocks, out.offsets, totals[b]); });
+    shell_block(mapping, radius, 0, n / blocks, out.offsets, totals[0]);
+  }
+  out.owned_by_type.assign(types.size(), 0);
+  for (const BlockTotals& block : totals) {
+    if (block.error) std::rethrow_exception(block.error);
+    merge(out.stats, block.stats);
+    for (std::size_t i = 0; i < types.size(); ++i) out.owned_by_type[i] += block.owned_by_type[i];
   }
   out.fixed = fixed_offsets(out.offsets);
   return out;

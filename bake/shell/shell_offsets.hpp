@@ -35,6 +35,9 @@ struct ShellResult {
   std::vector<gpu::ShellOffsets> offsets;  // per triangle; zero for triangles owning nothing
   gpu::ShellOffsets fixed{0.f, 0.f, 0.f};  // fixed_offsets(offsets)
   ShellStats stats;
+  // Per molecule type (index into `types`): owned molecules summed over triangles, so a caller
+  // counting copies need not enumerate the membrane a second time.
+  std::vector<std::size_t> owned_by_type;
 };
 
 // Fixed-height alternative: componentwise maximum over triangles (the runtime can derive it from
@@ -56,7 +59,12 @@ gpu::Prism triangle_prism(const MembraneMapping& mapping, std::size_t t, const g
 // meets no face, so it lies wholly inside or outside the prism, decided once per triangle by
 // prism_intersect parity from one molecule's centre (3 directions agree). A failing triangle grows
 // the offending offset(s) by the deficit / c_min and retries (at most 64 times).
-// Throws InputError("shell", ...) when an instance's type is not in `types`.
-ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vector<tiles::MoleculeType>& types);
+// Throws InputError("shell", ...) when an instance's type is not in `types` (with several threads:
+// the error of the lowest such triangle, as with one).
+// threads ≥ 1 splits the triangles into contiguous blocks run on std::threads; every triangle is
+// computed alone and the statistics are order-free sums, minima and maxima, so the result does not
+// depend on `threads`.
+ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vector<tiles::MoleculeType>& types,
+                                  int threads = 1);
 
 }  // namespace nano::shell

@@ -5,8 +5,10 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "common/singular_value.hpp"
 #include "format/checked_math.hpp"
 #include "shared/ownership.h"
+#include "shared/seam.h"
 #include "shared/tile_mapper.h"
 
 namespace nano::oracle {
@@ -39,19 +41,6 @@ struct Aabb {
   }
 };
 
-// Largest singular value of L (sqrt of the largest eigenvalue of LᵀL, Smith's closed form): how
-// much the instance stretches a bounding sphere's radius.
-double largest_stretch(const dmat3& l) {
-  const dmat3 m = glm::transpose(l) * l;
-  const double p1 = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
-  if (p1 == 0) return std::sqrt(std::max({m[0][0], m[1][1], m[2][2]}));
-  const double q = (m[0][0] + m[1][1] + m[2][2]) / 3;
-  const double p2 = (m[0][0] - q) * (m[0][0] - q) + (m[1][1] - q) * (m[1][1] - q) + (m[2][2] - q) * (m[2][2] - q) + 2 * p1;
-  const double p = std::sqrt(p2 / 6);
-  const double r = std::clamp(glm::determinant((m - q * dmat3(1.0)) / p) / 2, -1.0, 1.0);
-  return std::sqrt(q + 2 * p * std::cos(std::acos(r) / 3));
-}
-
 }  // namespace
 
 bool WorldBox::meets_sphere(const dvec3& centre, double radius) const {
@@ -69,6 +58,7 @@ struct CompartmentPlan {
   std::uint32_t square_instances = 0, cube_instances = 0;  // I₂, I₃: the largest tile / cube
   std::uint64_t membrane_span = 0, core_span = 0;          // copy numbers of one instance
   double membrane_reach = 0;  // |z| + molecule radius, over every square's molecules
+  float seam_max_radius = 0;  // r_max of shared/seam.h: largest aabb_min.w over the squares' molecules
   Aabb cube_reach;            // cube-space bounds of every cube's molecule spheres
   Aabb bound;                 // compartment space: everything any copy can reach
   double tolerance = 0;       // slack for float rounding of the placement, Å
@@ -95,6 +85,7 @@ struct ExplicitScene::Impl {
   std::span<const glm::vec4> positions, normals;
   std::span<const glm::vec2> uvs;
   std::span<const gpu::Triangle> triangles;
+  std::span<const gpu::TriangleShell> shells;
   std::span<const gpu::Compartment> compartments;
   std::span<const std::uint8_t> occupancy;
   std::span<const gpu::CompartmentInstance> compartment_instances;
@@ -121,6 +112,7 @@ struct ExplicitScene::Impl {
         normals(p.records<SectionKind::vertex_normals>()),
         uvs(p.records<SectionKind::vertex_uvs>()),
         triangles(p.records<SectionKind::triangles>()),
+        shells(p.records<SectionKind::triangle_shells>()),
         compartments(p.records<SectionKind::compartments>()),
         occupancy(p.records<SectionKind::occupancy>()),
         compartment_instances(p.records<SectionKind::compartment_instances>()),
@@ -165,10 +157,13 @@ struct ExplicitScene::Impl {
         if (tile.size.x != S || tile.size.y != S)
           fail(where, "Wang square " + str(t) + " is not " + std::to_string(S) + " Å wide like the compartment (scales.y)");
         plan.square_instances = std::max(plan.square_instances, tile.instance_count);
-        for (std::uint32_t m = tile.first_instance; m < tile.first_instance + tile.instance_count; ++m)
+        for (std::uint32_t m = tile.first_instance; m < tile.first_instance + tile.instance_count; ++m) {
           plan.membrane_reach = std::max(plan.membrane_reach,
                                          std::abs(double(instances[m].position.z)) + type_radius[instances[m].molecule_type]);
+          plan.seam_max_radius = std::max(plan.seam_max_radius, molecules[instances[m].molecule_type].aabb_min.w);
+        }
       }
+
       check_chart(ci, plan);
       Aabb mesh_box;
       for (std::uint32_t v = 0; v < mesh.vertex_count; ++v) mesh_box.add(dvec3(vertex(mesh.first_vertex, v)));
@@ -260,7 +255,7 @@ struct ExplicitScene::Impl {
     const double det = glm::determinant(ip.linear);
     if (!(std::abs(det) > 1e-12)) fail("compartment_instances[" + str(i) + "]", "transform is singular");
     ip.inverse = glm::inverse(ip.linear);
-    ip.stretch = largest_stretch(ip.linear);
+    ip.stretch = largest_singular_value(ip.linear);
     ip.base = number_limit;
     const CompartmentPlan& plan = plans[ci.compartment];
     const auto end = format::checked_add(number_limit, plan.membrane_span);
@@ -319,6 +314,11 @@ struct ExplicitScene::Impl {
       const vec2 uv_min = glm::min(t0, glm::min(t1, t2)), uv_max = glm::max(t0, glm::max(t1, t2));
       const ivec2 origin = gpu::replication_origin(uv_min, plan.s);
       const ivec2 extent = gpu::replication_extent(uv_min, uv_max, plan.s);
+      // The seam rule (shared/seam.h, docs/placement.md step 4): this triangle's yielding seam edges.
+      // A package without triangle_shells (the section is optional; the validator makes it parallel
+      // to triangles when present) has no seam bits.
+      const std::uint32_t seam_edges = shells.empty() ? 0u : shells[t].seam_edges;
+      const vec3 p0 = vertex(f, tri.v0), p1 = vertex(f, tri.v1), p2 = vertex(f, tri.v2);
       emit.copy.id.kind = CopyKind::membrane;
       emit.copy.id.element = t;
       for (int sy = 0; sy < extent.y; ++sy)
@@ -334,6 +334,9 @@ struct ExplicitScene::Impl {
             const gpu::Affine3 placement =
                 gpu::chart_membrane_molecule(chart, g, plan.s_over_S, vec3(inst.position), inst.rotation, uv_m);
             if (!gpu::own_triangle_owns(t0, t1, t2, uv_m)) continue;
+            if (gpu::seam_drops(seam_edges, p0, p1, p2, placement.translation, molecules[inst.molecule_type].aabb_min.w,
+                                plan.seam_max_radius))
+              continue;
             emit.copy.id.instance = m;
             emit.copy.number = emit.ip.base + (std::uint64_t{tl} * plan.membrane_slots + slot) * plan.square_instances + m;
             emit(placement, inst.molecule_type);

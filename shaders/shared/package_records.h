@@ -119,7 +119,9 @@ struct TriangleShell {
   float h_plus;       // shell extent above the surface along vertex normals (Å, >= 0)
   float h_minus;      // extent below (Å, >= 0)
   float side_offset;  // outward offset of the side walls (Å, >= 0)
-  uint reserved0;
+  uint seam_edges;    // UV-seam rule (shared/seam.h): bit k (0-2) edge k (corners k, k+1 mod 3) is a
+                      // seam this triangle yields on; bit 3+k corner k touches a seam its chart
+                      // yields on. Molecules near them are dropped. Only bits 0-5
 };
 
 // Section "compartments": a mesh with its membrane shell and its soluble core grid.
@@ -127,7 +129,9 @@ struct Compartment {
   vec4 grid_min;   // xyz: core-grid AABB minimum (mesh space); w: box edge length (Å)
   uvec4 grid_dims; // xyz: boxes per axis; w: first byte of this grid in section "occupancy"
   vec4 scales;     // x: UV scale k (Å of surface per UV unit); y: Wang square size (Å);
-                   // z: Wang cube size (Å); w: reserved
+                   // z: Wang cube size (Å); w: largest bounding radius (MoleculeType.aabb_min.w)
+                   // over the membrane tile set's molecule types, the seam margin of shared/seam.h
+                   // (0: not stored, a reader computes it from the set)
   uint mesh;               // index into "meshes"
   uint membrane_first_tile;  // tile set: range in "tiles2d"
   uint membrane_tile_count;
@@ -214,7 +218,7 @@ NANO_PIN(Triangle, 12)
 NANO_AT(Triangle, v0, 0) NANO_AT(Triangle, v1, 4) NANO_AT(Triangle, v2, 8)
 NANO_PIN(TriangleShell, 32)
 NANO_AT(TriangleShell, uv_min_max, 0) NANO_AT(TriangleShell, h_plus, 16) NANO_AT(TriangleShell, h_minus, 20)
-NANO_AT(TriangleShell, side_offset, 24) NANO_AT(TriangleShell, reserved0, 28)
+NANO_AT(TriangleShell, side_offset, 24) NANO_AT(TriangleShell, seam_edges, 28)
 NANO_PIN(Compartment, 112)
 NANO_AT(Compartment, grid_min, 0) NANO_AT(Compartment, grid_dims, 16) NANO_AT(Compartment, scales, 32)
 NANO_AT(Compartment, mesh, 48) NANO_AT(Compartment, membrane_first_tile, 52)

@@ -14,7 +14,7 @@ foreach(expect
     "recipes.reserved1: offset 28,[^\n]*topLevelArrayStride 32"
     "meshes.triangle_count: offset 44,[^\n]*topLevelArrayStride 48"
     "triangles.v2: offset 8,[^\n]*topLevelArrayStride 12"
-    "shells.reserved0: offset 28,[^\n]*topLevelArrayStride 32"
+    "shells.seam_edges: offset 28,[^\n]*topLevelArrayStride 32"
     "compartments.reserved0: offset 92,[^\n]*topLevelArrayStride 112"
     "compartments.core_masks: offset 96,[^\n]*topLevelArrayStride 112"
     "scene.reserved2: offset 60,[^\n]*topLevelArrayStride 64"

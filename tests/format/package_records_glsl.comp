@@ -23,6 +23,6 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   sink[i] = molecules[i].reserved1 + floatBitsToUint(atoms[i].centre_radius.w) + tiles2d[i].reserved1 +
             tiles3d[i].reserved1 + instances[i].reserved2 + recipes[i].reserved1 + meshes[i].triangle_count +
-            triangles[i].v2 + shells[i].reserved0 + compartments[i].reserved0 + compartments[i].core_masks.w +
+            triangles[i].v2 + shells[i].seam_edges + compartments[i].reserved0 + compartments[i].core_masks.w +
             scene[i].reserved2 + compartment_instances[i].reserved2 + boundary_boxes[i].first_word + NANO_NO_INDEX;
 }

@@ -37,7 +37,7 @@ auto fields(const gpu::Mesh& m) {
   return std::tie(m.aabb_min, m.aabb_max, m.first_vertex, m.vertex_count, m.first_triangle, m.triangle_count);
 }
 auto fields(const gpu::Triangle& t) { return std::tie(t.v0, t.v1, t.v2); }
-auto fields(const gpu::TriangleShell& s) { return std::tie(s.uv_min_max, s.h_plus, s.h_minus, s.side_offset, s.reserved0); }
+auto fields(const gpu::TriangleShell& s) { return std::tie(s.uv_min_max, s.h_plus, s.h_minus, s.side_offset, s.seam_edges); }
 auto fields(const gpu::Compartment& c) {
   return std::tie(c.grid_min, c.grid_dims, c.scales, c.mesh, c.membrane_first_tile, c.membrane_tile_count,
                   c.membrane_recipe, c.soluble_first_tile, c.soluble_tile_count, c.soluble_recipe, c.replication_width,

@@ -91,6 +91,21 @@ const Case kCases[] = {
      SectionKind::triangle_shells, 2 * 32},
     {"negative shell", [](SampleScene& s) { s.triangle_shells[0].h_minus = -1; }, Rule::bad_value,
      SectionKind::triangle_shells, 16},
+    {"seam bit beyond 5", [](SampleScene& s) { s.triangle_shells[1].seam_edges = 64; }, Rule::bad_value,
+     SectionKind::triangle_shells, 32 + 28},
+    {"high seam bit", [](SampleScene& s) { s.triangle_shells[3].seam_edges = 0x80000007u; }, Rule::bad_value,
+     SectionKind::triangle_shells, 3 * 32 + 28},
+    {"negative seam radius", [](SampleScene& s) { s.compartments[0].scales.w = -1; }, Rule::bad_value,
+     SectionKind::compartments, 44},
+    // The set's instances are of types 0 (radius 2.5) and 1 (1.8): the largest is 2.5.
+    {"seam radius not the set's largest", [](SampleScene& s) { s.compartments[0].scales.w = 1.8f; }, Rule::bad_value,
+     SectionKind::compartments, 44},
+    {"seam radius without a membrane",
+     [](SampleScene& s) {
+       s.compartments[0].membrane_recipe = gpu::NANO_NO_INDEX;
+       s.compartments[0].scales.w = 2.5f;
+     },
+     Rule::bad_value, SectionKind::compartments, 44},
     {"compartment mesh index", [](SampleScene& s) { s.compartments[0].mesh = 1; }, Rule::index_out_of_range,
      SectionKind::compartments, 48},
     {"compartment recipe index", [](SampleScene& s) { s.compartments[0].soluble_recipe = 2; }, Rule::index_out_of_range,
@@ -219,6 +234,16 @@ TEST(SemanticOptional, NoMembraneAndNoCoreGrid) {
   s.compartments[0].soluble_recipe = gpu::NANO_NO_INDEX;
   s.compartments[0].grid_dims = glm::uvec4(0);
   s.compartments[0].core_masks = glm::uvec4(0);
+  EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
+}
+
+// The valid counterparts of the seam cases: all six bits (edges 0-2, corners 3-5), and the seam
+// radius either unset (0) or exactly the tile set's largest bounding radius.
+TEST(SemanticSeams, SixBitsAndTheSetsLargestRadiusAreValid) {
+  SampleScene s = make_sample_scene();
+  for (auto& shell : s.triangle_shells) shell.seam_edges = 63;
+  EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
+  s.compartments[0].scales.w = 2.5f;
   EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
 }
 

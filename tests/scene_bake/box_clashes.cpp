@@ -1,41 +1,112 @@
-// box_clashes PKG xmin ymin zmin xmax ymax zmax [min_copies]: every atom that virtual instancing
-// places in the box, instantiated explicitly, must keep 0.6 × (r1 + r2) from every atom of another
-// copy. Exit 0 when clash-free and at least `min_copies` copies were found (so an empty box cannot
-// pass), 1 otherwise.
+// Explicit instancing of one box of a package must be clash-free: every atom virtual instancing
+// places there keeps 0.6 × (r1 + r2) from every atom of another copy.
+//   box_clashes PKG box XMIN YMIN ZMIN XMAX YMAX ZMAX MIN_COPIES
+//   box_clashes PKG membrane INSTANCE HALF_SIZE MIN_COPIES   box around the instance's first mesh vertex
+//   box_clashes PKG core INSTANCE HALF_SIZE MIN_COPIES       box around the instance's middle INSIDE core box
+//                                                           (or the most central BOUNDARY box)
+// Exit 0 when clash-free and at least MIN_COPIES copies were found (an empty box cannot pass).
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "format/validator.hpp"
 #include "runtime/explicit/clash_check.hpp"
 #include "runtime/explicit/explicit_scene.hpp"
 
+namespace {
+
+using nano::format::SectionKind;
+
+glm::dvec3 to_world(const nano::gpu::CompartmentInstance& instance, const glm::dvec3& p) {
+  glm::dvec3 w;
+  for (int row = 0; row < 3; ++row)
+    w[row] = glm::dot(glm::dvec3(instance.transform[row]), p) + double(instance.transform[row].w);
+  return w;
+}
+
+// A compartment-space point of the instance's membrane or core, chosen from the package itself.
+glm::dvec3 sample_point(const nano::format::Package& package, const nano::gpu::CompartmentInstance& instance,
+                        const std::string& where) {
+  const auto& compartment = package.records<SectionKind::compartments>()[instance.compartment];
+  if (where == "membrane") {
+    const auto& mesh = package.records<SectionKind::meshes>()[compartment.mesh];
+    return glm::dvec3(glm::vec3(package.records<SectionKind::vertex_positions>()[mesh.first_vertex]));
+  }
+  const glm::uvec3 dims(compartment.grid_dims);
+  const auto occupancy = package.records<SectionKind::occupancy>().subspan(compartment.grid_dims.w);
+  // The middle INSIDE box; a small compartment may have none, then the BOUNDARY box nearest the
+  // grid's centre (its molecules are kept by mask).
+  std::vector<std::uint64_t> inside;
+  std::uint64_t nearest = 0;
+  double nearest_d2 = 1e300;
+  const glm::dvec3 middle = (glm::dvec3(dims) - 1.0) * 0.5;
+  const auto ijk_of = [&](std::uint64_t i) {
+    return glm::dvec3(i % dims.x, (i / dims.x) % dims.y, i / (std::uint64_t(dims.x) * dims.y));
+  };
+  for (std::uint64_t i = 0; i < std::uint64_t(dims.x) * dims.y * dims.z; ++i) {
+    if (occupancy[i] == nano::gpu::NANO_BOX_INSIDE) inside.push_back(i);
+    if (occupancy[i] == nano::gpu::NANO_BOX_BOUNDARY) {
+      const glm::dvec3 d = ijk_of(i) - middle;
+      if (glm::dot(d, d) < nearest_d2) {
+        nearest_d2 = glm::dot(d, d);
+        nearest = i;
+      }
+    }
+  }
+  if (inside.empty() && nearest_d2 == 1e300) throw std::runtime_error("compartment has no core box that holds molecules");
+  const glm::dvec3 ijk = ijk_of(inside.empty() ? nearest : inside[inside.size() / 2]);
+  return glm::dvec3(glm::vec3(compartment.grid_min)) + (ijk + 0.5) * double(compartment.grid_min.w);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  if (argc < 8) {
-    std::fprintf(stderr, "usage: box_clashes PKG xmin ymin zmin xmax ymax zmax [min_copies]\n");
+  const std::string mode = argc > 2 ? argv[2] : "";
+  if (!((mode == "box" && argc == 10) || ((mode == "membrane" || mode == "core") && argc == 6))) {
+    std::fprintf(stderr, "usage: box_clashes PKG box XMIN YMIN ZMIN XMAX YMAX ZMAX MIN_COPIES\n"
+                         "       box_clashes PKG membrane|core INSTANCE HALF_SIZE MIN_COPIES\n");
     return 2;
   }
   const nano::format::Package package = nano::format::open_validated(argv[1]);
   const nano::oracle::ExplicitScene scene(package);
   nano::oracle::WorldBox box;
-  box.min = {std::atof(argv[2]), std::atof(argv[3]), std::atof(argv[4])};
-  box.max = {std::atof(argv[5]), std::atof(argv[6]), std::atof(argv[7])};
-  const std::size_t min_copies = argc > 8 ? std::strtoull(argv[8], nullptr, 10) : 1;
+  if (mode == "box") {
+    box.min = {std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5])};
+    box.max = {std::atof(argv[6]), std::atof(argv[7]), std::atof(argv[8])};
+  } else {
+    const auto instance = package.records<SectionKind::compartment_instances>()[std::strtoul(argv[3], nullptr, 10)];
+    const glm::dvec3 centre = to_world(instance, sample_point(package, instance, mode));
+    const double half = std::atof(argv[4]);
+    box.min = centre - half;
+    box.max = centre + half;
+  }
+  const std::size_t min_copies = std::strtoull(argv[argc - 1], nullptr, 10);
 
   std::vector<nano::oracle::ClashAtom> atoms;
   std::set<std::uint64_t> copies;
+  std::map<std::uint64_t, std::string> names;  // for the clash report: which copies, where
   scene.for_each_atom(box, [&](const nano::oracle::AtomSample& a) {
     atoms.push_back({a.copy->number, a.position, a.radius});
-    copies.insert(a.copy->number);
+    if (copies.insert(a.copy->number).second) {
+      const nano::oracle::CopyId& id = a.copy->id;
+      char text[160];
+      std::snprintf(text, sizeof text, "%s %u cell (%d %d %d) #%u type %u",
+                    id.kind == nano::oracle::CopyKind::membrane ? "triangle" : "box", id.element, id.cell.x,
+                    id.cell.y, id.cell.z, id.instance, a.copy->molecule_type);
+      names[a.copy->number] = text;
+    }
   });
   const nano::oracle::ClashReport report = nano::oracle::find_clashes(atoms);
-  std::printf("%s: %zu copies, %zu atoms, %llu clashing pairs\n", argv[1], copies.size(), atoms.size(),
+  std::printf("%s [%.0f %.0f %.0f]-[%.0f %.0f %.0f]: %zu copies, %zu atoms, %llu clashing pairs\n", argv[1], box.min.x,
+              box.min.y, box.min.z, box.max.x, box.max.y, box.max.z, copies.size(), atoms.size(),
               static_cast<unsigned long long>(report.count));
   for (std::size_t i = 0; i < report.pairs.size() && i < 10; ++i) {
     const auto& c = report.pairs[i];
-    std::printf("  copies %llu and %llu: %.3f Å < %.3f Å\n", static_cast<unsigned long long>(atoms[c.a].copy),
-                static_cast<unsigned long long>(atoms[c.b].copy), c.distance, c.limit);
+    std::printf("  [%s] and [%s]: %.3f Å < %.3f Å\n", names[atoms[c.a].copy].c_str(), names[atoms[c.b].copy].c_str(),
+                c.distance, c.limit);
   }
   return report.count == 0 && copies.size() >= min_copies ? 0 : 1;
 }

@@ -110,6 +110,35 @@ TEST(ShellOffsets, FixedIsTheMaximum) {
 TEST(ShellOffsets, UnknownMoleculeTypeIsAnInputError) {
   const auto sc = sphere_scene();
   EXPECT_THROW(nano::shell::compute_shell_offsets(*sc->mapping, {sc->types[0]}), nano::InputError);
+  EXPECT_THROW(nano::shell::compute_shell_offsets(*sc->mapping, {sc->types[0]}, 3), nano::InputError);
+}
+
+// Three blocks give bit-identical offsets and statistics to one, and the per-type counts are those
+// of the enumerator (the membrane bake takes its copy counts from them).
+TEST(ShellOffsets, ThreadCountDoesNotChangeTheResult) {
+  const auto sc = rbc_scene();
+  const auto one = nano::shell::compute_shell_offsets(*sc->mapping, sc->types, 1);
+  const auto three = nano::shell::compute_shell_offsets(*sc->mapping, sc->types, 3);
+  ASSERT_EQ(one.offsets.size(), three.offsets.size());
+  for (size_t t = 0; t < one.offsets.size(); ++t) {
+    EXPECT_EQ(one.offsets[t].h_plus, three.offsets[t].h_plus) << "triangle " << t;
+    EXPECT_EQ(one.offsets[t].h_minus, three.offsets[t].h_minus) << "triangle " << t;
+    EXPECT_EQ(one.offsets[t].side, three.offsets[t].side) << "triangle " << t;
+  }
+  EXPECT_EQ(one.fixed.h_plus, three.fixed.h_plus);
+  EXPECT_EQ(one.fixed.side, three.fixed.side);
+  EXPECT_EQ(one.stats.owned_molecules, three.stats.owned_molecules);
+  EXPECT_EQ(one.stats.triangles_with_molecules, three.stats.triangles_with_molecules);
+  EXPECT_EQ(one.stats.grown_triangles, three.stats.grown_triangles);
+  EXPECT_EQ(one.stats.max_grow_iterations, three.stats.max_grow_iterations);
+  EXPECT_EQ(one.stats.min_vertex_normal_cos, three.stats.min_vertex_normal_cos);
+
+  std::vector<size_t> enumerated(sc->types.size(), 0);
+  for (size_t t = 0; t < sc->mapping->triangle_count(); ++t)
+    sc->mapping->for_each_owned_membrane_molecule(t, [&](const OwnedMolecule& m) { ++enumerated[m.type]; });
+  EXPECT_EQ(one.owned_by_type, enumerated);
+  EXPECT_EQ(three.owned_by_type, enumerated);
+  EXPECT_GT(one.stats.triangles_with_molecules, 0u);
 }
 
 TEST(ShellOffsets, FaceParallelTriangleGetsTheMoleculeReachAndEmptyTrianglesStayFlat) {
@@ -125,7 +154,7 @@ TEST(ShellOffsets, FaceParallelTriangleGetsTheMoleculeReachAndEmptyTrianglesStay
   recipe.size = {1, 1, 1};
   recipe.cells = {0};
   const std::vector<nano::tiles::MoleculeType> types = {
-      {"a", {{{0.f, 0.f, 0.f}, 2.f}}, 0.f, {0, 0, 1}}, {"b", {{{0.f, 0.f, 1.f}, 2.f}}, 0.f, {0, 0, 1}}};
+      {"a", {{{0.f, 0.f, 0.f}, 2.f}}, 2.f, {0, 0, 1}}, {"b", {{{0.f, 0.f, 1.f}, 2.f}}, 3.f, {0, 0, 1}}};
   nano::mesh::ProxyMesh m;
   // Triangle 0 (UV 0..0.2 with s = 0.1) owns molecules; triangle 1 lies inside cell (5, 5) between them.
   m.positions = {{0, 0, 0}, {400, 0, 0}, {0, 400, 0}, {1000, 1000, 0}, {1010, 1000, 0}, {1000, 1010, 0}};
@@ -134,7 +163,7 @@ TEST(ShellOffsets, FaceParallelTriangleGetsTheMoleculeReachAndEmptyTrianglesStay
   m.uv_triangles = {{0, 1, 2}, {3, 4, 5}};
   m.normals = {{0, 0, 1}};
   m.normal_triangles = {{0, 0, 0}, {0, 0, 0}};
-  const nano::shell::MembraneMapping map(m, set, recipe, 2000.0);
+  const nano::shell::MembraneMapping map(m, set, recipe, 2000.0, types);
   const auto r = nano::shell::compute_shell_offsets(map, types);
   EXPECT_EQ(r.stats.triangles_with_molecules, 1u);
   EXPECT_GE(r.offsets[0].h_plus, 5.0 + 3.0);

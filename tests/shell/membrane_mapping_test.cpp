@@ -42,6 +42,9 @@ nano::mesh::ProxyMesh one_triangle(dvec2 t0, dvec2 t1, dvec2 t2) {
 struct HandTiles {
   nano::tiles::WangSet set;
   nano::tiles::TilingRecipe recipe;
+  // One atom of radius 2 Å each: at the origin (radius 2) and 3 Å up (radius 5).
+  std::vector<nano::tiles::MoleculeType> types = {{"a", {{{0.f, 0.f, 0.f}, 2.f}}, 2.f, {0, 0, 1}},
+                                                  {"b", {{{0.f, 0.f, 3.f}, 2.f}}, 5.f, {0, 0, 1}}};
   HandTiles() {
     set.dims = 2;
     set.edge = 200.f;
@@ -78,7 +81,7 @@ TEST(UvSnap, MultiplesOfTheOwnershipGridWithinHalfAStep) {
 TEST(MembraneMapping, StoresSnappedMeshUvs) {
   HandTiles h;
   const auto mesh = one_triangle({0.1234567891, 0.13}, {0.47, 0.1300000001}, {0.12, 0.39});
-  const MembraneMapping map(mesh, h.set, h.recipe, 2000.0);
+  const MembraneMapping map(mesh, h.set, h.recipe, 2000.0, h.types);
   ASSERT_EQ(map.snapped_uvs().size(), 3u);
   for (int i = 0; i < 3; ++i) {
     EXPECT_TRUE(on_grid(map.snapped_uvs()[i].x) && on_grid(map.snapped_uvs()[i].y));
@@ -94,7 +97,7 @@ TEST_P(ReplicationArea, CoversKnownTilesAndYieldsExactlyTheOwnedMolecules) {
   const dvec2 off = GetParam();
   const dvec2 t0 = dvec2(0.12, 0.13) + off, t1 = dvec2(0.47, 0.13) + off, t2 = dvec2(0.12, 0.39) + off;
   // k = 2000 Å/UV → s = 0.1: the UV box [0.12, 0.47] × [0.13, 0.39] touches cells 1..4 × 1..3.
-  const MembraneMapping map(one_triangle(t0, t1, t2), h.set, h.recipe, 2000.0);
+  const MembraneMapping map(one_triangle(t0, t1, t2), h.set, h.recipe, 2000.0, h.types);
   ASSERT_FLOAT_EQ(map.tile_uv_size(), 0.1f);
   const glm::ivec2 shift(int(std::lround(off.x * 10)), int(std::lround(off.y * 10)));
   EXPECT_EQ(map.triangle(0).origin, glm::ivec2(1, 1) + shift);
@@ -140,7 +143,7 @@ INSTANTIATE_TEST_SUITE_P(Offsets, ReplicationArea, ::testing::Values(dvec2(0.0, 
 
 TEST(MembraneMapping, TileAtWrapsNegativeCells) {
   HandTiles h;
-  const MembraneMapping map(one_triangle({0.1, 0.1}, {0.3, 0.1}, {0.1, 0.3}), h.set, h.recipe, 2000.0);
+  const MembraneMapping map(one_triangle({0.1, 0.1}, {0.3, 0.1}, {0.1, 0.3}), h.set, h.recipe, 2000.0, h.types);
   EXPECT_EQ(map.tile_at({0, 0}), 0u);
   EXPECT_EQ(map.tile_at({2, 1}), 5u);
   EXPECT_EQ(map.tile_at({3, 2}), 0u);
@@ -152,7 +155,7 @@ TEST(MembraneMapping, TileAtWrapsNegativeCells) {
 TEST(MembraneMapping, DegenerateUvTriangleOwnsNothingAndAddsNoArea) {
   HandTiles h;
   auto mesh = one_triangle({0.1, 0.1}, {0.3, 0.1}, {0.5, 0.1});  // collinear UVs
-  const MembraneMapping map(mesh, h.set, h.recipe, 2000.0);
+  const MembraneMapping map(mesh, h.set, h.recipe, 2000.0, h.types);
   EXPECT_FALSE(map.triangle(0).valid);
   EXPECT_EQ(map.replication_area(), glm::ivec2(0, 0));
   int n = 0;
@@ -165,23 +168,32 @@ TEST(MembraneMapping, RejectsBadInput) {
   const auto good = one_triangle({0.1, 0.1}, {0.3, 0.1}, {0.1, 0.3});
   auto no_uv = good;
   no_uv.uv_triangles.clear();
-  EXPECT_THROW(MembraneMapping(no_uv, h.set, h.recipe, 2000.0), nano::InputError);
+  EXPECT_THROW(MembraneMapping(no_uv, h.set, h.recipe, 2000.0, h.types), nano::InputError);
   auto no_normals = good;
   no_normals.normal_triangles.clear();
-  EXPECT_THROW(MembraneMapping(no_normals, h.set, h.recipe, 2000.0), nano::InputError);
+  EXPECT_THROW(MembraneMapping(no_normals, h.set, h.recipe, 2000.0, h.types), nano::InputError);
   auto far = good;
   far.uvs[1] = {16.0, 0.1};
-  EXPECT_THROW(MembraneMapping(far, h.set, h.recipe, 2000.0), nano::InputError);
+  EXPECT_THROW(MembraneMapping(far, h.set, h.recipe, 2000.0, h.types), nano::InputError);
   auto nan = good;
   nan.uvs[2].y = NAN;
-  EXPECT_THROW(MembraneMapping(nan, h.set, h.recipe, 2000.0), nano::InputError);
-  EXPECT_THROW(MembraneMapping(good, h.set, h.recipe, 0.0), nano::InputError);
-  EXPECT_THROW(MembraneMapping(good, h.set, h.recipe, INFINITY), nano::InputError);
+  EXPECT_THROW(MembraneMapping(nan, h.set, h.recipe, 2000.0, h.types), nano::InputError);
+  EXPECT_THROW(MembraneMapping(good, h.set, h.recipe, 0.0, h.types), nano::InputError);
+  EXPECT_THROW(MembraneMapping(good, h.set, h.recipe, INFINITY, h.types), nano::InputError);
   auto bad_recipe = h.recipe;
   bad_recipe.cells[4] = 6;
-  EXPECT_THROW(MembraneMapping(good, h.set, bad_recipe, 2000.0), nano::InputError);
+  EXPECT_THROW(MembraneMapping(good, h.set, bad_recipe, 2000.0, h.types), nano::InputError);
   auto cubes = h.set;
   cubes.dims = 3;
-  EXPECT_THROW(MembraneMapping(good, cubes, h.recipe, 2000.0), nano::InputError);
-  EXPECT_NO_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0));
+  EXPECT_THROW(MembraneMapping(good, cubes, h.recipe, 2000.0, h.types), nano::InputError);
+  // The seam rule's radii: every type the set uses must be given, with a radius covering its atoms.
+  EXPECT_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, {h.types[0]}), nano::InputError);
+  auto small = h.types;
+  small[1].bounding_radius = 4.9f;  // the atom at z = 3 with radius 2 reaches 5 Å
+  EXPECT_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, small), nano::InputError);
+  auto unused = h.types;
+  unused.push_back({"unused", {{{0.f, 0.f, 9.f}, 1.f}}, 0.f, {0, 0, 1}});  // not in the set: not checked
+  EXPECT_NO_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, unused));
+  EXPECT_NO_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, h.types));
+  EXPECT_EQ(MembraneMapping(good, h.set, h.recipe, 2000.0, unused).seam_max_radius(), 5.f);
 }

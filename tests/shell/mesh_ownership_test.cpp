@@ -62,7 +62,7 @@ void check_ownership(const Scene& sc, const char* name) {
       ASSERT_TRUE(owners.count(key));
       owners[key] += 1;
       owner_triangle[key] = t;
-    });
+    }, nano::shell::SeamRule::ignore);  // the partition itself; seam_rule_test checks the drops
   }
 
   // Triangles bucketed by UV box for the brute force.

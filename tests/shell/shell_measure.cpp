@@ -45,7 +45,7 @@ void measure(const char* name, const mesh::ProxyMesh& mesh, const tiles::Membran
   const double k = mesh::uv_scale(mesh);
   const tiles::TilingRecipe recipe = tiles::make_tiling_recipe(set.colouring, {64, 64, 1}, 3, true);
   t0 = now();
-  const shell::MembraneMapping map(mesh, set, recipe, k);
+  const shell::MembraneMapping map(mesh, set, recipe, k, req.types);
   std::printf("mapping: k %.1f Å/UV, s %.6g, W×H %d×%d, %.2f s\n", k, map.tile_uv_size(), map.replication_area().x,
               map.replication_area().y, now() - t0);
 

@@ -2,6 +2,7 @@
 // Fixtures and independent double-precision oracles of the shell tests. The oracles share no code
 // with bake/shell or the shared headers: their own barycentrics, ray/triangle and ray/bilinear-patch
 // intersection (two planes through the ray, a quadratic in u — not Reshetov's formulation).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -48,6 +49,17 @@ inline nano::tiles::MoleculeType make_offset_protein() {
   return m;
 }
 
+// Bounding radius about the origin from the atoms (double, rounded up to float), as the package's
+// MoleculeType.aabb_min.w holds it: the seam rule's radius.
+inline nano::tiles::MoleculeType with_radius(nano::tiles::MoleculeType m) {
+  double r = 0.0;
+  for (const auto& a : m.atoms) r = std::max(r, glm::length(glm::dvec3(a.centre)) + double(a.radius));
+  float f = float(r);
+  if (double(f) < r) f = std::nextafter(f, INFINITY);
+  m.bounding_radius = f;
+  return m;
+}
+
 struct Scene {
   nano::mesh::ProxyMesh mesh;
   std::vector<nano::tiles::MoleculeType> types;
@@ -72,12 +84,12 @@ inline nano::tiles::WangSet make_test_set(const std::vector<nano::tiles::Molecul
 inline std::unique_ptr<Scene> make_scene(nano::mesh::ProxyMesh mesh) {
   auto sc = std::make_unique<Scene>();
   sc->mesh = std::move(mesh);
-  sc->types = {make_stick_lipid(), make_offset_protein()};
+  sc->types = {with_radius(make_stick_lipid()), with_radius(make_offset_protein())};
   sc->set = make_test_set(sc->types);
   sc->k = nano::mesh::uv_scale(sc->mesh);
   // Deliberately much smaller than the UV range (3×2 cells), so the wrap of tile_at is exercised.
   sc->recipe = nano::tiles::make_tiling_recipe(sc->set.colouring, {3, 2, 1}, 9, true);
-  sc->mapping = std::make_unique<nano::shell::MembraneMapping>(sc->mesh, sc->set, sc->recipe, sc->k);
+  sc->mapping = std::make_unique<nano::shell::MembraneMapping>(sc->mesh, sc->set, sc->recipe, sc->k, sc->types);
   return sc;
 }
 
