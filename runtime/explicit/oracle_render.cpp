@@ -1,0 +1,426 @@
+#include "runtime/explicit/oracle_render.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <thread>
+
+#include "common/error.hpp"
+
+namespace nano::oracle {
+namespace {
+
+using format::SectionKind;
+using glm::dvec3;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Largest |centre| + radius over the atoms of any molecule type: every copy's atoms lie within
+// this (times the instance stretch) of its origin.
+double largest_type_radius(const format::Package& p) {
+  const auto atoms = p.records<SectionKind::atoms>();
+  double r = 0;
+  for (const gpu::MoleculeType& m : p.records<SectionKind::molecules>())
+    for (std::uint32_t a = m.first_atom; a < m.first_atom + m.atom_count; ++a)
+      r = std::max(r, glm::length(dvec3(atoms[a].centre_radius)) + atoms[a].centre_radius.w);
+  return r;
+}
+
+// Compartment-space box of everything compartment c can place. Generous on purpose: it only
+// decides when a ray has left the scene, and a few hundred Å too many cost one empty round.
+WorldBox compartment_reach(const format::Package& p, const gpu::Compartment& c, double type_radius) {
+  WorldBox b{dvec3(kInf), dvec3(-kInf)};
+  const auto add = [&](const dvec3& lo, const dvec3& hi) { b.min = glm::min(b.min, lo), b.max = glm::max(b.max, hi); };
+  if (c.membrane_recipe != gpu::NANO_NO_INDEX) {
+    const gpu::Mesh& mesh = p.records<SectionKind::meshes>()[c.mesh];
+    const auto positions = p.records<SectionKind::vertex_positions>();
+    const auto tiles = p.records<SectionKind::tiles2d>();
+    const auto instances = p.records<SectionKind::instances>();
+    double depth = 0;
+    for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t)
+      for (std::uint32_t m = tiles[t].first_instance; m < tiles[t].first_instance + tiles[t].instance_count; ++m)
+        depth = std::max(depth, double(std::abs(instances[m].position.z)));
+    const double grow = 2 * (depth + type_radius) + 100;
+    for (std::uint32_t v = mesh.first_vertex; v < mesh.first_vertex + mesh.vertex_count; ++v)
+      add(dvec3(positions[v]) - grow, dvec3(positions[v]) + grow);
+  }
+  if (c.soluble_recipe != gpu::NANO_NO_INDEX) {
+    const dvec3 lo(c.grid_min);
+    const dvec3 hi = lo + double(c.grid_min.w) * dvec3(glm::uvec3(c.grid_dims));
+    const double grow = type_radius + 1 + 1e-3 * std::max(glm::length(lo), glm::length(hi));
+    add(lo - grow, hi + grow);
+  }
+  return b;
+}
+
+WorldBox to_world(const gpu::CompartmentInstance& ci, const WorldBox& local) {
+  WorldBox w{dvec3(kInf), dvec3(-kInf)};
+  if (!(local.min.x <= local.max.x)) return w;
+  for (int corner = 0; corner < 8; ++corner) {
+    const dvec3 q((corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
+                  (corner & 4) ? local.max.z : local.min.z);
+    dvec3 out;
+    for (int r = 0; r < 3; ++r) out[r] = glm::dot(dvec3(ci.transform[r]), q) + double(ci.transform[r].w);
+    w.min = glm::min(w.min, out), w.max = glm::max(w.max, out);
+  }
+  return w;
+}
+
+std::vector<WorldBox> instance_bounds(const format::Package& p) {
+  const double type_radius = largest_type_radius(p);
+  const auto compartments = p.records<SectionKind::compartments>();
+  std::vector<WorldBox> boxes;
+  for (const gpu::CompartmentInstance& ci : p.records<SectionKind::compartment_instances>())
+    boxes.push_back(to_world(ci, compartment_reach(p, compartments[ci.compartment], type_radius)));
+  return boxes;
+}
+
+double distance_to_box(const dvec3& p, const WorldBox& b) {
+  if (!(b.min.x <= b.max.x)) return kInf;
+  return glm::length(p - glm::clamp(p, b.min, b.max));
+}
+
+double farthest_corner(const dvec3& p, const WorldBox& b) {
+  if (!(b.min.x <= b.max.x)) return 0;
+  return glm::length(glm::max(glm::abs(b.min - p), glm::abs(b.max - p)));
+}
+
+// Upper bound of any copy's stretch: the Frobenius norm bounds the largest singular value.
+double largest_instance_stretch(const format::Package& p) {
+  double s = 1;
+  for (const gpu::CompartmentInstance& ci : p.records<SectionKind::compartment_instances>()) {
+    double f = 0;
+    for (int r = 0; r < 3; ++r) f += glm::dot(dvec3(ci.transform[r]), dvec3(ci.transform[r]));
+    s = std::max(s, std::sqrt(f));
+  }
+  return s;
+}
+
+struct HeldAtom {
+  dvec3 centre;
+  double radius;
+  std::uint32_t atom;
+  std::uint32_t copy;  // index into the round's copies
+};
+
+struct HeldCopy {
+  CopyId id;
+  std::uint64_t number;
+};
+
+// The part of the view still to resolve: the pyramid from the eye over the ndc rectangle
+// [x0, x1] × [y0, y1] (ray directions f + x·r + y·u, as camera_ray_direction builds them).
+struct Pyramid {
+  dvec3 eye, f, r, u;
+  double x0, x1, y0, y1;
+  dvec3 normals[4];  // inward side planes through the eye
+
+  void make_planes() {
+    const auto unit = [](const dvec3& v) { return v / glm::length(v); };
+    normals[0] = unit(r - x0 * f), normals[1] = unit(x1 * f - r);
+    normals[2] = unit(u - y0 * f), normals[3] = unit(y1 * f - u);
+  }
+  // Conservative: the slack covers the float rounding of camera_ray_direction (≈ 1e-7 rad) many
+  // times over, so a ray of the rectangle is never outside.
+  bool meets_sphere(const dvec3& c, double radius, double depth_bound) const {
+    const dvec3 v = c - eye;
+    const double dist = glm::length(v);
+    const double slack = 1e-3 + 1e-6 * dist;
+    if (dist - radius > depth_bound + slack) return false;
+    for (const dvec3& n : normals)
+      if (glm::dot(n, v) < -radius - slack) return false;
+    return true;
+  }
+  // Every point eye + t·ŵ with 0 ≤ t ≤ D and w in the rectangle is eye + s·w with s = t/|w| ≤ D
+  // (|w| ≥ 1), so it lies in the pyramid over the rectangle of height D, whose box is spanned by
+  // the apex and the four far corners.
+  WorldBox box(double depth_bound) const {
+    WorldBox b{eye, eye};
+    for (double x : {x0, x1})
+      for (double y : {y0, y1}) {
+        const dvec3 p = eye + depth_bound * (f + x * r + y * u);
+        b.min = glm::min(b.min, p), b.max = glm::max(b.max, p);
+      }
+    return b;
+  }
+};
+
+struct Ray {
+  dvec3 o, d, inv;
+};
+
+// Smallest root t ≥ 0 of the ray (unit d) against the sphere, or +inf. The discriminant from the
+// perpendicular distance and the roots from q = −(β + sign β·√Δ), so grazing and distant rays
+// keep their digits (Ray Tracing Gems ch. 7), even though this runs in double.
+double sphere_hit(const Ray& ray, const dvec3& centre, double radius) {
+  const dvec3 f = ray.o - centre;
+  const double beta = glm::dot(f, ray.d);
+  const dvec3 l = f - beta * ray.d;
+  const double dist = glm::length(l);
+  if (dist > radius) return kInf;
+  const double disc = (radius - dist) * (radius + dist);
+  const double c = glm::dot(f, f) - radius * radius;
+  const double q = -(beta + (beta >= 0 ? std::sqrt(disc) : -std::sqrt(disc)));
+  double t0 = -beta, t1 = -beta;
+  if (q != 0) t0 = c / q, t1 = q;
+  if (t0 > t1) std::swap(t0, t1);
+  if (t0 >= 0) return t0;
+  return t1 >= 0 ? t1 : kInf;
+}
+
+// A median-split BVH over atom spheres: enough for ≤ 3e7 spheres and a few hundred thousand rays.
+class AtomBvh {
+public:
+  explicit AtomBvh(std::vector<HeldAtom>& atoms) : atoms_(atoms) {
+    if (atoms_.empty()) return;
+    nodes_.reserve(2 * atoms_.size() / kLeaf + 1);
+    build(0, std::uint32_t(atoms_.size()));
+  }
+
+  // Nearest hit with t ≤ t_max: index into atoms and t, or (−1, +inf).
+  std::pair<std::int64_t, double> trace(const Ray& ray, double t_max, const std::vector<HeldCopy>& copies) const {
+    std::int64_t best = -1;
+    double best_t = kInf;
+    if (nodes_.empty()) return {best, best_t};
+    std::uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (box_entry(ray, n, std::min(t_max, best_t)) == kInf) continue;
+      if (n.count > 0) {
+        for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+          const HeldAtom& a = atoms_[i];
+          const double t = sphere_hit(ray, a.centre, a.radius);
+          if (t > t_max || t > best_t) continue;
+          if (t == best_t && !less(a, atoms_[best], copies)) continue;
+          best = i, best_t = t;
+        }
+        continue;
+      }
+      // Nearer child last, so it is popped first and shrinks best_t for the other.
+      const std::uint32_t a = n.first, b = n.first + 1;
+      const double ta = box_entry(ray, nodes_[a], best_t), tb = box_entry(ray, nodes_[b], best_t);
+      if (ta <= tb) stack[top++] = b, stack[top++] = a;
+      else stack[top++] = a, stack[top++] = b;
+    }
+    return {best, best_t};
+  }
+
+private:
+  static constexpr std::uint32_t kLeaf = 4;
+  struct Node {
+    dvec3 lo, hi;
+    std::uint32_t first = 0;  // leaf: first atom; inner: left child (right = first + 1)
+    std::uint32_t count = 0;  // atoms in a leaf, 0 for an inner node
+  };
+
+  static bool less(const HeldAtom& a, const HeldAtom& b, const std::vector<HeldCopy>& copies) {
+    const std::uint64_t ca = copies[a.copy].number, cb = copies[b.copy].number;
+    return ca != cb ? ca < cb : a.atom < b.atom;
+  }
+
+  // Entry t of the slab test over [0, t_max], +inf on a miss. Zero direction components are
+  // decided from the origin alone: (lo − o)·∞ would be NaN when the origin lies on the slab.
+  static double box_entry(const Ray& ray, const Node& n, double t_max) {
+    double t0 = 0, t1 = t_max;
+    for (int a = 0; a < 3; ++a) {
+      if (ray.d[a] == 0) {
+        if (ray.o[a] < n.lo[a] || ray.o[a] > n.hi[a]) return kInf;
+        continue;
+      }
+      double ta = (n.lo[a] - ray.o[a]) * ray.inv[a], tb = (n.hi[a] - ray.o[a]) * ray.inv[a];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta), t1 = std::min(t1, tb * (1 + 1e-12));
+      if (t0 > t1) return kInf;
+    }
+    return t0;
+  }
+
+  void build(std::uint32_t first, std::uint32_t count) {
+    struct Task {
+      std::uint32_t node, first, count;
+    };
+    nodes_.push_back({});
+    std::vector<Task> tasks{{0, first, count}};
+    while (!tasks.empty()) {
+      const Task task = tasks.back();
+      tasks.pop_back();
+      dvec3 lo(kInf), hi(-kInf), clo(kInf), chi(-kInf);
+      for (std::uint32_t i = task.first; i < task.first + task.count; ++i) {
+        const HeldAtom& a = atoms_[i];
+        lo = glm::min(lo, a.centre - a.radius), hi = glm::max(hi, a.centre + a.radius);
+        clo = glm::min(clo, a.centre), chi = glm::max(chi, a.centre);
+      }
+      nodes_[task.node].lo = lo, nodes_[task.node].hi = hi;
+      if (task.count <= kLeaf) {
+        nodes_[task.node].first = task.first, nodes_[task.node].count = task.count;
+        continue;
+      }
+      const dvec3 extent = chi - clo;
+      const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+      const std::uint32_t half = task.count / 2;
+      const auto begin = atoms_.begin() + task.first;
+      std::nth_element(begin, begin + half, begin + task.count,
+                       [axis](const HeldAtom& a, const HeldAtom& b) { return a.centre[axis] < b.centre[axis]; });
+      const std::uint32_t left = std::uint32_t(nodes_.size());
+      nodes_.push_back({}), nodes_.push_back({});
+      nodes_[task.node].first = left;
+      tasks.push_back({left, task.first, half});
+      tasks.push_back({left + 1, task.first + half, task.count - half});
+    }
+  }
+
+  std::vector<HeldAtom>& atoms_;
+  std::vector<Node> nodes_;
+};
+
+gpu::PixelHit make_hit(double t, const HeldAtom& a, const HeldCopy& c) {
+  gpu::PixelHit h;
+  h.depth = float(t);
+  h.compartment_instance = c.id.compartment_instance;
+  h.element = c.id.element;
+  h.kind = std::uint32_t(c.id.kind);
+  h.cell = glm::ivec4(c.id.cell, 0);
+  h.instance = c.id.instance;
+  h.atom = a.atom;
+  h.copy_number_lo = std::uint32_t(c.number);
+  h.copy_number_hi = std::uint32_t(c.number >> 32);
+  return h;
+}
+
+std::string count(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+}  // namespace
+
+gpu::PixelHit background_pixel() {
+  gpu::PixelHit h;
+  h.depth = std::numeric_limits<float>::infinity();
+  h.compartment_instance = h.element = h.kind = h.instance = h.atom = gpu::kNoHit;
+  h.copy_number_lo = h.copy_number_hi = gpu::kNoHit;
+  h.cell = glm::ivec4(int(gpu::kNoHit));
+  return h;
+}
+
+WorldBox scene_world_bounds(const format::Package& package) {
+  WorldBox all{dvec3(kInf), dvec3(-kInf)};
+  for (const WorldBox& b : instance_bounds(package)) all.min = glm::min(all.min, b.min), all.max = glm::max(all.max, b.max);
+  return all;
+}
+
+// Progressive deepening. Round k holds every atom that can meet the pyramid of the still
+// unresolved pixels up to depth D_k and traces those pixels with t ≤ D_k. Such a hit is final:
+// any atom hit by the ray at t ≤ D_k has its hit point in that pyramid, so its centre lies in the
+// pyramid's box grown by the largest atom radius (what for_each_atom is asked for, ExplicitScene
+// culling conservatively by copy spheres), its sphere passes the plane and depth tests of
+// Pyramid::meets_sphere, and it was held and tested. A pixel with no hit up to D_k stays
+// unresolved and D doubles, until D passes the farthest corner of the scene's bounds: then
+// nothing is left to hit and the pixel is background.
+std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const format::Package& package,
+                                         const gpu::Camera& camera, const OracleRenderOptions& options,
+                                         OracleRenderStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::uint32_t width = camera.size.x, height = camera.size.y;
+  std::vector<gpu::PixelHit> image(std::size_t(width) * height, background_pixel());
+  OracleRenderStats local_stats;
+  OracleRenderStats& st = stats ? *stats : local_stats;
+  st = {};
+  if (image.empty()) return image;
+
+  Pyramid view;
+  view.eye = dvec3(glm::vec3(camera.position));
+  view.f = dvec3(glm::vec3(camera.forward));
+  view.r = dvec3(glm::vec3(camera.right));
+  view.u = dvec3(glm::vec3(camera.up));
+  std::vector<Ray> rays(image.size());
+  for (std::uint32_t y = 0; y < height; ++y)
+    for (std::uint32_t x = 0; x < width; ++x) {
+      Ray& ray = rays[std::size_t(y) * width + x];
+      ray.o = view.eye;
+      ray.d = dvec3(gpu::camera_ray_direction(camera, x, y));
+      ray.d /= glm::length(ray.d);
+      ray.inv = 1.0 / ray.d;
+    }
+  // The ndc coordinates of a pixel, as camera_ray_direction computes them (before normalising).
+  const auto ndc = [&](std::uint32_t x, std::uint32_t y) {
+    return glm::dvec2((2.0 * (x + 0.5) / width - 1.0) * camera.forward.w * camera.right.w,
+                      (1.0 - 2.0 * (y + 0.5) / height) * camera.forward.w);
+  };
+
+  const std::vector<WorldBox> bounds = instance_bounds(package);
+  double nearest = kInf, farthest = 0;
+  for (const WorldBox& b : bounds) nearest = std::min(nearest, distance_to_box(view.eye, b)), farthest = std::max(farthest, farthest_corner(view.eye, b));
+  const double grow = largest_type_radius(package) * largest_instance_stretch(package) + 1e-3;
+  double depth_bound = (std::isfinite(nearest) ? nearest : 0) + options.first_margin;
+
+  std::vector<std::uint32_t> pending(image.size());
+  std::iota(pending.begin(), pending.end(), 0u);
+  std::vector<HeldAtom> atoms;
+  std::vector<HeldCopy> copies;
+  while (!pending.empty() && farthest > 0) {
+    ++st.rounds;
+    view.x0 = view.y0 = kInf, view.x1 = view.y1 = -kInf;
+    for (std::uint32_t p : pending) {
+      const glm::dvec2 n = ndc(p % width, p / width);
+      view.x0 = std::min(view.x0, n.x), view.x1 = std::max(view.x1, n.x);
+      view.y0 = std::min(view.y0, n.y), view.y1 = std::max(view.y1, n.y);
+    }
+    const double widen = 1e-6 * (1 + camera.forward.w * (1 + camera.right.w));
+    view.x0 -= widen, view.x1 += widen, view.y0 -= widen, view.y1 += widen;
+    view.make_planes();
+    WorldBox box = view.box(depth_bound);
+    box.min -= grow, box.max += grow;
+
+    atoms.clear(), copies.clear();
+    scene.for_each_atom(box, [&](const AtomSample& s) {
+      if (!view.meets_sphere(s.position, s.radius, depth_bound)) return;
+      // A copy's atoms arrive consecutively and copy numbers are unique.
+      if (copies.empty() || copies.back().number != s.copy->number) copies.push_back({s.copy->id, s.copy->number});
+      if (atoms.size() >= options.max_atoms)
+        throw InputError(package.name(), "camera " + options.camera_name,
+                         "the CPU oracle would need more than " + count(double(options.max_atoms)) +
+                             " atoms to resolve the view up to " + count(depth_bound) +
+                             " Å from the eye; choose a camera that sees less (closer, narrower) or raise the atom cap");
+      atoms.push_back({s.position, s.radius, s.atom, std::uint32_t(copies.size() - 1)});
+    });
+    st.atoms_last_round = atoms.size();
+    st.atoms_total += atoms.size();
+    st.final_depth_bound = depth_bound;
+
+    const AtomBvh bvh(atoms);
+    std::vector<std::uint8_t> resolved(pending.size(), 0);
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+      constexpr std::size_t kChunk = 64;
+      for (std::size_t begin = next.fetch_add(kChunk); begin < pending.size(); begin = next.fetch_add(kChunk))
+        for (std::size_t i = begin; i < std::min(pending.size(), begin + kChunk); ++i) {
+          const auto [hit, t] = bvh.trace(rays[pending[i]], depth_bound, copies);
+          if (hit < 0) continue;
+          image[pending[i]] = make_hit(t, atoms[hit], copies[atoms[hit].copy]);
+          resolved[i] = 1;
+        }
+    };
+    std::vector<std::thread> helpers;
+    for (unsigned k = 1; k < std::max(1u, options.threads); ++k) helpers.emplace_back(work);
+    work();
+    for (std::thread& t : helpers) t.join();
+
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < pending.size(); ++i)
+      if (!resolved[i]) pending[kept++] = pending[i];
+    pending.resize(kept);
+    if (depth_bound >= farthest) break;  // nothing lies beyond: the rest is background
+    depth_bound *= 2;
+  }
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+}  // namespace nano::oracle

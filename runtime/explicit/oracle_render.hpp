@@ -1,0 +1,52 @@
+#pragma once
+// The CPU reference image of `nanoview verify`: every pixel's ray (camera_ray_direction of
+// shaders/shared/camera.h, on the same floats as the GPU) intersected exactly, in double, with the
+// atom spheres of the molecule copies ExplicitScene places explicitly. What the GPU renders by
+// virtual instancing must match it pixel by pixel.
+//
+// Hit rule (the GPU must follow the same one): a pixel shows the atom sphere with the smallest
+// root t ≥ 0 of |eye + t·d − centre| = radius, d the pixel's direction renormalised in double, so
+// depth is Å along the unit ray. An eye inside an atom therefore sees that atom's far side. Exact
+// ties go to the smaller (copy number, atom).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "format/package.hpp"
+#include "runtime/explicit/explicit_scene.hpp"
+#include "shared/camera.h"
+
+namespace nano::oracle {
+
+struct OracleRenderOptions {
+  // Atoms held at once (≈ 70 bytes each with the BVH). A view that needs more throws InputError:
+  // a verify camera that sees half a cell is a badly chosen camera, not a reason to swap.
+  std::uint64_t max_atoms = 30'000'000;
+  unsigned threads = 2;
+  // First depth bound: the nearest compartment instance's reach plus this many Å.
+  double first_margin = 300.0;
+  std::string camera_name = "camera";  // for error messages
+};
+
+// What one render cost; for reports and for choosing cameras.
+struct OracleRenderStats {
+  int rounds = 0;
+  std::uint64_t atoms_last_round = 0;  // atoms held by the last (largest) round
+  std::uint64_t atoms_total = 0;       // summed over rounds
+  double final_depth_bound = 0;        // D of the last round, Å
+  double seconds = 0;
+};
+
+// Row-major image of camera.size.x × camera.size.y pixels, row 0 at the top (camera.h).
+std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const format::Package& package,
+                                         const gpu::Camera& camera, const OracleRenderOptions& options = {},
+                                         OracleRenderStats* stats = nullptr);
+
+// The background pixel: depth +inf, every id kNoHit (cell: all bits set).
+gpu::PixelHit background_pixel();
+
+// A conservative world AABB of everything the package can place (atoms included); used to know
+// when a ray has left the scene. Built from vertices, grid dims and atoms, not from stored AABBs.
+WorldBox scene_world_bounds(const format::Package& package);
+
+}  // namespace nano::oracle

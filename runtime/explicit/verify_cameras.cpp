@@ -1,0 +1,141 @@
+#include "runtime/explicit/verify_cameras.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shared/ownership.h"
+#include "shared/tile_mapper.h"
+
+namespace nano::oracle {
+namespace {
+
+using format::SectionKind;
+using glm::dvec3;
+
+struct InstanceFrame {
+  glm::dmat3 linear{1.0};
+  dvec3 translation{0.0};
+  dvec3 point(const dvec3& p) const { return linear * p + translation; }
+  dvec3 normal(const dvec3& n) const { return glm::normalize(glm::transpose(glm::inverse(linear)) * n); }
+};
+
+InstanceFrame frame_of(const gpu::CompartmentInstance& ci) {
+  InstanceFrame f;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) f.linear[c][r] = ci.transform[r][c];
+    f.translation[r] = ci.transform[r][3];
+  }
+  return f;
+}
+
+// Any unit vector perpendicular to n.
+dvec3 perpendicular(const dvec3& n) {
+  const dvec3 a = std::abs(n.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
+  return glm::normalize(glm::cross(n, a));
+}
+
+}  // namespace
+
+std::vector<VerifyCamera> verify_cameras(const format::Package& p, const ExplicitScene& scene, std::size_t count) {
+  const auto comps = p.records<SectionKind::compartments>();
+  const auto insts = p.records<SectionKind::compartment_instances>();
+  const auto meshes = p.records<SectionKind::meshes>();
+  const auto positions = p.records<SectionKind::vertex_positions>();
+  const auto normals = p.records<SectionKind::vertex_normals>();
+  const auto uvs = p.records<SectionKind::vertex_uvs>();
+  const auto tris = p.records<SectionKind::triangles>();
+  const auto shells = p.records<SectionKind::triangle_shells>();
+  const auto occupancy = p.records<SectionKind::occupancy>();
+  std::vector<VerifyCamera> cams;
+
+  // Membrane cameras on the first instance with a membrane; a triangle that owns molecules, in the
+  // middle of the mesh's triangle list (deterministic, away from the first chart's corner).
+  for (std::uint32_t i = 0; i < insts.size(); ++i) {
+    const gpu::Compartment& c = comps[insts[i].compartment];
+    if (c.membrane_recipe == gpu::NANO_NO_INDEX || shells.empty()) continue;
+    const gpu::Mesh& mesh = meshes[c.mesh];
+    std::uint32_t t = gpu::NANO_NO_INDEX;
+    for (std::uint32_t k = 0; k < mesh.triangle_count; ++k) {
+      const std::uint32_t cand = mesh.first_triangle + (mesh.triangle_count / 2 + k) % mesh.triangle_count;
+      if (shells[cand].h_plus > 0) { t = cand; break; }
+    }
+    if (t == gpu::NANO_NO_INDEX) continue;
+    const InstanceFrame f = frame_of(insts[i]);
+    const gpu::Triangle& tri = tris[t];
+    const std::uint32_t v[3] = {mesh.first_vertex + tri.v0, mesh.first_vertex + tri.v1, mesh.first_vertex + tri.v2};
+    const dvec3 P[3] = {dvec3(positions[v[0]]), dvec3(positions[v[1]]), dvec3(positions[v[2]])};
+    const dvec3 centroid_local = (P[0] + P[1] + P[2]) / 3.0;
+    const dvec3 n_local = glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0]));
+    const dvec3 C = f.point(centroid_local), N = f.normal(n_local);
+    const dvec3 T = glm::normalize(f.point(P[1]) - f.point(P[0]));
+    const double h = shells[t].h_plus;
+    cams.push_back({"membrane-front", C + N * (h + 250.0), C, perpendicular(N), 30});
+    cams.push_back({"grazing-membrane", C + N * (0.5 * h) - T * 300.0, C + N * (0.5 * h) + T * 300.0, N, 25});
+    const dvec3 V = f.point(P[0]), NV = f.normal(glm::normalize(dvec3(normals[v[0]])));
+    cams.push_back({"mesh-vertex", V + NV * (h + 200.0), V, perpendicular(NV), 30, true});
+    // A Wang tile corner inside the triangle: the lattice point nearest the UV centroid.
+    const float s = c.scales.y / c.scales.x;
+    const glm::vec2 uvc = (uvs[v[0]] + uvs[v[1]] + uvs[v[2]]) / 3.0f;
+    const glm::vec2 g = glm::round(uvc / s) * s;
+    const gpu::TriangleChart chart = gpu::chart_make(glm::vec3(P[0]), glm::vec3(P[1]), glm::vec3(P[2]), uvs[v[0]], uvs[v[1]],
+                                                     uvs[v[2]], glm::vec3(normals[v[0]]), glm::vec3(normals[v[1]]),
+                                                     glm::vec3(normals[v[2]]));
+    const dvec3 G = f.point(dvec3(gpu::chart_position(chart, g)));
+    cams.push_back({"tile-corner", G + N * (h + 200.0), G, perpendicular(N), 25, true});
+    cams.push_back({"inside-prism", C + N * (0.3 * h), C - N * 150.0 + T * 150.0, N, 70});
+    break;
+  }
+
+  // Core cameras on the last instance with a core grid: the INSIDE box nearest the grid's middle.
+  for (std::uint32_t i = std::uint32_t(insts.size()); i-- > 0;) {
+    const gpu::Compartment& c = comps[insts[i].compartment];
+    if (c.soluble_recipe == gpu::NANO_NO_INDEX) continue;
+    const glm::uvec3 dims(c.grid_dims);
+    const glm::ivec3 mid(dims / 2u);
+    std::int64_t best = -1;
+    double best_d = INFINITY;
+    for (std::uint32_t k = 0; k < dims.z; ++k)
+      for (std::uint32_t j = 0; j < dims.y; ++j)
+        for (std::uint32_t a = 0; a < dims.x; ++a) {
+          const std::uint32_t box = a + dims.x * (j + dims.y * k);
+          if (occupancy[c.grid_dims.w + box] != gpu::NANO_BOX_INSIDE) continue;
+          const double d = glm::length(dvec3(glm::ivec3(a, j, k) - mid));
+          if (d < best_d) best_d = d, best = box;
+        }
+    if (best < 0) continue;
+    const glm::uvec3 ijk(std::uint32_t(best) % dims.x, std::uint32_t(best) / dims.x % dims.y, std::uint32_t(best) / (dims.x * dims.y));
+    const InstanceFrame f = frame_of(insts[i]);
+    const dvec3 centre_local = dvec3(c.grid_min) + double(c.grid_min.w) * (dvec3(ijk) + 0.5);
+    const dvec3 E = f.point(centre_local);
+    cams.push_back({"inside-core", E, E + dvec3(1.0, 0.37, 0.21), dvec3(0, 0, 1), 60});
+    // Exactly axis-aligned through the grid: eye on a box corner plane, rays along +z.
+    const dvec3 corner = f.point(dvec3(c.grid_min) + double(c.grid_min.w) * dvec3(ijk));
+    cams.push_back({"axis-aligned-core", corner, corner + dvec3(0, 0, 1), dvec3(0, 1, 0), 40, true});
+    // Inside an atom: the first atom of a copy near the box centre.
+    dvec3 atom_centre(NAN);
+    const double half = 0.5 * c.grid_min.w;
+    scene.for_each_atom(WorldBox{E - half, E + half}, [&](const AtomSample& a) {
+      if (std::isnan(atom_centre.x)) atom_centre = a.position;
+    });
+    if (!std::isnan(atom_centre.x))
+      cams.push_back({"inside-atom", atom_centre, atom_centre + dvec3(-0.3, 1.0, 0.45), dvec3(0, 0, 1), 60});
+    break;
+  }
+  // More views of the first membrane camera's kind, from other sides, up to `count`.
+  const std::size_t hard = cams.size();
+  for (std::size_t k = 0; cams.size() < count && hard > 0; ++k) {
+    VerifyCamera extra = cams[k % hard];
+    const double angle = 0.7 * double(k + 1);
+    const glm::dvec3 off = extra.eye - extra.at;
+    const dvec3 axis = glm::normalize(extra.up);
+    extra.eye = extra.at + off * std::cos(angle) + glm::cross(axis, off) * std::sin(angle) +
+                axis * glm::dot(axis, off) * (1 - std::cos(angle));
+    extra.name += "-turned-" + std::to_string(k + 1);
+    if (glm::length(glm::cross(glm::normalize(extra.at - extra.eye), extra.up)) < 1e-3) continue;
+    cams.push_back(extra);
+  }
+  if (cams.size() > count) cams.resize(count);
+  return cams;
+}
+
+}  // namespace nano::oracle

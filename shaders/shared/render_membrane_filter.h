@@ -1,0 +1,31 @@
+// Which membrane copies a triangle renders (docs/placement.md step 4). Every rule that rejects a
+// candidate copy of a triangle lives in this one function, so a new rule (a per-instance distortion
+// limit, say) is added here once and the shader and any C++ caller follow. GLSL 460 and C++20/GLM.
+#ifndef NANO_RENDER_MEMBRANE_FILTER_H
+#define NANO_RENDER_MEMBRANE_FILTER_H
+#include "shared/ownership.h"
+#include "shared/seam.h"
+
+NANO_BEGIN
+
+// The triangle's corners (compartment space), UVs and seam bits, as docs/placement.md reads them.
+struct MembraneTriangle {
+  vec3 p0;
+  vec3 p1;
+  vec3 p2;
+  vec2 t0;
+  vec2 t1;
+  vec2 t2;
+  uint seam_edges;     // TriangleShell.seam_edges (0 without triangle_shells)
+  float seam_radius;   // r_max of shared/seam.h for the compartment
+};
+
+// True iff the triangle keeps the copy whose molecule UV is uv_m, compartment-space centre `centre`
+// and bounding radius `radius` (MoleculeType.aabb_min.w): it owns uv_m and the seam rule keeps it.
+NANO_FN bool membrane_keeps_copy(NANO_IN(MembraneTriangle) tri, NANO_IN(vec2) uv_m, NANO_IN(vec3) centre, float radius) {
+  if (!own_triangle_owns(tri.t0, tri.t1, tri.t2, uv_m)) return false;
+  return !seam_drops(tri.seam_edges, tri.p0, tri.p1, tri.p2, centre, radius, tri.seam_radius);
+}
+
+NANO_END
+#endif
