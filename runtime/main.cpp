@@ -8,5 +8,7 @@ int main(int argc, char** argv) {
   nano::view::add_validate_command(app);
   nano::view::add_devices_command(app);
   nano::view::add_export_command(app);
+  nano::view::add_render_command(app);
+  nano::view::add_verify_command(app);
   return nano::run_cli(app, argc, argv);
 }

@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
-# The main job: set up, build, bake the bundled default scene and take it as far as the pipeline
-# goes today. Rendering (issue #5) is not implemented yet; until it is, this validates the package
-# and exports the atoms of a membrane patch explicitly, and says plainly where the pipeline stops.
+# The main job: set up, build, bake the bundled default scene, validate the package and render it
+# with nested ray queries into out/ (PNG, depth PFM, hit ids).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${NANO_BUILD_DIR:-$here/build}
@@ -21,9 +20,9 @@ echo "== Bake $scene"
 "$nanobake" "$scene" -o "$out_dir/$name.nup" --report "$out_dir/$name-report.json" --jobs "${NANO_JOBS:-2}"
 "$nanoview" validate "$out_dir/$name.nup"
 
-echo "== Explicit instancing of one membrane patch (the oracle the renderer will be checked against)"
-"$nanoview" export "$out_dir/$name.nup" --box="${NANO_EXPORT_BOX:-380,-70,-70,540,70,70}" -o "$out_dir/$name-patch.pdb"
+echo "== Render"
+"$nanoview" render "$out_dir/$name.nup" -o "$out_dir/$name.png" --size "${NANO_SIZE:-512x512}" \
+  --depth "$out_dir/$name-depth.pfm" --ids "$out_dir/$name-ids.bin" ${NANO_CAMERA:+--camera "$NANO_CAMERA"}
 
 echo
-echo "Stopped before rendering: the ray-query renderer (issue #5) does not exist yet."
-echo "Package, bake report and the exported patch are in $out_dir."
+echo "Image, depth and ids: $out_dir/$name.png, $name-depth.pfm, $name-ids.bin (package and bake report beside them)."

@@ -1,0 +1,506 @@
+#include "runtime/render/gpu_scene.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "common/error.hpp"
+#include "common/singular_value.hpp"
+#include "runtime/render/morton.hpp"
+#include "runtime/vk/compute_pipeline.hpp"
+#include "shared/ownership.h"
+#include "shared/render_scene.h"
+#include "shared/shell_prism.h"
+#include "shared/tile_mapper.h"
+
+namespace nano::render {
+namespace {
+
+using format::SectionKind;
+using glm::dvec3;
+using glm::vec3;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+VkAabbPositionsKHR box_of(const dvec3& lo, const dvec3& hi) {
+  return {float(lo.x), float(lo.y), float(lo.z), float(hi.x), float(hi.y), float(hi.z)};
+}
+
+// A float box that contains [lo, hi] after rounding: one ulp outward on every side.
+VkAabbPositionsKHR outward_box(const vec3& lo, const vec3& hi) {
+  const auto down = [](float v) { return std::nextafter(v, -std::numeric_limits<float>::infinity()); };
+  const auto up = [](float v) { return std::nextafter(v, std::numeric_limits<float>::infinity()); };
+  return {down(lo.x), down(lo.y), down(lo.z), up(hi.x), up(hi.y), up(hi.z)};
+}
+
+// The binding list of render.comp, in order; scene bindings first.
+enum Binding : std::uint32_t {
+  b_ulas = 0, b_molecules, b_atoms, b_squares, b_cubes, b_instances, b_recipes, b_recipe_indices, b_meshes,
+  b_positions, b_normals, b_uvs, b_triangles, b_shells, b_compartments, b_occupancy, b_boundary_boxes,
+  b_mask_words, b_render_compartments, b_render_instances, b_levels, b_orders,
+};
+static_assert(b_orders + 1 == kSceneBindingCount);
+
+}  // namespace
+
+ShellMode parse_shell_mode(std::string_view text) {
+  for (ShellMode m : {ShellMode::adaptive_overlap, ShellMode::adaptive, ShellMode::fixed_overlap, ShellMode::fixed})
+    if (text == to_string(m)) return m;
+  throw std::invalid_argument("shell mode '" + std::string(text) +
+                              "' is not one of adaptive-overlap, adaptive, fixed-overlap, fixed");
+}
+
+const char* to_string(ShellMode mode) {
+  switch (mode) {
+    case ShellMode::adaptive_overlap: return "adaptive-overlap";
+    case ShellMode::adaptive: return "adaptive";
+    case ShellMode::fixed_overlap: return "fixed-overlap";
+    case ShellMode::fixed: return "fixed";
+  }
+  return "?";
+}
+
+nlohmann::json to_json(const LoadReport& r) {
+  return {{"seconds", {{"upload", r.upload_seconds}, {"nlas", r.nlas_seconds}, {"mlas", r.mlas_seconds}, {"ulas", r.ulas_seconds}}},
+          {"device_memory_bytes", r.memory.total()},
+          {"device_memory",
+           {{"package_data", r.memory.package_data},
+            {"derived", r.memory.derived},
+            {"nlas", r.memory.nlas},
+            {"mlas", r.memory.mlas},
+            {"ulas", r.memory.ulas}}},
+          {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}}}};
+}
+
+// One level object: a BLAS of AABBs and a TLAS holding it once with the identity transform.
+struct Level {
+  vk::AccelerationStructure blas, tlas;
+};
+
+struct GpuScene::Impl {
+  const vk::Device& device;
+  const format::Package& p;
+  SceneOptions options;
+  LoadReport report;
+
+  std::span<const gpu::MoleculeType> molecules;
+  std::span<const gpu::Atom> atoms;
+  std::span<const gpu::Tile2D> squares;
+  std::span<const gpu::Tile3D> cubes;
+  std::span<const gpu::MoleculeInstance> instances;
+  std::span<const gpu::Mesh> meshes;
+  std::span<const glm::vec4> positions, normals;
+  std::span<const glm::vec2> uvs;
+  std::span<const gpu::Triangle> triangles;
+  std::span<const gpu::TriangleShell> shells;
+  std::span<const gpu::Compartment> compartments;
+  std::span<const gpu::CompartmentInstance> compartment_instances;
+
+  std::vector<vk::Buffer> section_buffers;  // indexed by Binding (b_molecules .. b_mask_words), [0] unused
+  vk::Buffer shell_buffer, render_compartment_buffer, render_instance_buffer, level_buffer, order_buffer;
+
+  std::vector<double> type_radius;                   // from the atoms (as the oracle)
+  std::vector<gpu::RenderCompartment> render_compartments;
+  std::vector<gpu::RenderInstance> render_instances;  // eyes rewritten by set_eye
+  std::vector<gpu::RenderLevel> level_records;
+  std::vector<std::uint32_t> orders;
+  std::vector<Level> levels;                          // one per level record that has primitives
+  std::vector<vk::AccelerationStructure> compartment_blas;  // per compartment; empty handle: nothing to trace
+  vk::AccelerationStructure ulas;
+  bool has_ulas = false;
+  std::uint32_t first_square = 0, first_cube = 0;
+
+  Impl(const vk::Device& d, const format::Package& package, const SceneOptions& o)
+      : device(d),
+        p(package),
+        options(o),
+        molecules(p.records<SectionKind::molecules>()),
+        atoms(p.records<SectionKind::atoms>()),
+        squares(p.records<SectionKind::tiles2d>()),
+        cubes(p.records<SectionKind::tiles3d>()),
+        instances(p.records<SectionKind::instances>()),
+        meshes(p.records<SectionKind::meshes>()),
+        positions(p.records<SectionKind::vertex_positions>()),
+        normals(p.records<SectionKind::vertex_normals>()),
+        uvs(p.records<SectionKind::vertex_uvs>()),
+        triangles(p.records<SectionKind::triangles>()),
+        shells(p.records<SectionKind::triangle_shells>()),
+        compartments(p.records<SectionKind::compartments>()),
+        compartment_instances(p.records<SectionKind::compartment_instances>()) {
+    if (compartment_instances.size() >= (1u << 24))
+      fail("compartment_instances", "more than 2^24 compartment instances (the µLAS custom index has 24 bits)");
+    for (const gpu::MoleculeType& m : molecules) {
+      double r = 0;
+      for (std::uint32_t a = m.first_atom; a < m.first_atom + m.atom_count; ++a)
+        r = std::max(r, glm::length(dvec3(atoms[a].centre_radius)) + atoms[a].centre_radius.w);
+      type_radius.push_back(r);
+    }
+    auto start = std::chrono::steady_clock::now();
+    upload_sections();
+    plan_compartments();
+    report.upload_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    first_square = std::uint32_t(molecules.size());
+    first_cube = first_square + std::uint32_t(squares.size());
+    level_records.assign(first_cube + cubes.size(), gpu::RenderLevel{});
+    levels.resize(level_records.size());
+    build_molecule_levels();
+    report.nlas_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    build_tile_levels();
+    report.mlas_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    build_compartment_blases();
+    upload_derived();
+    report.ulas_seconds = seconds_since(start);
+  }
+
+  [[noreturn]] void fail(const std::string& where, const std::string& rule) const { throw InputError(p.name(), where, rule); }
+
+  vk::Buffer storage(std::span<const std::byte> bytes) {
+    // Vulkan has no empty buffers; an absent section becomes 16 zero bytes nobody indexes.
+    static const std::byte zeros[16] = {};
+    if (bytes.empty()) bytes = std::span(zeros);
+    return vk::Buffer::with_data(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::DeviceLocal);
+  }
+
+  void upload_sections() {
+    const std::pair<Binding, SectionKind> kinds[] = {
+        {b_molecules, SectionKind::molecules},       {b_atoms, SectionKind::atoms},
+        {b_squares, SectionKind::tiles2d},           {b_cubes, SectionKind::tiles3d},
+        {b_instances, SectionKind::instances},       {b_recipes, SectionKind::recipes},
+        {b_recipe_indices, SectionKind::recipe_indices}, {b_meshes, SectionKind::meshes},
+        {b_positions, SectionKind::vertex_positions}, {b_normals, SectionKind::vertex_normals},
+        {b_uvs, SectionKind::vertex_uvs},            {b_triangles, SectionKind::triangles},
+        {b_compartments, SectionKind::compartments}, {b_occupancy, SectionKind::occupancy},
+        {b_boundary_boxes, SectionKind::boundary_boxes}, {b_mask_words, SectionKind::mask_words},
+    };
+    section_buffers.resize(kSceneBindingCount);
+    for (const auto& [binding, kind] : kinds) {
+      std::span<const std::byte> bytes = p.raw_bytes(kind);
+      std::vector<std::byte> padded;
+      if (bytes.size() % 4 != 0) {  // the shader reads occupancy bytes as 32-bit words
+        padded.assign(bytes.begin(), bytes.end());
+        padded.resize((bytes.size() + 3) / 4 * 4, std::byte{0});
+        bytes = padded;
+      }
+      section_buffers[binding] = storage(bytes);
+      report.memory.package_data += section_buffers[binding].size();
+    }
+  }
+
+  // The molecule-space bounds, seam radius, copy-number spans and cube reach of every compartment.
+  void plan_compartments() {
+    for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
+      const gpu::Compartment& c = compartments[ci];
+      const std::string where = "compartments[" + std::to_string(ci) + "]";
+      gpu::RenderCompartment rc{};
+      if (c.membrane_recipe != gpu::NANO_NO_INDEX) {
+        if (shells.empty()) fail(where, "has a membrane but the package has no triangle_shells: the shell renderer needs its prisms");
+        const float S = c.scales.y;
+        const float s = S / c.scales.x;
+        rc.membrane.x = s;
+        rc.membrane.y = s / S;
+        std::uint32_t largest = 0;
+        for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
+          largest = std::max(largest, squares[t].instance_count);
+          for (std::uint32_t m = squares[t].first_instance; m < squares[t].first_instance + squares[t].instance_count; ++m)
+            rc.membrane.z = std::max(rc.membrane.z, molecules[instances[m].molecule_type].aabb_min.w);
+        }
+        rc.counts.x = largest;
+        const std::uint64_t span =
+            std::uint64_t{meshes[c.mesh].triangle_count} * c.replication_width * c.replication_height * largest;
+        rc.span.x = std::uint32_t(span), rc.span.y = std::uint32_t(span >> 32);
+      }
+      if (c.soluble_recipe != gpu::NANO_NO_INDEX) {
+        const double B = c.grid_min.w;
+        dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+        std::uint32_t largest = 0;
+        for (std::uint32_t t = c.soluble_first_tile; t < c.soluble_first_tile + c.soluble_tile_count; ++t) {
+          largest = std::max(largest, cubes[t].instance_count);
+          for (std::uint32_t m = cubes[t].first_instance; m < cubes[t].first_instance + cubes[t].instance_count; ++m) {
+            const double r = type_radius[instances[m].molecule_type];
+            lo = glm::min(lo, dvec3(instances[m].position) - r);
+            hi = glm::max(hi, dvec3(instances[m].position) + r);
+          }
+        }
+        rc.counts.y = largest;
+        if (largest > 0) {
+          // Rounding of the float placement and of the slab test: a generous hundredth of an Å.
+          lo -= 0.01, hi += 0.01;
+          if (lo.x < -B || lo.y < -B || lo.z < -B || hi.x > 2 * B || hi.y > 2 * B || hi.z > 2 * B)
+            fail(where, "molecules of its Wang cubes reach farther than one box beyond their own; the core renderer "
+                        "looks one box around each cell");
+          rc.reach_lo = glm::vec4(vec3(lo), 0.f);
+          rc.reach_hi = glm::vec4(vec3(hi), 0.f);
+          rc.span.z = 1;
+        }
+      }
+      render_compartments.push_back(rc);
+    }
+  }
+
+  // Builds the level of record `record` from `boxes`, Morton-sorted; orders[order_first + p] =
+  // values[i] for the box i that became primitive p. Adds the structures' size to `category`.
+  Level build_level(const std::vector<VkAabbPositionsKHR>& boxes, const std::vector<std::uint32_t>& values,
+                    std::uint32_t record, std::uint64_t& category) {
+    const std::vector<std::uint32_t> order = morton_order(boxes);
+    std::vector<VkAabbPositionsKHR> sorted;
+    gpu::RenderLevel& rl = level_records[record];
+    rl.order_first = std::uint32_t(orders.size());
+    rl.count = std::uint32_t(boxes.size());
+    for (std::uint32_t i : order) {
+      sorted.push_back(boxes[i]);
+      orders.push_back(values[i]);
+    }
+    const vk::Buffer input = vk::Buffer::with_data(device, std::as_bytes(std::span(sorted)), vk::kBuildInputUsage,
+                                                   vk::MemoryUse::DeviceLocal);
+    Level level;
+    level.blas = vk::build_bottom_level(device, vk::AabbGeometry{input.address(), std::uint32_t(sorted.size())});
+    const VkAccelerationStructureInstanceKHR identity = vk::make_instance(level.blas, glm::dmat4(1.0), 0);
+    level.tlas = vk::build_top_level(device, std::span(&identity, 1));
+    rl.address = glm::uvec2(std::uint32_t(level.tlas.address()), std::uint32_t(level.tlas.address() >> 32));
+    category += level.blas.size() + level.tlas.size();
+    return level;
+  }
+
+  // nLAS: atom boxes in molecule space; orders hold absolute atom indices.
+  void build_molecule_levels() {
+    for (std::uint32_t t = 0; t < molecules.size(); ++t) {
+      const gpu::MoleculeType& m = molecules[t];
+      if (m.atom_count == 0) continue;
+      std::vector<VkAabbPositionsKHR> boxes;
+      std::vector<std::uint32_t> atom_indices;
+      for (std::uint32_t a = m.first_atom; a < m.first_atom + m.atom_count; ++a) {
+        const dvec3 c(atoms[a].centre_radius);
+        const double r = atoms[a].centre_radius.w + 1e-3;  // the exact sphere test decides
+        boxes.push_back(box_of(c - r, c + r));
+        atom_indices.push_back(a);
+      }
+      levels[t] = build_level(boxes, atom_indices, t, report.memory.nlas);
+      ++report.nlas_count;
+    }
+  }
+
+  // How far a membrane molecule's true placement (chart_membrane_molecule: the interpolated normal
+  // n(uv_m), not the face normal of M1) can stray from its tile-space bounds, per compartment:
+  // M1⁻¹ maps the true centre X(uv_m) + z·n to (x, y, z) + z·L(n − N) and a world sphere of radius r
+  // into one of radius ≤ σ·r, with L the inverse linear part of M1 and σ its largest singular value.
+  // So the box (x, y, z) ± σ·(r + |z|·δ), δ = max |n_i − N| over the corners (n(uv_m) of an owned
+  // copy is a positive combination of them), contains the copy in tile space. Returns (σ, δ).
+  std::pair<double, double> membrane_distortion(const gpu::Compartment& c, float s_over_S) const {
+    const gpu::Mesh& mesh = meshes[c.mesh];
+    double sigma = 0, delta = 0;
+    for (std::uint32_t t = mesh.first_triangle; t < mesh.first_triangle + mesh.triangle_count; ++t) {
+      const gpu::Triangle& tri = triangles[t];
+      const std::uint32_t f = mesh.first_vertex;
+      const glm::vec2 t0 = uvs[f + tri.v0], t1 = uvs[f + tri.v1], t2 = uvs[f + tri.v2];
+      if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) continue;
+      const vec3 n0(normals[f + tri.v0]), n1(normals[f + tri.v1]), n2(normals[f + tri.v2]);
+      const gpu::TriangleChart chart = gpu::chart_make(vec3(positions[f + tri.v0]), vec3(positions[f + tri.v1]),
+                                                       vec3(positions[f + tri.v2]), t0, t1, t2, n0, n1, n2);
+      if (!gpu::chart_valid(chart)) continue;  // owns nothing the oracle would accept either
+      const glm::dmat3 m1(dvec3(chart.ju) * double(s_over_S), dvec3(chart.jv) * double(s_over_S), dvec3(chart.face_normal));
+      sigma = std::max(sigma, largest_singular_value(glm::inverse(m1)));
+      for (const vec3& n : {n0, n1, n2})
+        delta = std::max(delta, glm::length(glm::normalize(dvec3(n)) - dvec3(chart.face_normal)));
+    }
+    return {sigma, delta};
+  }
+
+  // mLAS: per Wang square, molecule boxes in tile space inflated by the distortion of every
+  // compartment that uses the square; per Wang cube, bounding spheres' boxes in cube space.
+  void build_tile_levels() {
+    std::vector<double> square_sigma(squares.size(), -1), square_delta(squares.size(), 0);
+    for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
+      const gpu::Compartment& c = compartments[ci];
+      if (c.membrane_recipe == gpu::NANO_NO_INDEX) continue;
+      const auto [sigma, delta] = membrane_distortion(c, render_compartments[ci].membrane.y);
+      for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
+        square_sigma[t] = std::max(square_sigma[t], sigma);
+        square_delta[t] = std::max(square_delta[t], delta);
+      }
+    }
+    for (std::uint32_t t = 0; t < squares.size(); ++t) {
+      if (square_sigma[t] < 0 || squares[t].instance_count == 0) continue;  // no compartment renders it
+      std::vector<VkAabbPositionsKHR> boxes;
+      // δ grows by 1e-3 for the rounding of the normalised interpolation; the pad covers the float
+      // tile-space ray (≈ 1e-6 of the distance to the tile) of any camera within 10^5 Å.
+      const double sigma = square_sigma[t] * (1 + 1e-4), delta = square_delta[t] + 1e-3, pad = 0.1;
+      for (std::uint32_t m = squares[t].first_instance; m < squares[t].first_instance + squares[t].instance_count; ++m) {
+        const dvec3 pos(instances[m].position);
+        const double e = sigma * (type_radius[instances[m].molecule_type] + std::abs(pos.z) * delta) + pad;
+        boxes.push_back(box_of(pos - e, pos + e));
+      }
+      add_tile_level(first_square + t, boxes);
+    }
+    for (std::uint32_t t = 0; t < cubes.size(); ++t) {
+      if (cubes[t].instance_count == 0) continue;
+      std::vector<VkAabbPositionsKHR> boxes;
+      for (std::uint32_t m = cubes[t].first_instance; m < cubes[t].first_instance + cubes[t].instance_count; ++m) {
+        const dvec3 pos(instances[m].position);
+        const double e = type_radius[instances[m].molecule_type] + 0.01;
+        boxes.push_back(box_of(pos - e, pos + e));
+      }
+      add_tile_level(first_cube + t, boxes);
+    }
+  }
+
+  // orders hold the molecule's index within its tile.
+  void add_tile_level(std::uint32_t record, const std::vector<VkAabbPositionsKHR>& boxes) {
+    std::vector<std::uint32_t> molecule(boxes.size());
+    for (std::uint32_t i = 0; i < molecule.size(); ++i) molecule[i] = i;
+    levels[record] = build_level(boxes, molecule, record, report.memory.mlas);
+    ++report.mlas_count;
+  }
+
+  // The shell offsets of the chosen mode, parallel to section triangle_shells.
+  std::vector<gpu::TriangleShell> mode_shells() const {
+    std::vector<gpu::TriangleShell> out(shells.begin(), shells.end());
+    const bool fixed = options.shell == ShellMode::fixed || options.shell == ShellMode::fixed_overlap;
+    const bool overlap = options.shell == ShellMode::adaptive_overlap || options.shell == ShellMode::fixed_overlap;
+    for (const gpu::Mesh& mesh : meshes) {
+      gpu::ShellOffsets largest{0, 0, 0};
+      for (std::uint32_t t = mesh.first_triangle; t < mesh.first_triangle + mesh.triangle_count; ++t)
+        largest = gpu::shell_offsets_max(largest, {out[t].h_plus, out[t].h_minus, out[t].side_offset});
+      for (std::uint32_t t = mesh.first_triangle; t < mesh.first_triangle + mesh.triangle_count; ++t) {
+        gpu::TriangleShell& s = out[t];
+        if (s.h_plus == 0 && s.h_minus == 0 && s.side_offset == 0) continue;  // owns nothing: no prism
+        if (fixed) s.h_plus = largest.h_plus, s.h_minus = largest.h_minus, s.side_offset = largest.side;
+        if (!overlap) s.side_offset = 0;
+      }
+    }
+    return out;
+  }
+
+  // µLAS BLAS per compartment: Morton-sorted prism boxes (triangles that own molecules), then the
+  // core grid widened by one box (the region the core renderer's DDA walks).
+  void build_compartment_blases() {
+    const std::vector<gpu::TriangleShell> shell_records = mode_shells();
+    shell_buffer = storage(std::as_bytes(std::span(shell_records)));
+    report.memory.derived += shell_buffer.size();
+    compartment_blas.resize(compartments.size());
+    for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
+      const gpu::Compartment& c = compartments[ci];
+      gpu::RenderCompartment& rc = render_compartments[ci];
+      std::vector<VkAabbPositionsKHR> prisms;
+      std::vector<std::uint32_t> prism_triangles;
+      if (c.membrane_recipe != gpu::NANO_NO_INDEX) {
+        const gpu::Mesh& mesh = meshes[c.mesh];
+        const std::uint32_t f = mesh.first_vertex;
+        for (std::uint32_t tl = 0; tl < mesh.triangle_count; ++tl) {
+          const gpu::TriangleShell& s = shell_records[mesh.first_triangle + tl];
+          if (s.h_plus == 0 && s.h_minus == 0 && s.side_offset == 0) continue;
+          const gpu::Triangle& tri = triangles[mesh.first_triangle + tl];
+          const gpu::Prism pr = gpu::shell_prism_make(
+              vec3(positions[f + tri.v0]), vec3(positions[f + tri.v1]), vec3(positions[f + tri.v2]),
+              vec3(normals[f + tri.v0]), vec3(normals[f + tri.v1]), vec3(normals[f + tri.v2]),
+              gpu::ShellOffsets{s.h_plus, s.h_minus, s.side_offset});
+          vec3 lo = pr.v[0], hi = pr.v[0];
+          for (int k = 1; k < 6; ++k) lo = glm::min(lo, pr.v[k]), hi = glm::max(hi, pr.v[k]);
+          prisms.push_back(outward_box(lo, hi));
+          prism_triangles.push_back(tl);
+        }
+      }
+      const std::vector<std::uint32_t> order = morton_order(prisms);
+      std::vector<VkAabbPositionsKHR> boxes;
+      rc.counts.z = std::uint32_t(prisms.size());
+      rc.counts.w = std::uint32_t(orders.size());
+      for (std::uint32_t i : order) {
+        boxes.push_back(prisms[i]);
+        orders.push_back(prism_triangles[i]);
+      }
+      if (rc.span.z != 0) {
+        const dvec3 B(c.grid_min.w);
+        const dvec3 lo = dvec3(c.grid_min) - B;
+        const dvec3 hi = dvec3(c.grid_min) + B * (dvec3(glm::uvec3(c.grid_dims)) + 1.0);
+        boxes.push_back(outward_box(vec3(lo), vec3(hi)));
+      }
+      report.prisms += prisms.size();
+      if (boxes.empty()) continue;
+      const vk::Buffer input =
+          vk::Buffer::with_data(device, std::as_bytes(std::span(boxes)), vk::kBuildInputUsage, vk::MemoryUse::DeviceLocal);
+      compartment_blas[ci] = vk::build_bottom_level(device, vk::AabbGeometry{input.address(), std::uint32_t(boxes.size())});
+      report.memory.ulas += compartment_blas[ci].size();
+    }
+  }
+
+  void upload_derived() {
+    render_compartment_buffer = storage(std::as_bytes(std::span(render_compartments)));
+    std::uint64_t base = 0;
+    for (const gpu::CompartmentInstance& ci : compartment_instances) {
+      render_instances.push_back({glm::uvec4(std::uint32_t(base), std::uint32_t(base >> 32), ci.compartment, 0), {}, {}});
+      const gpu::RenderCompartment& rc = render_compartments[ci.compartment];
+      const gpu::Compartment& c = compartments[ci.compartment];
+      const std::uint64_t core_span =
+          rc.span.z ? std::uint64_t{c.grid_dims.x} * c.grid_dims.y * c.grid_dims.z * rc.counts.y : 0;
+      base += (std::uint64_t{rc.span.y} << 32 | rc.span.x) + core_span;
+    }
+    render_instance_buffer = vk::Buffer(device, render_instances.size() * sizeof(gpu::RenderInstance),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
+    level_buffer = storage(std::as_bytes(std::span(level_records)));
+    order_buffer = storage(std::as_bytes(std::span(orders)));
+    report.memory.derived += render_compartment_buffer.size() + render_instance_buffer.size() + level_buffer.size() +
+                             order_buffer.size();
+  }
+
+  void set_eye(const dvec3& eye) {
+    std::vector<VkAccelerationStructureInstanceKHR> records;
+    for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
+      const gpu::CompartmentInstance& ci = compartment_instances[i];
+      if (compartment_blas[ci.compartment].handle() == VK_NULL_HANDLE) continue;
+      glm::dmat4 m(1.0);
+      for (int r = 0; r < 3; ++r) {
+        for (int col = 0; col < 3; ++col) m[col][r] = ci.transform[r][col];
+        m[3][r] = double(ci.transform[r][3]) - eye[r];
+      }
+      // The eye in compartment space, L⁻¹(eye − T), in double, split into two floats.
+      const dvec3 eye_c = glm::inverse(glm::dmat3(m)) * -dvec3(m[3]);
+      const vec3 hi(eye_c);
+      render_instances[i].eye_hi = glm::vec4(hi, 0.f);
+      render_instances[i].eye_lo = glm::vec4(vec3(eye_c - dvec3(hi)), 0.f);
+      records.push_back(vk::make_instance(compartment_blas[ci.compartment], m, i));
+    }
+    if (has_ulas) report.memory.ulas -= ulas.size();
+    has_ulas = !records.empty();
+    if (!has_ulas) fail("compartment_instances", "the package places nothing to render");
+    ulas = vk::build_top_level(device, std::span(records));
+    render_instance_buffer.write(std::as_bytes(std::span(render_instances)));
+    report.memory.ulas += ulas.size();
+  }
+};
+
+GpuScene::GpuScene(const vk::Device& device, const format::Package& package, const SceneOptions& options)
+    : impl_(std::make_unique<Impl>(device, package, options)) {}
+GpuScene::~GpuScene() = default;
+GpuScene::GpuScene(GpuScene&&) noexcept = default;
+
+void GpuScene::set_eye(const glm::dvec3& eye) { impl_->set_eye(eye); }
+
+void GpuScene::write_descriptors(VkDescriptorSet set) const {
+  const Impl& s = *impl_;
+  if (!s.has_ulas) throw std::logic_error("GpuScene::write_descriptors before set_eye");
+  const VkDevice d = s.device.handle();
+  vk::write_acceleration_structure(d, set, b_ulas, s.ulas);
+  for (std::uint32_t b = b_molecules; b <= b_mask_words; ++b) {
+    if (b == b_shells) continue;
+    vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
+  }
+  vk::write_storage_buffer(d, set, b_shells, s.shell_buffer);
+  vk::write_storage_buffer(d, set, b_render_compartments, s.render_compartment_buffer);
+  vk::write_storage_buffer(d, set, b_render_instances, s.render_instance_buffer);
+  vk::write_storage_buffer(d, set, b_levels, s.level_buffer);
+  vk::write_storage_buffer(d, set, b_orders, s.order_buffer);
+}
+
+std::uint32_t GpuScene::first_square_level() const { return impl_->first_square; }
+std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }
+std::uint32_t GpuScene::molecule_type_count() const { return std::uint32_t(impl_->molecules.size()); }
+const LoadReport& GpuScene::report() const { return impl_->report; }
+
+}  // namespace nano::render

@@ -1,0 +1,82 @@
+#pragma once
+// A validated package on the device: its sections as storage buffers, the records the renderer
+// derives from them (shaders/shared/render_scene.h) and the acceleration structures of the three
+// levels — one nLAS per molecule type, one mLAS per Wang square and cube, and the µLAS over the
+// compartment instances, rebuilt relative to the eye for every camera (precision far from the origin).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+#include <vulkan/vulkan.h>
+
+#include "format/package.hpp"
+#include "runtime/vk/acceleration_structure.hpp"
+#include "runtime/vk/buffer.hpp"
+#include "runtime/vk/device.hpp"
+
+namespace nano::render {
+
+// The four shells of the paper's comparison. Without overlap (side offset 0) molecules that cross
+// a triangle's edge lose the part outside its prism; the fixed shells use each mesh's largest offsets.
+enum class ShellMode { adaptive_overlap, adaptive, fixed_overlap, fixed };
+ShellMode parse_shell_mode(std::string_view text);  // throws std::invalid_argument naming the choices
+const char* to_string(ShellMode mode);
+
+struct SceneOptions {
+  ShellMode shell = ShellMode::adaptive_overlap;
+};
+
+// Device memory by category, bytes.
+struct MemoryReport {
+  std::uint64_t package_data = 0;  // the package's sections as uploaded
+  std::uint64_t derived = 0;       // render records, primitive orders, shells of the chosen mode
+  std::uint64_t nlas = 0;          // molecule types (BLAS of atom boxes + TLAS)
+  std::uint64_t mlas = 0;          // Wang squares and cubes
+  std::uint64_t ulas = 0;          // per-compartment prism BLASes + the instance TLAS
+  std::uint64_t total() const { return package_data + derived + nlas + mlas + ulas; }
+};
+
+struct LoadReport {
+  double upload_seconds = 0, nlas_seconds = 0, mlas_seconds = 0, ulas_seconds = 0;
+  MemoryReport memory;
+  std::uint64_t nlas_count = 0, mlas_count = 0, prisms = 0;
+};
+nlohmann::json to_json(const LoadReport& report);
+
+// Binding numbers of shaders/render/render.comp that the scene fills (0 .. kSceneBindingCount−1).
+inline constexpr std::uint32_t kSceneBindingCount = 22;
+
+class GpuScene {
+public:
+  // `package` must have passed format::validate_semantics and must outlive this object. Throws
+  // nano::InputError for what the renderer needs beyond the validator (membranes without
+  // triangle_shells, cube molecules reaching farther than one box, more than 2^24 instances).
+  GpuScene(const vk::Device& device, const format::Package& package, const SceneOptions& options = {});
+  ~GpuScene();
+  GpuScene(GpuScene&&) noexcept;
+
+  // (Re)builds the µLAS with instance translations relative to `eye` (world Å): the shader's rays
+  // start at the origin, so far-from-origin scenes keep their precision near the camera.
+  void set_eye(const glm::dvec3& eye);
+
+  // Writes bindings 0 .. kSceneBindingCount−1 of the render pipeline's set. Call after set_eye.
+  void write_descriptors(VkDescriptorSet set) const;
+
+  // Render-frame level table offsets (RenderFrame.levels).
+  std::uint32_t first_square_level() const;
+  std::uint32_t first_cube_level() const;
+  std::uint32_t molecule_type_count() const;
+
+  const LoadReport& report() const;
+
+  struct Impl;
+
+private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace nano::render

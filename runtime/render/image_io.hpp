@@ -1,0 +1,28 @@
+#pragma once
+// Image files of `nanoview render`, each written atomically (temporary name, then rename).
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <vector>
+
+#include "shared/camera.h"
+
+namespace nano::render {
+
+// 8-bit RGBA PNG; `rgba` row-major with row 0 the top row, R in the low byte of each word.
+void write_png(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,
+               std::span<const std::uint32_t> rgba);
+// Reads an 8-bit RGBA or RGB PNG back (tests, viewer screenshots); throws InputError naming the file.
+std::vector<std::uint32_t> read_png(const std::filesystem::path& path, std::uint32_t& width, std::uint32_t& height);
+
+// Greyscale PFM ("Pf", little-endian scale −1, rows bottom to top as the format defines) of the
+// depth of each hit: Å along the unit ray, +inf for the background.
+void write_depth_pfm(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,
+                     std::span<const gpu::PixelHit> hits);
+
+// The PixelHit records as they are (48 bytes each, little-endian, layout of shared/camera.h),
+// row-major from the top row, after a 16-byte header "NUIDS001", width, height (uint32).
+void write_ids(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,
+               std::span<const gpu::PixelHit> hits);
+
+}  // namespace nano::render

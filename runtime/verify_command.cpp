@@ -1,0 +1,109 @@
+// `nanoview verify PKG [--size WxH] [--cameras N] [--json] [--require F]`: renders views on the
+// device and with the CPU oracle (every molecule in view instantiated explicitly with the same
+// placement code and ray-traced in double) and reports, pixel by pixel, how far they agree.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error.hpp"
+#include "runtime/commands.hpp"
+#include "runtime/explicit/oracle_render.hpp"
+#include "runtime/explicit/render_compare.hpp"
+#include "runtime/explicit/verify_cameras.hpp"
+#include "runtime/render/camera_spec.hpp"
+#include "runtime/render/renderer.hpp"
+#include "runtime/render_session.hpp"
+
+namespace nano::view {
+
+void add_verify_command(CLI::App& app) {
+  struct Options {
+    std::string package, size = "96x96", shell = "adaptive-overlap", prism = "exact";
+    std::size_t cameras = 8;
+    bool json = false;
+    double require = 0.999;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("verify", "Compare the device's image with explicit instancing on the CPU, pixel by pixel");
+  cmd->add_option("PKG", o->package, "package (.nup)")->required();
+  cmd->add_option("--size", o->size, "image size WxH (cameras that need exactly axis-aligned rays add one to even sizes)")
+      ->capture_default_str();
+  cmd->add_option("--cameras", o->cameras, "number of views (the hard cases first)")->capture_default_str();
+  cmd->add_option("--shell", o->shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
+  cmd->add_option("--prism", o->prism, "exact | aabb")->capture_default_str();
+  cmd->add_option("--require", o->require, "exit 1 when the agreement over all pixels is below this")->capture_default_str();
+  cmd->add_flag("--json", o->json, "print JSON (key `agreement`) instead of text");
+  cmd->callback([o] {
+    const auto [w, h] = parse_size(o->size);
+    render::SceneOptions scene_options;
+    try {
+      scene_options.shell = render::parse_shell_mode(o->shell);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("--shell", "", e.what());
+    }
+    if (o->prism != "exact" && o->prism != "aabb") throw InputError("--prism", "", "expected exact or aabb, got '" + o->prism + "'");
+    RenderSession session(o->package, scene_options);
+    const oracle::ExplicitScene scene(session.package);
+    render::RenderSettings settings;
+    settings.exact_prism = o->prism == "exact";
+    render::Renderer renderer(session.device, *session.scene, settings);
+
+    oracle::CompareResult total;
+    nlohmann::json views = nlohmann::json::array();
+    for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o->cameras)) {
+      render::CameraSpec spec;
+      spec.eye = vc.eye, spec.at = vc.at, spec.up = vc.up, spec.fov_degrees = vc.fov_degrees;
+      const std::uint32_t cw = vc.odd_size ? (w | 1u) : w, ch = vc.odd_size ? (h | 1u) : h;
+      const gpu::Camera camera = spec.to_gpu(cw, ch);
+      const render::Frame frame = renderer.render(camera);
+      oracle::OracleRenderOptions oracle_options;
+      oracle_options.camera_name = vc.name;
+      oracle::OracleRenderStats stats;
+      const std::vector<gpu::PixelHit> reference = oracle::oracle_render(scene, session.package, camera, oracle_options, &stats);
+      const oracle::CompareResult r = oracle::compare_images(reference, frame.hits, cw, ch);
+      std::size_t hit = 0;
+      for (const auto& p : reference) hit += p.atom != gpu::kNoHit;
+      total.pixels += r.pixels, total.agree += r.agree, total.bad_depth += r.bad_depth, total.missed += r.missed;
+      total.different_atom += r.different_atom, total.different_ids += r.different_ids, total.depth_only += r.depth_only;
+      total.max_depth_difference = std::max(total.max_depth_difference, r.max_depth_difference);
+      nlohmann::json view = oracle::to_json(r);
+      view["name"] = vc.name;
+      view["camera"] = spec.to_string();
+      view["size"] = {cw, ch};
+      view["reference_hits"] = hit;
+      view["gpu_seconds"] = frame.seconds;
+      view["oracle_seconds"] = stats.seconds;
+      view["oracle_atoms"] = stats.atoms_last_round;
+      views.push_back(view);
+      if (!o->json)
+        std::printf("%-24s %4ux%-4u agreement %.5f (%llu pixels hit; missed %llu, other atom %llu, other ids %llu, depth %llu, "
+                    "bad depth %llu) gpu %.2f s, oracle %.2f s over %llu atoms\n",
+                    vc.name.c_str(), cw, ch, r.agreement(), (unsigned long long)hit, (unsigned long long)r.missed,
+                    (unsigned long long)r.different_atom, (unsigned long long)r.different_ids,
+                    (unsigned long long)r.depth_only, (unsigned long long)r.bad_depth, frame.seconds, stats.seconds,
+                    (unsigned long long)stats.atoms_last_round);
+      if (!o->json)
+        for (const auto& m : r.first)
+          std::printf("    (%u, %u) %s: oracle %s | gpu %s\n", m.x, m.y, oracle::to_string(m.why),
+                      oracle::to_json(m.reference).dump().c_str(), oracle::to_json(m.test).dump().c_str());
+    }
+    nlohmann::json out{{"agreement", total.agreement()},
+                       {"pixels", total.pixels},
+                       {"device", session.device.description()},
+                       {"shell", o->shell},
+                       {"prism", o->prism},
+                       {"views", views},
+                       {"validation_errors", session.validation_errors()}};
+    if (o->json) std::printf("%s\n", out.dump(2).c_str());
+    else std::printf("agreement %.5f over %llu pixels on %s\n", total.agreement(), (unsigned long long)total.pixels,
+                     session.device.description().c_str());
+    if (session.validation_errors() != 0)
+      throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");
+    if (total.agreement() < o->require)
+      throw std::runtime_error("agreement " + std::to_string(total.agreement()) + " is below --require " + std::to_string(o->require));
+  });
+}
+
+}  // namespace nano::view

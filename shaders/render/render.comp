@@ -1,0 +1,343 @@
+#version 460
+// The Nanouniverse renderer: one invocation per pixel, nested ray queries over three levels of
+// acceleration structures (µLAS → mLAS → nLAS), every molecule placed on the fly by the placement
+// math of shaders/shared/ — the very functions the CPU oracle (runtime/explicit/) runs.
+//
+//  µLAS: one TLAS over compartment instances (camera-relative transforms); per compartment a BLAS of
+//        prism AABBs (one per triangle that owns molecules, Morton-sorted) plus one AABB around the
+//        core grid. A candidate yields the compartment-space ray (t is the world t).
+//  shell: exact ray–prism test, then every tile of the triangle's replication area: tile-space ray by
+//        M1⁻¹, the Wang square's mLAS (molecule bounds inflated so they contain the true placement,
+//        runtime/render/gpu_scene.cpp), true placement M2 (chart_membrane_molecule), ownership and
+//        seam rule (membrane_keeps_copy), molecule-space ray, the type's nLAS, exact ray–sphere.
+//  core: 3D-DDA over the grid widened by one box; at every cell the boxes within one step (a
+//        molecule reaches at most one box beyond its own), occupancy and keep-masks, the cube's mLAS,
+//        nLAS, ray–sphere. The walk stops once a cell starts beyond the best hit.
+// t_max shrinks across all levels: the best t is tracked here and handed to outer queries with
+// rayQueryGenerateIntersectionEXT. Hit rule (as the oracle): the smallest root t ≥ 0.
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+#include "shared/package_records.h"
+#include "shared/render_scene.h"
+#include "shared/tile_mapper.h"
+#include "shared/shell_prism.h"
+#include "shared/render_membrane_filter.h"
+#include "shared/grid_dda.h"
+#include "shared/ray_sphere.h"
+#include "shared/copy_number.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+// 0: the prism's AABB is the only test (no exact ray–prism): cheaper test, more candidates.
+layout(constant_id = 0) const bool kExactPrism = true;
+
+layout(set = 0, binding = 0) uniform accelerationStructureEXT ulas;
+layout(set = 0, binding = 1, std430) readonly buffer Molecules { MoleculeType molecules[]; };
+layout(set = 0, binding = 2, std430) readonly buffer Atoms { Atom atoms[]; };
+layout(set = 0, binding = 3, std430) readonly buffer Squares { Tile2D squares[]; };
+layout(set = 0, binding = 4, std430) readonly buffer Cubes { Tile3D cubes[]; };
+layout(set = 0, binding = 5, std430) readonly buffer Instances { MoleculeInstance instances[]; };
+layout(set = 0, binding = 6, std430) readonly buffer Recipes { Recipe recipes[]; };
+layout(set = 0, binding = 7, std430) readonly buffer RecipeIndices { uint recipe_indices[]; };
+layout(set = 0, binding = 8, std430) readonly buffer Meshes { Mesh meshes[]; };
+layout(set = 0, binding = 9, std430) readonly buffer Positions { vec4 positions[]; };
+layout(set = 0, binding = 10, std430) readonly buffer Normals { vec4 normals[]; };
+layout(set = 0, binding = 11, std430) readonly buffer Uvs { vec2 uvs[]; };
+layout(set = 0, binding = 12, std430) readonly buffer Triangles { Triangle triangles[]; };
+layout(set = 0, binding = 13, std430) readonly buffer Shells { TriangleShell shells[]; };  // offsets of the shell mode
+layout(set = 0, binding = 14, std430) readonly buffer Compartments { Compartment compartments[]; };
+layout(set = 0, binding = 15, std430) readonly buffer Occupancy { uint occupancy_words[]; };  // bytes, 4 a word
+layout(set = 0, binding = 16, std430) readonly buffer BoundaryBoxes { BoundaryBox boundary_boxes[]; };
+layout(set = 0, binding = 17, std430) readonly buffer MaskWords { uint mask_words[]; };
+layout(set = 0, binding = 18, std430) readonly buffer RenderCompartments { RenderCompartment render_compartments[]; };
+layout(set = 0, binding = 19, std430) readonly buffer RenderInstances { RenderInstance render_instances[]; };
+layout(set = 0, binding = 20, std430) readonly buffer Levels { RenderLevel levels[]; };
+layout(set = 0, binding = 21, std430) readonly buffer Orders { uint orders[]; };
+layout(set = 0, binding = 22, std430) readonly buffer Frame { RenderFrame frame; };
+layout(set = 0, binding = 23, std430) writeonly buffer Hits { PixelHit hits[]; };
+layout(set = 0, binding = 24, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+
+// The best hit so far. Ids follow PixelHit (shared/camera.h).
+float best_t;
+PixelHit best;
+vec3 best_normal_c;      // compartment-space unit normal at the hit
+mat4x3 best_to_world;    // compartment → camera-relative world of the hit's instance
+uint best_type;          // molecule type of the hit atom
+
+vec3 eye_lo;  // low part of the compartment-space eye (RenderInstance.eye_lo) of the instance being traced
+
+// Nearest atom of molecule type `type` placed by `m` (compartment space) on the ray (o, d) within
+// [0, best_t]; o is the compartment-space eye (high part). Updates best_t, best.atom and
+// best_normal_c; true iff it found a nearer atom.
+bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d) {
+  mat3 rt = transpose(m.linear);
+  vec3 om = rt * ((o - m.translation) + eye_lo);
+  vec3 dm = rt * d;
+  RenderLevel level = levels[type];
+  if (level.count == 0u) return false;
+  bool found = false;
+  rayQueryEXT q;
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, om, 0.0, dm, best_t);
+  while (rayQueryProceedEXT(q)) {
+    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+    if (p >= level.count) continue;
+    uint a = orders[level.order_first + p];
+    vec4 cr = atoms[a].centre_radius;
+    float tn;
+    float tf;
+    if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) continue;
+    float t = tn >= 0.0 ? tn : tf;
+    if (!(t >= 0.0) || !(t < best_t)) continue;
+    best_t = t;
+    best.atom = a;
+    best_type = type;
+    best_normal_c = m.linear * normalize(om + t * dm - cr.xyz);
+    found = true;
+    rayQueryGenerateIntersectionEXT(q, t);
+  }
+  return found;
+}
+
+uint recipe_cell(uint recipe, ivec3 cell) {
+  Recipe r = recipes[recipe];
+  ivec3 dims = ivec3(r.dims.xyz);
+  ivec3 w = ((cell % dims) + dims) % dims;  // recipes wrap in every direction
+  return recipe_indices[r.first_index + uint(w.x) + r.dims.x * (uint(w.y) + r.dims.y * uint(w.z))];
+}
+
+// The membrane copies of triangle `tl` (local index in the mesh) of compartment instance `inst`.
+bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
+  Compartment c = compartments[ci];
+  RenderCompartment rc = render_compartments[ci];
+  Mesh mesh = meshes[c.mesh];
+  uint t = mesh.first_triangle + tl;
+  Triangle tri = triangles[t];
+  uint f = mesh.first_vertex;
+  vec3 p0 = positions[f + tri.v0].xyz;
+  vec3 p1 = positions[f + tri.v1].xyz;
+  vec3 p2 = positions[f + tri.v2].xyz;
+  vec3 n0 = normals[f + tri.v0].xyz;
+  vec3 n1 = normals[f + tri.v1].xyz;
+  vec3 n2 = normals[f + tri.v2].xyz;
+  TriangleShell sh = shells[t];
+  if (kExactPrism) {
+    ShellOffsets off;
+    off.h_plus = sh.h_plus;
+    off.h_minus = sh.h_minus;
+    off.side = sh.side_offset;
+    PrismInterval iv;
+    if (!prism_intersect(shell_prism_make(p0, p1, p2, n0, n1, n2, off), o, d, 0.0, best_t, iv)) return false;
+  }
+  MembraneTriangle mt;
+  mt.p0 = p0;
+  mt.p1 = p1;
+  mt.p2 = p2;
+  mt.t0 = uvs[f + tri.v0];
+  mt.t1 = uvs[f + tri.v1];
+  mt.t2 = uvs[f + tri.v2];
+  mt.seam_edges = sh.seam_edges;
+  mt.seam_radius = rc.membrane.z;
+  TriangleChart chart = chart_make(p0, p1, p2, mt.t0, mt.t1, mt.t2, n0, n1, n2);
+  float s = rc.membrane.x;
+  float s_over_S = rc.membrane.y;
+  vec2 uv_min = min(mt.t0, min(mt.t1, mt.t2));
+  vec2 uv_max = max(mt.t0, max(mt.t1, mt.t2));
+  ivec2 origin = replication_origin(uv_min, s);
+  ivec2 extent = min(replication_extent(uv_min, uv_max, s), ivec2(c.replication_width, c.replication_height));
+  bool found = false;
+  for (int sy = 0; sy < extent.y; ++sy) {
+    for (int sx = 0; sx < extent.x; ++sx) {
+      ivec2 cell = replication_tile_index(origin, ivec2(sx, sy));
+      uint tile = recipe_cell(c.membrane_recipe, ivec3(cell, 0));
+      RenderLevel level = levels[frame.levels.x + tile];
+      if (level.count == 0u) continue;
+      vec2 g = replication_tile_uv(cell, s);
+      vec3 ot;
+      vec3 dt;
+      chart_tile_inverse_ray(chart, g, s_over_S, o, d, ot, dt);
+      uint first = squares[tile].first_instance;
+      rayQueryEXT q;
+      rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
+      while (rayQueryProceedEXT(q)) {
+        uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+        if (p >= level.count) continue;
+        uint m = orders[level.order_first + p];
+        MoleculeInstance mi = instances[first + m];
+        vec2 uv_m;
+        Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, mi.position.xyz, mi.rotation, uv_m);
+        if (!membrane_keeps_copy(mt, uv_m, placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
+        if (!trace_molecule(mi.molecule_type, placement, o, d)) continue;
+        found = true;
+        best.compartment_instance = inst;
+        best.element = t;
+        best.kind = 0u;
+        best.cell = ivec4(cell, 0, 0);
+        best.instance = m;
+        uint slot = uint(sx) + c.replication_width * uint(sy);
+        uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
+                                            slot, rc.counts.x, m);
+        best.copy_number_lo = number.x;
+        best.copy_number_hi = number.y;
+        rayQueryGenerateIntersectionEXT(q, best_t);
+      }
+    }
+  }
+  return found;
+}
+
+uint occupancy_of(uint byte_index) { return (occupancy_words[byte_index >> 2] >> (8u * (byte_index & 3u))) & 0xFFu; }
+
+// First keep-mask word of BOUNDARY box `box` (binary search over the compartment's sorted records), or
+// NANO_NO_INDEX when the package lists none (the validator makes that impossible).
+uint keep_mask_first_word(Compartment c, uint box) {
+  uint lo = c.core_masks.x;
+  uint hi = c.core_masks.x + c.core_masks.y;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1;
+    if (boundary_boxes[mid].box < box) lo = mid + 1u; else hi = mid;
+  }
+  if (lo < c.core_masks.x + c.core_masks.y && boundary_boxes[lo].box == box) return boundary_boxes[lo].first_word;
+  return NANO_NO_INDEX;
+}
+
+// The soluble copies of core-grid box `ijk` of compartment instance `inst`.
+bool trace_box(uint inst, uint ci, ivec3 ijk, vec3 o, vec3 d) {
+  Compartment c = compartments[ci];
+  RenderCompartment rc = render_compartments[ci];
+  uvec3 dims = c.grid_dims.xyz;
+  uint box = uint(ijk.x) + dims.x * (uint(ijk.y) + dims.y * uint(ijk.z));
+  uint occ = occupancy_of(c.grid_dims.w + box);
+  if (occ == NANO_BOX_OUTSIDE) return false;
+  vec3 box_min = core_box_min(c.grid_min.xyz, vec3(c.grid_min.w), ijk);
+  float tn;
+  float tf;
+  if (!aabb_intersect(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
+  uint mask = NANO_NO_INDEX;
+  if (occ == NANO_BOX_BOUNDARY) {
+    mask = keep_mask_first_word(c, box);
+    if (mask == NANO_NO_INDEX) return false;
+  }
+  uint cube = recipe_cell(c.soluble_recipe, ijk);
+  RenderLevel level = levels[frame.levels.y + cube];
+  if (level.count == 0u) return false;
+  uint first = cubes[cube].first_instance;
+  bool found = false;
+  rayQueryEXT q;
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, o - box_min, 0.0, d, best_t);
+  while (rayQueryProceedEXT(q)) {
+    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+    if (p >= level.count) continue;
+    uint m = orders[level.order_first + p];
+    if (mask != NANO_NO_INDEX && ((mask_words[mask + m / 32u] >> (m % 32u)) & 1u) == 0u) continue;
+    MoleculeInstance mi = instances[first + m];
+    if (!trace_molecule(mi.molecule_type, core_soluble_molecule(box_min, mi.position.xyz, mi.rotation), o, d)) continue;
+    found = true;
+    best.compartment_instance = inst;
+    best.element = box;
+    best.kind = 1u;
+    best.cell = ivec4(ijk, 0);
+    best.instance = m;
+    uvec2 number = copy_number_core(render_instances[inst].base.xy, rc.span.xy, box, rc.counts.y, m);
+    best.copy_number_lo = number.x;
+    best.copy_number_hi = number.y;
+    rayQueryGenerateIntersectionEXT(q, best_t);
+  }
+  return found;
+}
+
+bool trace_core(uint inst, uint ci, vec3 o, vec3 d) {
+  Compartment c = compartments[ci];
+  float B = c.grid_min.w;
+  ivec3 dims = ivec3(c.grid_dims.xyz);
+  // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
+  // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
+  GridDda it;
+  dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), dims + ivec3(2), o, d, 0.0, best_t);
+  ivec3 cell;
+  float ta;
+  float tb;
+  ivec3 previous = ivec3(-1000000);
+  bool found = false;
+  while (dda_next(it, cell, ta, tb)) {
+    if (ta > best_t) break;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
+          if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
+          // The previous cell's neighbourhood was traced already.
+          ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
+          if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
+          if (trace_box(inst, ci, ijk, o, d)) found = true;
+        }
+    previous = cell;
+  }
+  return found;
+}
+
+vec3 srgb_from_linear(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
+void main() {
+  Camera cam = frame.camera;
+  uvec2 px = gl_GlobalInvocationID.xy;
+  if (px.x >= cam.size.x || px.y >= cam.size.y) return;
+  vec3 d = camera_ray_direction(cam, px.x, px.y);
+
+  best_t = placement_inf();
+  best.depth = placement_inf();
+  best.compartment_instance = kNoHit;
+  best.element = kNoHit;
+  best.kind = kNoHit;
+  best.cell = ivec4(-1);
+  best.instance = kNoHit;
+  best.atom = kNoHit;
+  best.copy_number_lo = kNoHit;
+  best.copy_number_hi = kNoHit;
+  best_normal_c = vec3(0.0);
+  best_type = 0u;
+
+  rayQueryEXT q;
+  rayQueryInitializeEXT(q, ulas, gl_RayFlagsNoneEXT, 0xFF, vec3(0.0), 0.0, d, placement_inf());
+  while (rayQueryProceedEXT(q)) {
+    if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
+    uint inst = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
+    uint prim = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+    // The eye in compartment space from the host's double computation, not the hardware's float
+    // transform of the origin (see RenderInstance).
+    vec3 o = render_instances[inst].eye_hi.xyz;
+    eye_lo = render_instances[inst].eye_lo.xyz;
+    vec3 od = rayQueryGetIntersectionObjectRayDirectionEXT(q, false);
+    uint ci = render_instances[inst].base.z;
+    RenderCompartment rc = render_compartments[ci];
+    bool found = false;
+    if (prim < rc.counts.z) {
+      found = trace_shell(inst, ci, orders[rc.counts.w + prim], o, od);
+    } else if (rc.span.z != 0u) {
+      found = trace_core(inst, ci, o, od);
+    }
+    if (found) {
+      best_to_world = rayQueryGetIntersectionObjectToWorldEXT(q, false);
+      rayQueryGenerateIntersectionEXT(q, best_t);
+    }
+  }
+
+  uint index = px.y * cam.size.x + px.x;
+  vec3 colour = vec3(1.0);  // background
+  if (best.atom != kNoHit) {
+    best.depth = best_t;
+    vec3 n = normalize(mat3(best_to_world) * best_normal_c);
+    vec3 base = molecules[best_type].colour.rgb;
+    float lambert = abs(dot(n, frame.light.xyz));
+    float facing = abs(dot(n, d));
+    vec3 lit = base * (0.25 + 0.55 * lambert + 0.2 * facing);
+    float cue = frame.light.w > 0.0 ? exp(-best_t / frame.light.w) : 1.0;
+    colour = mix(vec3(1.0), lit, 0.35 + 0.65 * cue);
+  }
+  hits[index] = best;
+  vec3 srgb = srgb_from_linear(colour);
+  uvec3 b = uvec3(round(srgb * 255.0));
+  colours[index] = b.r | (b.g << 8) | (b.b << 16) | (255u << 24);
+}

@@ -1,0 +1,60 @@
+// Records the renderer derives from a package at load time (runtime/render/gpu_scene.cpp) and its
+// shader (shaders/render/render.comp) reads next to the package's own sections. std430 = C++ layout
+// by the same rules as package_records.h (vec4/uvec4 members at multiples of 16 bytes).
+#ifndef NANO_RENDER_SCENE_H
+#define NANO_RENDER_SCENE_H
+#include "shared/camera.h"
+
+NANO_BEGIN
+
+// Per compartment (parallel to section "compartments").
+struct RenderCompartment {
+  vec4 membrane;   // x: tile UV size s; y: s / S; z: seam radius r_max; w: reserved
+  vec4 reach_lo;   // xyz: cube-space minimum of every cube molecule's bounding sphere (≥ −box edge); w: reserved
+  vec4 reach_hi;   // xyz: cube-space maximum (≤ 2·box edge); w: reserved
+  uvec4 counts;    // x: I₂ (largest square instance count); y: I₃ (cubes); z: prism primitives in the
+                   // compartment's µLAS BLAS (the core-grid box, if any, is primitive z); w: first entry
+                   // of its primitive → triangle map in `orders`
+  uvec4 span;      // xy: membrane copy-number span of one instance (lo, hi); z: 1 = has a core grid; w: reserved
+};
+
+// Per compartment instance (parallel to section "compartment_instances"), rewritten per camera.
+// The eye in compartment space as an unevaluated sum hi + lo of floats (computed in double on the
+// host): compartment coordinates of a cell reach 4·10^4 Å, where one float ulp is 0.004 Å, so the
+// molecule-space ray origin is formed as (hi − T) + lo to keep the hit depth to ~1e-5 Å.
+struct RenderInstance {
+  uvec4 base;    // xy: first copy number (lo, hi); z: compartment; w: reserved
+  vec4 eye_hi;   // xyz: float(eye_c); w: reserved
+  vec4 eye_lo;   // xyz: float(eye_c − eye_hi); w: reserved
+};
+
+// One nested acceleration structure (an nLAS per molecule type, an mLAS per Wang square and cube):
+// the device address of its TLAS and where its primitive → record map starts in `orders`.
+struct RenderLevel {
+  uvec2 address;     // VkDeviceAddress (lo, hi); 0 for an empty tile (no structure)
+  uint order_first;  // primitive p names record orders[order_first + p]: an atom index (nLAS) or a
+                     // molecule index within its tile (mLAS)
+  uint count;        // primitives
+};
+
+// Per frame: the camera (camera-relative: the eye is the origin of the µLAS) and level tables.
+struct RenderFrame {
+  Camera camera;
+  uvec4 levels;  // x: first Wang-square entry in `levels` (after one nLAS per molecule type); y: first
+                 // cube entry; z: molecule types; w: reserved
+  vec4 light;    // xyz: unit direction towards the light (world); w: depth-cue distance (Å, 0 = off)
+};
+
+NANO_END
+
+#ifdef __cplusplus
+#include <cstddef>
+static_assert(sizeof(nano::gpu::RenderCompartment) == 80);
+static_assert(sizeof(nano::gpu::RenderInstance) == 48);
+static_assert(sizeof(nano::gpu::RenderLevel) == 16);
+static_assert(sizeof(nano::gpu::Camera) == 80);
+static_assert(sizeof(nano::gpu::RenderFrame) == 112);
+static_assert(sizeof(nano::gpu::PixelHit) == 48 && offsetof(nano::gpu::PixelHit, cell) == 16 &&
+              offsetof(nano::gpu::PixelHit, instance) == 32);
+#endif
+#endif

@@ -1,0 +1,25 @@
+# Truncates a good package and expects `nanoview render` to refuse it with the file named, exit
+# non-zero, print no device line (nothing reached the GPU) and leave no output image behind.
+set(bad ${WORK}/truncated.nup)
+set(png ${WORK}/truncated.png)
+file(REMOVE ${png})
+execute_process(COMMAND /usr/bin/python3 -c
+                "import sys; b = open(sys.argv[1], 'rb').read(); open(sys.argv[2], 'wb').write(b[:len(b) // 2])"
+                ${PACKAGE} ${bad} RESULT_VARIABLE cut_rc)
+if(NOT cut_rc EQUAL 0)
+  message(FATAL_ERROR "could not write the truncated package")
+endif()
+execute_process(COMMAND ${NANOVIEW} render ${bad} -o ${png} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "render accepted a truncated package")
+endif()
+if(NOT err MATCHES "truncated.nup")
+  message(FATAL_ERROR "the error does not name the file: ${err}")
+endif()
+if(err MATCHES "device:")
+  message(FATAL_ERROR "a device was opened before validation: ${err}")
+endif()
+if(EXISTS ${png})
+  message(FATAL_ERROR "an output image was written")
+endif()
+message(STATUS "refused: ${err}")

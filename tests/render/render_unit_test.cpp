@@ -1,0 +1,136 @@
+// Unit tests of the renderer's host modules: Morton order, camera parsing, image files.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <random>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "runtime/render/camera_spec.hpp"
+#include "runtime/render/image_io.hpp"
+#include "runtime/render/morton.hpp"
+
+namespace {
+
+using namespace nano::render;
+
+TEST(MortonOrder, IsAPermutationThatKeepsNeighboursTogether) {
+  // Boxes on a 16×16×16 lattice, shuffled: after sorting, consecutive boxes are mostly lattice
+  // neighbours (the Z curve jumps rarely), and every index appears once.
+  std::vector<VkAabbPositionsKHR> boxes;
+  for (int z = 0; z < 16; ++z)
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) boxes.push_back({float(x), float(y), float(z), x + 0.5f, y + 0.5f, z + 0.5f});
+  std::mt19937 rng(7);
+  std::shuffle(boxes.begin(), boxes.end(), rng);
+  const std::vector<std::uint32_t> order = morton_order(boxes);
+  ASSERT_EQ(order.size(), boxes.size());
+  EXPECT_EQ(std::set<std::uint32_t>(order.begin(), order.end()).size(), boxes.size());
+  int adjacent = 0;
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const auto& a = boxes[order[i - 1]];
+    const auto& b = boxes[order[i]];
+    adjacent += std::abs(a.minX - b.minX) + std::abs(a.minY - b.minY) + std::abs(a.minZ - b.minZ) == 1.0f;
+  }
+  EXPECT_GT(adjacent, int(0.45 * order.size()));  // a Z curve steps to a face neighbour about half the time
+  // The shuffled input order itself almost never does.
+  int adjacent_input = 0;
+  for (std::size_t i = 1; i < boxes.size(); ++i)
+    adjacent_input += std::abs(boxes[i - 1].minX - boxes[i].minX) + std::abs(boxes[i - 1].minY - boxes[i].minY) +
+                          std::abs(boxes[i - 1].minZ - boxes[i].minZ) == 1.0f;
+  EXPECT_LT(adjacent_input, int(0.05 * boxes.size()));
+  EXPECT_TRUE(morton_order({}).empty());
+}
+
+TEST(CameraSpec, ParsesKeysInAnyOrderAndKeepsTheRest) {
+  CameraSpec base;
+  const CameraSpec c = parse_camera("fov=30;pos=1,2,3;at=4,5,6", base);
+  EXPECT_EQ(c.eye, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(c.at, glm::dvec3(4, 5, 6));
+  EXPECT_EQ(c.up, base.up);
+  EXPECT_EQ(c.fov_degrees, 30);
+  const CameraSpec again = parse_camera(c.to_string());
+  EXPECT_EQ(again.eye, c.eye);
+  EXPECT_EQ(again.at, c.at);
+  EXPECT_DOUBLE_EQ(again.fov_degrees, c.fov_degrees);
+}
+
+TEST(CameraSpec, RejectsWhatCannotBeACamera) {
+  EXPECT_THROW(parse_camera("pos=1,2"), std::invalid_argument);
+  EXPECT_THROW(parse_camera("pos=1,2,3,4"), std::invalid_argument);
+  EXPECT_THROW(parse_camera("zoom=2"), std::invalid_argument);
+  EXPECT_THROW(parse_camera("pos=0,0,0;at=0,0,0"), std::invalid_argument);
+  EXPECT_THROW(parse_camera("pos=0,0,5;at=0,0,0;up=0,0,1"), std::invalid_argument);  // up ∥ view
+  EXPECT_THROW(parse_camera("fov=180"), std::invalid_argument);
+  EXPECT_THROW(parse_camera("pos=nan,0,0"), std::invalid_argument);
+}
+
+TEST(CameraSpec, PixelRaysFollowTheDocumentedConvention) {
+  // fov 90°, 2×2 pixels: pixel (0, 0) is top-left, so its ray goes left (−right) and up.
+  CameraSpec c;
+  c.eye = {0, 0, 0}, c.at = {0, 0, -1}, c.up = {0, 1, 0}, c.fov_degrees = 90;
+  const nano::gpu::Camera cam = c.to_gpu(2, 2);
+  const glm::vec3 d = nano::gpu::camera_ray_direction(cam, 0, 0);
+  EXPECT_NEAR(d.x, -1 / std::sqrt(6.0), 1e-6);  // right = forward × up = (1, 0, 0); ndc = (−½, ½)
+  EXPECT_NEAR(d.y, 1 / std::sqrt(6.0), 1e-6);
+  EXPECT_NEAR(d.z, -2 / std::sqrt(6.0), 1e-6);
+}
+
+std::filesystem::path temp_path(const char* name) {
+  return std::filesystem::temp_directory_path() / (std::string("nano_render_test_") + name);
+}
+
+TEST(ImageFiles, PngRoundTripsEveryChannel) {
+  const std::uint32_t w = 5, h = 3;
+  std::vector<std::uint32_t> rgba(w * h);
+  for (std::uint32_t i = 0; i < rgba.size(); ++i) rgba[i] = 0x01020304u * (i + 1) ^ 0xA5000000u;
+  const auto path = temp_path("roundtrip.png");
+  write_png(path, w, h, rgba);
+  std::uint32_t rw = 0, rh = 0;
+  EXPECT_EQ(read_png(path, rw, rh), rgba);
+  EXPECT_EQ(rw, w);
+  EXPECT_EQ(rh, h);
+  std::filesystem::remove(path);
+  EXPECT_THROW(write_png(path, 4, 4, rgba), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+TEST(ImageFiles, ReadingAGarbledPngNamesTheFile) {
+  const auto path = temp_path("garbled.png");
+  std::ofstream(path, std::ios::binary) << "\x89PNG\r\n\x1a\nthis is not a PNG";
+  std::uint32_t w, h;
+  try {
+    read_png(path, w, h);
+    ADD_FAILURE() << "no error";
+  } catch (const nano::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(ImageFiles, PfmStoresRowsBottomUpLittleEndian) {
+  std::vector<nano::gpu::PixelHit> hits(2 * 2);
+  for (std::size_t i = 0; i < hits.size(); ++i) hits[i].depth = float(i + 1);
+  hits[1].depth = INFINITY;
+  const auto path = temp_path("depth.pfm");
+  write_depth_pfm(path, 2, 2, hits);
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string header = "Pf\n2 2\n-1.0\n";
+  ASSERT_EQ(bytes.size(), header.size() + 16);
+  EXPECT_EQ(bytes.substr(0, header.size()), header);
+  float v[4];
+  std::memcpy(v, bytes.data() + header.size(), 16);
+  // First stored row = bottom image row (pixels 2, 3), then the top row (0, 1).
+  EXPECT_EQ(v[0], 3.0f);
+  EXPECT_EQ(v[1], 4.0f);
+  EXPECT_EQ(v[2], 1.0f);
+  EXPECT_TRUE(std::isinf(v[3]));
+  std::filesystem::remove(path);
+}
+
+}  // namespace
