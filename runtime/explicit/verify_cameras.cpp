@@ -66,12 +66,21 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
     const dvec3 P[3] = {dvec3(positions[v[0]]), dvec3(positions[v[1]]), dvec3(positions[v[2]])};
     const dvec3 centroid_local = (P[0] + P[1] + P[2]) / 3.0;
     const dvec3 n_local = glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0]));
-    const dvec3 C = f.point(centroid_local), N = f.normal(n_local);
+    // Outward: away from the mesh's box centre, so every view looks into the compartment and rays
+    // that pass the membrane meet its dense interior instead of escaping to far instances (which
+    // would make the oracle instantiate whole cells).
+    const dvec3 mesh_centre = 0.5 * (dvec3(mesh.aabb_min) + dvec3(mesh.aabb_max));
+    const dvec3 n_out = glm::dot(n_local, centroid_local - mesh_centre) < 0 ? -n_local : n_local;
+    const dvec3 C = f.point(centroid_local), N = f.normal(n_out);
     const dvec3 T = glm::normalize(f.point(P[1]) - f.point(P[0]));
     const double h = shells[t].h_plus;
     cams.push_back({"membrane-front", C + N * (h + 250.0), C, perpendicular(N), 30});
-    cams.push_back({"grazing-membrane", C + N * (0.5 * h) - T * 300.0, C + N * (0.5 * h) + T * 300.0, N, 25});
-    const dvec3 V = f.point(P[0]), NV = f.normal(glm::normalize(dvec3(normals[v[0]])));
+    // Grazing: the centre ray runs 14° below the tangent plane, the top rows just below it.
+    cams.push_back({"grazing-membrane", C + N * (0.5 * h) - T * 300.0, C + N * (0.5 * h - 75.0), N, 25});
+    dvec3 NV = glm::normalize(dvec3(normals[v[0]]));
+    if (glm::dot(NV, n_out) < 0) NV = -NV;
+    const dvec3 V = f.point(P[0]);
+    NV = f.normal(NV);
     cams.push_back({"mesh-vertex", V + NV * (h + 200.0), V, perpendicular(NV), 30, true});
     // A Wang tile corner inside the triangle: the lattice point nearest the UV centroid.
     const float s = c.scales.y / c.scales.x;
@@ -121,11 +130,11 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
       cams.push_back({"inside-atom", atom_centre, atom_centre + dvec3(-0.3, 1.0, 0.45), dvec3(0, 0, 1), 60});
     break;
   }
-  // More views of the first membrane camera's kind, from other sides, up to `count`.
+  // More views of the hard cases, each turned about its up axis by ±20°, ±40°, ..., up to `count`.
   const std::size_t hard = cams.size();
-  for (std::size_t k = 0; cams.size() < count && hard > 0; ++k) {
+  for (std::size_t k = 0; cams.size() < count && hard > 0 && k < 8 * hard; ++k) {
     VerifyCamera extra = cams[k % hard];
-    const double angle = 0.7 * double(k + 1);
+    const double angle = (k % 2 == 0 ? 1.0 : -1.0) * 0.35 * double(1 + (k / hard) % 2);
     const glm::dvec3 off = extra.eye - extra.at;
     const dvec3 axis = glm::normalize(extra.up);
     extra.eye = extra.at + off * std::cos(angle) + glm::cross(axis, off) * std::sin(angle) +
