@@ -1,6 +1,8 @@
 // `nanoview render PKG -o out.png [--size WxH] [--camera SPEC] [--depth out.pfm] [--ids out.bin]
 //  [--shell MODE] [--prism exact|aabb]`: one frame of the ray-query renderer, written atomically.
+#include <algorithm>
 #include <cstdio>
+#include <vector>
 #include <memory>
 #include <string>
 
@@ -24,6 +26,7 @@ std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text) {
 void add_render_command(CLI::App& app) {
   struct Options {
     std::string package, output, size = "384x384", camera, depth, ids, shell = "adaptive-overlap", prism = "exact";
+    unsigned frames = 1;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("render", "Render one frame of a package with nested ray queries (PNG, depth PFM, hit ids)");
@@ -37,6 +40,10 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--shell", o->shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
   cmd->add_option("--prism", o->prism, "exact (ray-prism with bilinear walls) | aabb (the prism's box only)")
       ->capture_default_str();
+  cmd->add_option("--frames", o->frames,
+                  "render the frame this many times and report the min and median time of all but the first "
+                  "(the first dispatch compiles the shader)")
+      ->check(CLI::Range(1u, 1000u));
   cmd->callback([o] {
     const auto [w, h] = parse_size(o->size);
     if (o->prism != "exact" && o->prism != "aabb") throw InputError("--prism", "", "expected exact or aabb, got '" + o->prism + "'");
@@ -57,12 +64,20 @@ void add_render_command(CLI::App& app) {
     settings.exact_prism = o->prism == "exact";
     settings.depth_cue = float(4 * glm::length(camera.at - camera.eye));
     render::Renderer renderer(session.device, *session.scene, settings);
-    const render::Frame frame = renderer.render(camera.to_gpu(w, h));
+    const gpu::Camera gpu_camera = camera.to_gpu(w, h);
+    const render::Frame frame = renderer.render(gpu_camera);
+    std::vector<double> times;
+    for (unsigned k = 1; k < o->frames; ++k) times.push_back(renderer.render(gpu_camera).seconds);
     std::size_t hit = 0;
     for (const auto& p : frame.hits) hit += p.atom != gpu::kNoHit;
     render::write_png(o->output, w, h, frame.rgba);
     if (!o->depth.empty()) render::write_depth_pfm(o->depth, w, h, frame.hits);
     if (!o->ids.empty()) render::write_ids(o->ids, w, h, frame.hits);
+    if (!times.empty()) {
+      std::sort(times.begin(), times.end());
+      std::printf("frames after the first: %zu, min %.4f s, median %.4f s\n", times.size(), times.front(),
+                  times[times.size() / 2]);
+    }
     const render::LoadReport& load = session.scene->report();
     std::printf("%s: %ux%u, %zu of %zu pixels hit an atom, frame %.3f s; camera %s\n", o->output.c_str(), w, h, hit,
                 frame.hits.size(), frame.seconds, camera.to_string().c_str());

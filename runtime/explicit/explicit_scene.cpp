@@ -7,6 +7,7 @@
 #include "common/error.hpp"
 #include "common/singular_value.hpp"
 #include "format/checked_math.hpp"
+#include "format/package_view.hpp"
 #include "shared/ownership.h"
 #include "shared/seam.h"
 #include "shared/tile_mapper.h"
@@ -71,26 +72,8 @@ struct InstancePlan {
   std::uint64_t base = 0;
 };
 
-struct ExplicitScene::Impl {
+struct ExplicitScene::Impl : format::PackageView {
   const format::Package& p;
-  std::span<const gpu::MoleculeType> molecules;
-  std::span<const gpu::Atom> atoms;
-  std::span<const format::AtomInfo> atom_info;
-  std::span<const gpu::Tile2D> squares;
-  std::span<const gpu::Tile3D> cubes;
-  std::span<const gpu::MoleculeInstance> instances;
-  std::span<const gpu::Recipe> recipes;
-  std::span<const std::uint32_t> recipe_indices;
-  std::span<const gpu::Mesh> meshes;
-  std::span<const glm::vec4> positions, normals;
-  std::span<const glm::vec2> uvs;
-  std::span<const gpu::Triangle> triangles;
-  std::span<const gpu::TriangleShell> shells;
-  std::span<const gpu::Compartment> compartments;
-  std::span<const std::uint8_t> occupancy;
-  std::span<const gpu::CompartmentInstance> compartment_instances;
-  std::span<const gpu::BoundaryBox> boundary_boxes;
-  std::span<const std::uint32_t> mask_words;
 
   std::vector<double> type_radius;  // from the atoms, not MoleculeType.aabb_min.w
   std::vector<CompartmentPlan> plans;
@@ -98,32 +81,7 @@ struct ExplicitScene::Impl {
   std::uint64_t number_limit = 0;
 
   explicit Impl(const format::Package& package)
-      : p(package),
-        molecules(p.records<SectionKind::molecules>()),
-        atoms(p.records<SectionKind::atoms>()),
-        atom_info(p.records<SectionKind::atom_info>()),
-        squares(p.records<SectionKind::tiles2d>()),
-        cubes(p.records<SectionKind::tiles3d>()),
-        instances(p.records<SectionKind::instances>()),
-        recipes(p.records<SectionKind::recipes>()),
-        recipe_indices(p.records<SectionKind::recipe_indices>()),
-        meshes(p.records<SectionKind::meshes>()),
-        positions(p.records<SectionKind::vertex_positions>()),
-        normals(p.records<SectionKind::vertex_normals>()),
-        uvs(p.records<SectionKind::vertex_uvs>()),
-        triangles(p.records<SectionKind::triangles>()),
-        shells(p.records<SectionKind::triangle_shells>()),
-        compartments(p.records<SectionKind::compartments>()),
-        occupancy(p.records<SectionKind::occupancy>()),
-        compartment_instances(p.records<SectionKind::compartment_instances>()),
-        boundary_boxes(p.records<SectionKind::boundary_boxes>()),
-        mask_words(p.records<SectionKind::mask_words>()) {
-    for (const gpu::MoleculeType& m : molecules) {
-      double r = 0;
-      for (std::uint32_t a = m.first_atom; a < m.first_atom + m.atom_count; ++a)
-        r = std::max(r, glm::length(dvec3(atoms[a].centre_radius)) + atoms[a].centre_radius.w);
-      type_radius.push_back(r);
-    }
+      : PackageView(package), p(package), type_radius(atom_bounding_radii()) {
     for (std::uint32_t c = 0; c < compartments.size(); ++c) plans.push_back(plan(c));
     for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) instance_plans.push_back(plan_instance(i));
   }

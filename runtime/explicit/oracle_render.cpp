@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "common/error.hpp"
+#include "format/package_view.hpp"
 
 namespace nano::oracle {
 namespace {
@@ -21,12 +22,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Largest |centre| + radius over the atoms of any molecule type: every copy's atoms lie within
 // this (times the instance stretch) of its origin.
 double largest_type_radius(const format::Package& p) {
-  const auto atoms = p.records<SectionKind::atoms>();
-  double r = 0;
-  for (const gpu::MoleculeType& m : p.records<SectionKind::molecules>())
-    for (std::uint32_t a = m.first_atom; a < m.first_atom + m.atom_count; ++a)
-      r = std::max(r, glm::length(dvec3(atoms[a].centre_radius)) + atoms[a].centre_radius.w);
-  return r;
+  const std::vector<double> radii = format::PackageView(p).atom_bounding_radii();
+  return radii.empty() ? 0.0 : *std::max_element(radii.begin(), radii.end());
 }
 
 // Compartment-space box of everything compartment c can place. Generous on purpose: it only

@@ -95,7 +95,8 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
     break;
   }
 
-  // Core cameras on the last instance with a core grid: the INSIDE box nearest the grid's middle.
+  // Core cameras on the last instance with a core grid: the INSIDE box nearest the grid's middle
+  // (a BOUNDARY box when the grid has no INSIDE box, as in a small virion's lumen).
   for (std::uint32_t i = std::uint32_t(insts.size()); i-- > 0;) {
     const gpu::Compartment& c = comps[insts[i].compartment];
     if (c.soluble_recipe == gpu::NANO_NO_INDEX) continue;
@@ -107,8 +108,10 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
       for (std::uint32_t j = 0; j < dims.y; ++j)
         for (std::uint32_t a = 0; a < dims.x; ++a) {
           const std::uint32_t box = a + dims.x * (j + dims.y * k);
-          if (occupancy[c.grid_dims.w + box] != gpu::NANO_BOX_INSIDE) continue;
-          const double d = glm::length(dvec3(glm::ivec3(a, j, k) - mid));
+          const std::uint8_t occ = occupancy[c.grid_dims.w + box];
+          if (occ == gpu::NANO_BOX_OUTSIDE) continue;
+          // INSIDE boxes first: a BOUNDARY box counts as farther than any INSIDE one.
+          const double d = glm::length(dvec3(glm::ivec3(a, j, k) - mid)) + (occ == gpu::NANO_BOX_BOUNDARY ? 1e9 : 0.0);
           if (d < best_d) best_d = d, best = box;
         }
     if (best < 0) continue;

@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "common/singular_value.hpp"
+#include "format/package_view.hpp"
 #include "runtime/render/morton.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
 #include "shared/ownership.h"
@@ -82,24 +83,11 @@ struct Level {
   vk::AccelerationStructure blas, tlas;
 };
 
-struct GpuScene::Impl {
+struct GpuScene::Impl : format::PackageView {
   const vk::Device& device;
   const format::Package& p;
   SceneOptions options;
   LoadReport report;
-
-  std::span<const gpu::MoleculeType> molecules;
-  std::span<const gpu::Atom> atoms;
-  std::span<const gpu::Tile2D> squares;
-  std::span<const gpu::Tile3D> cubes;
-  std::span<const gpu::MoleculeInstance> instances;
-  std::span<const gpu::Mesh> meshes;
-  std::span<const glm::vec4> positions, normals;
-  std::span<const glm::vec2> uvs;
-  std::span<const gpu::Triangle> triangles;
-  std::span<const gpu::TriangleShell> shells;
-  std::span<const gpu::Compartment> compartments;
-  std::span<const gpu::CompartmentInstance> compartment_instances;
 
   std::vector<vk::Buffer> section_buffers;  // indexed by Binding (b_molecules .. b_mask_words), [0] unused
   vk::Buffer shell_buffer, render_compartment_buffer, render_instance_buffer, level_buffer, order_buffer;
@@ -116,30 +104,9 @@ struct GpuScene::Impl {
   std::uint32_t first_square = 0, first_cube = 0;
 
   Impl(const vk::Device& d, const format::Package& package, const SceneOptions& o)
-      : device(d),
-        p(package),
-        options(o),
-        molecules(p.records<SectionKind::molecules>()),
-        atoms(p.records<SectionKind::atoms>()),
-        squares(p.records<SectionKind::tiles2d>()),
-        cubes(p.records<SectionKind::tiles3d>()),
-        instances(p.records<SectionKind::instances>()),
-        meshes(p.records<SectionKind::meshes>()),
-        positions(p.records<SectionKind::vertex_positions>()),
-        normals(p.records<SectionKind::vertex_normals>()),
-        uvs(p.records<SectionKind::vertex_uvs>()),
-        triangles(p.records<SectionKind::triangles>()),
-        shells(p.records<SectionKind::triangle_shells>()),
-        compartments(p.records<SectionKind::compartments>()),
-        compartment_instances(p.records<SectionKind::compartment_instances>()) {
+      : PackageView(package), device(d), p(package), options(o), type_radius(atom_bounding_radii()) {
     if (compartment_instances.size() >= (1u << 24))
       fail("compartment_instances", "more than 2^24 compartment instances (the µLAS custom index has 24 bits)");
-    for (const gpu::MoleculeType& m : molecules) {
-      double r = 0;
-      for (std::uint32_t a = m.first_atom; a < m.first_atom + m.atom_count; ++a)
-        r = std::max(r, glm::length(dvec3(atoms[a].centre_radius)) + atoms[a].centre_radius.w);
-      type_radius.push_back(r);
-    }
     auto start = std::chrono::steady_clock::now();
     upload_sections();
     plan_compartments();

@@ -1,0 +1,43 @@
+// PackageView: every span is the section's records, and bounding radii come from the atoms.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "format/package_view.hpp"
+#include "sample_scene.hpp"
+
+namespace nano::format::test {
+namespace {
+
+TEST(PackageView, SpansAreTheSectionsAsWritten) {
+  SampleScene s = make_sample_scene();
+  const Package p = Package::from_bytes(build(s, Compression::zstd_if_smaller));
+  const PackageView v(p);
+  EXPECT_EQ(v.molecules.size(), s.molecules.size());
+  EXPECT_EQ(v.atoms.size(), s.atoms.size());
+  EXPECT_EQ(v.squares.size(), s.tiles2d.size());
+  EXPECT_EQ(v.cubes.size(), s.tiles3d.size());
+  EXPECT_EQ(v.triangles.size(), s.triangles.size());
+  EXPECT_EQ(v.occupancy.size(), s.occupancy.size());
+  EXPECT_EQ(v.mask_words.size(), s.mask_words.size());
+  EXPECT_EQ(v.compartment_instances.size(), s.compartment_instances.size());
+  ASSERT_FALSE(v.atoms.empty());
+  EXPECT_EQ(v.atoms.back().centre_radius, s.atoms.back().centre_radius);
+}
+
+TEST(PackageView, BoundingRadiusIsTheFarthestAtomSurfaceFromTheOrigin) {
+  SampleScene s = make_sample_scene();
+  // Type 0: atoms at known places; the farthest surface is |(3, 4, 0)| + 1.5 = 6.5 Å.
+  ASSERT_GE(s.molecules[0].atom_count, 2u);
+  const std::uint32_t a = s.molecules[0].first_atom;
+  for (std::uint32_t k = 0; k < s.molecules[0].atom_count; ++k) s.atoms[a + k].centre_radius = {0.5f, 0, 0, 1.0f};
+  s.atoms[a + 1].centre_radius = {3, 4, 0, 1.5f};
+  const Package p = Package::from_bytes(build(s, Compression::none));
+  const std::vector<double> radii = PackageView(p).atom_bounding_radii();
+  ASSERT_EQ(radii.size(), s.molecules.size());
+  EXPECT_DOUBLE_EQ(radii[0], 6.5);
+  for (std::size_t t = 0; t < radii.size(); ++t) EXPECT_TRUE(std::isfinite(radii[t]) && radii[t] >= 0);
+}
+
+}  // namespace
+}  // namespace nano::format::test

@@ -1,0 +1,29 @@
+#!/usr/bin/env python3
+"""Writes a variant of a bundled scene for the renderer's hard cases, structure paths made absolute:
+  derived_scene.py SRC DST [--offset OFFSET] [--mesh COMPARTMENT=FILE]
+--offset translates every instance by OFFSET·(1, −0.7, 0.3) Å (far from the origin, no axis special);
+--mesh replaces a compartment's mesh by a mesh file (e.g. one with sliver triangles)."""
+import argparse, json, os
+
+ap = argparse.ArgumentParser()
+ap.add_argument("src")
+ap.add_argument("dst")
+ap.add_argument("--offset", type=float, default=0.0)
+ap.add_argument("--mesh", action="append", default=[])
+a = ap.parse_args()
+with open(a.src) as f:
+    scene = json.load(f)
+base = os.path.dirname(os.path.abspath(a.src))
+for mol in scene["molecules"].values():
+    mol["file"] = os.path.join(base, mol["file"])
+for inst in scene["instances"]:
+    t = inst.setdefault("transform", {})
+    x, y, z = t.get("translate", [0, 0, 0])
+    t["translate"] = [x + a.offset, y - 0.7 * a.offset, z + 0.3 * a.offset]
+for m in a.mesh:
+    name, path = m.split("=", 1)
+    scene["compartments"][name]["mesh"] = {"file": os.path.abspath(path)}
+tmp = a.dst + ".tmp"
+with open(tmp, "w") as f:
+    json.dump(scene, f, indent=1)
+os.replace(tmp, a.dst)
