@@ -95,8 +95,12 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
     break;
   }
 
-  // Core cameras on the last instance with a core grid: the INSIDE box nearest the grid's middle
-  // (a BOUNDARY box when the grid has no INSIDE box, as in a small virion's lumen).
+  // Core cameras on the last instance with a core grid that has an INSIDE box, at the INSIDE box
+  // nearest the grid's middle; only when no grid has one (a small virion's lumen is all BOUNDARY),
+  // at a BOUNDARY box. A BOUNDARY box of a small grid can put the eye outside its compartment,
+  // looking at whole cells the oracle cannot instantiate.
+  bool core_found = false;
+  for (int pass = 0; pass < 2 && !core_found; ++pass)
   for (std::uint32_t i = std::uint32_t(insts.size()); i-- > 0;) {
     const gpu::Compartment& c = comps[insts[i].compartment];
     if (c.soluble_recipe == gpu::NANO_NO_INDEX) continue;
@@ -109,9 +113,8 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
         for (std::uint32_t a = 0; a < dims.x; ++a) {
           const std::uint32_t box = a + dims.x * (j + dims.y * k);
           const std::uint8_t occ = occupancy[c.grid_dims.w + box];
-          if (occ == gpu::NANO_BOX_OUTSIDE) continue;
-          // INSIDE boxes first: a BOUNDARY box counts as farther than any INSIDE one.
-          const double d = glm::length(dvec3(glm::ivec3(a, j, k) - mid)) + (occ == gpu::NANO_BOX_BOUNDARY ? 1e9 : 0.0);
+          if (occ != gpu::NANO_BOX_INSIDE && !(pass == 1 && occ == gpu::NANO_BOX_BOUNDARY)) continue;
+          const double d = glm::length(dvec3(glm::ivec3(a, j, k) - mid));
           if (d < best_d) best_d = d, best = box;
         }
     if (best < 0) continue;
@@ -131,6 +134,7 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
     });
     if (!std::isnan(atom_centre.x))
       cams.push_back({"inside-atom", atom_centre, atom_centre + dvec3(-0.3, 1.0, 0.45), dvec3(0, 0, 1), 60});
+    core_found = true;
     break;
   }
   // More views of the hard cases, each turned about its up axis by ±20°, ±40°, ..., up to `count`.
