@@ -1,5 +1,5 @@
 // `nanoview render PKG -o out.png [--size WxH] [--camera SPEC] [--depth out.pfm] [--ids out.bin]
-//  [--shell MODE] [--prism exact|aabb]`: one frame of the ray-query renderer, written atomically.
+//  [--shell MODE] [--prism exact|aabb] [--levels 3+rep|3] [--frames N]`: one frame of the ray-query renderer, written atomically.
 #include <algorithm>
 #include <cstdio>
 #include <vector>
@@ -25,8 +25,9 @@ std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text) {
 
 void add_render_command(CLI::App& app) {
   struct Options {
-    std::string package, output, size = "384x384", camera, depth, ids, shell = "adaptive-overlap", prism = "exact";
+    std::string package, output, size = "384x384", camera, depth, ids;
     unsigned frames = 1;
+    VariantOptions variant;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("render", "Render one frame of a package with nested ray queries (PNG, depth PFM, hit ids)");
@@ -37,31 +38,21 @@ void add_render_command(CLI::App& app) {
                   "\"pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG\" (world Å, vertical fov); keys left out keep the scene's camera");
   cmd->add_option("--depth", o->depth, "depth along the unit ray in Å as PFM (+inf: background)");
   cmd->add_option("--ids", o->ids, "per-pixel hit ids (see README)");
-  cmd->add_option("--shell", o->shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
-  cmd->add_option("--prism", o->prism, "exact (ray-prism with bilinear walls) | aabb (the prism's box only)")
-      ->capture_default_str();
+  o->variant.add_to(*cmd);
   cmd->add_option("--frames", o->frames,
                   "render the frame this many times and report the min and median time of all but the first "
                   "(the first dispatch compiles the shader)")
       ->check(CLI::Range(1u, 1000u));
   cmd->callback([o] {
     const auto [w, h] = parse_size(o->size);
-    if (o->prism != "exact" && o->prism != "aabb") throw InputError("--prism", "", "expected exact or aabb, got '" + o->prism + "'");
-    render::SceneOptions scene_options;
-    try {
-      scene_options.shell = render::parse_shell_mode(o->shell);
-    } catch (const std::invalid_argument& e) {
-      throw InputError("--shell", "", e.what());
-    }
-    RenderSession session(o->package, scene_options);
+    render::RenderSettings settings = o->variant.render_settings();
+    RenderSession session(o->package, o->variant.scene_options());
     render::CameraSpec camera = render::package_camera(session.package);
     try {
       if (!o->camera.empty()) camera = render::parse_camera(o->camera, camera);
     } catch (const std::invalid_argument& e) {
       throw InputError("--camera", "", e.what());
     }
-    render::RenderSettings settings;
-    settings.exact_prism = o->prism == "exact";
     settings.depth_cue = float(4 * glm::length(camera.at - camera.eye));
     render::Renderer renderer(session.device, *session.scene, settings);
     const gpu::Camera gpu_camera = camera.to_gpu(w, h);

@@ -2,9 +2,41 @@
 
 #include <cstdio>
 
+#include <CLI/CLI.hpp>
+
+#include "common/error.hpp"
 #include "format/validator.hpp"
 
 namespace nano::view {
+
+void VariantOptions::add_to(CLI::App& command) {
+  command.add_option("--shell", shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
+  command.add_option("--prism", prism, "exact (ray-prism with bilinear walls) | aabb (the prism's box only)")
+      ->capture_default_str();
+  command.add_option("--levels", levels, "3+rep (µLAS, repLAS, mLAS, nLAS) | 3 (every replication slot queried)")
+      ->capture_default_str();
+}
+
+render::SceneOptions VariantOptions::scene_options() const {
+  render::SceneOptions o;
+  try {
+    o.shell = render::parse_shell_mode(shell);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--shell", "", e.what());
+  }
+  return o;
+}
+
+render::RenderSettings VariantOptions::render_settings() const {
+  if (prism != "exact" && prism != "aabb") throw InputError("--prism", "", "expected exact or aabb, got '" + prism + "'");
+  if (levels != "3+rep" && levels != "3")
+    throw InputError("--levels", "",
+                     "expected 3+rep or 3, got '" + levels + "' (2 levels, atoms directly in the tile BLASes, is not built yet)");
+  render::RenderSettings s;
+  s.exact_prism = prism == "exact";
+  s.replication_las = levels == "3+rep";
+  return s;
+}
 
 RenderSession::RenderSession(const std::filesystem::path& path, const render::SceneOptions& options)
     : package(format::open_validated(path)),

@@ -3,13 +3,26 @@
 // (a package that fails validation never reaches the device), the Vulkan device, the scene on it.
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "format/package.hpp"
 #include "runtime/render/gpu_scene.hpp"
+#include "runtime/render/renderer.hpp"
 #include "runtime/vk/device.hpp"
 #include "runtime/vk/instance.hpp"
 
+namespace CLI { class App; }
+
 namespace nano::view {
+
+// The variant options `render`, `verify` and `bench` share: --shell, --prism, --levels.
+struct VariantOptions {
+  std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep";
+  void add_to(CLI::App& command);
+  // Throw InputError naming the option whose value is not one of its choices.
+  render::SceneOptions scene_options() const;
+  render::RenderSettings render_settings() const;
+};
 
 struct RenderSession {
   format::Package package;

@@ -20,7 +20,8 @@ namespace nano::view {
 
 void add_verify_command(CLI::App& app) {
   struct Options {
-    std::string package, size = "96x96", shell = "adaptive-overlap", prism = "exact";
+    std::string package, size = "96x96";
+    VariantOptions variant;
     std::size_t cameras = 8;
     bool json = false;
     double require = 0.999;
@@ -31,23 +32,14 @@ void add_verify_command(CLI::App& app) {
   cmd->add_option("--size", o->size, "image size WxH (cameras that need exactly axis-aligned rays add one to even sizes)")
       ->capture_default_str();
   cmd->add_option("--cameras", o->cameras, "number of views (the hard cases first)")->capture_default_str();
-  cmd->add_option("--shell", o->shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
-  cmd->add_option("--prism", o->prism, "exact | aabb")->capture_default_str();
+  o->variant.add_to(*cmd);
   cmd->add_option("--require", o->require, "exit 1 when the agreement over all pixels is below this")->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON (key `agreement`) instead of text");
   cmd->callback([o] {
     const auto [w, h] = parse_size(o->size);
-    render::SceneOptions scene_options;
-    try {
-      scene_options.shell = render::parse_shell_mode(o->shell);
-    } catch (const std::invalid_argument& e) {
-      throw InputError("--shell", "", e.what());
-    }
-    if (o->prism != "exact" && o->prism != "aabb") throw InputError("--prism", "", "expected exact or aabb, got '" + o->prism + "'");
-    RenderSession session(o->package, scene_options);
+    const render::RenderSettings settings = o->variant.render_settings();
+    RenderSession session(o->package, o->variant.scene_options());
     const oracle::ExplicitScene scene(session.package);
-    render::RenderSettings settings;
-    settings.exact_prism = o->prism == "exact";
     render::Renderer renderer(session.device, *session.scene, settings);
 
     oracle::CompareResult total;
@@ -92,8 +84,9 @@ void add_verify_command(CLI::App& app) {
     nlohmann::json out{{"agreement", total.agreement()},
                        {"pixels", total.pixels},
                        {"device", session.device.description()},
-                       {"shell", o->shell},
-                       {"prism", o->prism},
+                       {"shell", o->variant.shell},
+                       {"prism", o->variant.prism},
+                       {"levels", o->variant.levels},
                        {"views", views},
                        {"validation_errors", session.validation_errors()}};
     if (o->json) std::printf("%s\n", out.dump(2).c_str());

@@ -101,7 +101,8 @@ struct GpuScene::Impl : format::PackageView {
   std::vector<vk::AccelerationStructure> compartment_blas;  // per compartment; empty handle: nothing to trace
   vk::AccelerationStructure ulas;
   bool has_ulas = false;
-  std::uint32_t first_square = 0, first_cube = 0;
+  std::uint32_t first_square = 0, first_cube = 0, first_area = 0;  // level records: types, squares, cubes, areas
+  std::vector<std::pair<dvec3, dvec3>> square_reach;  // per Wang square: tile-space union of its mLAS boxes
 
   Impl(const vk::Device& d, const format::Package& package, const SceneOptions& o)
       : PackageView(package), device(d), p(package), options(o), type_radius(atom_bounding_radii()) {
@@ -114,7 +115,8 @@ struct GpuScene::Impl : format::PackageView {
     start = std::chrono::steady_clock::now();
     first_square = std::uint32_t(molecules.size());
     first_cube = first_square + std::uint32_t(squares.size());
-    level_records.assign(first_cube + cubes.size(), gpu::RenderLevel{});
+    first_area = first_cube + std::uint32_t(cubes.size());
+    level_records.assign(first_area + compartments.size(), gpu::RenderLevel{});
     levels.resize(level_records.size());
     build_molecule_levels();
     report.nlas_seconds = seconds_since(start);
@@ -293,6 +295,7 @@ struct GpuScene::Impl : format::PackageView {
         square_delta[t] = std::max(square_delta[t], delta);
       }
     }
+    square_reach.assign(squares.size(), {dvec3(INFINITY), dvec3(-INFINITY)});
     for (std::uint32_t t = 0; t < squares.size(); ++t) {
       if (square_sigma[t] < 0 || squares[t].instance_count == 0) continue;  // no compartment renders it
       std::vector<VkAabbPositionsKHR> boxes;
@@ -303,9 +306,12 @@ struct GpuScene::Impl : format::PackageView {
         const dvec3 pos(instances[m].position);
         const double e = sigma * (type_radius[instances[m].molecule_type] + std::abs(pos.z) * delta) + pad;
         boxes.push_back(box_of(pos - e, pos + e));
+        square_reach[t].first = glm::min(square_reach[t].first, pos - e);
+        square_reach[t].second = glm::max(square_reach[t].second, pos + e);
       }
       add_tile_level(first_square + t, boxes);
     }
+    build_replication_areas();
     for (std::uint32_t t = 0; t < cubes.size(); ++t) {
       if (cubes[t].instance_count == 0) continue;
       std::vector<VkAabbPositionsKHR> boxes;
@@ -315,6 +321,32 @@ struct GpuScene::Impl : format::PackageView {
         boxes.push_back(box_of(pos - e, pos + e));
       }
       add_tile_level(first_cube + t, boxes);
+    }
+  }
+
+  // repLAS per compartment: its W×H replication slots as boxes in the space of the area's origin tile
+  // (slot (i, j) holds the union of the set's molecule boxes moved by (i·S, j·S)); orders hold the
+  // slot index i + W·j. Every tile of a triangle shares M1's linear part, so one query finds the slots.
+  void build_replication_areas() {
+    for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
+      const gpu::Compartment& c = compartments[ci];
+      render_compartments[ci].span.w = gpu::NANO_NO_INDEX;
+      if (c.membrane_recipe == gpu::NANO_NO_INDEX) continue;
+      dvec3 lo(INFINITY), hi(-INFINITY);
+      for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t)
+        lo = glm::min(lo, square_reach[t].first), hi = glm::max(hi, square_reach[t].second);
+      if (!(lo.x <= hi.x)) continue;  // no molecules
+      const double S = c.scales.y;
+      std::vector<VkAabbPositionsKHR> boxes;
+      std::vector<std::uint32_t> slots;
+      for (std::uint32_t j = 0; j < c.replication_height; ++j)
+        for (std::uint32_t i = 0; i < c.replication_width; ++i) {
+          const dvec3 shift(i * S, j * S, 0.0);
+          boxes.push_back(box_of(lo + shift, hi + shift));
+          slots.push_back(i + c.replication_width * j);
+        }
+      levels[first_area + ci] = build_level(boxes, slots, first_area + ci, report.memory.mlas);
+      render_compartments[ci].span.w = first_area + ci;
     }
   }
 

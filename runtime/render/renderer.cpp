@@ -22,6 +22,7 @@ vk::ComputePipelineDesc pipeline_desc(const RenderSettings& settings) {
   for (std::uint32_t b = 1; b <= b_colours; ++b) set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   desc.sets = {set};
   desc.specialization.set_bool(0, settings.exact_prism);
+  desc.specialization.set_bool(1, settings.replication_las);
   return desc;
 }
 

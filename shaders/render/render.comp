@@ -30,6 +30,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 // 0: the prism's AABB is the only test (no exact ray–prism): cheaper test, more candidates.
 layout(constant_id = 0) const bool kExactPrism = true;
+// 1: the replication area is one query over a repLAS of its tile boxes; 0: every slot is queried.
+layout(constant_id = 1) const bool kReplicationLas = true;
 
 layout(set = 0, binding = 0) uniform accelerationStructureEXT ulas;
 layout(set = 0, binding = 1, std430) readonly buffer Molecules { MoleculeType molecules[]; };
@@ -105,6 +107,49 @@ uint recipe_cell(uint recipe, ivec3 cell) {
   return recipe_indices[r.first_index + uint(w.x) + r.dims.x * (uint(w.y) + r.dims.y * uint(w.z))];
 }
 
+// The membrane copies of replication slot `sxy` of triangle `tl` (local index in its mesh).
+bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart chart, ivec2 origin, ivec2 sxy, vec3 o,
+                vec3 d) {
+  Compartment c = compartments[ci];
+  RenderCompartment rc = render_compartments[ci];
+  ivec2 cell = replication_tile_index(origin, sxy);
+  uint tile = recipe_cell(c.membrane_recipe, ivec3(cell, 0));
+  RenderLevel level = levels[frame.levels.x + tile];
+  if (level.count == 0u) return false;
+  float s_over_S = rc.membrane.y;
+  vec2 g = replication_tile_uv(cell, rc.membrane.x);
+  vec3 ot;
+  vec3 dt;
+  chart_tile_inverse_ray(chart, g, s_over_S, o, d, ot, dt);
+  uint first = squares[tile].first_instance;
+  bool found = false;
+  rayQueryEXT q;
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
+  while (rayQueryProceedEXT(q)) {
+    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+    if (p >= level.count) continue;
+    uint m = orders[level.order_first + p];
+    MoleculeInstance mi = instances[first + m];
+    vec2 uv_m;
+    Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, mi.position.xyz, mi.rotation, uv_m);
+    if (!membrane_keeps_copy(mt, uv_m, placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
+    if (!trace_molecule(mi.molecule_type, placement, o, d)) continue;
+    found = true;
+    best.compartment_instance = inst;
+    best.element = meshes[c.mesh].first_triangle + tl;
+    best.kind = 0u;
+    best.cell = ivec4(cell, 0, 0);
+    best.instance = m;
+    uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
+    uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
+                                        slot, rc.counts.x, m);
+    best.copy_number_lo = number.x;
+    best.copy_number_hi = number.y;
+    rayQueryGenerateIntersectionEXT(q, best_t);
+  }
+  return found;
+}
+
 // The membrane copies of triangle `tl` (local index in the mesh) of compartment instance `inst`.
 bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
   Compartment c = compartments[ci];
@@ -145,43 +190,32 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
   ivec2 origin = replication_origin(uv_min, s);
   ivec2 extent = min(replication_extent(uv_min, uv_max, s), ivec2(c.replication_width, c.replication_height));
   bool found = false;
-  for (int sy = 0; sy < extent.y; ++sy) {
-    for (int sx = 0; sx < extent.x; ++sx) {
-      ivec2 cell = replication_tile_index(origin, ivec2(sx, sy));
-      uint tile = recipe_cell(c.membrane_recipe, ivec3(cell, 0));
-      RenderLevel level = levels[frame.levels.x + tile];
-      if (level.count == 0u) continue;
-      vec2 g = replication_tile_uv(cell, s);
-      vec3 ot;
-      vec3 dt;
-      chart_tile_inverse_ray(chart, g, s_over_S, o, d, ot, dt);
-      uint first = squares[tile].first_instance;
-      rayQueryEXT q;
-      rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
-      while (rayQueryProceedEXT(q)) {
-        uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
-        if (p >= level.count) continue;
-        uint m = orders[level.order_first + p];
-        MoleculeInstance mi = instances[first + m];
-        vec2 uv_m;
-        Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, mi.position.xyz, mi.rotation, uv_m);
-        if (!membrane_keeps_copy(mt, uv_m, placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
-        if (!trace_molecule(mi.molecule_type, placement, o, d)) continue;
+  uint rep = rc.span.w;
+  if (kReplicationLas && rep != NANO_NO_INDEX) {
+    // One query over the replication area's tile boxes (repLAS, in the space of the origin tile:
+    // every tile of the triangle shares M1's linear part), then the mLAS of the tiles it meets.
+    RenderLevel area = levels[rep];
+    vec3 ot;
+    vec3 dt;
+    chart_tile_inverse_ray(chart, replication_tile_uv(origin, s), s_over_S, o, d, ot, dt);
+    rayQueryEXT q;
+    rayQueryInitializeEXT(q, accelerationStructureEXT(area.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
+    while (rayQueryProceedEXT(q)) {
+      uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+      if (p >= area.count) continue;
+      uint slot = orders[area.order_first + p];
+      ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
+      if (sxy.x >= extent.x || sxy.y >= extent.y) continue;
+      if (trace_tile(inst, ci, tl, mt, chart, origin, sxy, o, d)) {
         found = true;
-        best.compartment_instance = inst;
-        best.element = t;
-        best.kind = 0u;
-        best.cell = ivec4(cell, 0, 0);
-        best.instance = m;
-        uint slot = uint(sx) + c.replication_width * uint(sy);
-        uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
-                                            slot, rc.counts.x, m);
-        best.copy_number_lo = number.x;
-        best.copy_number_hi = number.y;
         rayQueryGenerateIntersectionEXT(q, best_t);
       }
     }
+    return found;
   }
+  for (int sy = 0; sy < extent.y; ++sy)
+    for (int sx = 0; sx < extent.x; ++sx)
+      if (trace_tile(inst, ci, tl, mt, chart, origin, ivec2(sx, sy), o, d)) found = true;
   return found;
 }
 

@@ -15,7 +15,8 @@ struct RenderCompartment {
   uvec4 counts;    // x: I₂ (largest square instance count); y: I₃ (cubes); z: prism primitives in the
                    // compartment's µLAS BLAS (the core-grid box, if any, is primitive z); w: first entry
                    // of its primitive → triangle map in `orders`
-  uvec4 span;      // xy: membrane copy-number span of one instance (lo, hi); z: 1 = has a core grid; w: reserved
+  uvec4 span;      // xy: membrane copy-number span of one instance (lo, hi); z: 1 = has a core grid;
+                   // w: repLAS entry in `levels` (NANO_NO_INDEX: none)
 };
 
 // Per compartment instance (parallel to section "compartment_instances"), rewritten per camera.
@@ -28,12 +29,14 @@ struct RenderInstance {
   vec4 eye_lo;   // xyz: float(eye_c − eye_hi); w: reserved
 };
 
-// One nested acceleration structure (an nLAS per molecule type, an mLAS per Wang square and cube):
+// One nested acceleration structure (an nLAS per molecule type, an mLAS per Wang square and cube, a
+// repLAS per compartment with a membrane):
 // the device address of its TLAS and where its primitive → record map starts in `orders`.
 struct RenderLevel {
   uvec2 address;     // VkDeviceAddress (lo, hi); 0 for an empty tile (no structure)
   uint order_first;  // primitive p names record orders[order_first + p]: an atom index (nLAS) or a
-                     // molecule index within its tile (mLAS)
+                     // molecule index within its tile (mLAS) or a
+                     // replication slot i + W·j (repLAS)
   uint count;        // primitives
 };
 
