@@ -13,7 +13,8 @@ void VariantOptions::add_to(CLI::App& command) {
   command.add_option("--shell", shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
   command.add_option("--prism", prism, "exact (ray-prism with bilinear walls) | aabb (the prism's box only)")
       ->capture_default_str();
-  command.add_option("--levels", levels, "3+rep (µLAS, repLAS, mLAS, nLAS) | 3 (every replication slot queried)")
+  command.add_option("--levels", levels, "3+rep (µLAS, repLAS, mLAS, nLAS) | 3 (every replication slot queried) | 2 (membrane atoms directly in "
+                  "the tile BLASes, placed in tile space: the paper's two-level design)")
       ->capture_default_str();
 }
 
@@ -24,17 +25,18 @@ render::SceneOptions VariantOptions::scene_options() const {
   } catch (const std::invalid_argument& e) {
     throw InputError("--shell", "", e.what());
   }
+  o.two_level_membranes = levels == "2";
   return o;
 }
 
 render::RenderSettings VariantOptions::render_settings() const {
   if (prism != "exact" && prism != "aabb") throw InputError("--prism", "", "expected exact or aabb, got '" + prism + "'");
-  if (levels != "3+rep" && levels != "3")
-    throw InputError("--levels", "",
-                     "expected 3+rep or 3, got '" + levels + "' (2 levels, atoms directly in the tile BLASes, is not built yet)");
+  if (levels != "3+rep" && levels != "3" && levels != "2")
+    throw InputError("--levels", "", "expected 3+rep, 3 or 2, got '" + levels + "'");
   render::RenderSettings s;
   s.exact_prism = prism == "exact";
   s.replication_las = levels == "3+rep";
+  s.two_level = levels == "2";
   return s;
 }
 

@@ -13,6 +13,7 @@
 #include "runtime/render/morton.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
 #include "shared/ownership.h"
+#include "shared/quaternion.h"
 #include "shared/render_scene.h"
 #include "shared/shell_prism.h"
 #include "shared/tile_mapper.h"
@@ -101,7 +102,8 @@ struct GpuScene::Impl : format::PackageView {
   std::vector<vk::AccelerationStructure> compartment_blas;  // per compartment; empty handle: nothing to trace
   vk::AccelerationStructure ulas;
   bool has_ulas = false;
-  std::uint32_t first_square = 0, first_cube = 0, first_area = 0;  // level records: types, squares, cubes, areas
+  // Level records: types, squares, cubes, replication areas, then (2-level only) squares of atoms.
+  std::uint32_t first_square = 0, first_cube = 0, first_area = 0, first_atom_square = 0;
   std::vector<std::pair<dvec3, dvec3>> square_reach;  // per Wang square: tile-space union of its mLAS boxes
 
   Impl(const vk::Device& d, const format::Package& package, const SceneOptions& o)
@@ -116,7 +118,8 @@ struct GpuScene::Impl : format::PackageView {
     first_square = std::uint32_t(molecules.size());
     first_cube = first_square + std::uint32_t(squares.size());
     first_area = first_cube + std::uint32_t(cubes.size());
-    level_records.assign(first_area + compartments.size(), gpu::RenderLevel{});
+    first_atom_square = first_area + std::uint32_t(compartments.size());
+    level_records.assign(first_atom_square + squares.size(), gpu::RenderLevel{});
     levels.resize(level_records.size());
     build_molecule_levels();
     report.nlas_seconds = seconds_since(start);
@@ -216,8 +219,10 @@ struct GpuScene::Impl : format::PackageView {
 
   // Builds the level of record `record` from `boxes`, Morton-sorted; orders[order_first + p] =
   // values[i] for the box i that became primitive p. Adds the structures' size to `category`.
+  // With stride k, box i names k values values[k·i .. k·i + k) (a 2-level atom tile names a molecule
+  // and an atom), stored at orders[order_first + k·p].
   Level build_level(const std::vector<VkAabbPositionsKHR>& boxes, const std::vector<std::uint32_t>& values,
-                    std::uint32_t record, std::uint64_t& category) {
+                    std::uint32_t record, std::uint64_t& category, std::uint32_t stride = 1) {
     const std::vector<std::uint32_t> order = morton_order(boxes);
     std::vector<VkAabbPositionsKHR> sorted;
     gpu::RenderLevel& rl = level_records[record];
@@ -225,7 +230,7 @@ struct GpuScene::Impl : format::PackageView {
     rl.count = std::uint32_t(boxes.size());
     for (std::uint32_t i : order) {
       sorted.push_back(boxes[i]);
-      orders.push_back(values[i]);
+      for (std::uint32_t k = 0; k < stride; ++k) orders.push_back(values[std::size_t(stride) * i + k]);
     }
     const vk::Buffer input = vk::Buffer::with_data(device, std::as_bytes(std::span(sorted)), vk::kBuildInputUsage,
                                                    vk::MemoryUse::DeviceLocal);
@@ -312,6 +317,7 @@ struct GpuScene::Impl : format::PackageView {
       add_tile_level(first_square + t, boxes);
     }
     build_replication_areas();
+    if (options.two_level_membranes) build_atom_squares();
     for (std::uint32_t t = 0; t < cubes.size(); ++t) {
       if (cubes[t].instance_count == 0) continue;
       std::vector<VkAabbPositionsKHR> boxes;
@@ -347,6 +353,29 @@ struct GpuScene::Impl : format::PackageView {
         }
       levels[first_area + ci] = build_level(boxes, slots, first_area + ci, report.memory.mlas);
       render_compartments[ci].span.w = first_area + ci;
+    }
+  }
+
+  // The paper's two-level design for membranes: per Wang square one BLAS of every atom of every
+  // molecule, at its tile-space position p + R(q)·a (the affine tile placement, not the true M2:
+  // measured against the oracle by verify). orders hold (molecule index in the tile, atom index).
+  void build_atom_squares() {
+    for (std::uint32_t t = 0; t < squares.size(); ++t) {
+      if (level_records[first_square + t].count == 0) continue;  // no compartment renders it
+      std::vector<VkAabbPositionsKHR> boxes;
+      std::vector<std::uint32_t> values;
+      for (std::uint32_t m = 0; m < squares[t].instance_count; ++m) {
+        const gpu::MoleculeInstance& mi = instances[squares[t].first_instance + m];
+        const gpu::MoleculeType& type = molecules[mi.molecule_type];
+        for (std::uint32_t a = type.first_atom; a < type.first_atom + type.atom_count; ++a) {
+          const dvec3 c = dvec3(mi.position) + dvec3(gpu::quat_rotate(mi.rotation, vec3(atoms[a].centre_radius)));
+          const double r = atoms[a].centre_radius.w + 1e-3;
+          boxes.push_back(box_of(c - r, c + r));
+          values.push_back(m);
+          values.push_back(a);
+        }
+      }
+      levels[first_atom_square + t] = build_level(boxes, values, first_atom_square + t, report.memory.mlas, 2);
     }
   }
 
@@ -499,6 +528,7 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
 
 std::uint32_t GpuScene::first_square_level() const { return impl_->first_square; }
 std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }
+std::uint32_t GpuScene::first_atom_square_level() const { return impl_->first_atom_square; }
 std::uint32_t GpuScene::molecule_type_count() const { return std::uint32_t(impl_->molecules.size()); }
 const LoadReport& GpuScene::report() const { return impl_->report; }
 

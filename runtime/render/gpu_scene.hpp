@@ -28,6 +28,9 @@ const char* to_string(ShellMode mode);
 
 struct SceneOptions {
   ShellMode shell = ShellMode::adaptive_overlap;
+  // Also build the paper's two-level membrane tiles (every atom of a Wang square in one BLAS) for
+  // `--levels 2`; costs memory, so only on request.
+  bool two_level_membranes = false;
 };
 
 // Device memory by category, bytes.
@@ -69,6 +72,7 @@ public:
   // Render-frame level table offsets (RenderFrame.levels).
   std::uint32_t first_square_level() const;
   std::uint32_t first_cube_level() const;
+  std::uint32_t first_atom_square_level() const;  // valid with SceneOptions::two_level_membranes
   std::uint32_t molecule_type_count() const;
 
   const LoadReport& report() const;

@@ -22,7 +22,8 @@ vk::ComputePipelineDesc pipeline_desc(const RenderSettings& settings) {
   for (std::uint32_t b = 1; b <= b_colours; ++b) set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   desc.sets = {set};
   desc.specialization.set_bool(0, settings.exact_prism);
-  desc.specialization.set_bool(1, settings.replication_las);
+  desc.specialization.set_bool(1, settings.replication_las && !settings.two_level);
+  desc.specialization.set_bool(2, settings.two_level);
   return desc;
 }
 
@@ -49,7 +50,8 @@ struct Renderer::Impl {
     scene.set_eye(glm::dvec3(glm::vec3(camera.position)));
     gpu::RenderFrame frame{};
     frame.camera = camera;
-    frame.levels = glm::uvec4(scene.first_square_level(), scene.first_cube_level(), scene.molecule_type_count(), 0);
+    frame.levels = glm::uvec4(scene.first_square_level(), scene.first_cube_level(), scene.molecule_type_count(),
+                              scene.first_atom_square_level());
     frame.light = glm::vec4(glm::normalize(settings.light), settings.depth_cue);
     frame_buffer.write(std::as_bytes(std::span(&frame, 1)));
     const VkDeviceSize pixels = VkDeviceSize(w) * h;

@@ -16,6 +16,7 @@ namespace nano::render {
 struct RenderSettings {
   bool exact_prism = true;           // false: a prism's AABB is its only test (bench knob)
   bool replication_las = true;       // false: query every replication slot's mLAS (no repLAS; bench knob)
+  bool two_level = false;            // membranes through the scene's atom squares (needs two_level_membranes)
   glm::vec3 light{0.3f, 0.5f, 0.8f}; // direction towards the light (world; normalised here)
   float depth_cue = 0;               // Å over which colour fades towards the background (0: off)
 };

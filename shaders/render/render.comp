@@ -32,6 +32,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const bool kExactPrism = true;
 // 1: the replication area is one query over a repLAS of its tile boxes; 0: every slot is queried.
 layout(constant_id = 1) const bool kReplicationLas = true;
+// 1: the paper's two-level membrane: every atom of a Wang square in one BLAS, placed in tile space by
+// the affine M1 (an approximation of the true placement that verify measures); 0: mLAS → nLAS.
+layout(constant_id = 2) const bool kTwoLevel = false;
 
 layout(set = 0, binding = 0) uniform accelerationStructureEXT ulas;
 layout(set = 0, binding = 1, std430) readonly buffer Molecules { MoleculeType molecules[]; };
@@ -107,6 +110,60 @@ uint recipe_cell(uint recipe, ivec3 cell) {
   return recipe_indices[r.first_index + uint(w.x) + r.dims.x * (uint(w.y) + r.dims.y * uint(w.z))];
 }
 
+// Two-level membrane tile: atoms straight from the square's atom BLAS, intersected as spheres in tile
+// space (ellipsoids in the world under M1's stretch and shear), with the molecule's ownership and seam
+// rule decided at its true centre.
+bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart chart, ivec2 cell, uint tile,
+                     uint slot, vec3 o, vec3 d) {
+  Compartment c = compartments[ci];
+  RenderCompartment rc = render_compartments[ci];
+  RenderLevel level = levels[frame.levels.w + tile];
+  if (level.count == 0u) return false;
+  float s_over_S = rc.membrane.y;
+  vec2 g = replication_tile_uv(cell, rc.membrane.x);
+  vec3 ot;
+  vec3 dt;
+  chart_tile_inverse_ray(chart, g, s_over_S, o, d, ot, dt);
+  uint first = squares[tile].first_instance;
+  bool found = false;
+  rayQueryEXT q;
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
+  while (rayQueryProceedEXT(q)) {
+    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+    if (p >= level.count) continue;
+    uint m = orders[level.order_first + 2u * p];
+    uint a = orders[level.order_first + 2u * p + 1u];
+    MoleculeInstance mi = instances[first + m];
+    vec4 cr = atoms[a].centre_radius;
+    vec3 centre = mi.position.xyz + quat_rotate(mi.rotation, cr.xyz);
+    float tn;
+    float tf;
+    if (!sphere_intersect(ot, dt, centre, cr.w, tn, tf)) continue;
+    float t = tn >= 0.0 ? tn : tf;
+    if (!(t >= 0.0) || !(t < best_t)) continue;
+    vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
+    vec3 true_centre = chart_position(chart, uv_m) + mi.position.z * chart_normal(chart, uv_m);
+    if (!membrane_keeps_copy(mt, uv_m, true_centre, molecules[mi.molecule_type].aabb_min.w)) continue;
+    best_t = t;
+    best.atom = a;
+    best_type = mi.molecule_type;
+    // The ellipsoid's normal: the tile-space sphere normal through the transpose of M1⁻¹.
+    best_normal_c = normalize(transpose(chart_tile_frame_inverse_linear(chart, s_over_S)) * (ot + t * dt - centre));
+    best.compartment_instance = inst;
+    best.element = meshes[c.mesh].first_triangle + tl;
+    best.kind = 0u;
+    best.cell = ivec4(cell, 0, 0);
+    best.instance = m;
+    uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
+                                        slot, rc.counts.x, m);
+    best.copy_number_lo = number.x;
+    best.copy_number_hi = number.y;
+    found = true;
+    rayQueryGenerateIntersectionEXT(q, t);
+  }
+  return found;
+}
+
 // The membrane copies of replication slot `sxy` of triangle `tl` (local index in its mesh).
 bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart chart, ivec2 origin, ivec2 sxy, vec3 o,
                 vec3 d) {
@@ -114,6 +171,7 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
   RenderCompartment rc = render_compartments[ci];
   ivec2 cell = replication_tile_index(origin, sxy);
   uint tile = recipe_cell(c.membrane_recipe, ivec3(cell, 0));
+  if (kTwoLevel) return trace_atom_tile(inst, ci, tl, mt, chart, cell, tile, uint(sxy.x) + c.replication_width * uint(sxy.y), o, d);
   RenderLevel level = levels[frame.levels.x + tile];
   if (level.count == 0u) return false;
   float s_over_S = rc.membrane.y;

@@ -44,7 +44,7 @@ struct RenderLevel {
 struct RenderFrame {
   Camera camera;
   uvec4 levels;  // x: first Wang-square entry in `levels` (after one nLAS per molecule type); y: first
-                 // cube entry; z: molecule types; w: reserved
+                 // cube entry; z: molecule types; w: first two-level atom square (--levels 2)
   vec4 light;    // xyz: unit direction towards the light (world); w: depth-cue distance (Å, 0 = off)
 };
 
