@@ -79,6 +79,7 @@ public:
     else ::operator delete(const_cast<std::byte*>(data_), std::align_val_t{kSectionAlignment});
   }
   std::span<const std::byte> bytes() const { return {data_, size_}; }
+  bool mapped() const { return mapped_; }
 
 private:
   const std::byte* data_ = nullptr;
@@ -287,6 +288,8 @@ Package Package::from_bytes(std::span<const std::byte> bytes, std::string name) 
 const std::string& Package::name() const { return impl_->name; }
 const Header& Package::header() const { return impl_->header; }
 std::uint64_t Package::file_size() const { return impl_->storage.bytes().size(); }
+std::span<const std::byte> Package::file_bytes() const { return impl_->storage.bytes(); }
+bool Package::memory_mapped() const { return impl_->storage.mapped(); }
 std::span<const SectionEntry> Package::entries() const { return impl_->entries; }
 bool Package::has(SectionKind kind) const { return entry(kind) != nullptr; }
 const SectionEntry* Package::entry(SectionKind kind) const { return impl_->entry_of[static_cast<std::uint32_t>(kind)]; }

@@ -31,6 +31,10 @@ public:
   const std::string& name() const;
   const Header& header() const;
   std::uint64_t file_size() const;
+  // The whole file as it is held: the read-only mapping (memory_mapped(): page-aligned, so a device
+  // may import its pages, VK_EXT_external_memory_host) or an aligned heap copy (from_bytes).
+  std::span<const std::byte> file_bytes() const;
+  bool memory_mapped() const;
   // The table in file order, including sections of kinds this reader does not know.
   std::span<const SectionEntry> entries() const;
 

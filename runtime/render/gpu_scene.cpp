@@ -7,11 +7,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include <unistd.h>
+
 #include "common/error.hpp"
 #include "common/singular_value.hpp"
 #include "format/package_view.hpp"
 #include "runtime/render/morton.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
+#include "runtime/vk/error.hpp"
 #include "shared/ownership.h"
 #include "shared/quaternion.h"
 #include "shared/render_scene.h"
@@ -72,11 +75,13 @@ nlohmann::json to_json(const LoadReport& r) {
           {"device_memory_bytes", r.memory.total()},
           {"device_memory",
            {{"package_data", r.memory.package_data},
+            {"package_imported", r.memory.package_imported},
             {"derived", r.memory.derived},
             {"nlas", r.memory.nlas},
             {"mlas", r.memory.mlas},
             {"ulas", r.memory.ulas}}},
-          {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}}}};
+          {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}}},
+          {"sections", {{"imported", r.sections_imported}, {"copied_from_pages", r.sections_copied_from_pages}}}};
 }
 
 // One level object: a BLAS of AABBs and a TLAS holding it once with the identity transform.
@@ -155,6 +160,10 @@ struct GpuScene::Impl : format::PackageView {
     section_buffers.resize(kSceneBindingCount);
     for (const auto& [binding, kind] : kinds) {
       std::span<const std::byte> bytes = p.raw_bytes(kind);
+      if (vk::Buffer imported = try_import(kind, bytes); imported.handle() != VK_NULL_HANDLE) {
+        section_buffers[binding] = std::move(imported);
+        continue;
+      }
       std::vector<std::byte> padded;
       if (bytes.size() % 4 != 0) {  // the shader reads occupancy bytes as 32-bit words
         padded.assign(bytes.begin(), bytes.end());
@@ -163,6 +172,39 @@ struct GpuScene::Impl : format::PackageView {
       }
       section_buffers[binding] = storage(bytes);
       report.memory.package_data += section_buffers[binding].size();
+    }
+  }
+
+  // An uncompressed section of a memory-mapped package, through VK_EXT_external_memory_host when
+  // the device has it: a device that shares host memory (integrated, CPU) reads the mapped pages in
+  // place; a discrete one copies them to device memory straight from the pages, with no staging
+  // copy. Anything else (compressed sections, sizes not a multiple of 4 bytes, a range outside the
+  // mapping, a driver that refuses) returns an empty buffer and takes the staging path.
+  vk::Buffer try_import(SectionKind kind, std::span<const std::byte> bytes) {
+    const format::SectionEntry* e = p.entry(kind);
+    if (!device.host_import() || !p.memory_mapped() || e == nullptr || e->codec != std::uint16_t(format::Codec::none) || bytes.empty() ||
+        bytes.size() % 4 != 0)
+      return {};
+    const auto file = p.file_bytes();
+    const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE)), align = device.host_import_alignment();
+    const auto at = [](const std::byte* b) { return reinterpret_cast<std::uintptr_t>(b); };
+    const std::uintptr_t first = at(bytes.data()) / align * align;
+    const std::uintptr_t last = (at(bytes.data()) + bytes.size() + align - 1) / align * align;
+    const std::uintptr_t mapped_end = (at(file.data()) + file.size() + page - 1) / page * page;
+    if (first < at(file.data()) || last > mapped_end) return {};
+    try {
+      vk::Buffer imported = vk::Buffer::import_host(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+      if (device.report().type == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU) {
+        vk::Buffer copy = vk::Buffer::device_copy(device, imported, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        report.memory.package_data += copy.size();
+        ++report.sections_copied_from_pages;
+        return copy;
+      }
+      report.memory.package_imported += bytes.size();
+      ++report.sections_imported;
+      return imported;
+    } catch (const vk::VulkanError&) {
+      return {};
     }
   }
 

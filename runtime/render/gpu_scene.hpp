@@ -35,11 +35,14 @@ struct SceneOptions {
 
 // Device memory by category, bytes.
 struct MemoryReport {
-  std::uint64_t package_data = 0;  // the package's sections as uploaded
+  std::uint64_t package_data = 0;      // the package's sections copied to device memory
+  std::uint64_t package_imported = 0;  // sections the device reads in place from the mapped file
+                                       // (VK_EXT_external_memory_host on a device sharing host memory)
   std::uint64_t derived = 0;       // render records, primitive orders, shells of the chosen mode
   std::uint64_t nlas = 0;          // molecule types (BLAS of atom boxes + TLAS)
   std::uint64_t mlas = 0;          // Wang squares and cubes
   std::uint64_t ulas = 0;          // per-compartment prism BLASes + the instance TLAS
+  // Device-side allocations; imported pages are the package's own mapping, not counted here.
   std::uint64_t total() const { return package_data + derived + nlas + mlas + ulas; }
 };
 
@@ -47,6 +50,7 @@ struct LoadReport {
   double upload_seconds = 0, nlas_seconds = 0, mlas_seconds = 0, ulas_seconds = 0;
   MemoryReport memory;
   std::uint64_t nlas_count = 0, mlas_count = 0, prisms = 0;
+  std::uint64_t sections_imported = 0, sections_copied_from_pages = 0;
 };
 nlohmann::json to_json(const LoadReport& report);
 

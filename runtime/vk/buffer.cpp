@@ -52,7 +52,9 @@ Buffer::Buffer(Buffer&& other) noexcept
       buffer_(std::move(other.buffer_)),
       size_(std::exchange(other.size_, 0)),
       address_(std::exchange(other.address_, 0)),
-      mapped_(std::exchange(other.mapped_, nullptr)) {}
+      mapped_(std::exchange(other.mapped_, nullptr)),
+      view_offset_(std::exchange(other.view_offset_, 0)),
+      view_range_(std::exchange(other.view_range_, VK_WHOLE_SIZE)) {}
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
   if (this != &other) {
@@ -61,8 +63,58 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     size_ = std::exchange(other.size_, 0);
     address_ = std::exchange(other.address_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
+    view_offset_ = std::exchange(other.view_offset_, 0);
+    view_range_ = std::exchange(other.view_range_, VK_WHOLE_SIZE);
   }
   return *this;
+}
+
+Buffer Buffer::import_host(const Device& device, std::span<const std::byte> bytes, VkBufferUsageFlags usage) {
+  if (!device.host_import()) throw std::logic_error("nano::vk::Buffer::import_host: the device has no VK_EXT_external_memory_host");
+  if (bytes.empty()) throw std::invalid_argument("nano::vk::Buffer::import_host: nothing to import");
+  const VkDeviceSize align = device.host_import_alignment();
+  const auto begin = reinterpret_cast<std::uintptr_t>(bytes.data());
+  const std::uintptr_t first = begin / align * align;
+  const std::uintptr_t last = (begin + bytes.size() + align - 1) / align * align;
+  VkDevice vk_device = device.handle();
+  void* host = reinterpret_cast<void*>(first);
+
+  VkMemoryHostPointerPropertiesEXT pointer{VK_STRUCTURE_TYPE_MEMORY_HOST_POINTER_PROPERTIES_EXT};
+  check(device.host_pointer_properties_function()(vk_device, VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT, host,
+                                                  &pointer),
+        "vkGetMemoryHostPointerPropertiesEXT");
+
+  Buffer buffer;
+  buffer.size_ = last - first;
+  VkExternalMemoryBufferCreateInfo external{VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_BUFFER_CREATE_INFO};
+  external.handleTypes = VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.pNext = &external;
+  info.size = buffer.size_;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkBuffer raw = VK_NULL_HANDLE;
+  check(vkCreateBuffer(vk_device, &info, nullptr, &raw), "vkCreateBuffer (host import)");
+  buffer.buffer_ = DeviceHandle<VkBuffer>(vk_device, raw, vkDestroyBuffer);
+
+  VkMemoryRequirements requirements{};
+  vkGetBufferMemoryRequirements(vk_device, raw, &requirements);
+  const std::uint32_t types = requirements.memoryTypeBits & pointer.memoryTypeBits;
+  if (types == 0) throw VulkanError("vkGetMemoryHostPointerPropertiesEXT (no memory type fits the buffer)", VK_ERROR_INVALID_EXTERNAL_HANDLE);
+  VkImportMemoryHostPointerInfoEXT import{VK_STRUCTURE_TYPE_IMPORT_MEMORY_HOST_POINTER_INFO_EXT};
+  import.handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
+  import.pHostPointer = host;
+  VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  allocate.pNext = &import;
+  allocate.allocationSize = buffer.size_;
+  allocate.memoryTypeIndex = device.find_memory_type(types, 0);
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  check(vkAllocateMemory(vk_device, &allocate, nullptr, &memory), "vkAllocateMemory (host import)");
+  buffer.memory_ = DeviceHandle<VkDeviceMemory>(vk_device, memory, vkFreeMemory);
+  check(vkBindBufferMemory(vk_device, raw, memory, 0), "vkBindBufferMemory (host import)");
+  buffer.view_offset_ = begin - first;
+  buffer.view_range_ = bytes.size();
+  return buffer;
 }
 
 Buffer Buffer::with_data(const Device& device, std::span<const std::byte> bytes, VkBufferUsageFlags usage, MemoryUse use) {
@@ -73,10 +125,15 @@ Buffer Buffer::with_data(const Device& device, std::span<const std::byte> bytes,
   }
   Buffer staging(device, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::HostVisible);
   staging.write(bytes);
-  Buffer buffer(device, bytes.size(), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, use);
+  return device_copy(device, staging, usage);
+}
+
+Buffer Buffer::device_copy(const Device& device, const Buffer& source, VkBufferUsageFlags usage) {
+  const VkDeviceSize size = source.view_range_ == VK_WHOLE_SIZE ? source.size_ - source.view_offset_ : source.view_range_;
+  Buffer buffer(device, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::DeviceLocal);
   device.submit_once([&](VkCommandBuffer commands) {
-    VkBufferCopy region{0, 0, bytes.size()};
-    vkCmdCopyBuffer(commands, staging.handle(), buffer.handle(), 1, &region);
+    VkBufferCopy region{source.view_offset_, 0, size};
+    vkCmdCopyBuffer(commands, source.handle(), buffer.handle(), 1, &region);
     // Later submissions read the data in any stage (build input, shader, copy).
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;

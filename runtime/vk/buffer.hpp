@@ -29,7 +29,21 @@ public:
   // added to `usage`), so the data is in place when this returns.
   static Buffer with_data(const Device& device, std::span<const std::byte> bytes, VkBufferUsageFlags usage, MemoryUse use);
 
+  // A buffer over host memory the caller keeps alive and unchanged for the buffer's life (a section
+  // of a memory-mapped package), imported with VK_EXT_external_memory_host: no copy. The imported
+  // range is `bytes` widened to the device's import alignment, so it must lie in pages the process
+  // has mapped; view_offset()/view_range() then select `bytes` within it. Throws VulkanError when the
+  // device refuses the import (the caller falls back to with_data).
+  static Buffer import_host(const Device& device, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
+
+  // A device-local copy of `source`'s view (made on the device; for an imported buffer the copy
+  // reads the host pages directly, with no staging buffer in between).
+  static Buffer device_copy(const Device& device, const Buffer& source, VkBufferUsageFlags usage);
+
   VkBuffer handle() const { return buffer_.get(); }
+  // The part of the buffer descriptors bind (everything, except for imported buffers).
+  VkDeviceSize view_offset() const { return view_offset_; }
+  VkDeviceSize view_range() const { return view_range_; }
   VkDeviceSize size() const { return size_; }
   VkDeviceAddress address() const { return address_; }  // 0 without SHADER_DEVICE_ADDRESS usage
   bool host_visible() const { return mapped_ != nullptr; }
@@ -46,6 +60,8 @@ private:
   VkDeviceSize size_ = 0;
   VkDeviceAddress address_ = 0;
   void* mapped_ = nullptr;  // unmapped implicitly by vkFreeMemory
+  VkDeviceSize view_offset_ = 0;
+  VkDeviceSize view_range_ = VK_WHOLE_SIZE;
 };
 
 }  // namespace nano::vk

@@ -121,7 +121,7 @@ VkDescriptorSet DescriptorPool::allocate(VkDescriptorSetLayout layout) {
 }
 
 void write_storage_buffer(VkDevice device, VkDescriptorSet set, std::uint32_t binding, const Buffer& buffer) {
-  VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo info{buffer.handle(), buffer.view_offset(), buffer.view_range()};
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstSet = set;
   write.dstBinding = binding;

@@ -25,11 +25,15 @@ Device::Device(VkPhysicalDevice physical_device, DeviceReport report)
     throw DeviceSelectionError("device cannot run ray queries: " + report_.name + " lacks " + report_.missing.front());
 
   acceleration_properties_.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR;
+  VkPhysicalDeviceExternalMemoryHostPropertiesEXT host_properties{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT};
   VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   properties2.pNext = &acceleration_properties_;
+  if (report_.external_memory_host) acceleration_properties_.pNext = &host_properties;
   vkGetPhysicalDeviceProperties2(physical_device_, &properties2);
   properties_ = properties2.properties;
   acceleration_properties_.pNext = nullptr;
+  host_import_alignment_ = host_properties.minImportedHostPointerAlignment;
   vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
 
   VkPhysicalDeviceRayQueryFeaturesKHR ray_query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
@@ -54,8 +58,13 @@ Device::Device(VkPhysicalDevice physical_device, DeviceReport report)
   info.pNext = &features;
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue_info;
-  info.enabledExtensionCount = static_cast<std::uint32_t>(std::size(kRequiredDeviceExtensions));
-  info.ppEnabledExtensionNames = kRequiredDeviceExtensions;
+  std::vector<const char*> extensions(std::begin(kRequiredDeviceExtensions), std::end(kRequiredDeviceExtensions));
+  if (report_.external_memory_host) {
+    extensions.push_back(VK_KHR_EXTERNAL_MEMORY_EXTENSION_NAME);  // core in 1.1; listed for 1.0-era loaders
+    extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+  }
+  info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   check(vkCreateDevice(physical_device_, &info, nullptr, &device_), "vkCreateDevice");
 
   try {
@@ -67,6 +76,10 @@ Device::Device(VkPhysicalDevice physical_device, DeviceReport report)
     as_functions_.cmd_build = load<PFN_vkCmdBuildAccelerationStructuresKHR>(device_, "vkCmdBuildAccelerationStructuresKHR");
     as_functions_.get_device_address =
         load<PFN_vkGetAccelerationStructureDeviceAddressKHR>(device_, "vkGetAccelerationStructureDeviceAddressKHR");
+
+    if (report_.external_memory_host)
+      get_host_pointer_properties_ =
+          load<PFN_vkGetMemoryHostPointerPropertiesEXT>(device_, "vkGetMemoryHostPointerPropertiesEXT");
 
     VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
@@ -89,6 +102,8 @@ Device::Device(Device&& other) noexcept
       device_(std::exchange(other.device_, VK_NULL_HANDLE)),
       queue_(other.queue_),
       as_functions_(other.as_functions_),
+      get_host_pointer_properties_(other.get_host_pointer_properties_),
+      host_import_alignment_(other.host_import_alignment_),
       command_pool_(std::move(other.command_pool_)) {}
 
 Device::~Device() {

@@ -43,6 +43,11 @@ public:
   }
   const AccelerationStructureFunctions& acceleration_structure_functions() const { return as_functions_; }
 
+  // VK_EXT_external_memory_host, enabled when the device has it: host pages can back buffers.
+  bool host_import() const { return get_host_pointer_properties_ != nullptr; }
+  VkDeviceSize host_import_alignment() const { return host_import_alignment_; }
+  PFN_vkGetMemoryHostPointerPropertiesEXT host_pointer_properties_function() const { return get_host_pointer_properties_; }
+
   // First memory type allowed by `type_bits` that has all of `required`; throws if none.
   std::uint32_t find_memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
 
@@ -61,6 +66,8 @@ private:
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
   AccelerationStructureFunctions as_functions_;
+  PFN_vkGetMemoryHostPointerPropertiesEXT get_host_pointer_properties_ = nullptr;
+  VkDeviceSize host_import_alignment_ = 0;
   DeviceHandle<VkCommandPool> command_pool_;
 };
 

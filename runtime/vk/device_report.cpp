@@ -105,6 +105,7 @@ DeviceReport survey_device(VkPhysicalDevice device, std::uint32_t index) {
   features2.pNext = &vulkan12;
   void** tail = &vulkan12.pNext;
   const bool has_acceleration = has_extension(extensions, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME);
+  report.external_memory_host = has_extension(extensions, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
   const bool has_ray_query = has_extension(extensions, VK_KHR_RAY_QUERY_EXTENSION_NAME);
   if (has_acceleration) {
     *tail = &acceleration;

@@ -28,6 +28,7 @@ struct DeviceReport {
   std::uint32_t compute_queue_family = kNoQueueFamily;
   // Optional capabilities the renderer enables when present.
   bool shader_int64 = false;
+  bool external_memory_host = false;  // VK_EXT_external_memory_host: package pages imported, not copied
   // Exact names of each missing requirement: "Vulkan 1.2", extension names, or
   // "<FeatureStruct>::<member>" for features. Empty means the device qualifies.
   std::vector<std::string> missing;

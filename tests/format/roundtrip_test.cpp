@@ -134,6 +134,14 @@ TEST(RoundTrip, SectionsAreAlignedAndUncompressedOnesReadInPlace) {
     const auto raw = p.raw_bytes(static_cast<SectionKind>(e.kind));
     EXPECT_EQ(raw.data(), base + e.offset) << section_kind_name(e.kind) << " is not a view into the map";
   }
+  // The whole file is the page-aligned mapping the sections point into; a copy is not a mapping.
+  EXPECT_TRUE(p.memory_mapped());
+  EXPECT_EQ(p.file_bytes().data(), base);
+  EXPECT_EQ(p.file_bytes().size(), p.file_size());
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p.file_bytes().data()) % 4096, 0u);
+  const Package copy = Package::from_bytes(build(s, Compression::none));
+  EXPECT_FALSE(copy.memory_mapped());
+  EXPECT_EQ(copy.file_bytes().size(), p.file_size());
   expect_scene(p, s);
   std::filesystem::remove(path);
 }
