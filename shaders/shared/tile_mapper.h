@@ -159,7 +159,18 @@ NANO_FN Affine3 chart_membrane_molecule(NANO_IN(TriangleChart) c, NANO_IN(vec2) 
   vec3 n = chart_normal(c, uv_m);
   Affine3 m;
   m.translation = chart_position(c, uv_m) + pos_tile.z * n;
-  m.linear = chart_frame(n, c.ju) * quat_to_mat3(q);
+  mat3 f = chart_frame(n, c.ju);
+  // Turn the frame by the rotation part of the chart's in-plane map G = [x y]ᵀ·J (polar
+  // decomposition G = R·P): copies then see only the symmetric stretch P of their tile-space
+  // offsets, not an extra turn of up to the chart's shear angle, so interleaved neighbours move
+  // as little as the chart allows. A mirrored chart (det G < 0) keeps the tangent frame.
+  float g00 = dot(f[0], c.ju), g01 = dot(f[0], c.jv), g10 = dot(f[1], c.ju), g11 = dot(f[1], c.jv);
+  if (g00 * g11 - g01 * g10 > 0.0f) {
+    float theta = atan(g10 - g01, g00 + g11);
+    float ct = cos(theta), st = sin(theta);
+    f = mat3(ct * f[0] + st * f[1], ct * f[1] - st * f[0], f[2]);
+  }
+  m.linear = f * quat_to_mat3(q);
   return m;
 }
 

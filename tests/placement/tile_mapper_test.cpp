@@ -162,7 +162,19 @@ TEST(TileMapper, MembraneMoleculeTransformAndRayMatchOracle) {
     worst_p = std::max(worst_p, glm::length(D(m.translation) - want_p) / (o.diameter() + 50));
     dvec3 ju = o.ju();
     dvec3 fx = glm::normalize(ju - glm::dot(ju, n) * n);
-    glm::dmat3 frame(fx, glm::cross(n, fx), n);
+    dvec3 fy = glm::cross(n, fx);
+    // The frame turns by the rotation of the polar decomposition G = R·P of the in-plane map
+    // G = [fx fy]ᵀ·[Ju Jv] (when det G > 0), found here by Newton's iteration R ← (R + R⁻ᵀ)/2.
+    glm::dmat2 G(glm::dot(fx, ju), glm::dot(fy, ju), glm::dot(fx, o.jv()), glm::dot(fy, o.jv()));
+    if (glm::determinant(G) > 0) {
+      glm::dmat2 R = G;
+      for (int it = 0; it < 60; ++it) R = 0.5 * (R + glm::transpose(glm::inverse(R)));
+      const dvec2 c0 = R[0];  // image of (1, 0): (cos θ, sin θ)
+      const dvec3 tx = c0.x * fx + c0.y * fy;
+      fy = c0.x * fy - c0.y * fx;
+      fx = tx;
+    }
+    glm::dmat3 frame(fx, fy, n);
     glm::dmat3 rq = glm::mat3_cast(glm::angleAxis(double(ang), glm::normalize(D(axis))));
     glm::dmat3 want_r = frame * rq;
     for (int col = 0; col < 3; ++col) worst_r = std::max(worst_r, glm::length(dvec3(m.linear[col]) - want_r[col]));
