@@ -1,6 +1,8 @@
 // `nanoview verify PKG [--size WxH] [--cameras N] [--json] [--require F]`: renders views on the
 // device and with the CPU oracle (every molecule in view instantiated explicitly with the same
 // placement code and ray-traced in double) and reports, pixel by pixel, how far they agree.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -17,6 +19,12 @@
 #include "runtime/render_session.hpp"
 
 namespace nano::view {
+namespace {
+// Relative radius change that separates grazing touches and float ties from real differences:
+// 1e-3·r is 0.0017 Å on a carbon, far above float error in molecule space yet far below any
+// misplaced atom.
+constexpr double kRadiusEpsilon = 1e-3;
+}  // namespace
 
 void add_verify_command(CLI::App& app) {
   struct Options {
@@ -25,6 +33,7 @@ void add_verify_command(CLI::App& app) {
     std::size_t cameras = 8;
     bool json = false;
     double require = 0.999;
+    std::uint64_t max_unexplained = 0;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("verify", "Compare the device's image with explicit instancing on the CPU, pixel by pixel");
@@ -34,6 +43,10 @@ void add_verify_command(CLI::App& app) {
   cmd->add_option("--cameras", o->cameras, "number of views (the hard cases first)")->capture_default_str();
   o->variant.add_to(*cmd);
   cmd->add_option("--require", o->require, "exit 1 when the agreement over all pixels is below this")->capture_default_str();
+  cmd->add_option("--max-unexplained", o->max_unexplained,
+                  "exit 1 when more differing pixels than this are not explained by changing every atom radius by "
+                  "a relative 1e-3 (a grazing touch or a float tie)")
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON (key `agreement`) instead of text");
   cmd->callback([o] {
     const auto [w, h] = parse_size(o->size);
@@ -43,6 +56,11 @@ void add_verify_command(CLI::App& app) {
     render::Renderer renderer(session.device, *session.scene, settings);
 
     oracle::CompareResult total;
+    std::uint64_t total_unexplained = 0;
+    double largest_atom = 0;
+    for (const gpu::Atom& a : session.package.records<format::SectionKind::atoms>())
+      largest_atom = std::max(largest_atom, double(a.centre_radius.w));
+    const double grazing_slack = largest_atom * std::sqrt(2 * kRadiusEpsilon);
     nlohmann::json views = nlohmann::json::array();
     for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o->cameras)) {
       render::CameraSpec spec;
@@ -55,6 +73,20 @@ void add_verify_command(CLI::App& app) {
       oracle::OracleRenderStats stats;
       const std::vector<gpu::PixelHit> reference = oracle::oracle_render(scene, session.package, camera, oracle_options, &stats);
       const oracle::CompareResult r = oracle::compare_images(reference, frame.hits, cw, ch);
+      // Which differences a relative change of every radius by ±ε flips: grazing touches and ties.
+      std::uint64_t unexplained = 0;
+      if (r.agree != r.pixels) {
+        oracle::OracleRenderOptions shrink = oracle_options, grow = oracle_options;
+        shrink.radius_scale = 1 - kRadiusEpsilon;
+        grow.radius_scale = 1 + kRadiusEpsilon;
+        const auto shrunk = oracle::oracle_render(scene, session.package, camera, shrink);
+        const auto grown = oracle::oracle_render(scene, session.package, camera, grow);
+        for (std::size_t i = 0; i < reference.size(); ++i)
+          if (oracle::classify(reference[i], frame.hits[i]) != oracle::PixelDifference::none &&
+              !oracle::explained_by_radius_change(frame.hits[i], reference[i], shrunk[i], grown[i], grazing_slack))
+            ++unexplained;
+      }
+      total_unexplained += unexplained;
       std::size_t hit = 0;
       for (const auto& p : reference) hit += p.atom != gpu::kNoHit;
       total.pixels += r.pixels, total.agree += r.agree, total.bad_depth += r.bad_depth, total.missed += r.missed;
@@ -65,16 +97,18 @@ void add_verify_command(CLI::App& app) {
       view["camera"] = spec.to_string();
       view["size"] = {cw, ch};
       view["reference_hits"] = hit;
+      view["unexplained"] = unexplained;
       view["gpu_seconds"] = frame.seconds;
       view["oracle_seconds"] = stats.seconds;
       view["oracle_atoms"] = stats.atoms_last_round;
       views.push_back(view);
       if (!o->json)
         std::printf("%-24s %4ux%-4u agreement %.5f (%llu pixels hit; missed %llu, other atom %llu, other ids %llu, depth %llu, "
-                    "bad depth %llu) gpu %.2f s, oracle %.2f s over %llu atoms\n",
+                    "bad depth %llu; %llu not explained by radii ±%g) gpu %.2f s, oracle %.2f s over %llu atoms\n",
                     vc.name.c_str(), cw, ch, r.agreement(), (unsigned long long)hit, (unsigned long long)r.missed,
                     (unsigned long long)r.different_atom, (unsigned long long)r.different_ids,
-                    (unsigned long long)r.depth_only, (unsigned long long)r.bad_depth, frame.seconds, stats.seconds,
+                    (unsigned long long)r.depth_only, (unsigned long long)r.bad_depth, (unsigned long long)unexplained,
+                    kRadiusEpsilon, frame.seconds, stats.seconds,
                     (unsigned long long)stats.atoms_last_round);
       if (!o->json)
         for (const auto& m : r.first)
@@ -82,6 +116,8 @@ void add_verify_command(CLI::App& app) {
                       oracle::to_json(m.reference).dump().c_str(), oracle::to_json(m.test).dump().c_str());
     }
     nlohmann::json out{{"agreement", total.agreement()},
+                       {"unexplained", total_unexplained},
+                       {"radius_epsilon", kRadiusEpsilon},
                        {"pixels", total.pixels},
                        {"device", session.device.description()},
                        {"shell", o->variant.shell},
@@ -90,10 +126,15 @@ void add_verify_command(CLI::App& app) {
                        {"views", views},
                        {"validation_errors", session.validation_errors()}};
     if (o->json) std::printf("%s\n", out.dump(2).c_str());
-    else std::printf("agreement %.5f over %llu pixels on %s\n", total.agreement(), (unsigned long long)total.pixels,
-                     session.device.description().c_str());
+    else std::printf("agreement %.5f over %llu pixels on %s; %llu differences not explained by radii ±%g\n",
+                     total.agreement(), (unsigned long long)total.pixels, session.device.description().c_str(),
+                     (unsigned long long)total_unexplained, kRadiusEpsilon);
     if (session.validation_errors() != 0)
       throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");
+    if (total_unexplained > o->max_unexplained)
+      throw std::runtime_error(std::to_string(total_unexplained) + " differing pixels are not explained by a relative radius change of " +
+                               std::to_string(kRadiusEpsilon) + " (more than --max-unexplained " +
+                               std::to_string(o->max_unexplained) + ")");
     if (total.agreement() < o->require)
       throw std::runtime_error("agreement " + std::to_string(total.agreement()) + " is below --require " + std::to_string(o->require));
   });

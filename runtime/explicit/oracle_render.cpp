@@ -377,7 +377,7 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
 
     atoms.clear(), copies.clear();
     scene.for_each_atom(box, [&](const AtomSample& s) {
-      if (!view.meets_sphere(s.position, s.radius, depth_bound)) return;
+      if (!view.meets_sphere(s.position, s.radius * std::max(1.0, options.radius_scale), depth_bound)) return;
       // A copy's atoms arrive consecutively and copy numbers are unique.
       if (copies.empty() || copies.back().number != s.copy->number) copies.push_back({s.copy->id, s.copy->number});
       if (atoms.size() >= options.max_atoms)
@@ -385,7 +385,7 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
                          "the CPU oracle would need more than " + count(double(options.max_atoms)) +
                              " atoms to resolve the view up to " + count(depth_bound) +
                              " Å from the eye; choose a camera that sees less (closer, narrower) or raise the atom cap");
-      atoms.push_back({s.position, s.radius, s.atom, std::uint32_t(copies.size() - 1)});
+      atoms.push_back({s.position, s.radius * options.radius_scale, s.atom, std::uint32_t(copies.size() - 1)});
     });
     st.atoms_last_round = atoms.size();
     st.atoms_total += atoms.size();

@@ -26,6 +26,9 @@ struct OracleRenderOptions {
   // First depth bound: the nearest compartment instance's reach plus this many Å.
   double first_margin = 300.0;
   std::string camera_name = "camera";  // for error messages
+  // Every atom radius times this: verify renders the view again with radii 1 ± ε to tell which
+  // differences a change of ε·r could flip (grazing touches, float ties) from real ones.
+  double radius_scale = 1.0;
 };
 
 // What one render cost; for reports and for choosing cameras.

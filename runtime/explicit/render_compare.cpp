@@ -1,5 +1,6 @@
 #include "runtime/explicit/render_compare.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -105,6 +106,28 @@ nlohmann::json to_json(const CompareResult& r) {
           {"depth_only", r.depth_only},
           {"max_depth_difference", r.max_depth_difference},
           {"first_differences", first}};
+}
+
+bool explained_by_radius_change(const gpu::PixelHit& test, const gpu::PixelHit& reference, const gpu::PixelHit& shrunk,
+                                const gpu::PixelHit& grown, double grazing_slack) {
+  if (classify(shrunk, test) == PixelDifference::none || classify(grown, test) == PixelDifference::none) return true;
+  const auto same_atom = [](const gpu::PixelHit& a, const gpu::PixelHit& b) {
+    return a.atom != gpu::kNoHit && a.atom == b.atom && a.copy_number_lo == b.copy_number_lo &&
+           a.copy_number_hi == b.copy_number_hi;
+  };
+  // Same atom in the device's image and in a perturbed one: a depth between the perturbed depths.
+  for (const gpu::PixelHit* p : {&reference, &shrunk, &grown}) {
+    if (!same_atom(test, *p)) continue;
+    double lo = p->depth, hi = p->depth;
+    for (const gpu::PixelHit* q : {&reference, &shrunk, &grown})
+      if (same_atom(test, *q)) lo = std::min(lo, double(q->depth)), hi = std::max(hi, double(q->depth));
+    const double tol = depth_tolerance(lo);
+    if (test.depth >= lo - tol && test.depth <= hi + tol) return true;
+  }
+  if (same_atom(test, reference) && !same_atom(shrunk, reference) &&
+      std::abs(double(test.depth) - double(reference.depth)) <= grazing_slack + depth_tolerance(reference.depth))
+    return true;
+  return false;
 }
 
 }  // namespace nano::oracle

@@ -37,6 +37,16 @@ struct CompareResult {
   double agreement() const { return pixels == 0 ? 1.0 : double(agree) / double(pixels); }
 };
 
+// Whether a differing pixel is explained by a relative change of every atom radius by ±ε: the
+// device's answer equals (same atom and copy, depth within tolerance, or both background) the
+// oracle's answer in the world with radii·(1 − ε) or radii·(1 + ε), or its depth on the same atom
+// lies between those answers' depths. Such a difference is a grazing touch or a float tie. When
+// shrinking the radii loses the reference's atom, the ray passes within ε·r of tangency and its depth
+// is only known to within r·sqrt(2ε) (`grazing_slack`, for the largest atom radius r): a device depth
+// on the same atom up to that much beyond the reference's counts as explained too.
+bool explained_by_radius_change(const gpu::PixelHit& test, const gpu::PixelHit& reference, const gpu::PixelHit& shrunk,
+                                const gpu::PixelHit& grown, double grazing_slack);
+
 // Depth tolerance at reference depth t: max(1e-3 Å, 1e-5·t).
 double depth_tolerance(double t);
 PixelDifference classify(const gpu::PixelHit& reference, const gpu::PixelHit& test);
