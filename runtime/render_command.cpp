@@ -73,11 +73,11 @@ void add_render_command(CLI::App& app) {
     std::printf("%s: %ux%u, %zu of %zu pixels hit an atom, frame %.3f s; camera %s\n", o->output.c_str(), w, h, hit,
                 frame.hits.size(), frame.seconds, camera.to_string().c_str());
     std::printf("load: upload %.3f s, nLAS %.3f s, mLAS %.3f s, µLAS %.3f s; device memory %.2f MB "
-                "(package %.2f, derived %.2f, nLAS %.2f, mLAS %.2f, µLAS %.2f); %.2f MB of %llu sections read in place "
-                "from the mapped package\n",
+                "(package %.2f, derived %.2f, nLAS %.2f, mLAS %.2f, µLAS %.2f; build scratch peak %.2f, freed); "
+                "%.2f MB of %llu sections read in place from the mapped package\n",
                 load.upload_seconds, load.nlas_seconds, load.mlas_seconds, load.ulas_seconds, load.memory.total() / 1e6,
                 load.memory.package_data / 1e6, load.memory.derived / 1e6, load.memory.nlas / 1e6, load.memory.mlas / 1e6,
-                load.memory.ulas / 1e6, load.memory.package_imported / 1e6, (unsigned long long)load.sections_imported);
+                load.memory.ulas / 1e6, load.memory.scratch_peak / 1e6, load.memory.package_imported / 1e6, (unsigned long long)load.sections_imported);
     if (session.validation_errors() != 0)
       throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");
   });

@@ -79,7 +79,8 @@ nlohmann::json to_json(const LoadReport& r) {
             {"derived", r.memory.derived},
             {"nlas", r.memory.nlas},
             {"mlas", r.memory.mlas},
-            {"ulas", r.memory.ulas}}},
+            {"ulas", r.memory.ulas},
+            {"scratch_peak", r.memory.scratch_peak}}},
           {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}}},
           {"sections", {{"imported", r.sections_imported}, {"copied_from_pages", r.sections_copied_from_pages}}}};
 }
@@ -259,6 +260,10 @@ struct GpuScene::Impl : format::PackageView {
     }
   }
 
+  void note_scratch(const vk::AccelerationStructure& s) {
+    report.memory.scratch_peak = std::max<std::uint64_t>(report.memory.scratch_peak, s.scratch_size());
+  }
+
   // Builds the level of record `record` from `boxes`, Morton-sorted; orders[order_first + p] =
   // values[i] for the box i that became primitive p. Adds the structures' size to `category`.
   // With stride k, box i names k values values[k·i .. k·i + k) (a 2-level atom tile names a molecule
@@ -282,6 +287,8 @@ struct GpuScene::Impl : format::PackageView {
     level.tlas = vk::build_top_level(device, std::span(&identity, 1));
     rl.address = glm::uvec2(std::uint32_t(level.tlas.address()), std::uint32_t(level.tlas.address() >> 32));
     category += level.blas.size() + level.tlas.size();
+    note_scratch(level.blas);
+    note_scratch(level.tlas);
     return level;
   }
 
@@ -497,6 +504,7 @@ struct GpuScene::Impl : format::PackageView {
           vk::Buffer::with_data(device, std::as_bytes(std::span(boxes)), vk::kBuildInputUsage, vk::MemoryUse::DeviceLocal);
       compartment_blas[ci] = vk::build_bottom_level(device, vk::AabbGeometry{input.address(), std::uint32_t(boxes.size())});
       report.memory.ulas += compartment_blas[ci].size();
+      note_scratch(compartment_blas[ci]);
     }
   }
 
@@ -540,6 +548,7 @@ struct GpuScene::Impl : format::PackageView {
     has_ulas = !records.empty();
     if (!has_ulas) fail("compartment_instances", "the package places nothing to render");
     ulas = vk::build_top_level(device, std::span(records));
+    note_scratch(ulas);
     render_instance_buffer.write(std::as_bytes(std::span(render_instances)));
     report.memory.ulas += ulas.size();
   }

@@ -42,6 +42,7 @@ struct MemoryReport {
   std::uint64_t nlas = 0;          // molecule types (BLAS of atom boxes + TLAS)
   std::uint64_t mlas = 0;          // Wang squares and cubes
   std::uint64_t ulas = 0;          // per-compartment prism BLASes + the instance TLAS
+  std::uint64_t scratch_peak = 0;  // largest build scratch (freed after each build; not in total)
   // Device-side allocations; imported pages are the package's own mapping, not counted here.
   std::uint64_t total() const { return package_data + derived + nlas + mlas + ulas; }
 };

@@ -59,7 +59,7 @@ AccelerationStructure build(const Device& device, VkAccelerationStructureTypeKHR
   VkAccelerationStructureDeviceAddressInfoKHR address_info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR};
   address_info.accelerationStructure = raw;
   const VkDeviceAddress address = khr.get_device_address(device.handle(), &address_info);
-  return AccelerationStructure(std::move(storage), std::move(handle), address);
+  return AccelerationStructure(std::move(storage), std::move(handle), address, scratch.size());
 }
 
 }  // namespace

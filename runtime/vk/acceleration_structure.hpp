@@ -17,14 +17,16 @@ namespace nano::vk {
 class AccelerationStructure {
 public:
   AccelerationStructure() = default;
-  AccelerationStructure(Buffer storage, DeviceHandle<VkAccelerationStructureKHR> handle, VkDeviceAddress address)
-      : storage_(std::move(storage)), handle_(std::move(handle)), address_(address) {}
+  AccelerationStructure(Buffer storage, DeviceHandle<VkAccelerationStructureKHR> handle, VkDeviceAddress address,
+                        VkDeviceSize scratch_size = 0)
+      : storage_(std::move(storage)), handle_(std::move(handle)), address_(address), scratch_size_(scratch_size) {}
   AccelerationStructure(AccelerationStructure&&) noexcept = default;
   AccelerationStructure& operator=(AccelerationStructure&& other) noexcept {
     if (this != &other) {
       handle_ = std::move(other.handle_);  // the old handle goes before the storage it lives in
       storage_ = std::move(other.storage_);
       address_ = std::exchange(other.address_, 0);
+      scratch_size_ = std::exchange(other.scratch_size_, 0);
     }
     return *this;
   }
@@ -32,11 +34,14 @@ public:
   VkAccelerationStructureKHR handle() const { return handle_.get(); }
   VkDeviceAddress address() const { return address_; }  // for instance records and GLSL uint64 casts
   VkDeviceSize size() const { return storage_.size(); }
+  // The scratch memory its build needed (freed when the build finished).
+  VkDeviceSize scratch_size() const { return scratch_size_; }
 
 private:
   Buffer storage_;                                    // declared first: outlives the handle
   DeviceHandle<VkAccelerationStructureKHR> handle_;
   VkDeviceAddress address_ = 0;
+  VkDeviceSize scratch_size_ = 0;
 };
 
 // Usage flags of buffers read by builds (AABBs, instance records).
