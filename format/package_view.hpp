@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -14,6 +15,21 @@
 #include "format/package.hpp"
 
 namespace nano::format {
+
+// A compartment instance's 3×4 row-major transform (compartment space → world) in double:
+// world = linear·p + translation.
+struct InstanceTransform {
+  glm::dmat3 linear{1.0};
+  glm::dvec3 translation{0.0};
+};
+inline InstanceTransform instance_transform(const gpu::CompartmentInstance& ci) {
+  InstanceTransform t;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) t.linear[c][r] = ci.transform[r][c];  // GLM is column-major
+    t.translation[r] = ci.transform[r][3];
+  }
+  return t;
+}
 
 struct PackageView {
   std::span<const gpu::MoleculeType> molecules;

@@ -206,10 +206,9 @@ struct ExplicitScene::Impl : format::PackageView {
   InstancePlan plan_instance(std::uint32_t i) {
     const gpu::CompartmentInstance& ci = compartment_instances[i];
     InstancePlan ip;
-    for (int r = 0; r < 3; ++r) {
-      for (int col = 0; col < 3; ++col) ip.linear[col][r] = ci.transform[r][col];
-      ip.translation[r] = ci.transform[r][3];
-    }
+    const format::InstanceTransform t = format::instance_transform(ci);
+    ip.linear = t.linear;
+    ip.translation = t.translation;
     const double det = glm::determinant(ip.linear);
     if (!(std::abs(det) > 1e-12)) fail("compartment_instances[" + str(i) + "]", "transform is singular");
     ip.inverse = glm::inverse(ip.linear);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "format/package_view.hpp"
 #include "shared/ownership.h"
 #include "shared/tile_mapper.h"
 
@@ -20,12 +21,8 @@ struct InstanceFrame {
 };
 
 InstanceFrame frame_of(const gpu::CompartmentInstance& ci) {
-  InstanceFrame f;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) f.linear[c][r] = ci.transform[r][c];
-    f.translation[r] = ci.transform[r][3];
-  }
-  return f;
+  const format::InstanceTransform t = format::instance_transform(ci);
+  return {t.linear, t.translation};
 }
 
 // Any unit vector perpendicular to n.

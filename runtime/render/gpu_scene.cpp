@@ -532,11 +532,9 @@ struct GpuScene::Impl : format::PackageView {
     for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
       const gpu::CompartmentInstance& ci = compartment_instances[i];
       if (compartment_blas[ci.compartment].handle() == VK_NULL_HANDLE) continue;
-      glm::dmat4 m(1.0);
-      for (int r = 0; r < 3; ++r) {
-        for (int col = 0; col < 3; ++col) m[col][r] = ci.transform[r][col];
-        m[3][r] = double(ci.transform[r][3]) - eye[r];
-      }
+      const format::InstanceTransform t = format::instance_transform(ci);
+      glm::dmat4 m(t.linear);
+      m[3] = glm::dvec4(t.translation - eye, 1.0);
       // The eye in compartment space, L⁻¹(eye − T), in double, split into two floats.
       const dvec3 eye_c = glm::inverse(glm::dmat3(m)) * -dvec3(m[3]);
       const vec3 hi(eye_c);

@@ -41,3 +41,23 @@ TEST(PackageView, BoundingRadiusIsTheFarthestAtomSurfaceFromTheOrigin) {
 
 }  // namespace
 }  // namespace nano::format::test
+
+namespace nano::format::test {
+namespace {
+
+TEST(PackageView, InstanceTransformReadsRowsIntoColumnMajorDouble) {
+  gpu::CompartmentInstance ci{};
+  // Rows of [L | T]: L = [[1,2,3],[4,5,6],[7,8,10]], T = (11, 12, 13).
+  ci.transform[0] = {1, 2, 3, 11};
+  ci.transform[1] = {4, 5, 6, 12};
+  ci.transform[2] = {7, 8, 10, 13};
+  const InstanceTransform t = instance_transform(ci);
+  const glm::dvec3 p(1, -1, 2);
+  const glm::dvec3 world = t.linear * p + t.translation;
+  EXPECT_DOUBLE_EQ(world.x, 1 - 2 + 6 + 11);
+  EXPECT_DOUBLE_EQ(world.y, 4 - 5 + 12 + 12);
+  EXPECT_DOUBLE_EQ(world.z, 7 - 8 + 20 + 13);
+}
+
+}  // namespace
+}  // namespace nano::format::test
