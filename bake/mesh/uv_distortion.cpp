@@ -50,18 +50,29 @@ double uv_scale(const ProxyMesh& mesh) {
   return uv > 0.0 ? std::sqrt(world / uv) : 0.0;
 }
 
-double smallest_stretch(const ProxyMesh& mesh) {
-  double smallest = 0.0;
+namespace {
+// The extreme singular values over triangles with a usable chart (σ2 > 0); {0, 0} without any.
+SingularValues stretch_range(const ProxyMesh& mesh) {
+  SingularValues range;
   bool any = false;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const std::optional<UvJacobian> j = uv_jacobian(mesh, t);
     if (!j) continue;
-    const double minor = singular_values(*j).minor;
-    if (!(minor > 0.0)) continue;
-    smallest = any ? std::min(smallest, minor) : minor;
+    const SingularValues s = singular_values(*j);
+    if (!(s.minor > 0.0)) continue;
+    range.minor = any ? std::min(range.minor, s.minor) : s.minor;
+    range.major = any ? std::max(range.major, s.major) : s.major;
     any = true;
   }
-  return smallest;
+  return range;
+}
+}  // namespace
+
+double smallest_stretch(const ProxyMesh& mesh) { return stretch_range(mesh).minor; }
+
+double chart_anisotropy(const ProxyMesh& mesh) {
+  const SingularValues range = stretch_range(mesh);
+  return range.minor > 0.0 ? range.major / range.minor : 0.0;
 }
 
 int tiles_spanning(double extent, double s) { return static_cast<int>(std::ceil(extent / s)) + 1; }

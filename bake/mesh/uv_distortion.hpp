@@ -42,6 +42,11 @@ double uv_scale(const ProxyMesh& mesh);
 // 0 if no triangle has a usable chart.
 double smallest_stretch(const ProxyMesh& mesh);
 
+// The largest stretch σ1 over triangles with a usable chart divided by smallest_stretch: with the
+// tile scale set to the smallest stretch, the in-plane map of every triangle has singular values in
+// [1, chart_anisotropy]. 0 if no triangle has a usable chart.
+double chart_anisotropy(const ProxyMesh& mesh);
+
 // Tiles of UV size s needed along one axis to cover an extent: ceil(extent / s) + 1, the +1
 // because a triangle's UV box rarely starts on a tile boundary.
 int tiles_spanning(double extent, double s);

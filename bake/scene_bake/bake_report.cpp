@@ -35,6 +35,9 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
   for (const WangSetSummary& s : scene.wang_sets)
     for (const tiles::MoleculeDensity& d : s.densities)
       densities.push_back({{"set", s.name}, {"molecule", d.name}, {"requested", d.requested}, {"achieved", d.achieved}});
+  auto& stretch = j["membrane_stretch"] = nlohmann::ordered_json::object();
+  for (const WangSetSummary& s : scene.wang_sets)
+    if (s.lateral_stretch > 0.0) stretch[s.name] = 1.0 + s.lateral_stretch;
   auto& sections = j["sections"] = nlohmann::ordered_json::object();
   for (const format::SectionEntry& e : package.entries())
     sections[format::section_kind_name(e.kind)] = e.stored_size;
@@ -60,12 +63,18 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
     }
     out << "\n";
   }
-  for (const WangSetSummary& s : scene.wang_sets)
+  for (const WangSetSummary& s : scene.wang_sets) {
+    if (s.lateral_stretch > 0.0) {
+      std::snprintf(line, sizeof line, "  %s: packed to stay clash-free under chart stretches up to %.3g\n",
+                    s.name.c_str(), 1.0 + s.lateral_stretch);
+      out << line;
+    }
     for (const tiles::MoleculeDensity& d : s.densities) {
       std::snprintf(line, sizeof line, "  %s/%s: density %.4g of %.4g requested\n", s.name.c_str(), d.name.c_str(),
                     d.achieved, d.requested);
       out << line;
     }
+  }
   out << "  stages:";
   for (const auto& [name, seconds] : scene.stage_seconds) {
     std::snprintf(line, sizeof line, " %s %.2fs;", name.c_str(), seconds);

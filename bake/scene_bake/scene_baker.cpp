@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bake/mesh/uv_distortion.hpp"
 #include "bake/scene/random_placement.hpp"
 #include "bake/scene_bake/compartment_mesh.hpp"
 #include "bake/scene_bake/core_bake.hpp"
@@ -131,11 +132,23 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
 
   const std::vector<BakedMolecule> library = clock.run("molecules", [&] { return load_molecule_library(scene); });
 
+  std::vector<CompartmentBake> compartments(scene.compartments.size());
+  for (std::size_t c = 0; c < scene.compartments.size(); ++c)
+    compartments[c].mesh = clock.run("meshes", [&] { return load_compartment_mesh(scene.compartments[c]); });
+
+  // A membrane's tiles must survive the most anisotropic chart among the meshes that wear it.
+  std::vector<double> membrane_stretch(scene.membranes.size(), 0.0);
+  for (std::size_t c = 0; c < scene.compartments.size(); ++c)
+    if (const auto& membrane = scene.compartments[c].membrane)
+      membrane_stretch[membrane->index] =
+          std::max(membrane_stretch[membrane->index], mesh::chart_anisotropy(compartments[c].mesh.mesh) - 1.0);
+
   std::vector<BakedWangSet> membrane_sets, soluble_sets;
   clock.run("membrane tiles", [&] {
     for (std::size_t i = 0; i < scene.membranes.size(); ++i) {
-      membrane_sets.push_back(bake_membrane_tiles(scene.membranes[i], library, derive_seed(seed, SeedTag::membrane_tiles, i)));
-      baked.wang_sets.push_back({scene.membranes[i].name, membrane_sets.back().set.densities});
+      membrane_sets.push_back(bake_membrane_tiles(scene.membranes[i], library, membrane_stretch[i],
+                                                  derive_seed(seed, SeedTag::membrane_tiles, i)));
+      baked.wang_sets.push_back({scene.membranes[i].name, membrane_sets.back().set.densities, membrane_stretch[i]});
     }
     return 0;
   });
@@ -147,11 +160,9 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
     return 0;
   });
 
-  std::vector<CompartmentBake> compartments(scene.compartments.size());
   for (std::size_t c = 0; c < scene.compartments.size(); ++c) {
     const scene::CompartmentDescription& description = scene.compartments[c];
     CompartmentBake& bake = compartments[c];
-    bake.mesh = clock.run("meshes", [&] { return load_compartment_mesh(description); });
     if (description.membrane) {
       bake.membrane = clock.run("shells", [&] {
         return bake_membrane(bake.mesh.mesh, membrane_sets[description.membrane->index], library,

@@ -37,6 +37,7 @@ struct InstanceSummary {
 struct WangSetSummary {
   std::string name;  // membrane or soluble name
   std::vector<tiles::MoleculeDensity> densities;
+  double lateral_stretch = 0.0;  // membranes: the chart stretch beyond 1 the tiles were packed for
 };
 
 struct BakedScene {

@@ -45,7 +45,7 @@ double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size) {
 }
 
 BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
-                                 const std::vector<BakedMolecule>& library, std::uint64_t seed) {
+                                 const std::vector<BakedMolecule>& library, double lateral_stretch, std::uint64_t seed) {
   if (membrane.tiles != integer_power(membrane.edge_colours, 4))
     throw InputError("", "membranes." + membrane.name + ".tiles",
                      "Wang squares are generated as the complete set of colours^4 = " +
@@ -55,6 +55,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
   request.edge = static_cast<float>(membrane.tile_size);
   request.colours = membrane.edge_colours;
   request.seed = seed;
+  request.lateral_stretch = static_cast<float>(lateral_stretch);
   for (const scene::MembraneProtein& protein : membrane.proteins) {
     tiles::MembraneMolecule m;
     m.type = local_type(baked, request.types, library, protein.molecule.index);

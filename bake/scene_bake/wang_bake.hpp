@@ -27,8 +27,9 @@ tiles::MoleculeType to_tile_molecule(const BakedMolecule& molecule);
 // Copies per µm² of a per-tile abundance on tiles of edge `tile_size` Å.
 double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size);
 
+// lateral_stretch: see tiles::MembraneTileRequest (mesh::chart_anisotropy − 1 of the meshes wearing it).
 BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
-                                 const std::vector<BakedMolecule>& library, std::uint64_t seed);
+                                 const std::vector<BakedMolecule>& library, double lateral_stretch, std::uint64_t seed);
 BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
                                 const std::vector<BakedMolecule>& library, std::uint64_t seed);
 

@@ -65,24 +65,31 @@ bool CollisionShape::touches(glm::vec3 point, float radius, float clearance) con
 }
 
 bool copies_collide(const CollisionShape& a, const Pose& pa, const CollisionShape& b, const Pose& pb,
-                    float clearance) {
+                    const ClashRule& rule) {
   const glm::vec3 between = pa.position - pb.position;
   const float reach = a.radius() + b.radius();
   if (glm::dot(between, between) >= reach * reach) return false;
+  const glm::vec3 spread = 0.5f * rule.lateral_stretch * glm::vec3(-between.x, -between.y, 0.f);
+  const float widen = glm::length(spread);
+  const glm::vec3 b_position = pb.position + spread;
   // Walk the copy with fewer atoms, expressed in the other copy's frame.
   const bool swap = a.atoms().size() > b.atoms().size();
   const CollisionShape& walk = swap ? b : a;
   const CollisionShape& grid = swap ? a : b;
   const Pose& pw = swap ? pb : pa;
   const Pose& pg = swap ? pa : pb;
+  const glm::vec3 walk_position = swap ? b_position : pa.position;
+  const glm::vec3 grid_position = swap ? pa.position : b_position;
   const glm::mat3 to_grid = glm::transpose(pg.rotation) * pw.rotation;
-  const glm::vec3 shift = glm::transpose(pg.rotation) * (pw.position - pg.position);
+  const glm::vec3 shift = glm::transpose(pg.rotation) * (walk_position - grid_position);
   const float outer = grid.radius();
   for (const AtomSphere& atom : walk.atoms()) {
     const glm::vec3 q = to_grid * atom.centre + shift;
-    const float lim = outer + atom.radius;
+    // |atom centre in grid| + clearance * (r + r_grid) + widen, bounded with |centre| <= outer − r_grid.
+    const float lim =
+        outer + atom.radius + widen + std::max(0.f, rule.clearance - 1.f) * (atom.radius + grid.max_atom_radius());
     if (glm::dot(q, q) >= lim * lim) continue;
-    if (grid.touches(q, atom.radius, clearance)) return true;
+    if (grid.touches(q, atom.radius + widen / rule.clearance, rule.clearance)) return true;
   }
   return false;
 }

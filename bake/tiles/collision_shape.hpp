@@ -37,8 +37,20 @@ private:
   float cell_ = 1.f, radius_ = 0.f, max_atom_radius_ = 0.f;
 };
 
-// True when two copies have atoms closer than clearance * (sum of radii).
+// When two copies clash. Copies of a membrane tile reach the surface through the chart, whose
+// in-plane map is (after the frame turn) a symmetric stretch P with eigenvalues in [1, 1 + e]
+// (e = lateral_stretch): tile-space centre offset p becomes P·p_xy + p_z, atom offsets stay rigid.
+// With A = P − I (0 ≼ A ≼ e·I), A·p_xy lies in the ball centred e·p_xy/2 of radius e·|p_xy|/2, so
+// testing copy b shifted by e·p_xy/2 with the clearance widened by e·|p_xy|/2 covers every such P
+// at once. e = 0 is the plain rigid test; cubes (no chart) always use 0.
+struct ClashRule {
+  float clearance = 1.f;       // atoms of different copies stay >= clearance * (sum of radii) apart
+  float lateral_stretch = 0.f;  // e >= 0, tile-space x and y only
+};
+
+// True when two copies have atoms closer than the rule allows. Never true for copies whose
+// bounding spheres are apart: P only spreads centres, so a stretch cannot bring spheres closer.
 bool copies_collide(const CollisionShape& a, const Pose& pa, const CollisionShape& b, const Pose& pb,
-                    float clearance);
+                    const ClashRule& rule);
 
 }  // namespace nano::tiles

@@ -19,7 +19,7 @@ void CopyNeighbourhood::add(uint32_t type, const Pose& pose) {
   max_radius_ = std::max(max_radius_, shapes_[type].radius());
 }
 
-bool CopyNeighbourhood::collides(uint32_t type, const Pose& pose, float clearance) const {
+bool CopyNeighbourhood::collides(uint32_t type, const Pose& pose, const ClashRule& rule) const {
   const CollisionShape& shape = shapes_[type];
   const float reach = shape.radius() + max_radius_;
   const glm::ivec3 lo(glm::floor((pose.position - reach) / cell_));
@@ -31,7 +31,7 @@ bool CopyNeighbourhood::collides(uint32_t type, const Pose& pose, float clearanc
         if (it == buckets_.end()) continue;
         for (uint32_t i : it->second) {
           const Copy& other = copies_[i];
-          if (copies_collide(shape, pose, shapes_[other.type], other.pose, clearance)) return true;
+          if (copies_collide(shape, pose, shapes_[other.type], other.pose, rule)) return true;
         }
       }
   return false;

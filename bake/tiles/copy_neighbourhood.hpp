@@ -15,7 +15,7 @@ public:
   CopyNeighbourhood(const std::vector<CollisionShape>& shapes, float cell);
 
   void add(uint32_t type, const Pose& pose);
-  bool collides(uint32_t type, const Pose& pose, float clearance) const;
+  bool collides(uint32_t type, const Pose& pose, const ClashRule& rule) const;
   size_t size() const { return copies_.size(); }
 
 private:

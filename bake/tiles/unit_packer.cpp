@@ -260,7 +260,7 @@ private:
     const CollisionShape& shape = shapes_[copy.type];
     const Pose pose = pose_of(copy, {0, 0, 0}, D_, S_);
     return !any_near(a, pose.position, shape.radius(), skip, [&](uint32_t type, const Pose& other) {
-      return copies_collide(shape, pose, shapes_[type], other, settings_.clearance);
+      return copies_collide(shape, pose, shapes_[type], other, clash_rule(settings_, D_));
     });
   }
 
@@ -333,6 +333,10 @@ private:
 
 }  // namespace
 
+ClashRule clash_rule(const PackerSettings& settings, int dims) {
+  return {settings.clearance, dims == 2 ? settings.lateral_stretch : 0.f};
+}
+
 PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std::vector<PlacementSpec>& specs,
                             const WangColouring& set, const PackerSettings& settings, const FixedLayer& layer) {
   const int D = set.dims;
@@ -370,7 +374,7 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
         const Instance copy = random_copy(spec, u.mask, D, S, rng);
         Offset shift;
         if (!owner_shift(copy, u.mask, D, S, shift) ||
-            context.collides(copy.type, pose_of(copy, {0, 0, 0}, D, S), settings.clearance)) {
+            context.collides(copy.type, pose_of(copy, {0, 0, 0}, D, S), clash_rule(settings, D))) {
           ++misses;
           continue;
         }

@@ -41,6 +41,8 @@ struct PlacementSpec {
 struct PackerSettings {
   float edge = 0.f;
   float clearance = 1.f;  // atoms of different copies stay >= clearance * (sum of radii) apart
+  // D = 2: the chart's largest in-plane stretch beyond 1 that copies must survive (ClashRule).
+  float lateral_stretch = 0.f;
   uint64_t seed = 1;
   int attempts_per_copy = 200;          // candidate budget per targeted copy in a unit
   int max_consecutive_failures = 1500;  // a unit gives up on a type after this many misses in a row
@@ -69,7 +71,9 @@ struct PackedUnits {
 };
 
 // Specs are filled in the given order (put large molecules first). The caller has checked
-// 0 < band <= edge / 2 for every spec and the layer.
+// 0 < band <= edge / 2 for every spec and the layer, and lateral_stretch >= 0.
+ClashRule clash_rule(const PackerSettings& settings, int dims);
+
 PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std::vector<PlacementSpec>& specs,
                             const WangColouring& colouring, const PackerSettings& settings,
                             const FixedLayer& layer = {});

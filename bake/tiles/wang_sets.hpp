@@ -62,6 +62,10 @@ struct MembraneTileRequest {
   std::vector<MembraneMolecule> molecules;
   std::optional<LipidFill> lipids;
   std::optional<LipidPatch> lipid_patch;  // instead of `lipids`, not together with it
+  // e >= 0: every pair of copies stays clash-free under any in-plane stretch with eigenvalues in
+  // [1, 1 + e], the range the meshes' charts reach once scaled by their smallest stretch
+  // (mesh::chart_anisotropy - 1). 0 = rigid tile space only.
+  float lateral_stretch = 0.f;
   uint64_t seed = 1;
   GenerationBudget budget;
 };

@@ -91,6 +91,22 @@ TEST(SmallestStretch, IsTheLeastSingularValueOverTriangles) {
   EXPECT_DOUBLE_EQ(smallest_stretch(mesh), 0.5);
 }
 
+TEST(ChartAnisotropy, IsLargestOverSmallestStretchAcrossTriangles) {
+  ProxyMesh mesh = scaled_right_triangle();  // σ = 3, 2
+  EXPECT_DOUBLE_EQ(chart_anisotropy(mesh), 1.5);
+  // A second triangle with σ = 4 and 0.5: the range becomes [0.5, 4] though no single triangle
+  // spans it; the bound must cover a copy pair straddling both.
+  mesh.positions.push_back({10, 0, 0});
+  mesh.positions.push_back({10.5, 0, 0});
+  mesh.positions.push_back({10, 4, 0});
+  mesh.triangles.push_back({3, 4, 5});
+  mesh.uv_triangles.push_back({0, 1, 2});
+  EXPECT_DOUBLE_EQ(chart_anisotropy(mesh), 8.0);
+  ProxyMesh flat = scaled_right_triangle();
+  flat.uvs = {{0, 0}, {0, 0}, {0, 0}};
+  EXPECT_EQ(chart_anisotropy(flat), 0.0);
+}
+
 TEST(ReplicationArea, CeilOfExtentOverTileSizePlusOne) {
   EXPECT_EQ(tiles_spanning(0.25, 0.1), 4);  // ceil(2.5) + 1
   EXPECT_EQ(tiles_spanning(0.05, 0.1), 2);

@@ -4,7 +4,11 @@
 //   box_clashes PKG membrane INSTANCE HALF_SIZE MIN_COPIES   box around the instance's first mesh vertex
 //   box_clashes PKG core INSTANCE HALF_SIZE MIN_COPIES       box around the instance's middle INSIDE core box
 //                                                           (or the most central BOUNDARY box)
-// Exit 0 when clash-free and at least MIN_COPIES copies were found (an empty box cannot pass).
+//   box_clashes PKG vertices INSTANCE HALF_SIZE COUNT MIN_COPIES
+//                                    boxes around COUNT mesh vertices spread over the vertex list
+//                                    (rims, dimples, chart corners and seams alike), each checked
+// Exit 0 when clash-free and at least MIN_COPIES copies were found in every box (an empty box
+// cannot pass).
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -61,29 +65,9 @@ glm::dvec3 sample_point(const nano::format::Package& package, const nano::gpu::C
   return glm::dvec3(glm::vec3(compartment.grid_min)) + (ijk + 0.5) * double(compartment.grid_min.w);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const std::string mode = argc > 2 ? argv[2] : "";
-  if (!((mode == "box" && argc == 10) || ((mode == "membrane" || mode == "core") && argc == 6))) {
-    std::fprintf(stderr, "usage: box_clashes PKG box XMIN YMIN ZMIN XMAX YMAX ZMAX MIN_COPIES\n"
-                         "       box_clashes PKG membrane|core INSTANCE HALF_SIZE MIN_COPIES\n");
-    return 2;
-  }
-  const nano::format::Package package = nano::format::open_validated(argv[1]);
-  const nano::oracle::ExplicitScene scene(package);
-  nano::oracle::WorldBox box;
-  if (mode == "box") {
-    box.min = {std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5])};
-    box.max = {std::atof(argv[6]), std::atof(argv[7]), std::atof(argv[8])};
-  } else {
-    const auto instance = package.records<SectionKind::compartment_instances>()[std::strtoul(argv[3], nullptr, 10)];
-    const glm::dvec3 centre = to_world(instance, sample_point(package, instance, mode));
-    const double half = std::atof(argv[4]);
-    box.min = centre - half;
-    box.max = centre + half;
-  }
-  const std::size_t min_copies = std::strtoull(argv[argc - 1], nullptr, 10);
+// Explicitly instances one box and reports its clashes; true when clash-free with enough copies.
+bool check_box(const std::string& path, const nano::oracle::ExplicitScene& scene, const nano::oracle::WorldBox& box,
+               std::size_t min_copies) {
 
   std::vector<nano::oracle::ClashAtom> atoms;
   std::set<std::uint64_t> copies;
@@ -100,7 +84,7 @@ int main(int argc, char** argv) {
     }
   });
   const nano::oracle::ClashReport report = nano::oracle::find_clashes(atoms);
-  std::printf("%s [%.0f %.0f %.0f]-[%.0f %.0f %.0f]: %zu copies, %zu atoms, %llu clashing pairs\n", argv[1], box.min.x,
+  std::printf("%s [%.0f %.0f %.0f]-[%.0f %.0f %.0f]: %zu copies, %zu atoms, %llu clashing pairs\n", path.c_str(), box.min.x,
               box.min.y, box.min.z, box.max.x, box.max.y, box.max.z, copies.size(), atoms.size(),
               static_cast<unsigned long long>(report.count));
   for (std::size_t i = 0; i < report.pairs.size() && i < 10; ++i) {
@@ -108,5 +92,44 @@ int main(int argc, char** argv) {
     std::printf("  [%s] and [%s]: %.3f Å < %.3f Å\n", names[atoms[c.a].copy].c_str(), names[atoms[c.b].copy].c_str(),
                 c.distance, c.limit);
   }
-  return report.count == 0 && copies.size() >= min_copies ? 0 : 1;
+  return report.count == 0 && copies.size() >= min_copies;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 2 ? argv[2] : "";
+  if (!((mode == "box" && argc == 10) || ((mode == "membrane" || mode == "core") && argc == 6) ||
+        (mode == "vertices" && argc == 7))) {
+    std::fprintf(stderr, "usage: box_clashes PKG box XMIN YMIN ZMIN XMAX YMAX ZMAX MIN_COPIES\n"
+                         "       box_clashes PKG membrane|core INSTANCE HALF_SIZE MIN_COPIES\n"
+                         "       box_clashes PKG vertices INSTANCE HALF_SIZE COUNT MIN_COPIES\n");
+    return 2;
+  }
+  const nano::format::Package package = nano::format::open_validated(argv[1]);
+  const nano::oracle::ExplicitScene scene(package);
+  nano::oracle::WorldBox box;
+  if (mode == "box") {
+    box.min = {std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5])};
+    box.max = {std::atof(argv[6]), std::atof(argv[7]), std::atof(argv[8])};
+  } else if (mode != "vertices") {
+    const auto instance = package.records<SectionKind::compartment_instances>()[std::strtoul(argv[3], nullptr, 10)];
+    const glm::dvec3 centre = to_world(instance, sample_point(package, instance, mode));
+    const double half = std::atof(argv[4]);
+    box.min = centre - half;
+    box.max = centre + half;
+  }
+  const std::size_t min_copies = std::strtoull(argv[argc - 1], nullptr, 10);
+  if (mode != "vertices") return check_box(argv[1], scene, box, min_copies) ? 0 : 1;
+  const auto instance = package.records<SectionKind::compartment_instances>()[std::strtoul(argv[3], nullptr, 10)];
+  const auto& compartment = package.records<SectionKind::compartments>()[instance.compartment];
+  const auto& mesh = package.records<SectionKind::meshes>()[compartment.mesh];
+  const auto positions = package.records<SectionKind::vertex_positions>().subspan(mesh.first_vertex, mesh.vertex_count);
+  const double half = std::atof(argv[4]);
+  const std::size_t count = std::max<std::size_t>(1, std::strtoull(argv[5], nullptr, 10));
+  bool all = true;
+  for (std::size_t i = 0; i < count; ++i) {
+    const glm::dvec3 centre = to_world(instance, glm::dvec3(glm::vec3(positions[i * positions.size() / count])));
+    all = check_box(argv[1], scene, {centre - half, centre + half}, min_copies) && all;
+  }
+  return all ? 0 : 1;
 }

@@ -54,6 +54,34 @@ TEST_P(MembraneTilesSeeds, EveryRandomTilingIsCollisionFreeAtAtomLevel) {
 
 INSTANTIATE_TEST_SUITE_P(Seeds, MembraneTilesSeeds, testing::Values(1u, 2u, 3u));
 
+// A chart's in-plane stretch (eigenvalues 1.4 along 30° and 1.0 across, then 1.25 and 1.1 along
+// 100°) applied to every copy centre of a 6×6 tiling: a set packed for e = 0.4 keeps the packer's
+// full clearance; the same request packed rigidly (e = 0) does not — the case the bundled meshes hit.
+TEST(MembraneTiles, PackedForTheChartStretchStaysCollisionFreeWhenStretched) {
+  const auto stretch = [](float degrees, float major, float minor) {
+    const float a = glm::radians(degrees);
+    const glm::vec2 u(std::cos(a), std::sin(a)), v(-u.y, u.x);
+    return [=](glm::vec3 p) {
+      const glm::vec2 q = major * glm::dot(glm::vec2(p), u) * u + minor * glm::dot(glm::vec2(p), v) * v;
+      return glm::vec3(q, p.z);
+    };
+  };
+  MembraneTileRequest req = membrane_request(5);
+  req.lateral_stretch = 0.4f;
+  const WangSet packed_for_stretch = make_membrane_tiles(req);
+  req.lateral_stretch = 0.f;
+  const WangSet rigid = make_membrane_tiles(req);
+  const TilingRecipe recipe = make_tiling_recipe(rigid.colouring, {6, 6, 1}, 5, false);
+  int rigid_clashes = 0;
+  for (const auto& place : {stretch(30.f, 1.4f, 1.f), stretch(100.f, 1.25f, 1.1f)}) {
+    const test::ExplicitTiling ok = test::instantiate(packed_for_stretch, recipe, req.types, true, place);
+    const test::ClosePair p = test::find_close_pair(ok.atoms, 0.99f);
+    EXPECT_FALSE(p.found) << "atoms " << p.distance << " Å apart, limit " << p.limit;
+    rigid_clashes += test::find_close_pair(test::instantiate(rigid, recipe, req.types, true, place).atoms, 0.99f).found;
+  }
+  EXPECT_GT(rigid_clashes, 0);
+}
+
 TEST(MembraneTiles, PeriodicRecipesAreCollisionFreeAcrossTheWrap) {
   const MembraneTileRequest req = membrane_request(4);
   const WangSet set = make_membrane_tiles(req);
@@ -219,6 +247,11 @@ TEST(MembraneTiles, ImpossibleRequestsThrowInputError) {
   bad.lipids.reset();
   bad.lipid_patch->period_y = 0.f;
   EXPECT_THROW(make_membrane_tiles(bad), InputError);
+  for (float e : {-0.1f, NAN, INFINITY}) {
+    bad = membrane_request(1);
+    bad.lateral_stretch = e;
+    EXPECT_THROW(make_membrane_tiles(bad), InputError) << e;
+  }
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 // Synthetic molecules and the independent oracle: explicit tilings and a grid-hash atom check that
 // share no code with bake/tiles (own quaternion rotation, own hashing).
 #include "bake/tiles/molecule_type.hpp"
@@ -70,9 +71,10 @@ struct ExplicitTiling {
   bool ownership_ok = true;  // every instance centre in [0, edge) along lattice axes
 };
 
-// Place every cell's tile at its cell offset, every instance of it, every atom of the instances.
+// Place every cell's tile at its cell offset, every instance of it, every atom of the instances;
+// `place` maps each copy's lattice-space centre (a chart's stretch; identity by default).
 inline ExplicitTiling instantiate(const WangSet& set, const TilingRecipe& recipe, const std::vector<MoleculeType>& types,
-                                  bool with_atoms = true) {
+                                  bool with_atoms = true, const std::function<glm::vec3(glm::vec3)>& place = {}) {
   ExplicitTiling out;
   out.copies_per_type.assign(types.size(), 0);
   for (int k = 0; k < recipe.size[2]; ++k)
@@ -86,8 +88,9 @@ inline ExplicitTiling instantiate(const WangSet& set, const TilingRecipe& recipe
           const uint32_t copy = static_cast<uint32_t>(out.copies++);
           ++out.copies_per_type[in.type];
           if (!with_atoms) continue;
+          const glm::vec3 centre = place ? place(offset + in.position) : offset + in.position;
           for (const AtomSphere& a : types[in.type].atoms)
-            out.atoms.push_back({offset + in.position + rotate(in.rotation, a.centre), a.radius, copy, in.type});
+            out.atoms.push_back({centre + rotate(in.rotation, a.centre), a.radius, copy, in.type});
         }
       }
   return out;
