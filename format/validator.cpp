@@ -298,26 +298,6 @@ private:
                  str(count) + ")");
   }
 
-  // scales.w, the seam margin of shared/seam.h: 0 (not stored) or exactly the largest bounding
-  // radius (MoleculeType.aabb_min.w) over the molecule types of the membrane tile set's instances,
-  // the value the oracle computes, so a shader reading it drops the same copies.
-  void check_seam_radius(const Cursor& c, const gpu::Compartment& k) const {
-    if (k.scales.w == 0) return;
-    if (!(k.scales.w > 0)) fail(c, 44, Rule::bad_value, "seam radius (scales.w) is negative");
-    const auto squares = p_.records<SectionKind::tiles2d>();
-    const auto instances = p_.records<SectionKind::instances>();
-    const auto molecules = p_.records<SectionKind::molecules>();
-    float r_max = 0;  // ranges and types were checked by the earlier passes
-    for (std::uint64_t t = k.membrane_first_tile; t < std::uint64_t{k.membrane_first_tile} + k.membrane_tile_count; ++t)
-      for (std::uint64_t m = squares[t].first_instance; m < std::uint64_t{squares[t].first_instance} + squares[t].instance_count;
-           ++m)
-        r_max = std::max(r_max, molecules[instances[m].molecule_type].aabb_min.w);
-    if (k.scales.w != r_max)
-      fail(c, 44, Rule::bad_value,
-           "seam radius (scales.w) " + std::to_string(k.scales.w) + " is not the tile set's largest bounding radius " +
-               std::to_string(r_max));
-  }
-
   void check_compartments() {
     require(SectionKind::compartments, SectionKind::meshes);
     const auto comps = p_.records<SectionKind::compartments>();
@@ -335,10 +315,10 @@ private:
         if (k.replication_width == 0 || k.replication_height == 0)
           fail(c, 76, Rule::bad_value, "replication area is empty");
         if (!(k.scales.x > 0) || !(k.scales.y > 0)) fail(c, 32, Rule::bad_value, "UV scale and tile size must be positive");
-        check_seam_radius(c, k);
-      } else if (k.scales.w != 0) {
-        fail(c, 44, Rule::bad_value, "seam radius (scales.w) without a membrane");
       }
+      // scales.w is reserved (format 1.x stored the one-sided seam rule's radius there; the
+      // two-sided rule of shared/seam.h needs none), so a reader can give it a meaning later.
+      if (k.scales.w != 0) fail(c, 44, Rule::bad_value, "scales.w is reserved and must be 0");
       if (k.soluble_recipe != gpu::NANO_NO_INDEX) {
         if (!(k.grid_min.w > 0)) fail(c, 12, Rule::bad_value, "box size is not positive");
         if (!(k.scales.z > 0)) fail(c, 40, Rule::bad_value, "cube size is not positive");

@@ -53,14 +53,23 @@ ProxyMesh make_sphere_mesh(int target_triangles, double radius) {
 
   for (int f = 0; f < 6; ++f) {
     const CubeFace& face = cube_faces[f];
-    const glm::dvec2 chart_origin(atlas_cell * (f % 3) + atlas_gutter, atlas_cell * (f / 3) + atlas_gutter);
-    const double chart_side = atlas_cell - 2.0 * atlas_gutter;
+    const glm::dvec2 chart_centre(atlas_cell * (f % 3 + 0.5), atlas_cell * (f / 3 + 0.5));
+    const double chart_half = 0.5 * atlas_cell - atlas_gutter;
+    const glm::dvec3 normal(face.normal), axis_u(face.u), axis_v(face.v);
+    // Azimuthal equidistant about the face centre: θ / (π/4) along the azimuth.
+    const auto chart_uv = [&](const glm::dvec3& p) {
+      const glm::dvec2 tangent(glm::dot(p, axis_u), glm::dot(p, axis_v));
+      const double across = glm::length(tangent);
+      if (across == 0.0) return chart_centre;
+      const double theta = std::atan2(across, glm::dot(p, normal));
+      return chart_centre + chart_half * (theta / (std::numbers::pi / 4.0)) / across * tangent;
+    };
     const auto first_uv = static_cast<std::uint32_t>(mesh.uvs.size());
     std::vector<std::uint32_t> positions((n + 1) * (n + 1));
     for (int j = 0; j <= n; ++j) {
       for (int i = 0; i <= n; ++i) {
         positions[j * (n + 1) + i] = position_index(n * face.normal + (2 * i - n) * face.u + (2 * j - n) * face.v);
-        mesh.uvs.push_back(chart_origin + chart_side * glm::dvec2(double(i) / n, double(j) / n));
+        mesh.uvs.push_back(chart_uv(mesh.positions[positions[j * (n + 1) + i]] / radius));
       }
     }
     auto corner = [&](int i, int j) { return std::pair(positions[j * (n + 1) + i], first_uv + j * (n + 1) + i); };

@@ -34,15 +34,19 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   // The chart must never compress a tile: molecules are rigid, so where the map shrinks tile space
   // (cube-sphere corners, σ_min ≈ 0.76 of the mean) copies packed collision-free would overlap.
   // Scaling by the smallest singular value only spreads them, which costs density where σ is large.
-  const double k = mesh::smallest_stretch(mesh);
-  if (!(k > 0)) throw InputError("", "membrane", "the mesh has no triangle with a usable UV chart");
+  const double smallest = mesh::smallest_stretch(mesh);
+  if (!(smallest > 0)) throw InputError("", "membrane", "the mesh has no triangle with a usable UV chart");
+  // A float k (rounded down: never compress) makes s = S / k reproducible by the shader's float
+  // division; some float s have no float k at all.
+  float k_float = static_cast<float>(smallest);
+  if (double(k_float) > smallest) k_float = std::nextafter(k_float, 0.f);
+  const double k = k_float;
   baked.tile_size = tiles.set.edge;
   baked.recipe = membrane_recipe(tiles.set, tiles.set.edge / k, seed);
   std::vector<tiles::MoleculeType> types;
   for (const std::uint32_t m : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[m]));
   const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, types, "membrane");
   baked.uv_scale = stored_uv_scale(tiles.set.edge, mapping.tile_uv_size());
-  baked.seam_radius = mapping.seam_max_radius();
   // The package stores the UVs ownership was decided on.
   const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();
   for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = glm::dvec2(snapped[i]);

@@ -19,7 +19,6 @@ struct BakedMembrane {
   std::vector<gpu::TriangleShell> shells;         // one per mesh triangle
   std::vector<std::uint64_t> copies_by_molecule;  // indexed like the molecule library
   double inner_height = 0.0;                      // largest h₋: how deep the shell reaches
-  float seam_radius = 0.f;                        // r_max of shared/seam.h: largest bounding radius in the set
 };
 
 // The float UV scale k stored in the package: float(S) / k == s exactly, as the renderer computes it.

@@ -216,7 +216,6 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
         record.replication_height = m.replication_height;
         record.scales.x = static_cast<float>(m.uv_scale);
         record.scales.y = static_cast<float>(m.tile_size);
-        record.scales.w = m.seam_radius;
         for (std::size_t i = 0; i < copies.size(); ++i) copies[i] += m.copies_by_molecule[i];
         summary.replication_width = m.replication_width;
         summary.replication_height = m.replication_height;

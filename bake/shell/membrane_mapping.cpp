@@ -60,7 +60,7 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
   }
 
   // Seam-rule radii: each type's bounding radius (the package's aabb_min.w), checked to cover its
-  // atoms about the origin (the proof in seam.h needs it), and the set's largest.
+  // atoms about the origin (the proof in seam.h needs it).
   type_radius_.assign(types.size(), 0.f);
   std::vector<bool> used(types.size(), false);
   for (std::size_t t = 0; t < set.tiles.size(); ++t)
@@ -82,7 +82,6 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
       fail(context, "molecule type " + std::to_string(i) + " (" + types[i].name + ")",
            "bounding radius " + std::to_string(r) + " Å does not cover its atoms (" + std::to_string(reach) +
                " Å about the origin); the seam rule needs it");
-    seam_max_radius_ = std::max(seam_max_radius_, r);
   }
 
   triangles_.resize(mesh.triangles.size());
@@ -105,14 +104,11 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
   }
 
   // Seams on the snapped UVs (what ownership sees): an edge of exactly two faces whose faces carry
-  // different UVs at one of its endpoints. The yielding face: the one in the UV chart with the larger
-  // id (mesh::uv_charts), so one side yields along the whole seam between two charts and, where
-  // three charts meet, the yields never form a cycle; the face with the larger index within one
-  // chart (a chart cut against itself). Its bit is the corner the edge starts from (EdgeUse.corner:
-  // from corner c to c + 1 mod 3).
+  // different UVs at one of its endpoints. Both faces get the edge bit (the corner the edge starts
+  // from, EdgeUse.corner: from corner c to c + 1 mod 3); every face at either endpoint gets the
+  // corner bit of that vertex (seam.h).
   const std::vector<mesh::MeshEdge> edges = mesh::collect_edges(mesh);
-  const std::vector<std::uint32_t> chart_of = mesh::uv_charts(mesh, edges);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> seam_ends;  // (position index, yielding face)
+  std::vector<std::uint32_t> seam_vertices;
   for (const mesh::MeshEdge& edge : edges) {
     if (edge.uses.size() != 2) continue;
     auto uv_at = [&](const mesh::EdgeUse& use, std::uint32_t vertex) {
@@ -122,23 +118,15 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
     const mesh::EdgeUse& u0 = edge.uses[0];
     const mesh::EdgeUse& u1 = edge.uses[1];
     if (uv_at(u0, edge.a) == uv_at(u1, edge.a) && uv_at(u0, edge.b) == uv_at(u1, edge.b)) continue;
-    const std::uint32_t c0 = chart_of[u0.face], c1 = chart_of[u1.face];
-    const mesh::EdgeUse& yielding = c0 != c1 ? (c0 > c1 ? u0 : u1) : (u0.face > u1.face ? u0 : u1);
-    triangles_[yielding.face].seam_edges |= 1u << yielding.corner;
-    seam_ends.push_back({edge.a, yielding.face});
-    seam_ends.push_back({edge.b, yielding.face});
+    for (const mesh::EdgeUse& use : edge.uses) triangles_[use.face].seam_edges |= 1u << use.corner;
+    seam_vertices.push_back(edge.a);
+    seam_vertices.push_back(edge.b);
   }
-  // Corner bits: a triangle of the yielding chart that touches a yielding seam edge only at a
-  // vertex (a fan triangle) drops molecules near that vertex (seam.h, bits 3-5).
-  std::vector<std::vector<std::uint32_t>> faces_at(mesh.positions.size());
+  std::vector<bool> on_seam(mesh.positions.size(), false);
+  for (const std::uint32_t v : seam_vertices) on_seam[v] = true;
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int c = 0; c < 3; ++c) faces_at[mesh.triangles[t][c]].push_back(t);
-  for (const auto& [vertex, face] : seam_ends)
-    for (const std::uint32_t t : faces_at[vertex]) {
-      if (chart_of[t] != chart_of[face]) continue;
-      for (int c = 0; c < 3; ++c)
-        if (mesh.triangles[t][c] == vertex) triangles_[t].seam_edges |= 1u << (3 + c);
-    }
+    for (int c = 0; c < 3; ++c)
+      if (on_seam[mesh.triangles[t][c]]) triangles_[t].seam_edges |= 1u << (3 + c);
 }
 
 std::size_t MembraneMapping::seam_dropped_count() const {

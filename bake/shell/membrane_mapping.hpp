@@ -40,8 +40,7 @@ struct TriangleMapping {
   glm::ivec2 origin{0};               // replication_origin
   glm::ivec2 extent{0};               // replication_extent: the tiles this triangle walks
   std::uint32_t seam_edges = 0;       // TriangleShell.seam_edges (shared/seam.h): bits 0-2 edge
-                                      // (k, k+1 mod 3) is a UV seam this triangle yields on; bits 3-5
-                                      // corner k touches a seam its chart yields on
+                                      // (k, k+1 mod 3) is a UV seam; bits 3-5 corner k is on a seam
 };
 
 // Whether the enumerator applies the seam rule (shared/seam.h). `ignore` yields the plain
@@ -70,8 +69,7 @@ public:
   // MoleculeType.aabb_min.w) is the seam rule's radius; it must cover the atoms about the origin
   // (InputError otherwise, e.g. for a type whose radius was left 0). Seams: the edges of the mesh
   // (by position index) shared by exactly two triangles that carry different snapped UVs at an
-  // endpoint; the triangle in the UV chart with the larger id yields (the larger triangle index
-  // within one chart), and every triangle of the yielding chart at the seam edge's endpoints gets
+  // endpoint; both triangles get the edge bit and every triangle at the seam edge's endpoints gets
   // the corner bit (seam.h).
   MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangSet& set, const tiles::TilingRecipe& recipe,
                   double k, const std::vector<tiles::MoleculeType>& types, std::string context = "membrane");
@@ -87,10 +85,8 @@ public:
   // W×H: the maximum of replication_extent_bound over the valid triangles.
   glm::ivec2 replication_area() const { return area_; }
 
-  // Seam rule inputs: the radius of each type (bounding_radius) and the set's largest, r_max (the
-  // package's Compartment.scales.w).
+  // Seam rule input: the radius of each type (bounding_radius).
   float type_radius(std::uint32_t type) const { return type_radius_[type]; }
-  float seam_max_radius() const { return seam_max_radius_; }
   std::uint32_t seam_edges(std::size_t t) const { return triangles_[t].seam_edges; }
   // The number of (triangle, owned molecule) pairs the seam rule drops, over the whole mesh.
   std::size_t seam_dropped_count() const;
@@ -128,7 +124,7 @@ public:
           m.transform = gpu::chart_membrane_molecule(tm.chart, g, s_over_S_, in.position, q, m.uv);
           if (rule == SeamRule::apply &&
               gpu::seam_drops(tm.seam_edges, tm.position[0], tm.position[1], tm.position[2], m.transform.translation,
-                              type_radius_[in.type], seam_max_radius_))
+                              type_radius_[in.type]))
             continue;
           f(static_cast<const OwnedMolecule&>(m));
         }
@@ -142,7 +138,6 @@ private:
   float s_over_S_ = 0.f;
   glm::ivec2 area_{0};
   std::vector<float> type_radius_;
-  float seam_max_radius_ = 0.f;
   std::vector<glm::vec2> snapped_uvs_;
   std::vector<TriangleMapping> triangles_;
 };

@@ -59,7 +59,6 @@ struct CompartmentPlan {
   std::uint32_t square_instances = 0, cube_instances = 0;  // I₂, I₃: the largest tile / cube
   std::uint64_t membrane_span = 0, core_span = 0;          // copy numbers of one instance
   double membrane_reach = 0;  // |z| + molecule radius, over every square's molecules
-  float seam_max_radius = 0;  // r_max of shared/seam.h: largest aabb_min.w over the squares' molecules
   Aabb cube_reach;            // cube-space bounds of every cube's molecule spheres
   Aabb bound;                 // compartment space: everything any copy can reach
   double tolerance = 0;       // slack for float rounding of the placement, Å
@@ -115,11 +114,9 @@ struct ExplicitScene::Impl : format::PackageView {
         if (tile.size.x != S || tile.size.y != S)
           fail(where, "Wang square " + str(t) + " is not " + std::to_string(S) + " Å wide like the compartment (scales.y)");
         plan.square_instances = std::max(plan.square_instances, tile.instance_count);
-        for (std::uint32_t m = tile.first_instance; m < tile.first_instance + tile.instance_count; ++m) {
+        for (std::uint32_t m = tile.first_instance; m < tile.first_instance + tile.instance_count; ++m)
           plan.membrane_reach = std::max(plan.membrane_reach,
                                          std::abs(double(instances[m].position.z)) + type_radius[instances[m].molecule_type]);
-          plan.seam_max_radius = std::max(plan.seam_max_radius, molecules[instances[m].molecule_type].aabb_min.w);
-        }
       }
 
       check_chart(ci, plan);
@@ -291,8 +288,7 @@ struct ExplicitScene::Impl : format::PackageView {
             const gpu::Affine3 placement =
                 gpu::chart_membrane_molecule(chart, g, plan.s_over_S, vec3(inst.position), inst.rotation, uv_m);
             if (!gpu::own_triangle_owns(t0, t1, t2, uv_m)) continue;
-            if (gpu::seam_drops(seam_edges, p0, p1, p2, placement.translation, molecules[inst.molecule_type].aabb_min.w,
-                                plan.seam_max_radius))
+            if (gpu::seam_drops(seam_edges, p0, p1, p2, placement.translation, molecules[inst.molecule_type].aabb_min.w))
               continue;
             emit.copy.id.instance = m;
             emit.copy.number = emit.ip.base + (std::uint64_t{tl} * plan.membrane_slots + slot) * plan.square_instances + m;

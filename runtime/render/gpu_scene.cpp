@@ -209,7 +209,7 @@ struct GpuScene::Impl : format::PackageView {
     }
   }
 
-  // The molecule-space bounds, seam radius, copy-number spans and cube reach of every compartment.
+  // The molecule-space bounds, copy-number spans and cube reach of every compartment.
   void plan_compartments() {
     for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
       const gpu::Compartment& c = compartments[ci];
@@ -222,11 +222,8 @@ struct GpuScene::Impl : format::PackageView {
         rc.membrane.x = s;
         rc.membrane.y = s / S;
         std::uint32_t largest = 0;
-        for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
+        for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t)
           largest = std::max(largest, squares[t].instance_count);
-          for (std::uint32_t m = squares[t].first_instance; m < squares[t].first_instance + squares[t].instance_count; ++m)
-            rc.membrane.z = std::max(rc.membrane.z, molecules[instances[m].molecule_type].aabb_min.w);
-        }
         rc.counts.x = largest;
         const std::uint64_t span =
             std::uint64_t{meshes[c.mesh].triangle_count} * c.replication_width * c.replication_height * largest;

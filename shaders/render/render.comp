@@ -239,7 +239,6 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
   mt.t1 = uvs[f + tri.v1];
   mt.t2 = uvs[f + tri.v2];
   mt.seam_edges = sh.seam_edges;
-  mt.seam_radius = rc.membrane.z;
   TriangleChart chart = chart_make(p0, p1, p2, mt.t0, mt.t1, mt.t2, n0, n1, n2);
   float s = rc.membrane.x;
   float s_over_S = rc.membrane.y;

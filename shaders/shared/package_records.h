@@ -129,9 +129,8 @@ struct Compartment {
   vec4 grid_min;   // xyz: core-grid AABB minimum (mesh space); w: box edge length (Å)
   uvec4 grid_dims; // xyz: boxes per axis; w: first byte of this grid in section "occupancy"
   vec4 scales;     // x: UV scale k (Å of surface per UV unit); y: Wang square size (Å);
-                   // z: Wang cube size (Å); w: largest bounding radius (MoleculeType.aabb_min.w)
-                   // over the membrane tile set's molecule types, the seam margin of shared/seam.h
-                   // (0: not stored, a reader computes it from the set)
+                   // z: Wang cube size (Å); w: reserved, 0 (format 1 kept the one-sided seam
+                   // rule's radius there; format 2's seam bits are two-sided, shared/seam.h)
   uint mesh;               // index into "meshes"
   uint membrane_first_tile;  // tile set: range in "tiles2d"
   uint membrane_tile_count;

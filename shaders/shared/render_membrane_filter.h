@@ -17,14 +17,13 @@ struct MembraneTriangle {
   vec2 t1;
   vec2 t2;
   uint seam_edges;     // TriangleShell.seam_edges (0 without triangle_shells)
-  float seam_radius;   // r_max of shared/seam.h for the compartment
 };
 
 // True iff the triangle keeps the copy whose molecule UV is uv_m, compartment-space centre `centre`
 // and bounding radius `radius` (MoleculeType.aabb_min.w): it owns uv_m and the seam rule keeps it.
 NANO_FN bool membrane_keeps_copy(NANO_IN(MembraneTriangle) tri, NANO_IN(vec2) uv_m, NANO_IN(vec3) centre, float radius) {
   if (!own_triangle_owns(tri.t0, tri.t1, tri.t2, uv_m)) return false;
-  return !seam_drops(tri.seam_edges, tri.p0, tri.p1, tri.p2, centre, radius, tri.seam_radius);
+  return !seam_drops(tri.seam_edges, tri.p0, tri.p1, tri.p2, centre, radius);
 }
 
 NANO_END

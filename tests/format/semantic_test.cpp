@@ -95,12 +95,12 @@ const Case kCases[] = {
      SectionKind::triangle_shells, 32 + 28},
     {"high seam bit", [](SampleScene& s) { s.triangle_shells[3].seam_edges = 0x80000007u; }, Rule::bad_value,
      SectionKind::triangle_shells, 3 * 32 + 28},
-    {"negative seam radius", [](SampleScene& s) { s.compartments[0].scales.w = -1; }, Rule::bad_value,
+    {"reserved scales.w negative", [](SampleScene& s) { s.compartments[0].scales.w = -1; }, Rule::bad_value,
      SectionKind::compartments, 44},
-    // The set's instances are of types 0 (radius 2.5) and 1 (1.8): the largest is 2.5.
-    {"seam radius not the set's largest", [](SampleScene& s) { s.compartments[0].scales.w = 1.8f; }, Rule::bad_value,
-     SectionKind::compartments, 44},
-    {"seam radius without a membrane",
+    // Format 1 stored the set's largest bounding radius (2.5 here) in scales.w; format 2 reserves it.
+    {"reserved scales.w holding a format-1 seam radius", [](SampleScene& s) { s.compartments[0].scales.w = 2.5f; },
+     Rule::bad_value, SectionKind::compartments, 44},
+    {"reserved scales.w without a membrane",
      [](SampleScene& s) {
        s.compartments[0].membrane_recipe = gpu::NANO_NO_INDEX;
        s.compartments[0].scales.w = 2.5f;
@@ -237,13 +237,10 @@ TEST(SemanticOptional, NoMembraneAndNoCoreGrid) {
   EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
 }
 
-// The valid counterparts of the seam cases: all six bits (edges 0-2, corners 3-5), and the seam
-// radius either unset (0) or exactly the tile set's largest bounding radius.
-TEST(SemanticSeams, SixBitsAndTheSetsLargestRadiusAreValid) {
+// The valid counterpart of the seam cases: all six bits (edges 0-2, corners 3-5).
+TEST(SemanticSeams, AllSixBitsAreValid) {
   SampleScene s = make_sample_scene();
   for (auto& shell : s.triangle_shells) shell.seam_edges = 63;
-  EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
-  s.compartments[0].scales.w = 2.5f;
   EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
 }
 

@@ -195,5 +195,5 @@ TEST(MembraneMapping, RejectsBadInput) {
   unused.push_back({"unused", {{{0.f, 0.f, 9.f}, 1.f}}, 0.f, {0, 0, 1}});  // not in the set: not checked
   EXPECT_NO_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, unused));
   EXPECT_NO_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, h.types));
-  EXPECT_EQ(MembraneMapping(good, h.set, h.recipe, 2000.0, unused).seam_max_radius(), 5.f);
+  EXPECT_EQ(MembraneMapping(good, h.set, h.recipe, 2000.0, unused).type_radius(1), 5.f);
 }

@@ -1,0 +1,76 @@
+#include "runtime/explicit/atom_radii_judge.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "runtime/explicit/render_compare.hpp"
+
+namespace nano::oracle {
+namespace {
+
+// Where the ray leaves the box (slab test); 0 when it never enters it ahead of the eye.
+double exit_distance(const WorldBox& box, const glm::dvec3& eye, const glm::dvec3& direction) {
+  double near = 0.0, far = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (direction[a] == 0.0) {
+      if (eye[a] < box.min[a] || eye[a] > box.max[a]) return 0.0;
+      continue;
+    }
+    double t0 = (box.min[a] - eye[a]) / direction[a], t1 = (box.max[a] - eye[a]) / direction[a];
+    if (t0 > t1) std::swap(t0, t1);
+    near = std::max(near, t0);
+    far = std::min(far, t1);
+  }
+  return far >= near ? far : 0.0;
+}
+
+}  // namespace
+
+bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds, const glm::dvec3& eye,
+                             const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,
+                             double largest_atom) {
+  const bool background = test.atom == gpu::kNoHit;
+  if (!background && !(std::isfinite(test.depth) && test.depth > 0)) return false;
+  const glm::dvec3 dir = glm::normalize(direction);
+  const double reach = largest_atom * (1 + epsilon);
+  const double depth = background ? INFINITY : double(test.depth);
+  const double tol = background ? 0.0 : depth_tolerance(depth);
+  const double end = background ? exit_distance(bounds, eye, dir) : depth + reach;
+  if (!std::isfinite(end)) return false;
+
+  const std::uint64_t test_copy = std::uint64_t{test.copy_number_hi} << 32 | test.copy_number_lo;
+  bool found = false, blocked = false, eye_inside = false;
+  constexpr double kChunk = 32.0;  // Å of ray per box query: keeps the boxes tight around the ray
+  for (double t0 = 0.0; t0 < end && !blocked && !eye_inside; t0 += kChunk) {
+    const glm::dvec3 a = eye + t0 * dir, b = eye + std::min(end, t0 + kChunk) * dir;
+    const WorldBox box{glm::min(a, b) - reach, glm::max(a, b) + reach};
+    scene.for_each_atom(box, [&](const AtomSample& s) {
+      const glm::dvec3 oc = s.position - eye;
+      const double tc = glm::dot(oc, dir);
+      const double d2 = std::max(0.0, glm::dot(oc, oc) - tc * tc);
+      const double grown = s.radius * (1 + epsilon), shrunk = s.radius * (1 - epsilon);
+      if (d2 >= grown * grown) return;
+      const double entry_grown = tc - std::sqrt(grown * grown - d2);
+      if (tc + grown <= 0) return;  // wholly behind the eye
+      if (entry_grown <= 0) {
+        eye_inside = true;
+        return;
+      }
+      const bool sure = d2 < shrunk * shrunk;  // hit whatever the radius
+      const double entry_shrunk = sure ? tc - std::sqrt(shrunk * shrunk - d2) : tc;
+      const bool is_test = !background && s.atom == test.atom && s.copy->number == test_copy;
+      if (is_test) {
+        found = found || (depth >= entry_grown - tol && depth <= entry_shrunk + tol);
+      } else if (sure && entry_shrunk < depth - tol) {
+        blocked = true;
+      }
+    });
+  }
+  return !eye_inside && !blocked && (background || found);
+}
+
+}  // namespace nano::oracle

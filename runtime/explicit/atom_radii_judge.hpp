@@ -1,0 +1,29 @@
+#pragma once
+// Judges one differing pixel of `verify` against the explicit scene itself: is there a change of
+// every atom's radius, each on its own within a relative ±ε, that makes the first hit along the
+// pixel's ray the one the device reports? Unlike re-rendering with every radius scaled by one
+// factor (render_compare.hpp), it covers two grazing touches on one ray, one shrunk and one grown
+// (measured: a ray through a mesh vertex grazing a lipid atom at 1e-6 Å and a haemoglobin atom
+// behind it at 3e-5 Å).
+#include <glm/vec3.hpp>
+
+#include "runtime/explicit/explicit_scene.hpp"
+#include "shared/camera.h"
+
+namespace nano::oracle {
+
+// True when, with radii r·(1 ± epsilon) chosen per atom:
+//  * `test` is the background and no atom along the ray (t > 0, up to leaving `bounds`) is entered
+//    even when shrunk; or
+//  * `test` names an atom (copy number and atom index) that the ray meets within its grown radius,
+//    at a depth between its grown entry and its shrunk entry (its tangent point when shrinking
+//    loses it), ± depth_tolerance, and no other atom is entered in front of that depth even when
+//    shrunk.
+// Never true when an atom meeting the ray is entered at t <= 0 (the eye inside or on it): the
+// device and the oracle may then disagree on what a hit means, and that is not a radius question.
+// `largest_atom`: the largest atom radius of the package (Å), bounding the search around the ray.
+bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds, const glm::dvec3& eye,
+                             const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,
+                             double largest_atom);
+
+}  // namespace nano::oracle

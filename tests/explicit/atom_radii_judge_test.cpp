@@ -1,0 +1,98 @@
+// The per-atom radius judge of `verify` on the hand scene: rays placed against the topmost atom,
+// so that nothing else can stand in front of it, at distances from its centre just inside or just
+// outside its radius.
+#include <gtest/gtest.h>
+
+#include "runtime/explicit/atom_radii_judge.hpp"
+#include "runtime/explicit/oracle_render.hpp"
+#include "tests/explicit/hand_scene.hpp"
+#include "tests/explicit/test_package.hpp"
+
+namespace nano::explicit_test {
+namespace {
+
+constexpr double kEpsilon = 1e-3;
+
+struct Topmost {
+  glm::dvec3 centre{0.0};
+  double radius = 0;
+  std::uint64_t copy = 0;
+  std::uint32_t atom = 0;
+};
+
+gpu::PixelHit hit(const Topmost& t, double depth) {
+  gpu::PixelHit p = oracle::background_pixel();
+  p.depth = float(depth), p.atom = t.atom;
+  p.copy_number_lo = std::uint32_t(t.copy), p.copy_number_hi = std::uint32_t(t.copy >> 32);
+  return p;
+}
+
+class AtomRadiiJudge : public testing::Test {
+protected:
+  AtomRadiiJudge() : pkg(hand_scene()), scene(pkg.package), bounds(oracle::scene_world_bounds(pkg.package)) {
+    scene.for_each_atom(oracle::WorldBox::everything(), [&](const oracle::AtomSample& a) {
+      largest = std::max(largest, a.radius);
+      if (a.position.z + a.radius > top.centre.z + top.radius || top.radius == 0)
+        top = {a.position, a.radius, a.copy->number, a.atom};
+    });
+  }
+  // A ray along +x passing over the topmost atom's centre at height `above` (Å above the centre),
+  // starting 20 Å before it; returns the depth of the atom's centre along it in `tc`.
+  bool judge(double above, const gpu::PixelHit& test) const {
+    const glm::dvec3 eye = top.centre + glm::dvec3(-20, 0, above);
+    return oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, test, kEpsilon, largest);
+  }
+  TestPackage pkg;
+  oracle::ExplicitScene scene;
+  oracle::WorldBox bounds;
+  Topmost top;
+  double largest = 0;
+};
+
+TEST_F(AtomRadiiJudge, GrazingInsideTheRadius) {
+  // d = r(1 − ε/2): exact radii hit, shrunk ones miss: either outcome is explained, at the right depth.
+  const double d = top.radius * (1 - kEpsilon / 2);
+  const double entry = 20 - std::sqrt(top.radius * top.radius - d * d);
+  EXPECT_TRUE(judge(d, oracle::background_pixel()));
+  EXPECT_TRUE(judge(d, hit(top, entry)));
+  EXPECT_TRUE(judge(d, hit(top, 20)));  // the tangent point, where a shrunk atom would stop being hit
+  EXPECT_FALSE(judge(d, hit(top, entry - 0.5)));
+  EXPECT_FALSE(judge(d, hit(top, 20.5)));
+}
+
+TEST_F(AtomRadiiJudge, GrazingOutsideTheRadius) {
+  // d = r(1 + ε/2): exact radii miss, grown ones hit.
+  const double d = top.radius * (1 + kEpsilon / 2);
+  EXPECT_TRUE(judge(d, oracle::background_pixel()));
+  EXPECT_TRUE(judge(d, hit(top, 20)));
+  EXPECT_FALSE(judge(d, hit(top, 19)));
+  // Beyond the grown radius nothing can be claimed.
+  EXPECT_FALSE(judge(top.radius * (1 + 3 * kEpsilon), hit(top, 20)));
+}
+
+TEST_F(AtomRadiiJudge, ClearHitsAreNotExplainedAway) {
+  // Straight down through the topmost atom's centre: it blocks the ray whatever the radii, and
+  // nothing stands above it. Background and any other atom are real differences.
+  const glm::dvec3 eye = top.centre + glm::dvec3(0, 0, 30);
+  const auto judge_down = [&](const gpu::PixelHit& test) {
+    return oracle::explained_by_atom_radii(scene, bounds, eye, {0, 0, -1}, test, kEpsilon, largest);
+  };
+  EXPECT_TRUE(judge_down(hit(top, 30 - top.radius)));
+  EXPECT_FALSE(judge_down(hit(top, 30 - top.radius + 0.01)));
+  EXPECT_FALSE(judge_down(oracle::background_pixel()));
+  Topmost other = top;
+  other.atom += 1;
+  EXPECT_FALSE(judge_down(hit(other, 30 - top.radius)));
+  other = top;
+  other.copy += 1;
+  EXPECT_FALSE(judge_down(hit(other, 30 - top.radius)));
+}
+
+TEST_F(AtomRadiiJudge, EyeInsideAnAtomIsNeverExplained) {
+  const glm::dvec3 eye = top.centre;
+  EXPECT_FALSE(oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, hit(top, 1.0), kEpsilon, largest));
+  EXPECT_FALSE(oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, oracle::background_pixel(), kEpsilon, largest));
+}
+
+}  // namespace
+}  // namespace nano::explicit_test
