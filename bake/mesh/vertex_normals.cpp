@@ -1,6 +1,11 @@
 #include "bake/mesh/vertex_normals.hpp"
 
 #include <algorithm>
+#include <array>
+#include <optional>
+
+#include "bake/mesh/uv_distortion.hpp"
+
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -34,6 +39,62 @@ void compute_angle_weighted_normals(ProxyMesh& mesh) {
     mesh.normals[i] = length > 0.0 ? sums[i] / length : glm::dvec3(0.0, 0.0, 1.0);
   }
   mesh.normal_triangles = mesh.triangles;
+}
+
+namespace {
+
+// The turn rate of the interpolated normal over triangle t (see normal_turn_rate); 0 when the
+// triangle gives no bound.
+double triangle_turn_rate(const ProxyMesh& mesh, std::size_t t) {
+  const std::array<glm::dvec3, 3> p{mesh.corner_position(t, 0), mesh.corner_position(t, 1), mesh.corner_position(t, 2)};
+  const glm::dvec3 face = glm::cross(p[1] - p[0], p[2] - p[0]);
+  if (!(glm::length(face) > 0.0) || !(glm::length(p[1] - p[0]) > 0.0)) return 0.0;
+  // The triangle in its own plane: an orthonormal frame (e1, e2), so the gradient is per Å.
+  const glm::dvec3 e1 = glm::normalize(p[1] - p[0]), e2 = glm::normalize(glm::cross(glm::normalize(face), e1));
+  std::array<glm::dvec2, 3> plane;
+  std::array<glm::dvec3, 3> n;
+  for (int c = 0; c < 3; ++c) {
+    plane[c] = {glm::dot(p[c] - p[0], e1), glm::dot(p[c] - p[0], e2)};
+    n[c] = glm::normalize(mesh.corner_normal(t, c));
+  }
+  const std::optional<UvJacobian> gradient = uv_jacobian(n, plane);
+  if (!gradient) return 0.0;
+  double shortest = 1.0;
+  for (int i = 0; i < 3; ++i) shortest = std::min(shortest, glm::length(n[i] + n[(i + 1) % 3]) / 2.0);
+  if (!(shortest > 0.0)) return 0.0;  // opposite corner normals: no bound from this triangle
+  return singular_values(*gradient).major / shortest;
+}
+
+}  // namespace
+
+double normal_turn_rate(const ProxyMesh& mesh) {
+  double rate = 0.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) rate = std::max(rate, triangle_turn_rate(mesh, t));
+  return rate;
+}
+
+double largest_facet_sag(const ProxyMesh& mesh) {
+  double sag = 0.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const glm::dvec3 centroid = (mesh.corner_position(t, 0) + mesh.corner_position(t, 1) + mesh.corner_position(t, 2)) / 3.0;
+    double reach = 0.0;
+    for (int c = 0; c < 3; ++c) reach = std::max(reach, glm::length(mesh.corner_position(t, c) - centroid));
+    sag = std::max(sag, 0.5 * reach * reach * triangle_turn_rate(mesh, t));
+  }
+  return sag;
+}
+
+double largest_normal_tilt(const ProxyMesh& mesh) {
+  double smallest_cos = 1.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const glm::dvec3 face =
+        glm::cross(mesh.corner_position(t, 1) - mesh.corner_position(t, 0), mesh.corner_position(t, 2) - mesh.corner_position(t, 0));
+    if (!(glm::length(face) > 0.0)) continue;
+    for (int c = 0; c < 3; ++c)
+      smallest_cos = std::min(smallest_cos, glm::dot(glm::normalize(face), glm::normalize(mesh.corner_normal(t, c))));
+  }
+  if (!(smallest_cos > 0.0)) return INFINITY;  // a normal at 90° or more from its face: no bound
+  return std::sqrt(std::max(0.0, 1.0 - smallest_cos * smallest_cos)) / smallest_cos;
 }
 
 }  // namespace nano::mesh

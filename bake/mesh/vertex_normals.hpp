@@ -11,3 +11,27 @@ namespace nano::mesh {
 void compute_angle_weighted_normals(ProxyMesh& mesh);
 
 }  // namespace nano::mesh
+
+namespace nano::mesh {
+
+// How fast the interpolated normal field n(x) = normalize(Σ λ_i n_i) turns across the surface: the
+// largest, over triangles with a usable shape, of ‖∂(Σ λ_i n_i)/∂x‖ (the 3×2 gradient of the linear
+// interpolant in the triangle's plane, largest singular value) divided by the smallest length that
+// interpolant can take there (≥ min over corner pairs of |n_i + n_j| / 2, the normalisation only
+// speeds the turn up by that factor). Radians per Å; 1/R on a fine sphere of radius R. A copy at
+// height h above the surface sees lateral offsets scaled by at most 1 ± h·rate.
+double normal_turn_rate(const ProxyMesh& mesh);
+
+// tan of the largest angle between a corner normal and its triangle's face normal, over triangles
+// with a usable shape (an interpolated normal lies within that angle of the face normal). Copies
+// stand along the interpolated normal while their centres spread over the flat triangle, so seen
+// from a copy a neighbour p Å away sits up to tan·p Å above or below it.
+double largest_normal_tilt(const ProxyMesh& mesh);
+
+// How far a flat triangle strays from the smooth surface its corner normals describe, largest over
+// triangles: ρ²·rate/2 with ρ the largest corner distance from the centroid and rate the
+// triangle's normal turn rate (a sphere's facet sags ρ²/(2R) below it). Two copies' rises from the
+// tilt differ by at most about this much however far apart they are (Å).
+double largest_facet_sag(const ProxyMesh& mesh);
+
+}  // namespace nano::mesh

@@ -64,6 +64,17 @@ struct LipidFill {
   bool operator==(const LipidFill&) const = default;
 };
 
+// A bilayer cut from an equilibrated periodic patch (a PDB file with CRYST1 a, b and the membrane
+// normal along z): every lipid residue becomes its own molecule type (its own conformer), all named
+// `name` and coloured alike.
+struct LipidPatchDescription {
+  std::string name = "lipid";
+  std::filesystem::path file;        // resolved against the scene file's folder
+  std::optional<glm::dvec3> colour;  // sRGB; absent: the baker picks one
+  double clearance = 0.6;            // between two patch lipids: atoms stay >= clearance·(r1 + r2) apart
+  bool operator==(const LipidPatchDescription&) const = default;
+};
+
 struct MembraneDescription {
   std::string name;
   double tile_size = 0.0;  // edge of a Wang square, Å
@@ -71,6 +82,7 @@ struct MembraneDescription {
   int tiles = 16;
   std::vector<MembraneProtein> proteins;
   std::optional<LipidFill> lipids;
+  std::optional<LipidPatchDescription> lipid_patch;  // instead of `lipids`, never with it
   bool operator==(const MembraneDescription&) const = default;
 };
 

@@ -111,8 +111,8 @@ std::pair<bool, double> parse_one_amount(const JsonCursor& c, const char* first,
 }
 
 MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
-                                   const std::vector<MoleculeDescription>& molecules) {
-  c.only_keys({"tile_size", "edge_colours", "tiles", "proteins", "lipids"});
+                                   const std::vector<MoleculeDescription>& molecules, const std::filesystem::path& folder) {
+  c.only_keys({"tile_size", "edge_colours", "tiles", "proteins", "lipids", "lipid_patch"});
   MembraneDescription m;
   m.name = name;
   m.tile_size = c.required("tile_size").number_greater_than(0.0);
@@ -137,7 +137,21 @@ MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
     fill.leaflet_offset = lipids->required("leaflet_offset").number_at_least(0.0);
     m.lipids = fill;
   }
-  if (m.proteins.empty() && !m.lipids) c.fail("a membrane needs \"proteins\", \"lipids\" or both");
+  if (const auto patch = c.optional("lipid_patch")) {
+    if (m.lipids) patch->fail("give either \"lipids\" (one pose, a surface density) or \"lipid_patch\", not both");
+    patch->only_keys({"file", "name", "colour", "clearance"});
+    LipidPatchDescription p;
+    p.file = resolve_path(patch->required("file"), folder);
+    if (const auto n = patch->optional("name")) {
+      p.name = n->string();
+      check_name(*n, p.name);
+    }
+    if (const auto colour = patch->optional("colour")) p.colour = parse_colour(*colour);
+    if (const auto clearance = patch->optional("clearance")) p.clearance = clearance->number_between(0.1, 2.0);
+    m.lipid_patch = p;
+  }
+  if (m.proteins.empty() && !m.lipids && !m.lipid_patch)
+    c.fail("a membrane needs \"proteins\", \"lipids\" or \"lipid_patch\"");
   return m;
 }
 
@@ -254,7 +268,7 @@ SceneDescription parse_scene_description(const Json& document, const std::filesy
     scene.molecules.push_back(parse_molecule(name, c, folder));
   });
   for_each_named(root, "membranes", [&](const std::string& name, const JsonCursor& c) {
-    scene.membranes.push_back(parse_membrane(name, c, scene.molecules));
+    scene.membranes.push_back(parse_membrane(name, c, scene.molecules, folder));
   });
   for_each_named(root, "solubles", [&](const std::string& name, const JsonCursor& c) {
     scene.solubles.push_back(parse_soluble(name, c, scene.molecules));

@@ -1,8 +1,12 @@
 #include "bake/scene_bake/molecule_library.hpp"
 
 #include <cmath>
+#include <sstream>
 
+#include "bake/structure/field_parsing.hpp"
 #include "bake/structure/structure_reader.hpp"
+#include "bake/structure/structure_text.hpp"
+#include "common/error.hpp"
 
 namespace nano::bake {
 
@@ -27,6 +31,33 @@ glm::dvec3 default_molecule_colour(std::size_t index) {
   }
 }
 
+namespace {
+
+glm::dvec3 linear_colour(const glm::dvec3& srgb) {
+  return {srgb_to_linear(srgb.x), srgb_to_linear(srgb.y), srgb_to_linear(srgb.z)};
+}
+
+// CRYST1 a, b of a PDB text; the box must be orthogonal (the patch repeats along x and y).
+std::pair<double, double> patch_period(std::string_view text, const std::string& file) {
+  std::istringstream lines{std::string(text)};
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("CRYST1", 0) != 0) continue;
+    line.resize(std::max<std::size_t>(line.size(), 54), ' ');
+    const auto a = structure::parse_real(line.substr(6, 9)), b = structure::parse_real(line.substr(15, 9));
+    const auto alpha = structure::parse_real(line.substr(33, 7)), beta = structure::parse_real(line.substr(40, 7)),
+               gamma = structure::parse_real(line.substr(47, 7));
+    if (!a || !b || !(*a > 0) || !(*b > 0) || !std::isfinite(*a) || !std::isfinite(*b))
+      throw InputError(file, "CRYST1", "the lipid patch's periodic box needs positive lengths a and b");
+    for (const auto& angle : {alpha, beta, gamma})
+      if (angle && std::abs(*angle - 90.0) > 1e-3)
+        throw InputError(file, "CRYST1", "the lipid patch's periodic box must be orthogonal (angles of 90°)");
+    return {*a, *b};
+  }
+  throw InputError(file, "CRYST1", "a lipid patch needs a CRYST1 record giving its periodic box");
+}
+
+}  // namespace
+
 BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description, std::size_t index) {
   structure::SelectionOptions options;
   options.all_models = description.all_models;
@@ -43,9 +74,50 @@ BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description,
   for (structure::Atom& atom : baked.atoms) atom.position -= file_space.centroid;
   baked.properties = structure::compute_molecule_properties(baked.atoms, description.up_axis);
   baked.up = baked.properties.up;
-  const glm::dvec3 srgb = description.colour.value_or(default_molecule_colour(index));
-  baked.linear_colour = {srgb_to_linear(srgb.x), srgb_to_linear(srgb.y), srgb_to_linear(srgb.z)};
+  baked.linear_colour = linear_colour(description.colour.value_or(default_molecule_colour(index)));
   return baked;
+}
+
+
+BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& description, std::size_t colour_index,
+                                 std::vector<BakedMolecule>& library) {
+  const std::string file = description.file.string();
+  const std::string text = structure::read_structure_text(description.file);
+  if (structure::detect_structure_format(description.file, text) != structure::StructureFormat::Pdb)
+    throw InputError(file, "lipid_patch", "a lipid patch must be a PDB file (its CRYST1 record gives the box)");
+  BakedLipidPatch patch;
+  std::tie(patch.period_x, patch.period_y) = patch_period(text, file);
+  patch.clearance = description.clearance;
+  const structure::Molecule molecule =
+      structure::molecule_from_text(text, structure::StructureFormat::Pdb, file, structure::SelectionOptions{});
+
+  double mid = 0.0;
+  for (const structure::Atom& a : molecule.atoms) mid += a.position.z;
+  mid /= static_cast<double>(molecule.atoms.size());
+  const glm::dvec3 srgb = description.colour.value_or(default_molecule_colour(colour_index));
+  const glm::dvec3 up(0.0, 0.0, 1.0);
+  for (std::size_t begin = 0; begin < molecule.atoms.size();) {
+    const structure::Atom& first = molecule.atoms[begin];
+    std::size_t end = begin;
+    while (end < molecule.atoms.size() && molecule.atoms[end].chain == first.chain &&
+           molecule.atoms[end].residue_number == first.residue_number &&
+           molecule.atoms[end].insertion_code == first.insertion_code)
+      ++end;
+    BakedMolecule lipid;
+    lipid.name = description.name;
+    lipid.source = description.file.filename().string();
+    lipid.atoms.assign(molecule.atoms.begin() + begin, molecule.atoms.begin() + end);
+    const glm::dvec3 centroid = structure::compute_molecule_properties(lipid.atoms, up).centroid;
+    for (structure::Atom& atom : lipid.atoms) atom.position -= centroid;
+    lipid.properties = structure::compute_molecule_properties(lipid.atoms, up);
+    lipid.up = up;
+    lipid.linear_colour = linear_colour(srgb);
+    patch.molecules.push_back(static_cast<std::uint32_t>(library.size()));
+    patch.positions.push_back(centroid - glm::dvec3(0.0, 0.0, mid));
+    library.push_back(std::move(lipid));
+    begin = end;
+  }
+  return patch;
 }
 
 std::vector<BakedMolecule> load_molecule_library(const scene::SceneDescription& scene) {

@@ -32,6 +32,22 @@ glm::dvec3 default_molecule_colour(std::size_t index);
 // structure file (and the scene key) for unreadable structures.
 std::vector<BakedMolecule> load_molecule_library(const scene::SceneDescription& scene);
 
+// A membrane's lipid patch: each lipid residue of the file appended to the library as its own type
+// (molecule space at its centroid, up = +z, the file's orientation kept), with where the patch puts
+// it: x, y in the file's frame, z from the bilayer mid-plane (the mean z of all lipid atoms).
+struct BakedLipidPatch {
+  std::vector<std::uint32_t> molecules;  // library indices, one per lipid
+  std::vector<glm::dvec3> positions;     // of each lipid's centroid
+  double period_x = 0.0, period_y = 0.0; // CRYST1 a, b (Å)
+  double clearance = 0.6;
+};
+
+// Reads the patch (PDB with CRYST1 and alpha = beta = gamma = 90°; residues by chain, number and
+// insertion code, waters dropped), appends its lipids to `library`. Throws InputError naming the
+// file for a missing or skewed box, an mmCIF file or a patch without lipids.
+BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& patch, std::size_t colour_index,
+                                 std::vector<BakedMolecule>& library);
+
 // One molecule from its description (exposed for tests).
 BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description, std::size_t index);
 

@@ -4,8 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "bake/mesh/uv_distortion.hpp"
+#include "bake/mesh/vertex_normals.hpp"
 #include "bake/scene/random_placement.hpp"
 #include "bake/scene_bake/compartment_mesh.hpp"
 #include "bake/scene_bake/core_bake.hpp"
@@ -130,25 +132,40 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
   const std::uint64_t seed = options.seed.value_or(scene.seed);
   const int threads = std::max(1, options.jobs);
 
-  const std::vector<BakedMolecule> library = clock.run("molecules", [&] { return load_molecule_library(scene); });
+  std::vector<std::optional<BakedLipidPatch>> patches(scene.membranes.size());
+  const std::vector<BakedMolecule> library = clock.run("molecules", [&] {
+    std::vector<BakedMolecule> molecules = load_molecule_library(scene);
+    for (std::size_t i = 0; i < scene.membranes.size(); ++i)
+      if (const auto& patch = scene.membranes[i].lipid_patch) patches[i] = load_lipid_patch(*patch, molecules.size(), molecules);
+    return molecules;
+  });
 
   std::vector<CompartmentBake> compartments(scene.compartments.size());
   for (std::size_t c = 0; c < scene.compartments.size(); ++c)
     compartments[c].mesh = clock.run("meshes", [&] { return load_compartment_mesh(scene.compartments[c]); });
 
-  // A membrane's tiles must survive the most anisotropic chart among the meshes that wear it.
-  std::vector<double> membrane_stretch(scene.membranes.size(), 0.0);
+  // A membrane's tiles must survive the most anisotropic chart, the most curved surface and the
+  // most tilted normals among the meshes that wear it (5% on the curvature for what the
+  // corner-normal estimate misses).
+  std::vector<tiles::SurfaceDistortion> membrane_surface(scene.membranes.size());
   for (std::size_t c = 0; c < scene.compartments.size(); ++c)
-    if (const auto& membrane = scene.compartments[c].membrane)
-      membrane_stretch[membrane->index] =
-          std::max(membrane_stretch[membrane->index], mesh::chart_anisotropy(compartments[c].mesh.mesh) - 1.0);
+    if (const auto& membrane = scene.compartments[c].membrane) {
+      const mesh::ProxyMesh& m = compartments[c].mesh.mesh;
+      tiles::SurfaceDistortion& s = membrane_surface[membrane->index];
+      s.lateral_stretch = std::max(s.lateral_stretch, static_cast<float>(mesh::chart_anisotropy(m) - 1.0));
+      s.curvature = std::max(s.curvature, static_cast<float>(1.05 * mesh::normal_turn_rate(m)));
+      s.tilt = std::max(s.tilt, static_cast<float>(mesh::largest_normal_tilt(m)));
+      s.max_rise = std::max(s.max_rise, static_cast<float>(mesh::largest_facet_sag(m)));
+    }
 
   std::vector<BakedWangSet> membrane_sets, soluble_sets;
   clock.run("membrane tiles", [&] {
     for (std::size_t i = 0; i < scene.membranes.size(); ++i) {
-      membrane_sets.push_back(bake_membrane_tiles(scene.membranes[i], library, membrane_stretch[i],
+      membrane_sets.push_back(bake_membrane_tiles(scene.membranes[i], library, patches[i] ? &*patches[i] : nullptr,
+                                                  membrane_surface[i],
                                                   derive_seed(seed, SeedTag::membrane_tiles, i)));
-      baked.wang_sets.push_back({scene.membranes[i].name, membrane_sets.back().set.densities, membrane_stretch[i]});
+      baked.wang_sets.push_back(
+          {scene.membranes[i].name, membrane_sets.back().set.densities, true, membrane_surface[i]});
     }
     return 0;
   });
@@ -242,7 +259,11 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       }
       for (std::size_t i = 0; i < library.size(); ++i) {
         if (copies[i] == 0) continue;
-        summary.copies.emplace_back(library[i].name, copies[i]);
+        // By name: a lipid patch's conformers are one kind of molecule to a reader.
+        auto named = std::find_if(summary.copies.begin(), summary.copies.end(),
+                                  [&](const auto& entry) { return entry.first == library[i].name; });
+        if (named == summary.copies.end()) summary.copies.emplace_back(library[i].name, copies[i]);
+        else named->second += copies[i];
         summary.represented_atoms += copies[i] * library[i].atoms.size();
       }
       content.compartments.push_back(record);

@@ -37,7 +37,8 @@ struct InstanceSummary {
 struct WangSetSummary {
   std::string name;  // membrane or soluble name
   std::vector<tiles::MoleculeDensity> densities;
-  double lateral_stretch = 0.0;  // membranes: the chart stretch beyond 1 the tiles were packed for
+  bool name_is_membrane = false;
+  tiles::SurfaceDistortion surface;  // membranes: what the tiles were packed to survive
 };
 
 struct BakedScene {

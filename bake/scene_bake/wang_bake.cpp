@@ -21,6 +21,22 @@ std::uint32_t local_type(BakedWangSet& baked, std::vector<tiles::MoleculeType>& 
   return static_cast<std::uint32_t>(types.size() - 1);
 }
 
+// One entry per name, in first-appearance order: a patch's lipids are one kind of molecule to a reader.
+void merge_densities_by_name(std::vector<tiles::MoleculeDensity>& densities) {
+  std::vector<tiles::MoleculeDensity> merged;
+  for (const tiles::MoleculeDensity& d : densities) {
+    auto it = std::find_if(merged.begin(), merged.end(), [&](const tiles::MoleculeDensity& m) { return m.name == d.name; });
+    if (it == merged.end()) {
+      merged.push_back(d);
+      continue;
+    }
+    it->requested += d.requested;
+    it->achieved += d.achieved;
+    it->copies_in_set += d.copies_in_set;
+  }
+  densities = std::move(merged);
+}
+
 int integer_power(int base, int exponent) {
   int r = 1;
   for (int i = 0; i < exponent; ++i) r *= base;
@@ -44,8 +60,9 @@ double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size) {
   return copies_per_tile / (tile_size * tile_size / kSquareAngstromPerSquareMicrometre);
 }
 
-BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
-                                 const std::vector<BakedMolecule>& library, double lateral_stretch, std::uint64_t seed) {
+BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, const std::vector<BakedMolecule>& library,
+                                 const BakedLipidPatch* patch, const tiles::SurfaceDistortion& surface,
+                                 std::uint64_t seed) {
   if (membrane.tiles != integer_power(membrane.edge_colours, 4))
     throw InputError("", "membranes." + membrane.name + ".tiles",
                      "Wang squares are generated as the complete set of colours^4 = " +
@@ -55,7 +72,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
   request.edge = static_cast<float>(membrane.tile_size);
   request.colours = membrane.edge_colours;
   request.seed = seed;
-  request.lateral_stretch = static_cast<float>(lateral_stretch);
+  request.surface = surface;
   for (const scene::MembraneProtein& protein : membrane.proteins) {
     tiles::MembraneMolecule m;
     m.type = local_type(baked, request.types, library, protein.molecule.index);
@@ -72,7 +89,18 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
     fill.leaflet_offset = static_cast<float>(membrane.lipids->leaflet_offset);
     request.lipids = fill;
   }
+  if (patch) {
+    tiles::LipidPatch lipids;
+    lipids.period_x = static_cast<float>(patch->period_x);
+    lipids.period_y = static_cast<float>(patch->period_y);
+    lipids.clearance = static_cast<float>(patch->clearance);
+    for (std::size_t i = 0; i < patch->molecules.size(); ++i)
+      lipids.lipids.push_back({local_type(baked, request.types, library, patch->molecules[i]),
+                               glm::vec3(patch->positions[i]), glm::quat(1.f, 0.f, 0.f, 0.f)});
+    request.lipid_patch = std::move(lipids);
+  }
   baked.set = tiles::make_membrane_tiles(request);
+  merge_densities_by_name(baked.set.densities);
   return baked;
 }
 

@@ -7,6 +7,7 @@
 
 #include "bake/scene/scene_description.hpp"
 #include "bake/scene_bake/molecule_library.hpp"
+#include "bake/tiles/collision_shape.hpp"
 #include "bake/tiles/tiling_recipe.hpp"
 #include "bake/tiles/wang_set.hpp"
 
@@ -28,8 +29,11 @@ tiles::MoleculeType to_tile_molecule(const BakedMolecule& molecule);
 double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size);
 
 // lateral_stretch: see tiles::MembraneTileRequest (mesh::chart_anisotropy − 1 of the meshes wearing it).
-BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane,
-                                 const std::vector<BakedMolecule>& library, double lateral_stretch, std::uint64_t seed);
+// `patch`: the membrane's lipid patch (load_lipid_patch) when it has one, else nullptr. Densities
+// of types sharing a name (a patch's lipids) are reported summed, under that name.
+BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, const std::vector<BakedMolecule>& library,
+                                 const BakedLipidPatch* patch, const tiles::SurfaceDistortion& surface,
+                                 std::uint64_t seed);
 BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
                                 const std::vector<BakedMolecule>& library, std::uint64_t seed);
 

@@ -105,8 +105,9 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
 
   // Seams on the snapped UVs (what ownership sees): an edge of exactly two faces whose faces carry
   // different UVs at one of its endpoints. Both faces get the edge bit (the corner the edge starts
-  // from, EdgeUse.corner: from corner c to c + 1 mod 3); every face at either endpoint gets the
-  // corner bit of that vertex (seam.h).
+  // from, EdgeUse.corner: from corner c to c + 1 mod 3); a face at either endpoint that holds no
+  // seam edge through that vertex (a fan face) gets the corner bit of that vertex (seam.h): the
+  // faces holding such an edge are already kept clear of the seam by their edge bits.
   const std::vector<mesh::MeshEdge> edges = mesh::collect_edges(mesh);
   std::vector<std::uint32_t> seam_vertices;
   for (const mesh::MeshEdge& edge : edges) {
@@ -124,9 +125,14 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
   }
   std::vector<bool> on_seam(mesh.positions.size(), false);
   for (const std::uint32_t v : seam_vertices) on_seam[v] = true;
-  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int c = 0; c < 3; ++c)
-      if (on_seam[mesh.triangles[t][c]]) triangles_[t].seam_edges |= 1u << (3 + c);
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    const std::uint32_t edge_bits = triangles_[t].seam_edges;
+    for (int c = 0; c < 3; ++c) {
+      // Edges through corner c: edge c (c → c+1) and edge c−1 (c−1 → c).
+      const bool holds_seam_here = ((edge_bits >> c) & 1u) != 0u || ((edge_bits >> ((c + 2) % 3)) & 1u) != 0u;
+      if (on_seam[mesh.triangles[t][c]] && !holds_seam_here) triangles_[t].seam_edges |= 1u << (3 + c);
+    }
+  }
 }
 
 std::size_t MembraneMapping::seam_dropped_count() const {

@@ -97,7 +97,7 @@ public:
 
   // Calls f(const OwnedMolecule&) for every molecule of the replication area of triangle t that t
   // owns (own_triangle_owns on its snapped UVs) and, with SeamRule::apply, the seam rule keeps
-  // (seam_drops of shared/seam.h on the molecule's centre), in slot order (v outer, u inner), then
+  // (seam_drops of shared/seam.h on the molecule's surface point), in slot order (v outer, u inner), then
   // instance order. Walks the triangle's own extent: slots of W×H beyond it hold no molecule inside
   // the triangle's UV box (replication slack), which the tests check.
   template <class F>
@@ -123,8 +123,8 @@ public:
           const glm::vec4 q(in.rotation.x, in.rotation.y, in.rotation.z, in.rotation.w);  // glm quat is (w,x,y,z)
           m.transform = gpu::chart_membrane_molecule(tm.chart, g, s_over_S_, in.position, q, m.uv);
           if (rule == SeamRule::apply &&
-              gpu::seam_drops(tm.seam_edges, tm.position[0], tm.position[1], tm.position[2], m.transform.translation,
-                              type_radius_[in.type]))
+              gpu::seam_drops(tm.seam_edges, tm.position[0], tm.position[1], tm.position[2],
+                              gpu::chart_position(tm.chart, m.uv), type_radius_[in.type]))
             continue;
           f(static_cast<const OwnedMolecule&>(m));
         }

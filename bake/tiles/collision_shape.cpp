@@ -64,14 +64,11 @@ bool CollisionShape::touches(glm::vec3 point, float radius, float clearance) con
   return false;
 }
 
-bool copies_collide(const CollisionShape& a, const Pose& pa, const CollisionShape& b, const Pose& pb,
-                    const ClashRule& rule) {
-  const glm::vec3 between = pa.position - pb.position;
-  const float reach = a.radius() + b.radius();
-  if (glm::dot(between, between) >= reach * reach) return false;
-  const glm::vec3 spread = 0.5f * rule.lateral_stretch * glm::vec3(-between.x, -between.y, 0.f);
-  const float widen = glm::length(spread);
-  const glm::vec3 b_position = pb.position + spread;
+namespace {
+
+// Atoms of a (at pa) against atoms of b placed at b_position: closer than clearance·(r1 + r2) + widen?
+bool atoms_within(const CollisionShape& a, const Pose& pa, const CollisionShape& b, const Pose& pb,
+                  const glm::vec3& b_position, float clearance, float widen) {
   // Walk the copy with fewer atoms, expressed in the other copy's frame.
   const bool swap = a.atoms().size() > b.atoms().size();
   const CollisionShape& walk = swap ? b : a;
@@ -87,10 +84,33 @@ bool copies_collide(const CollisionShape& a, const Pose& pa, const CollisionShap
     const glm::vec3 q = to_grid * atom.centre + shift;
     // |atom centre in grid| + clearance * (r + r_grid) + widen, bounded with |centre| <= outer − r_grid.
     const float lim =
-        outer + atom.radius + widen + std::max(0.f, rule.clearance - 1.f) * (atom.radius + grid.max_atom_radius());
+        outer + atom.radius + widen + std::max(0.f, clearance - 1.f) * (atom.radius + grid.max_atom_radius());
     if (glm::dot(q, q) >= lim * lim) continue;
-    if (grid.touches(q, atom.radius + widen / rule.clearance, rule.clearance)) return true;
+    if (grid.touches(q, atom.radius + widen / clearance, clearance)) return true;
   }
+  return false;
+}
+
+}  // namespace
+
+bool copies_collide(const CollisionShape& a, const Pose& pa, const CollisionShape& b, const Pose& pb,
+                    const ClashRule& rule) {
+  const glm::vec3 between = pa.position - pb.position;
+  // Convex or concave (a cell's dimple), so heights on either side may spread or squeeze.
+  const float height = std::max(std::abs(pa.position.z) + a.radius(), std::abs(pb.position.z) + b.radius());
+  const float lo = rule.closest_scale(height);
+  const float hi = (1.f + rule.surface.lateral_stretch) * (1.f + rule.surface.curvature * height);
+  const float reach = (a.radius() + b.radius()) / lo;
+  if (glm::dot(between, between) >= reach * reach) return false;
+  const glm::vec3 lateral(-between.x, -between.y, 0.f);  // b − a in the tile plane
+  const glm::vec3 b_position = pb.position + (0.5f * (lo + hi) - 1.f) * lateral;
+  const float stretch_widen = 0.5f * (hi - lo) * glm::length(lateral);
+  // The tilt moves b along z by up to ±rise: three samples (−⅔, 0, +⅔ of it), each covering ±⅓.
+  const float rise = std::min(rule.surface.tilt * glm::length(lateral), rule.surface.max_rise);
+  if (rise == 0.f) return atoms_within(a, pa, b, pb, b_position, rule.clearance, stretch_widen);
+  const float widen = stretch_widen + rise / 3.f;
+  for (const float k : {0.f, -2.f / 3.f, 2.f / 3.f})
+    if (atoms_within(a, pa, b, pb, b_position + glm::vec3(0.f, 0.f, k * rise), rule.clearance, widen)) return true;
   return false;
 }
 

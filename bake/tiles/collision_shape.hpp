@@ -6,6 +6,8 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
+
 #include <vector>
 
 namespace nano::tiles {
@@ -40,16 +42,38 @@ private:
 // When two copies clash. Copies of a membrane tile reach the surface through the chart, whose
 // in-plane map is (after the frame turn) a symmetric stretch P with eigenvalues in [1, 1 + e]
 // (e = lateral_stretch): tile-space centre offset p becomes P·p_xy + p_z, atom offsets stay rigid.
-// With A = P − I (0 ≼ A ≼ e·I), A·p_xy lies in the ball centred e·p_xy/2 of radius e·|p_xy|/2, so
-// testing copy b shifted by e·p_xy/2 with the clearance widened by e·|p_xy|/2 covers every such P
-// at once. e = 0 is the plain rigid test; cubes (no chart) always use 0.
-struct ClashRule {
-  float clearance = 1.f;       // atoms of different copies stay >= clearance * (sum of radii) apart
-  float lateral_stretch = 0.f;  // e >= 0, tile-space x and y only
+// On a curved surface the normals turn by up to κ (curvature, rad/Å) per Å, so what stands h Å
+// from the surface sees lateral offsets scaled by a factor in [1 − κh, 1 + κh] (spread on the convex
+// side, squeezed on the concave one): for a pair whose atoms reach H from the surface, the
+// eigenvalues lie in [lo, hi] with lo = 1 − κ·H and hi = (1 + e)(1 + κ·H). With A = P − I, A·p_xy
+// lies in the ball centred
+// m·p_xy of radius w·|p_xy|, m = (lo + hi)/2 − 1, w = (hi − lo)/2. Copies stand along interpolated
+// normals up to an angle θ from their flat triangle (tilt = tan θ), so a neighbour p_xy away also
+// rises or sinks by up to min(tilt·|p_xy|, max_rise) in the copy's frame (however far apart, the
+// copies sit within the facets' sag of one smooth surface). Testing copy b shifted by m·p_xy and
+// by −⅔, 0, +⅔ of that rise along z, with the clearance widened by w·|p_xy| + ⅓ of the rise,
+// covers every such deformation. e = κ = tilt = 0 is the plain rigid test; cubes (no chart)
+// always use it.
+// What the meshes that wear a membrane do to its tiles, all >= 0 (zero: a flat, faithful chart).
+struct SurfaceDistortion {
+  float lateral_stretch = 0.f;  // e: the chart's largest stretch beyond 1 (tile-space x and y)
+  float curvature = 0.f;        // κ, rad per Å; heights are tile-space z ± the copy's radius
+  float tilt = 0.f;             // tan of the largest angle between an interpolated and a face normal
+  float max_rise = 0.f;         // Å: the tilt's rise never exceeds this (the facets' sag); 0 = no rise
 };
 
-// True when two copies have atoms closer than the rule allows. Never true for copies whose
-// bounding spheres are apart: P only spreads centres, so a stretch cannot bring spheres closer.
+struct ClashRule {
+  float clearance = 1.f;  // atoms of different copies stay >= clearance * (sum of radii) apart
+  SurfaceDistortion surface;
+
+  // The smallest factor a lateral offset can shrink by for copies reaching `height` Å from the
+  // surface (1 − κ·height, kept >= 1/2): bounding spheres further apart than (r_a + r_b) / it
+  // cannot clash, so neighbour searches widen by its inverse.
+  float closest_scale(float height) const { return std::max(0.5f, 1.f - surface.curvature * height); }
+};
+
+// True when two copies have atoms closer than the rule allows; false whenever their bounding
+// spheres are further apart than (r_a + r_b) / closest_scale.
 bool copies_collide(const CollisionShape& a, const Pose& pa, const CollisionShape& b, const Pose& pb,
                     const ClashRule& rule);
 

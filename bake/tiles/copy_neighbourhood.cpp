@@ -1,6 +1,7 @@
 #include "bake/tiles/copy_neighbourhood.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace nano::tiles {
 
@@ -17,11 +18,13 @@ void CopyNeighbourhood::add(uint32_t type, const Pose& pose) {
   buckets_[key(c)].push_back(static_cast<uint32_t>(copies_.size()));
   copies_.push_back({type, pose});
   max_radius_ = std::max(max_radius_, shapes_[type].radius());
+  max_height_ = std::max(max_height_, std::abs(pose.position.z) + shapes_[type].radius());
 }
 
 bool CopyNeighbourhood::collides(uint32_t type, const Pose& pose, const ClashRule& rule) const {
   const CollisionShape& shape = shapes_[type];
-  const float reach = shape.radius() + max_radius_;
+  const float height = std::max(max_height_, std::abs(pose.position.z) + shape.radius());
+  const float reach = (shape.radius() + max_radius_) / rule.closest_scale(height);
   const glm::ivec3 lo(glm::floor((pose.position - reach) / cell_));
   const glm::ivec3 hi(glm::floor((pose.position + reach) / cell_));
   for (int z = lo.z; z <= hi.z; ++z)

@@ -27,6 +27,7 @@ private:
   const std::vector<CollisionShape>& shapes_;
   float cell_;
   float max_radius_ = 0.f;
+  float max_height_ = 0.f;  // max |z| + radius over the copies: bounds the curvature's shrink
   std::vector<Copy> copies_;
   std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
 };

@@ -241,7 +241,8 @@ private:
         glm::vec3 shift(0.f);
         for (int k = 0; k < D_; ++k) shift[k] = S_ * static_cast<float>(d[k]);
         const glm::vec3 gap = glm::max(glm::max(lo_[b] + shift - p, p - hi_[b] - shift), glm::vec3(0.f));
-        const float limit = reach + reach_[b];
+        const float height = std::max(std::abs(p.z) + reach, std::max(std::abs(lo_[b].z), std::abs(hi_[b].z)) + reach_[b]);
+        const float limit = (reach + reach_[b]) / rule_.closest_scale(height);
         if (glm::dot(gap, gap) >= limit * limit) continue;
         for (size_t j = 0; j < poses_[b].size(); ++j) {
           if (b == a && j == skip) continue;
@@ -260,7 +261,7 @@ private:
     const CollisionShape& shape = shapes_[copy.type];
     const Pose pose = pose_of(copy, {0, 0, 0}, D_, S_);
     return !any_near(a, pose.position, shape.radius(), skip, [&](uint32_t type, const Pose& other) {
-      return copies_collide(shape, pose, shapes_[type], other, clash_rule(settings_, D_));
+      return copies_collide(shape, pose, shapes_[type], other, rule_);
     });
   }
 
@@ -325,6 +326,7 @@ private:
   int D_;
   float S_;
   const PackerSettings& settings_;
+  const ClashRule rule_ = clash_rule(settings_, D_);
   std::vector<std::vector<Offset>> meets_;
   std::vector<std::vector<Pose>> poses_;
   std::vector<glm::vec3> lo_, hi_;
@@ -334,7 +336,8 @@ private:
 }  // namespace
 
 ClashRule clash_rule(const PackerSettings& settings, int dims) {
-  return {settings.clearance, dims == 2 ? settings.lateral_stretch : 0.f};
+  if (dims != 2) return {settings.clearance, {}};
+  return {settings.clearance, settings.surface};
 }
 
 PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std::vector<PlacementSpec>& specs,

@@ -41,8 +41,7 @@ struct PlacementSpec {
 struct PackerSettings {
   float edge = 0.f;
   float clearance = 1.f;  // atoms of different copies stay >= clearance * (sum of radii) apart
-  // D = 2: the chart's largest in-plane stretch beyond 1 that copies must survive (ClashRule).
-  float lateral_stretch = 0.f;
+  SurfaceDistortion surface;  // D = 2: what copies must survive on the meshes (ClashRule)
   uint64_t seed = 1;
   int attempts_per_copy = 200;          // candidate budget per targeted copy in a unit
   int max_consecutive_failures = 1500;  // a unit gives up on a type after this many misses in a row

@@ -53,7 +53,7 @@ void check_fits(const char* what, const MoleculeType& type, float band, float ed
 // Largest molecules first: dart throwing places big ones while there is room.
 WangSet pack(const char* what, int dims, float edge, const WangColouring& colouring,
              const std::vector<MoleculeType>& types, const std::vector<CollisionShape>& shapes,
-             std::vector<Wanted> wanted, uint64_t seed, const GenerationBudget& budget, float lateral_stretch = 0.f,
+             std::vector<Wanted> wanted, uint64_t seed, const GenerationBudget& budget, SurfaceDistortion surface = {},
              const FixedLayer& layer = {}, const std::vector<double>& layer_requested = {}) {
   std::stable_sort(wanted.begin(), wanted.end(), [&](const Wanted& a, const Wanted& b) {
     if (a.required != b.required) return a.required;
@@ -63,7 +63,7 @@ WangSet pack(const char* what, int dims, float edge, const WangColouring& colour
   for (const Wanted& w : wanted) specs.push_back(w.spec);
   const PackedUnits packed = pack_wang_units(
       shapes, specs, colouring,
-      {edge, budget.clearance, lateral_stretch, seed, budget.attempts_per_copy, budget.max_consecutive_failures,
+      {edge, budget.clearance, surface, seed, budget.attempts_per_copy, budget.max_consecutive_failures,
        budget.relaxation_rounds},
       layer);
 
@@ -108,7 +108,7 @@ std::vector<CollisionShape> shapes_of(const std::vector<MoleculeType>& types) {
 // The patch repeated over one tile with centres rescaled to the tile edge, minus the lipids that
 // clash with kept ones (in patch order) or with their images one edge away.
 FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, const std::vector<MoleculeType>& types,
-                     const std::vector<CollisionShape>& shapes, float lateral_stretch, std::vector<double>& requested) {
+                     const std::vector<CollisionShape>& shapes, SurfaceDistortion surface, std::vector<double>& requested) {
   const float period[2] = {patch.period_x, patch.period_y};
   for (float p : period)
     if (!(p > 0.f) || !std::isfinite(p)) throw InputError(what, "lipid patch", "the patch period must be positive");
@@ -149,7 +149,7 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
           if (!(copy.position[a] < edge)) copy.position[a] = 0.f;  // rounded onto the edge: its periodic twin
         }
         const glm::mat3 rotation = glm::mat3_cast(copy.rotation);
-        if (kept.collides(copy.type, {copy.position, rotation}, {patch.clearance, lateral_stretch})) continue;
+        if (kept.collides(copy.type, {copy.position, rotation}, {patch.clearance, surface})) continue;
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx)
             kept.add(copy.type, {copy.position + edge * glm::vec3(dx, dy, 0), rotation});
@@ -165,8 +165,10 @@ double copies_per_um3_from_millimolar(double millimolar) { return millimolar * 1
 WangSet make_membrane_tiles(const MembraneTileRequest& r) {
   const char* what = "membrane tiles";
   check_common(what, r.edge, r.types, r.budget);
-  if (!(r.lateral_stretch >= 0.f) || !std::isfinite(r.lateral_stretch))
-    throw InputError(what, "lateral stretch", "the chart stretch to pack for must be a finite number >= 0");
+  for (const float v : {r.surface.lateral_stretch, r.surface.curvature, r.surface.tilt, r.surface.max_rise})
+    if (!(v >= 0.f) || !std::isfinite(v))
+      throw InputError(what, "surface", "chart stretch, curvature and normal tilt to pack for must be finite numbers >= 0");
+  const SurfaceDistortion& surface = r.surface;
   const std::vector<CollisionShape> shapes = shapes_of(r.types);
   const glm::vec3 z(0.f, 0.f, 1.f);
   std::vector<Wanted> wanted;
@@ -207,10 +209,10 @@ WangSet make_membrane_tiles(const MembraneTileRequest& r) {
   std::vector<double> layer_requested;
   if (r.lipid_patch) {
     if (r.lipids) throw InputError(what, "lipids", "give either a lipid fill or a lipid patch, not both");
-    layer = lay_patch(what, *r.lipid_patch, r.edge, r.types, shapes, r.lateral_stretch, layer_requested);
+    layer = lay_patch(what, *r.lipid_patch, r.edge, r.types, shapes, surface, layer_requested);
   }
   return pack(what, 2, r.edge, make_complete_colouring(2, r.colours), r.types, shapes, wanted, r.seed, r.budget,
-              r.lateral_stretch, layer, layer_requested);
+              surface, layer, layer_requested);
 }
 
 WangSet make_soluble_cubes(const SolubleCubeRequest& r) {

@@ -2,6 +2,7 @@
 // The two sets the scene baker asks for: Wang squares for a membrane and Wang cubes for solubles.
 // Both are collision-free at atom level (clearance x sum of radii) in EVERY valid tiling (two
 // lipids of a LipidPatch: the patch's own clearance).
+#include "bake/tiles/collision_shape.hpp"
 #include "bake/tiles/wang_set.hpp"
 
 #include <cstdint>
@@ -62,10 +63,11 @@ struct MembraneTileRequest {
   std::vector<MembraneMolecule> molecules;
   std::optional<LipidFill> lipids;
   std::optional<LipidPatch> lipid_patch;  // instead of `lipids`, not together with it
-  // e >= 0: every pair of copies stays clash-free under any in-plane stretch with eigenvalues in
-  // [1, 1 + e], the range the meshes' charts reach once scaled by their smallest stretch
-  // (mesh::chart_anisotropy - 1). 0 = rigid tile space only.
-  float lateral_stretch = 0.f;
+  // Every pair of copies stays clash-free under whatever the meshes wearing the membrane can do
+  // to tile space (ClashRule): chart stretch up to 1 + e (mesh::chart_anisotropy − 1, the charts
+  // being scaled by their smallest stretch), normals turning κ rad/Å (mesh::normal_turn_rate) and
+  // tilting from their faces (mesh::largest_normal_tilt). Zero: rigid tile space only.
+  SurfaceDistortion surface;
   uint64_t seed = 1;
   GenerationBudget budget;
 };

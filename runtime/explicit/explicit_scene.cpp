@@ -288,7 +288,8 @@ struct ExplicitScene::Impl : format::PackageView {
             const gpu::Affine3 placement =
                 gpu::chart_membrane_molecule(chart, g, plan.s_over_S, vec3(inst.position), inst.rotation, uv_m);
             if (!gpu::own_triangle_owns(t0, t1, t2, uv_m)) continue;
-            if (gpu::seam_drops(seam_edges, p0, p1, p2, placement.translation, molecules[inst.molecule_type].aabb_min.w))
+            if (gpu::seam_drops(seam_edges, p0, p1, p2, gpu::chart_position(chart, uv_m),
+                                molecules[inst.molecule_type].aabb_min.w))
               continue;
             emit.copy.id.instance = m;
             emit.copy.number = emit.ip.base + (std::uint64_t{tl} * plan.membrane_slots + slot) * plan.square_instances + m;

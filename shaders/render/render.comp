@@ -142,8 +142,7 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
     float t = tn >= 0.0 ? tn : tf;
     if (!(t >= 0.0) || !(t < best_t)) continue;
     vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
-    vec3 true_centre = chart_position(chart, uv_m) + mi.position.z * chart_normal(chart, uv_m);
-    if (!membrane_keeps_copy(mt, uv_m, true_centre, molecules[mi.molecule_type].aabb_min.w)) continue;
+    if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
     best_t = t;
     best.atom = a;
     best_type = mi.molecule_type;
@@ -190,7 +189,7 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
     MoleculeInstance mi = instances[first + m];
     vec2 uv_m;
     Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, mi.position.xyz, mi.rotation, uv_m);
-    if (!membrane_keeps_copy(mt, uv_m, placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
+    if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
     if (!trace_molecule(mi.molecule_type, placement, o, d)) continue;
     found = true;
     best.compartment_instance = inst;

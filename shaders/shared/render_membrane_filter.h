@@ -19,11 +19,12 @@ struct MembraneTriangle {
   uint seam_edges;     // TriangleShell.seam_edges (0 without triangle_shells)
 };
 
-// True iff the triangle keeps the copy whose molecule UV is uv_m, compartment-space centre `centre`
-// and bounding radius `radius` (MoleculeType.aabb_min.w): it owns uv_m and the seam rule keeps it.
-NANO_FN bool membrane_keeps_copy(NANO_IN(MembraneTriangle) tri, NANO_IN(vec2) uv_m, NANO_IN(vec3) centre, float radius) {
+// True iff the triangle keeps the copy whose molecule UV is uv_m, surface point `surface`
+// (chart_position(chart, uv_m)) and bounding radius `radius` (MoleculeType.aabb_min.w): it owns uv_m
+// and the seam rule keeps it.
+NANO_FN bool membrane_keeps_copy(NANO_IN(MembraneTriangle) tri, NANO_IN(vec2) uv_m, NANO_IN(vec3) surface, float radius) {
   if (!own_triangle_owns(tri.t0, tri.t1, tri.t2, uv_m)) return false;
-  return !seam_drops(tri.seam_edges, tri.p0, tri.p1, tri.p2, centre, radius);
+  return !seam_drops(tri.seam_edges, tri.p0, tri.p1, tri.p2, surface, radius);
 }
 
 NANO_END

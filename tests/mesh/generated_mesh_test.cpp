@@ -11,6 +11,7 @@
 #include "bake/mesh/obj_writer.hpp"
 #include "bake/mesh/rbc_mesh.hpp"
 #include "bake/mesh/sphere_mesh.hpp"
+#include "bake/mesh/vertex_normals.hpp"
 #include "common/error.hpp"
 #include "tests/mesh/test_obj.hpp"
 
@@ -124,6 +125,50 @@ TEST(SphereMesh, PassesCheckMeshWithSixChartsAndLowDistortion) {
   // of angle acos(1/3) (the angle between adjacent cube corners seen from the centre), as chords.
   EXPECT_EQ(r.seam_edges, 12u * 11u);
   EXPECT_NEAR(r.seam_length, 12 * 500.0 * std::acos(1.0 / 3.0), 0.01 * 12 * 500.0 * std::acos(1.0 / 3.0));
+}
+
+// The interpolated normals of a sphere turn at 1/R; a flat patch's not at all; the RBC's fastest
+// turn is at its rim (radius of curvature ~1 µm at R0 = 3.91 µm, far below the ~µm⁻¹ of its faces).
+TEST(NormalTurnRate, SphereIsOneOverRadiusFlatIsZero) {
+  for (const double radius : {100.0, 500.0}) {
+    const double rate = normal_turn_rate(make_sphere_mesh(1452, radius));
+    EXPECT_GT(rate, 0.95 / radius) << radius;
+    EXPECT_LT(rate, 1.3 / radius) << radius;
+  }
+  ProxyMesh flat;
+  flat.positions = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {10, 10, 0}};
+  flat.triangles = {{0, 1, 2}, {1, 3, 2}};
+  flat.normals = {{0, 0, 1}};
+  flat.normal_triangles = {{0, 0, 0}, {0, 0, 0}};
+  EXPECT_EQ(normal_turn_rate(flat), 0.0);
+  EXPECT_EQ(largest_normal_tilt(flat), 0.0);
+  EXPECT_EQ(largest_facet_sag(flat), 0.0);
+  const double rbc = normal_turn_rate(make_rbc_mesh(3000));
+  EXPECT_GT(rbc, 1.0 / 39100.0);
+  EXPECT_LT(rbc, 1.0 / 3000.0);
+}
+
+// On a sphere (corner normals radial) a corner normal leans from its face by about ρ/R (ρ: corner to
+// centroid) and the facet sags about ρ²/(2R) below the sphere; both shrink as the mesh is refined.
+TEST(NormalTilt, SphereFacetsTiltAndSagAsTheirSizeSays) {
+  constexpr double radius = 450.0;
+  double previous_tilt = 1.0, previous_sag = 1e9;
+  for (const int target : {1452, 6000}) {
+    const ProxyMesh mesh = make_sphere_mesh(target, radius);
+    double rho = 0.0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const glm::dvec3 c = (mesh.corner_position(t, 0) + mesh.corner_position(t, 1) + mesh.corner_position(t, 2)) / 3.0;
+      for (int k = 0; k < 3; ++k) rho = std::max(rho, glm::length(mesh.corner_position(t, k) - c));
+    }
+    const double tilt = largest_normal_tilt(mesh), sag = largest_facet_sag(mesh);
+    EXPECT_GT(tilt, 0.8 * rho / radius) << target;
+    EXPECT_LT(tilt, 1.2 * rho / radius) << target;
+    EXPECT_GT(sag, 0.9 * rho * rho / (2 * radius)) << target;
+    EXPECT_LT(sag, 1.3 * rho * rho / (2 * radius)) << target;
+    EXPECT_LT(tilt, previous_tilt);
+    EXPECT_LT(sag, previous_sag);
+    previous_tilt = tilt, previous_sag = sag;
+  }
 }
 
 TEST(RbcMesh, PassesCheckMeshWithTwoDisksSeamAlongTheRim) {

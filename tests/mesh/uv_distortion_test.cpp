@@ -73,15 +73,21 @@ TEST(UvScale, MirroredUvTriangleCountsItsArea) {
   EXPECT_DOUBLE_EQ(uv_scale(mesh), std::sqrt(6.0));
 }
 
-TEST(SmallestStretch, IsTheLeastSingularValueOverTriangles) {
-  ProxyMesh mesh = scaled_right_triangle();  // σ = 3, 2
-  EXPECT_DOUBLE_EQ(smallest_stretch(mesh), 2.0);
-  // A second triangle stretched by 0.5 and 4 (shear-free): its σ2 = 0.5 becomes the smallest.
+// scaled_right_triangle plus a second triangle stretched by 0.5 and 4 (shear-free).
+ProxyMesh two_stretched_triangles() {
+  ProxyMesh mesh = scaled_right_triangle();
   mesh.positions.push_back({10, 0, 0});
   mesh.positions.push_back({10.5, 0, 0});
   mesh.positions.push_back({10, 4, 0});
   mesh.triangles.push_back({3, 4, 5});
   mesh.uv_triangles.push_back({0, 1, 2});
+  return mesh;
+}
+
+TEST(SmallestStretch, IsTheLeastSingularValueOverTriangles) {
+  EXPECT_DOUBLE_EQ(smallest_stretch(scaled_right_triangle()), 2.0);  // σ = 3, 2
+  // The second triangle's σ2 = 0.5 becomes the smallest.
+  ProxyMesh mesh = two_stretched_triangles();
   EXPECT_DOUBLE_EQ(smallest_stretch(mesh), 0.5);
   // A zero-area UV triangle has no chart and is ignored.
   mesh.uvs.push_back({0.5, 0.5});
@@ -92,16 +98,10 @@ TEST(SmallestStretch, IsTheLeastSingularValueOverTriangles) {
 }
 
 TEST(ChartAnisotropy, IsLargestOverSmallestStretchAcrossTriangles) {
-  ProxyMesh mesh = scaled_right_triangle();  // σ = 3, 2
-  EXPECT_DOUBLE_EQ(chart_anisotropy(mesh), 1.5);
-  // A second triangle with σ = 4 and 0.5: the range becomes [0.5, 4] though no single triangle
+  EXPECT_DOUBLE_EQ(chart_anisotropy(scaled_right_triangle()), 1.5);  // σ = 3, 2
+  // With the second triangle (σ = 4 and 0.5) the range becomes [0.5, 4] though no single triangle
   // spans it; the bound must cover a copy pair straddling both.
-  mesh.positions.push_back({10, 0, 0});
-  mesh.positions.push_back({10.5, 0, 0});
-  mesh.positions.push_back({10, 4, 0});
-  mesh.triangles.push_back({3, 4, 5});
-  mesh.uv_triangles.push_back({0, 1, 2});
-  EXPECT_DOUBLE_EQ(chart_anisotropy(mesh), 8.0);
+  EXPECT_DOUBLE_EQ(chart_anisotropy(two_stretched_triangles()), 8.0);
   ProxyMesh flat = scaled_right_triangle();
   flat.uvs = {{0, 0}, {0, 0}, {0, 0}};
   EXPECT_EQ(chart_anisotropy(flat), 0.0);

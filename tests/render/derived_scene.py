@@ -16,6 +16,9 @@ with open(a.src) as f:
 base = os.path.dirname(os.path.abspath(a.src))
 for mol in scene["molecules"].values():
     mol["file"] = os.path.join(base, mol["file"])
+for membrane in scene.get("membranes", {}).values():
+    if "lipid_patch" in membrane:
+        membrane["lipid_patch"]["file"] = os.path.join(base, membrane["lipid_patch"]["file"])
 for inst in scene["instances"]:
     t = inst.setdefault("transform", {})
     x, y, z = t.get("translate", [0, 0, 0])

@@ -173,7 +173,24 @@ TEST(SceneErrors, StructuralRules) {
                        d["membranes"]["envelope"].erase("proteins");
                        d["membranes"]["envelope"].erase("lipids");
                      }),
-                     "membranes.envelope", "needs \"proteins\", \"lipids\" or both");
+                     "membranes.envelope", "needs \"proteins\", \"lipids\" or \"lipid_patch\"");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["lipid_patch"] = Json{{"file", "b.pdb"}}; }),
+                     "membranes.envelope.lipid_patch", "not both");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["membranes"]["envelope"].erase("lipids");
+                       d["membranes"]["envelope"]["lipid_patch"] = Json{{"file", "b.pdb"}, {"period", 60}};
+                     }),
+                     "membranes.envelope.lipid_patch.period", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["membranes"]["envelope"].erase("lipids");
+                       d["membranes"]["envelope"]["lipid_patch"] = Json{{"file", "b.pdb"}, {"clearance", 3}};
+                     }),
+                     "membranes.envelope.lipid_patch.clearance", "");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["membranes"]["envelope"].erase("lipids");
+                       d["membranes"]["envelope"]["lipid_patch"] = Json{{"name", "POPC"}};
+                     }),
+                     "membranes.envelope.lipid_patch.file", "missing required key");
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
                        d["compartments"]["virion"].erase("membrane");
                        d["compartments"]["virion"].erase("soluble");

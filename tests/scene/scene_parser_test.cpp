@@ -32,7 +32,7 @@ constexpr const char* complete_scene = R"({
       "lipids": {"molecule": "popc", "area_per_lipid": 65, "leaflet_offset": 12}
     },
     "rbc_membrane": {"tile_size": 300.5, "edge_colours": 3, "tiles": 81,
-                     "lipids": {"molecule": "popc", "area_per_lipid": 60.5, "leaflet_offset": 0}}
+                     "lipid_patch": {"file": "pdb/bilayer.pdb.gz", "name": "POPC", "colour": "#808080", "clearance": 0.7}}
   },
   "solubles": {
     "cytoplasm": {"cube_size": 250, "molecules": [{"molecule": "hb", "concentration_mM": 5.1}], "clearance": 15},
@@ -80,7 +80,8 @@ SceneDescription expected_scene() {
       {"envelope", 200.0, 2, 16,
        {{spike, {SU::per_um2, 1200.0}, 45.5}, {hb, {SU::per_tile, 0.5}, 0.0}},
        LipidFill{popc, 65.0, 12.0}},
-      {"rbc_membrane", 300.5, 3, 81, {}, LipidFill{popc, 60.5, 0.0}},
+      {"rbc_membrane", 300.5, 3, 81, {}, std::nullopt,
+       LipidPatchDescription{"POPC", "/scenes/demo/pdb/bilayer.pdb.gz", glm::dvec3(128.0 / 255.0), 0.7}},
   };
   using VU = VolumeAbundance::Unit;
   s.solubles = {

@@ -110,3 +110,88 @@ TEST(MoleculeLibrary, UnreadableStructureNamesTheFile) {
 }
 
 }  // namespace
+
+namespace {
+
+using nano::bake::load_lipid_patch;
+
+// Two lipids of two atoms each, one per leaflet: centroids (1, 2, 14) and (5, 6, 6), so the
+// mid-plane (mean z of all four atoms) is at z = 10.
+constexpr const char* kTwoLipidPatch =
+    "CRYST1   40.000   50.000   60.000  90.00  90.00  90.00 P 1           1\n"
+    "HETATM    1  C1  POP A   1       0.000   2.000  15.000  1.00  0.00           C\n"
+    "HETATM    2  C2  POP A   1       2.000   2.000  13.000  1.00  0.00           C\n"
+    "HETATM    3  C1  POP A   2       5.000   5.000   6.000  1.00  0.00           C\n"
+    "HETATM    4  C2  POP A   2       5.000   7.000   6.000  1.00  0.00           C\n"
+    "HETATM    5  O   HOH A   3       9.000   9.000   9.000  1.00  0.00           O\n"
+    "END\n";
+
+nano::scene::LipidPatchDescription patch_description(const fs::path& file) {
+  nano::scene::LipidPatchDescription d;
+  d.name = "POPC";
+  d.file = file;
+  d.colour = glm::dvec3(1.0, 0.0, 0.0);
+  d.clearance = 0.7;
+  return d;
+}
+
+TEST(LipidPatch, EachResidueIsATypeAtItsCentroidAboveTheMidPlane) {
+  std::vector<nano::bake::BakedMolecule> library(3);  // the scene's own molecules come first
+  const auto patch = load_lipid_patch(patch_description(write_temp("nano_two_lipids.pdb", kTwoLipidPatch)), 3, library);
+  EXPECT_DOUBLE_EQ(patch.period_x, 40.0);
+  EXPECT_DOUBLE_EQ(patch.period_y, 50.0);
+  EXPECT_DOUBLE_EQ(patch.clearance, 0.7);
+  ASSERT_EQ(library.size(), 5u);  // waters are not lipids
+  EXPECT_EQ(patch.molecules, (std::vector<std::uint32_t>{3, 4}));
+  ASSERT_EQ(patch.positions.size(), 2u);
+  EXPECT_EQ(patch.positions[0], glm::dvec3(1, 2, 4));
+  EXPECT_EQ(patch.positions[1], glm::dvec3(5, 6, -4));
+  const auto& first = library[3];
+  EXPECT_EQ(first.name, "POPC");
+  EXPECT_EQ(first.source, "nano_two_lipids.pdb");
+  ASSERT_EQ(first.atoms.size(), 2u);
+  EXPECT_EQ(first.atoms[0].position, glm::dvec3(-1, 0, 1));  // molecule space: the patch's orientation kept
+  EXPECT_EQ(first.up, glm::dvec3(0, 0, 1));
+  EXPECT_DOUBLE_EQ(first.linear_colour.x, 1.0);
+  EXPECT_DOUBLE_EQ(first.linear_colour.y, 0.0);
+}
+
+TEST(LipidPatch, BundledPopcBilayerHas128LipidsInTwoLeaflets) {
+  std::vector<nano::bake::BakedMolecule> library;
+  const auto patch = load_lipid_patch(
+      patch_description(fs::path(NANO_SOURCE_DIR) / "data" / "structures" / "popc_bilayer.pdb.gz"), 0, library);
+  // OpenMM's POPC.pdb (data/structures/SOURCES.md): 128 POPC, 64 per leaflet, 52 heavy atoms each.
+  EXPECT_NEAR(patch.period_x, 63.701, 1e-9);
+  EXPECT_NEAR(patch.period_y, 66.874, 1e-9);
+  ASSERT_EQ(library.size(), 128u);
+  int upper = 0;
+  for (std::size_t i = 0; i < library.size(); ++i) {
+    EXPECT_EQ(library[i].atoms.size(), 52u) << i;
+    upper += patch.positions[i].z > 0;
+    EXPECT_GT(std::abs(patch.positions[i].z), 3.0) << "a lipid centroid in the mid-plane: " << i;
+  }
+  EXPECT_EQ(upper, 64);
+}
+
+TEST(LipidPatch, BoxAndFormatErrorsNameTheFile) {
+  std::vector<nano::bake::BakedMolecule> library;
+  std::string text = kTwoLipidPatch;
+  const auto expect_error = [&](const std::string& file_text, const std::string& name, const std::string& what) {
+    const fs::path file = write_temp(name, file_text);
+    try {
+      load_lipid_patch(patch_description(file), 0, library);
+      ADD_FAILURE() << what;
+    } catch (const nano::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  expect_error(text.substr(text.find('\n') + 1), "nano_patch_no_box.pdb", "CRYST1");
+  std::string skewed = text;
+  skewed.replace(skewed.find("90.00 P"), 5, "120.0");
+  expect_error(skewed, "nano_patch_skewed.pdb", "orthogonal");
+  expect_error("data_x\n_cell.length_a 40\n", "nano_patch.cif", "PDB file");
+  EXPECT_TRUE(library.empty());
+}
+
+}  // namespace

@@ -91,8 +91,8 @@ TEST(CollisionShape, StretchRuleCoversEveryStretchInItsRange) {
                       uniform_rotation(rng)};
     const Instance ib{1, {float(rng.uniform(-20, 20)), float(rng.uniform(-20, 20)), float(rng.uniform(-12, 12))},
                       uniform_rotation(rng)};
-    const bool rule = copies_collide(sa, pose(ia), sb, pose(ib), ClashRule{1.f, e});
-    ASSERT_EQ(rule, copies_collide(sb, pose(ib), sa, pose(ia), ClashRule{1.f, e})) << i;
+    const bool rule = copies_collide(sa, pose(ia), sb, pose(ib), ClashRule{1.f, {e, 0.f, 0.f}});
+    ASSERT_EQ(rule, copies_collide(sb, pose(ib), sa, pose(ia), ClashRule{1.f, {e, 0.f, 0.f}})) << i;
     const bool rigid = brute_force_collide(a, ia, b, ib, 1.f);
     if (rigid) ASSERT_TRUE(rule) << i;  // the identity is one of the stretches
     // Extremes and interior points of the eigenvalue range; pairs only the rule rejects get a

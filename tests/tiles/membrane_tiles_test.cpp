@@ -63,13 +63,13 @@ TEST(MembraneTiles, PackedForTheChartStretchStaysCollisionFreeWhenStretched) {
     const glm::vec2 u(std::cos(a), std::sin(a)), v(-u.y, u.x);
     return [=](glm::vec3 p) {
       const glm::vec2 q = major * glm::dot(glm::vec2(p), u) * u + minor * glm::dot(glm::vec2(p), v) * v;
-      return glm::vec3(q, p.z);
+      return test::SurfacePlacement{glm::vec3(q, p.z)};
     };
   };
   MembraneTileRequest req = membrane_request(5);
-  req.lateral_stretch = 0.4f;
+  req.surface.lateral_stretch = 0.4f;
   const WangSet packed_for_stretch = make_membrane_tiles(req);
-  req.lateral_stretch = 0.f;
+  req.surface.lateral_stretch = 0.f;
   const WangSet rigid = make_membrane_tiles(req);
   const TilingRecipe recipe = make_tiling_recipe(rigid.colouring, {6, 6, 1}, 5, false);
   int rigid_clashes = 0;
@@ -80,6 +80,60 @@ TEST(MembraneTiles, PackedForTheChartStretchStaysCollisionFreeWhenStretched) {
     rigid_clashes += test::find_close_pair(test::instantiate(rigid, recipe, req.types, true, place).atoms, 0.99f).found;
   }
   EXPECT_GT(rigid_clashes, 0);
+}
+
+// Tile space rolled isometrically onto a cylinder of radius R (no chart stretch at all), the tile
+// normal along the radius — outward (convex: what stands above spreads, what lies below squeezes)
+// or inward (concave: the other way round) — and each copy turned with its local frame. A set packed
+// for curvature 1/R keeps the packer's full clearance on both; the rigid set does not.
+TEST(MembraneTiles, PackedForCurvatureStaysCollisionFreeOnCylinders) {
+  constexpr float R = 150.f;
+  const auto cylinder = [](float sign) {
+    return [=](glm::vec3 p) {
+      const float phi = sign * p.x / R;
+      const glm::vec3 radial(std::sin(phi), 0.f, std::cos(phi));
+      const glm::vec3 normal = sign * radial, ey(0.f, 1.f, 0.f);
+      const glm::vec3 ex = glm::cross(ey, normal);
+      return test::SurfacePlacement{(R + sign * p.z) * radial + p.y * ey, glm::mat3(ex, ey, normal)};
+    };
+  };
+  MembraneTileRequest req = membrane_request(6);
+  req.surface.curvature = 1.f / R;
+  const WangSet packed_for_curvature = make_membrane_tiles(req);
+  req.surface.curvature = 0.f;
+  const WangSet rigid = make_membrane_tiles(req);
+  // 4 × 3 tiles: 480 Å of arc, 3.2 rad, less than a turn, so the cylinder never meets itself.
+  const TilingRecipe recipe = make_tiling_recipe(rigid.colouring, {4, 3, 1}, 6, false);
+  int rigid_clashes = 0;
+  for (const float sign : {1.f, -1.f}) {
+    const test::ClosePair p =
+        test::find_close_pair(test::instantiate(packed_for_curvature, recipe, req.types, true, cylinder(sign)).atoms, 0.99f);
+    EXPECT_FALSE(p.found) << (sign > 0 ? "convex" : "concave") << ": atoms " << p.distance << " Å apart, limit " << p.limit;
+    rigid_clashes += test::find_close_pair(test::instantiate(rigid, recipe, req.types, true, cylinder(sign)).atoms, 0.99f).found;
+  }
+  EXPECT_GT(rigid_clashes, 0);
+}
+
+// Facets: centres stay on a flat plane while each copy stands along a normal tilted about the y
+// axis by α(x) = θ·sin(2πx/L), lifted along it, as copies on a flat triangle with interpolated
+// normals do. Packed for tilt tan θ (and the normals' turn rate θ·2π/L), the set keeps the
+// packer's full clearance; the rigid set does not.
+TEST(MembraneTiles, PackedForNormalTiltStaysCollisionFreeOnAFacet) {
+  constexpr float theta = 0.15f, L = 480.f;
+  const auto facet = [](glm::vec3 p) {
+    const float alpha = theta * std::sin(2.f * 3.14159265f * p.x / L);
+    const glm::vec3 normal(std::sin(alpha), 0.f, std::cos(alpha)), ey(0.f, 1.f, 0.f);
+    return test::SurfacePlacement{glm::vec3(p.x, p.y, 0.f) + p.z * normal, glm::mat3(glm::cross(ey, normal), ey, normal)};
+  };
+  MembraneTileRequest req = membrane_request(7);
+  req.surface = {0.f, theta * 2.f * 3.14159265f / L, std::tan(theta), 1e9f};
+  const WangSet packed_for_tilt = make_membrane_tiles(req);
+  req.surface = {};
+  const WangSet rigid = make_membrane_tiles(req);
+  const TilingRecipe recipe = make_tiling_recipe(rigid.colouring, {4, 3, 1}, 7, false);
+  const test::ClosePair p = test::find_close_pair(test::instantiate(packed_for_tilt, recipe, req.types, true, facet).atoms, 0.99f);
+  EXPECT_FALSE(p.found) << "atoms " << p.distance << " Å apart, limit " << p.limit;
+  EXPECT_TRUE(test::find_close_pair(test::instantiate(rigid, recipe, req.types, true, facet).atoms, 0.99f).found);
 }
 
 TEST(MembraneTiles, PeriodicRecipesAreCollisionFreeAcrossTheWrap) {
@@ -248,9 +302,12 @@ TEST(MembraneTiles, ImpossibleRequestsThrowInputError) {
   bad.lipid_patch->period_y = 0.f;
   EXPECT_THROW(make_membrane_tiles(bad), InputError);
   for (float e : {-0.1f, NAN, INFINITY}) {
-    bad = membrane_request(1);
-    bad.lateral_stretch = e;
-    EXPECT_THROW(make_membrane_tiles(bad), InputError) << e;
+    for (float tiles::SurfaceDistortion::*member : {&tiles::SurfaceDistortion::lateral_stretch,
+                                                    &tiles::SurfaceDistortion::curvature, &tiles::SurfaceDistortion::tilt}) {
+      bad = membrane_request(1);
+      bad.surface.*member = e;
+      EXPECT_THROW(make_membrane_tiles(bad), InputError) << e;
+    }
   }
 }
 

@@ -71,10 +71,17 @@ struct ExplicitTiling {
   bool ownership_ok = true;  // every instance centre in [0, edge) along lattice axes
 };
 
+// Where a surface puts a copy whose lattice-space centre is given: its position and the frame its
+// atoms turn with (columns: tile x, y, z).
+struct SurfacePlacement {
+  glm::vec3 position;
+  glm::mat3 frame{1.f};
+};
+
 // Place every cell's tile at its cell offset, every instance of it, every atom of the instances;
-// `place` maps each copy's lattice-space centre (a chart's stretch; identity by default).
+// `place` maps each copy's lattice-space centre onto a surface (identity by default).
 inline ExplicitTiling instantiate(const WangSet& set, const TilingRecipe& recipe, const std::vector<MoleculeType>& types,
-                                  bool with_atoms = true, const std::function<glm::vec3(glm::vec3)>& place = {}) {
+                                  bool with_atoms = true, const std::function<SurfacePlacement(glm::vec3)>& place = {}) {
   ExplicitTiling out;
   out.copies_per_type.assign(types.size(), 0);
   for (int k = 0; k < recipe.size[2]; ++k)
@@ -88,9 +95,9 @@ inline ExplicitTiling instantiate(const WangSet& set, const TilingRecipe& recipe
           const uint32_t copy = static_cast<uint32_t>(out.copies++);
           ++out.copies_per_type[in.type];
           if (!with_atoms) continue;
-          const glm::vec3 centre = place ? place(offset + in.position) : offset + in.position;
+          const SurfacePlacement at = place ? place(offset + in.position) : SurfacePlacement{offset + in.position};
           for (const AtomSphere& a : types[in.type].atoms)
-            out.atoms.push_back({centre + rotate(in.rotation, a.centre), a.radius, copy, in.type});
+            out.atoms.push_back({at.position + at.frame * rotate(in.rotation, a.centre), a.radius, copy, in.type});
         }
       }
   return out;

@@ -25,7 +25,13 @@ TEST(UnitPacker, SpheresIn2DAnd3DAreClearInEveryTilingAndCountedRight) {
     specs[1].band = 3.01f;
     for (PlacementSpec& s : specs) s.uniform_rotation = dims == 3;
     const WangColouring colouring = make_complete_colouring(dims, dims == 2 ? 3 : 2);
-    const PackedUnits packed = pack_wang_units(shapes, specs, colouring, {edge, 1.f, 21, 50, 400});
+    PackerSettings settings;
+    settings.edge = edge;
+    settings.clearance = 1.f;
+    settings.seed = 21;
+    settings.attempts_per_copy = 50;
+    settings.max_consecutive_failures = 400;
+    const PackedUnits packed = pack_wang_units(shapes, specs, colouring, settings);
     ASSERT_EQ(packed.tiles.size(), colouring.tile_count());
     WangSet set{dims, edge, colouring, packed.tiles, {}};
     const std::array<int, 3> small = dims == 2 ? std::array<int, 3>{6, 6, 1} : std::array<int, 3>{4, 4, 4};
