@@ -1,6 +1,9 @@
 #include "bake/scene_bake/scene_baker.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <thread>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -23,6 +26,31 @@ enum class SeedTag : std::uint64_t { membrane_tiles = 1, soluble_cubes, membrane
 
 std::uint64_t derive_seed(std::uint64_t seed, SeedTag tag, std::size_t index) {
   return tiles::mix64(seed ^ tiles::mix64(static_cast<std::uint64_t>(tag) * 0x100000001B3ull + index));
+}
+
+// Calls task(0 .. count−1) on up to `threads` threads; the first exception by index is rethrown once
+// all have finished, so an error does not depend on scheduling.
+template <class Task>
+void run_in_parallel(std::size_t count, int threads, const Task& task) {
+  std::vector<std::exception_ptr> errors(count);
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t k = next++; k < count; k = next++) {
+      try {
+        task(k);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    const std::size_t workers = std::min<std::size_t>(count, static_cast<std::size_t>(std::max(threads, 1)));
+    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(worker);
+    worker();
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 class StageClock {
@@ -158,24 +186,26 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       s.max_rise = std::max(s.max_rise, static_cast<float>(mesh::largest_facet_sag(m)));
     }
 
-  std::vector<BakedWangSet> membrane_sets, soluble_sets;
-  clock.run("membrane tiles", [&] {
-    for (std::size_t i = 0; i < scene.membranes.size(); ++i) {
-      membrane_sets.push_back(bake_membrane_tiles(scene.membranes[i], library, patches[i] ? &*patches[i] : nullptr,
-                                                  membrane_surface[i],
-                                                  derive_seed(seed, SeedTag::membrane_tiles, i)));
-      baked.wang_sets.push_back(
-          {scene.membranes[i].name, membrane_sets.back().set.densities, true, membrane_surface[i]});
-    }
+  // Every Wang set is generated on its own (own seed, shared read-only inputs), so the sets run
+  // side by side on the jobs: a scene's slowest set, not their sum, bounds the stage.
+  const std::size_t membrane_count = scene.membranes.size();
+  std::vector<BakedWangSet> membrane_sets(membrane_count), soluble_sets(scene.solubles.size());
+  clock.run("tile sets", [&] {
+    run_in_parallel(membrane_count + scene.solubles.size(), threads, [&](std::size_t k) {
+      if (k < membrane_count) {
+        membrane_sets[k] = bake_membrane_tiles(scene.membranes[k], library, patches[k] ? &*patches[k] : nullptr,
+                                               membrane_surface[k], derive_seed(seed, SeedTag::membrane_tiles, k));
+      } else {
+        const std::size_t i = k - membrane_count;
+        soluble_sets[i] = bake_soluble_cubes(scene.solubles[i], library, derive_seed(seed, SeedTag::soluble_cubes, i));
+      }
+    });
     return 0;
   });
-  clock.run("soluble cubes", [&] {
-    for (std::size_t i = 0; i < scene.solubles.size(); ++i) {
-      soluble_sets.push_back(bake_soluble_cubes(scene.solubles[i], library, derive_seed(seed, SeedTag::soluble_cubes, i)));
-      baked.wang_sets.push_back({scene.solubles[i].name, soluble_sets.back().set.densities});
-    }
-    return 0;
-  });
+  for (std::size_t i = 0; i < membrane_count; ++i)
+    baked.wang_sets.push_back({scene.membranes[i].name, membrane_sets[i].set.densities, true, membrane_surface[i]});
+  for (std::size_t i = 0; i < scene.solubles.size(); ++i)
+    baked.wang_sets.push_back({scene.solubles[i].name, soluble_sets[i].set.densities});
 
   for (std::size_t c = 0; c < scene.compartments.size(); ++c) {
     const scene::CompartmentDescription& description = scene.compartments[c];
