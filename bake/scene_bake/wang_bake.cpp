@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "bake/tiles/wang_sets.hpp"
 #include "common/error.hpp"
@@ -99,7 +100,17 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
                                glm::vec3(patch->positions[i]), glm::quat(1.f, 0.f, 0.f, 0.f)});
     request.lipid_patch = std::move(lipids);
   }
-  baked.set = tiles::make_membrane_tiles(request);
+  try {
+    baked.set = tiles::make_membrane_tiles(request);
+  } catch (const InputError& e) {
+    // A density that fits a flat tile may not fit what the meshes do to it: say so, and what helps.
+    char bounds[256];
+    std::snprintf(bounds, sizeof bounds,
+                  " (tiles packed to survive chart stretch %.3g, normals turning %.3g rad/Å and tilting %.3g "
+                  "from their faces: a finer mesh lowers the tilt, a more even UV layout the stretch)",
+                  1.0 + surface.lateral_stretch, surface.curvature, surface.tilt);
+    throw InputError(e.file(), e.where(), e.rule() + bounds);
+  }
   merge_densities_by_name(baked.set.densities);
   return baked;
 }

@@ -165,21 +165,29 @@ public:
   // clear of every copy it can meet), which turns the jammed packing into a fluid whose gaps wander
   // and merge, and new copies go where the gaps are largest. Adds the copies per tile it inserts to
   // achieved_per_tile (per spec).
+  // Stops early once kStaleRounds rounds in a row insert nothing: the gaps no longer open up (a
+  // request the surface cannot hold; without the stop a coarse mesh's bounds cost minutes).
   void run(std::vector<double>& achieved_per_tile, SplitMix64& rng) {
     const double measure = std::pow(static_cast<double>(S_), D_);
-    for (int round = 0; round < settings_.relaxation_rounds; ++round) {
+    int stale = 0;
+    for (int round = 0; round < settings_.relaxation_rounds && stale < kStaleRounds; ++round) {
       bool short_any = false;
       for (size_t si = 0; si < specs_.size(); ++si)
         short_any |= specs_[si].densify && achieved_per_tile[si] < specs_[si].copies_per_volume * measure - 1e-9;
       if (!short_any) return;
       shake(rng);
+      bool inserted = false;
       for (size_t si = 0; si < specs_.size(); ++si) {
         const double wanted = specs_[si].copies_per_volume * measure;
         if (!specs_[si].densify) continue;
         const int darts = static_cast<int>(std::ceil(settings_.relaxation_darts * static_cast<double>(units_.size())));
-        for (int k = 0; k < darts && achieved_per_tile[si] < wanted - 1e-9; ++k)
-          achieved_per_tile[si] += insert(si, rng);
+        for (int k = 0; k < darts && achieved_per_tile[si] < wanted - 1e-9; ++k) {
+          const double added = insert(si, rng);
+          achieved_per_tile[si] += added;
+          inserted |= added > 0.0;
+        }
       }
+      stale = inserted ? 0 : stale + 1;
     }
   }
 
@@ -319,7 +327,7 @@ private:
     return 0.0;
   }
 
-  static constexpr int kVoidProbes = 8, kTurns = 6;
+  static constexpr int kVoidProbes = 8, kTurns = 6, kStaleRounds = 25;
   std::vector<Unit>& units_;
   const std::vector<CollisionShape>& shapes_;
   const std::vector<PlacementSpec>& specs_;

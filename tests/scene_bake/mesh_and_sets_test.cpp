@@ -120,6 +120,44 @@ TEST(WangBake, TileMoleculeKeepsAtomsRadiusAndUpAxis) {
   EXPECT_EQ(t.name, "two");
 }
 
+// A small rigid "protein": eight atoms on a 6 Å cube, bounding radius √27 + 1.7.
+bake::BakedMolecule cube_molecule(const std::string& name) {
+  bake::BakedMolecule m;
+  m.name = name;
+  for (int i = 0; i < 8; ++i) {
+    structure::Atom a;
+    a.position = {i & 1 ? 3.0 : -3.0, i & 2 ? 3.0 : -3.0, i & 4 ? 3.0 : -3.0};
+    a.radius = 1.7;
+    m.atoms.push_back(a);
+  }
+  m.properties.bounding_radius = std::sqrt(27.0) + 1.7;
+  return m;
+}
+
+TEST(WangBake, MembraneTilesReachTheDensityOrSayWhatTheSurfaceCosts) {
+  const std::vector<bake::BakedMolecule> library{cube_molecule("blob")};
+  scene::MembraneDescription membrane;
+  membrane.name = "m";
+  membrane.tile_size = 60;
+  membrane.proteins = {{{"blob", 0}, {scene::SurfaceAbundance::Unit::per_tile, 4.0}, 0.0}};
+  const bake::BakedWangSet flat = bake::bake_membrane_tiles(membrane, library, nullptr, {}, 3);
+  ASSERT_EQ(flat.set.densities.size(), 1u);
+  EXPECT_EQ(flat.set.densities[0].name, "blob");
+  EXPECT_NEAR(flat.set.densities[0].achieved, flat.set.densities[0].requested, 0.1 * flat.set.densities[0].requested);
+  // Packed densely enough that a strongly tilted, stretched surface cannot hold it: the error names
+  // the set's molecule and says what the meshes cost and what helps.
+  membrane.proteins[0].abundance.value = 30.0;
+  try {
+    bake::bake_membrane_tiles(membrane, library, nullptr, {0.5f, 0.01f, 0.4f, 50.f}, 3);
+    ADD_FAILURE() << "an impossible density was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("blob"), std::string::npos) << what;
+    EXPECT_NE(what.find("chart stretch 1.5"), std::string::npos) << what;
+    EXPECT_NE(what.find("a finer mesh lowers the tilt"), std::string::npos) << what;
+  }
+}
+
 TEST(WangBake, MembraneRecipeCoversTheUvSquareAndIsPeriodic) {
   tiles::WangSet set;
   set.dims = 2;
