@@ -43,17 +43,18 @@ private:
 // in-plane map is (after the frame turn) a symmetric stretch P with eigenvalues in [1, 1 + e]
 // (e = lateral_stretch): tile-space centre offset p becomes P·p_xy + p_z, atom offsets stay rigid.
 // On a curved surface the normals turn by up to κ (curvature, rad/Å) per Å, so what stands h Å
-// from the surface sees lateral offsets scaled by a factor in [1 − κh, 1 + κh] (spread on the convex
-// side, squeezed on the concave one): for a pair whose atoms reach H from the surface, the
+// from the surface sees lateral offsets scaled by a factor in [1 − κh, 1 + κh] (spread on the
+// convex side, squeezed on the concave one): for a pair whose atoms reach H from the surface, the
 // eigenvalues lie in [lo, hi] with lo = 1 − κ·H and hi = (1 + e)(1 + κ·H). With A = P − I, A·p_xy
-// lies in the ball centred
-// m·p_xy of radius w·|p_xy|, m = (lo + hi)/2 − 1, w = (hi − lo)/2. Copies stand along interpolated
-// normals up to an angle θ from their flat triangle (tilt = tan θ), so a neighbour p_xy away also
-// rises or sinks by up to min(tilt·|p_xy|, max_rise) in the copy's frame (however far apart, the
-// copies sit within the facets' sag of one smooth surface). Testing copy b shifted by m·p_xy and
-// by −⅔, 0, +⅔ of that rise along z, with the clearance widened by w·|p_xy| + ⅓ of the rise,
-// covers every such deformation. e = κ = tilt = 0 is the plain rigid test; cubes (no chart)
-// always use it.
+// lies in the ball centred m·p_xy of radius w·|p_xy|, m = (lo + hi)/2 − 1, w = (hi − lo)/2.
+// Copies stand along interpolated normals up to an angle θ from their flat triangle
+// (tilt = tan θ), so a neighbour p_xy away also rises or sinks by up to tilt·|p_xy| in the copy's
+// frame, and by no more than max_rise however far apart (an estimate: the facets' sag from the
+// smooth surface their corner normals describe; the bake tests check the bundled scenes by explicit
+// instancing). Testing copy b shifted by m·p_xy and by −⅔, 0, +⅔ of that rise along z, with the
+// clearance widened by w·|p_xy| + ⅓ of the rise, covers every such deformation. e = κ = tilt = 0
+// is the plain rigid test; cubes (no chart) always use it.
+
 // What the meshes that wear a membrane do to its tiles, all >= 0 (zero: a flat, faithful chart).
 struct SurfaceDistortion {
   float lateral_stretch = 0.f;  // e: the chart's largest stretch beyond 1 (tile-space x and y)
