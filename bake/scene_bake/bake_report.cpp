@@ -37,11 +37,11 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
       densities.push_back({{"set", s.name}, {"molecule", d.name}, {"requested", d.requested}, {"achieved", d.achieved}});
   auto& surfaces = j["membrane_surfaces"] = nlohmann::ordered_json::object();
   for (const WangSetSummary& s : scene.wang_sets)
-    if (s.name_is_membrane)
-      surfaces[s.name] = {{"chart_stretch", 1.0 + s.surface.lateral_stretch},
-                          {"curvature", s.surface.curvature},
-                          {"normal_tilt", s.surface.tilt},
-                          {"facet_sag", s.surface.max_rise}};
+    if (s.surface)
+      surfaces[s.name] = {{"chart_stretch", 1.0 + s.surface->lateral_stretch},
+                          {"curvature", s.surface->curvature},
+                          {"normal_tilt", s.surface->tilt},
+                          {"facet_sag", s.surface->max_rise}};
   auto& sections = j["sections"] = nlohmann::ordered_json::object();
   for (const format::SectionEntry& e : package.entries())
     sections[format::section_kind_name(e.kind)] = e.stored_size;
@@ -68,12 +68,12 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
     out << "\n";
   }
   for (const WangSetSummary& s : scene.wang_sets) {
-    if (s.name_is_membrane) {
+    if (s.surface) {
       std::snprintf(line, sizeof line,
                     "  %s: packed to stay clash-free under chart stretches up to %.3g, normals turning %.3g rad/Å "
                     "and tilting %.3g from their faces (facets sag %.3g Å)\n",
-                    s.name.c_str(), 1.0 + s.surface.lateral_stretch, s.surface.curvature, s.surface.tilt,
-                    s.surface.max_rise);
+                    s.name.c_str(), 1.0 + s.surface->lateral_stretch, s.surface->curvature, s.surface->tilt,
+                    s.surface->max_rise);
       out << line;
     }
     for (const tiles::MoleculeDensity& d : s.densities) {

@@ -203,7 +203,7 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
     return 0;
   });
   for (std::size_t i = 0; i < membrane_count; ++i)
-    baked.wang_sets.push_back({scene.membranes[i].name, membrane_sets[i].set.densities, true, membrane_surface[i]});
+    baked.wang_sets.push_back({scene.membranes[i].name, membrane_sets[i].set.densities, membrane_surface[i]});
   for (std::size_t i = 0; i < scene.solubles.size(); ++i)
     baked.wang_sets.push_back({scene.solubles[i].name, soluble_sets[i].set.densities});
 

@@ -37,8 +37,7 @@ struct InstanceSummary {
 struct WangSetSummary {
   std::string name;  // membrane or soluble name
   std::vector<tiles::MoleculeDensity> densities;
-  bool name_is_membrane = false;
-  tiles::SurfaceDistortion surface;  // membranes: what the tiles were packed to survive
+  std::optional<tiles::SurfaceDistortion> surface;  // membranes only: what the tiles were packed to survive
 };
 
 struct BakedScene {
