@@ -38,6 +38,8 @@ constexpr std::array kKinds = {
     info<SectionKind::provenance>("provenance"),
     info<SectionKind::boundary_boxes>("boundary_boxes"),
     info<SectionKind::mask_words>("mask_words"),
+    info<SectionKind::effects>("effects"),
+    info<SectionKind::keyframes>("keyframes"),
 };
 static_assert(kKinds.size() == std::size(kAllSectionKinds), "every kind has a name");
 

@@ -33,6 +33,8 @@ enum class SectionKind : std::uint32_t {
   provenance = 20,
   boundary_boxes = 21,
   mask_words = 22,
+  effects = 23,    // format 2.1
+  keyframes = 24,  // format 2.1
 };
 
 // Every kind this reader knows, in numeric order.
@@ -44,7 +46,7 @@ inline constexpr SectionKind kAllSectionKinds[] = {
     SectionKind::vertex_uvs,      SectionKind::triangles,       SectionKind::triangle_shells,
     SectionKind::compartments,    SectionKind::occupancy,       SectionKind::scene,
     SectionKind::compartment_instances, SectionKind::provenance,  SectionKind::boundary_boxes,
-    SectionKind::mask_words,
+    SectionKind::mask_words,      SectionKind::effects,         SectionKind::keyframes,
 };
 
 bool is_known_section_kind(std::uint32_t kind);
@@ -79,6 +81,8 @@ template <> struct RecordOf<SectionKind::compartment_instances> { using type = g
 template <> struct RecordOf<SectionKind::provenance> { using type = char; };
 template <> struct RecordOf<SectionKind::boundary_boxes> { using type = gpu::BoundaryBox; };
 template <> struct RecordOf<SectionKind::mask_words> { using type = std::uint32_t; };
+template <> struct RecordOf<SectionKind::effects> { using type = gpu::SceneEffects; };
+template <> struct RecordOf<SectionKind::keyframes> { using type = gpu::InstanceKeyframe; };
 template <SectionKind K> using record_t = typename RecordOf<K>::type;
 
 }  // namespace nano::format

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <string>
 
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 #include "format/checked_math.hpp"
 
 namespace nano::format {
@@ -35,6 +39,8 @@ public:
     check_core_masks();
     check_scene();
     check_compartment_instances();
+    check_effects();
+    check_keyframes();
     check_provenance();
   }
 
@@ -428,6 +434,95 @@ private:
       zero(c, 52, inst[i].reserved0);
       zero(c, 56, inst[i].reserved1);
       zero(c, 60, inst[i].reserved2);
+    }
+  }
+
+  // |v| within 1e-3 of 1: the baker normalises in double and stores floats.
+  void unit(const Cursor& c, std::uint64_t off, const glm::vec3& v, const char* what) const {
+    if (!(std::abs(glm::length(v) - 1.0f) <= 1e-3f)) fail(c, off, Rule::bad_value, std::string(what) + " is not a unit vector");
+  }
+  void zero_vec(const Cursor& c, std::uint64_t off, const vec4& v, int from, const char* what) const {
+    for (int i = from; i < 4; ++i)
+      if (v[i] != 0.0f) fail(c, off + 4 * i, Rule::nonzero_reserved, std::string(what) + ": reserved member is not zero");
+  }
+
+  // Only the parameters of effects the flags turn on may be non-zero, and those must make sense:
+  // the renderer feeds them to the shader unchecked.
+  void check_effects() {
+    if (p_.record_count(SectionKind::effects) == 0) return;  // absent or empty: every effect off
+    const auto effects = p_.records<SectionKind::effects>();
+    if (effects.size() != 1)
+      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::effects, 0),
+                         "section effects must hold exactly one record, not " + str(effects.size()));
+    const std::uint32_t flags = p_.has(SectionKind::scene) && p_.record_count(SectionKind::scene) == 1
+                                    ? p_.records<SectionKind::scene>()[0].effect_flags : 0u;
+    const gpu::SceneEffects& e = effects[0];
+    const Cursor c = cursor<SectionKind::effects>(0);
+    const auto* floats = reinterpret_cast<const float*>(&e);
+    finite(c, 0, floats, 60, "effect parameter");
+    const bool clipping = flags & gpu::NANO_EFFECT_CLIPPING_PLANES;
+    if (e.clip_plane_count > gpu::NANO_MAX_CLIP_PLANES || (!clipping && e.clip_plane_count != 0))
+      fail(c, 240, Rule::bad_value, "clip_plane_count " + str(e.clip_plane_count) + (clipping ? " exceeds 8" : " with clipping off"));
+    for (std::uint32_t k = 0; k < gpu::NANO_MAX_CLIP_PLANES; ++k) {
+      if (k < e.clip_plane_count) unit(c, 16 * k, glm::vec3(e.clip_planes[k]), "clip plane normal");
+      else zero_vec(c, 16 * k, e.clip_planes[k], 0, "unused clip plane");
+    }
+    if (e.clip_box_min.w == 1.0f && clipping) {
+      for (int a = 0; a < 3; ++a)
+        if (!(e.clip_box_min[a] < e.clip_box_max[a])) fail(c, 128 + 4 * a, Rule::inverted_aabb, "clip box minimum not below maximum");
+    } else if (e.clip_box_min != vec4(0.0f) || e.clip_box_max != vec4(0.0f)) {
+      fail(c, 140, Rule::bad_value, "clip box flag must be 1 (box on, with clipping) or the box all zero");
+    }
+    zero_vec(c, 144, e.clip_box_max, 3, "clip box maximum");
+    const bool keyed = p_.record_count(SectionKind::keyframes) > 0;
+    if ((flags & gpu::NANO_EFFECT_PROXY_ANIMATION) && !keyed) {
+      if (e.spin.w != 0.0f) unit(c, 160, glm::vec3(e.spin), "spin axis");
+    } else if (e.spin != vec4(0.0f) || e.velocity != vec4(0.0f)) {
+      fail(c, 160, Rule::bad_value, "steady motion without the animation flag, or beside keyframes");
+    }
+    zero_vec(c, 176, e.velocity, 3, "velocity");
+    if (flags & gpu::NANO_EFFECT_JITTER) {
+      if (!(e.jitter.x >= 0.0f && e.jitter.x <= 180.0f)) fail(c, 192, Rule::bad_value, "jitter amplitude outside [0, 180] degrees");
+      if (!(e.jitter.y > 0.0f)) fail(c, 196, Rule::bad_value, "jitter frequency must be positive");
+      zero_vec(c, 192, e.jitter, 2, "jitter");
+    } else {
+      zero_vec(c, 192, e.jitter, 0, "jitter (off)");
+    }
+    if (flags & gpu::NANO_EFFECT_AMBIENT_OCCLUSION) {
+      const float rays = e.ambient_occlusion.x;
+      if (!(rays >= 1.0f && rays <= 1024.0f && rays == std::floor(rays)))
+        fail(c, 208, Rule::bad_value, "ambient occlusion rays must be a whole number in [1, 1024]");
+      if (!(e.ambient_occlusion.y > 0.0f)) fail(c, 212, Rule::bad_value, "ambient occlusion radius must be positive");
+      zero_vec(c, 208, e.ambient_occlusion, 2, "ambient occlusion");
+    } else {
+      zero_vec(c, 208, e.ambient_occlusion, 0, "ambient occlusion (off)");
+    }
+    if (flags & gpu::NANO_EFFECT_SHADOWS) {
+      unit(c, 224, glm::vec3(e.shadow_light), "shadow light direction");
+      zero_vec(c, 224, e.shadow_light, 3, "shadow light");
+    } else {
+      zero_vec(c, 224, e.shadow_light, 0, "shadow light (off)");
+    }
+    zero(c, 244, e.reserved0);
+    zero(c, 248, e.reserved1);
+    zero(c, 252, e.reserved2);
+  }
+
+  void check_keyframes() {
+    require(SectionKind::keyframes, SectionKind::compartment_instances);
+    const auto keys = p_.records<SectionKind::keyframes>();
+    for (std::uint64_t i = 0; i < keys.size(); ++i) {
+      const gpu::InstanceKeyframe& k = keys[i];
+      const Cursor c = cursor<SectionKind::keyframes>(i);
+      for (int row = 0; row < 3; ++row) finite(c, 16 * row, k.transform[row], "transform");
+      const glm::dmat3 linear(glm::dvec3(k.transform[0]), glm::dvec3(k.transform[1]), glm::dvec3(k.transform[2]));
+      if (!(std::abs(glm::determinant(linear)) > 1e-12)) fail(c, 0, Rule::bad_value, "transform is singular");
+      if (!(std::isfinite(k.time) && k.time >= 0.0f)) fail(c, 48, Rule::bad_value, "time must be finite and ≥ 0");
+      index(c, 52, k.instance, SectionKind::compartment_instances, "instance");
+      if (i > 0 && (k.instance < keys[i - 1].instance || (k.instance == keys[i - 1].instance && !(k.time > keys[i - 1].time))))
+        fail(c, 48, Rule::bad_value, "keyframes must ascend by (instance, time) with strictly increasing times");
+      zero(c, 56, k.reserved0);
+      zero(c, 60, k.reserved1);
     }
   }
 

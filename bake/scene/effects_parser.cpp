@@ -23,8 +23,11 @@ Clipping parse_clipping(const JsonCursor& c) {
   c.only_keys({"planes", "box"});
   if (!c.has("planes") && !c.has("box")) c.fail("expected \"planes\", \"box\" or both");
   Clipping clipping;
-  if (const auto planes = c.optional("planes"))
+  if (const auto planes = c.optional("planes")) {
     for (const JsonCursor& plane : planes->elements(1)) clipping.planes.push_back(parse_plane(plane));
+    // The package and the shader hold at most 8 (NANO_MAX_CLIP_PLANES); the box comes on top.
+    if (clipping.planes.size() > 8) planes->fail("at most 8 planes, got " + std::to_string(clipping.planes.size()));
+  }
   if (const auto box = c.optional("box")) clipping.box = parse_box(*box);
   return clipping;
 }

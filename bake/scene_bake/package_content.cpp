@@ -187,6 +187,8 @@ std::vector<format::SectionSource> PackageContent::sections() const {
   add(SectionKind::boundary_boxes, std::span(boundary_boxes));
   add(SectionKind::mask_words, std::span(mask_words));
   add(SectionKind::scene, std::span(&scene, 1));
+  add(SectionKind::effects, std::span(effects));
+  add(SectionKind::keyframes, std::span(keyframes));
   add(SectionKind::compartment_instances, std::span(compartment_instances));
   add(SectionKind::provenance, std::span<const char>(provenance.data(), provenance.size()));
   return s;

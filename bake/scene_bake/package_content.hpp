@@ -40,6 +40,8 @@ struct PackageContent {
   std::vector<gpu::BoundaryBox> boundary_boxes;
   std::vector<std::uint32_t> mask_words;
   gpu::SceneSettings scene{};
+  std::vector<gpu::SceneEffects> effects;           // none or one record
+  std::vector<gpu::InstanceKeyframe> keyframes;     // ascending (instance, time)
   std::vector<gpu::CompartmentInstance> compartment_instances;
   std::string provenance;
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "bake/mesh/uv_distortion.hpp"
 #include "bake/mesh/vertex_normals.hpp"
@@ -123,6 +124,49 @@ std::uint32_t effect_flags(const scene::Effects& effects) {
   if (effects.ambient_occlusion) flags |= gpu::NANO_EFFECT_AMBIENT_OCCLUSION;
   if (effects.shadows) flags |= gpu::NANO_EFFECT_SHADOWS;
   return flags;
+}
+
+// The parameters of the effects the flags turn on (format section "effects"); none when all are off.
+std::vector<gpu::SceneEffects> scene_effects(const scene::Effects& effects) {
+  if (effect_flags(effects) == 0) return {};
+  gpu::SceneEffects e{};
+  if (const auto& clip = effects.clipping) {
+    if (clip->planes.size() > gpu::NANO_MAX_CLIP_PLANES)
+      throw std::invalid_argument("effects.clipping.planes: at most 8 planes");  // the parser stops more
+    for (std::size_t k = 0; k < clip->planes.size(); ++k) e.clip_planes[k] = glm::vec4(clip->planes[k]);
+    e.clip_plane_count = static_cast<std::uint32_t>(clip->planes.size());
+    if (clip->box) {
+      e.clip_box_min = glm::vec4(glm::vec3(clip->box->min), 1.f);
+      e.clip_box_max = glm::vec4(glm::vec3(clip->box->max), 0.f);
+    }
+  }
+  if (const auto& a = effects.animation) {
+    if (a->steady && a->keyframes.empty()) {
+      e.spin = glm::vec4(glm::vec3(a->steady->spin_axis), static_cast<float>(a->steady->spin_degrees_per_second));
+      if (e.spin.w == 0.f) e.spin = glm::vec4(0.f);
+      e.velocity = glm::vec4(glm::vec3(a->steady->velocity), 0.f);
+    }
+    if (a->jitter) e.jitter = glm::vec4(float(a->jitter->amplitude_degrees), float(a->jitter->frequency_hz), 0.f, 0.f);
+  }
+  if (const auto& ao = effects.ambient_occlusion) e.ambient_occlusion = glm::vec4(float(ao->rays), float(ao->radius), 0.f, 0.f);
+  if (const auto& sh = effects.shadows) e.shadow_light = glm::vec4(glm::vec3(sh->light_direction), 0.f);
+  return {e};
+}
+
+// Keyframed proxy motion, ascending by (instance, time) as the format asks.
+std::vector<gpu::InstanceKeyframe> scene_keyframes(const scene::Effects& effects) {
+  std::vector<gpu::InstanceKeyframe> keys;
+  if (!effects.animation) return keys;
+  for (const scene::InstanceKeyframes& track : effects.animation->keyframes)
+    for (const scene::Keyframe& k : track.keys) {
+      gpu::InstanceKeyframe record{};
+      for (int row = 0; row < 3; ++row) record.transform[row] = glm::vec4(k.transform[row]);
+      record.time = static_cast<float>(k.time);
+      record.instance = static_cast<std::uint32_t>(track.instance);
+      keys.push_back(record);
+    }
+  std::stable_sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) { return a.instance < b.instance; });
+  return keys;
 }
 
 gpu::SceneSettings scene_settings(const scene::SceneDescription& scene, const std::vector<InstanceSummary>& instances) {
@@ -316,6 +360,8 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       baked.represented_atoms += baked.compartments[p.compartment.index].represented_atoms;
     }
     content.scene = scene_settings(scene, baked.instances);
+    content.effects = scene_effects(scene.effects);
+    content.keyframes = scene_keyframes(scene.effects);
     content.provenance = provenance_json(scene, seed);
     return 0;
   });

@@ -171,6 +171,36 @@ struct SceneSettings {
   uint reserved2;
 };
 
+// Section "effects" (format 2.1, optional): exactly one record with the parameters of the effects
+// SceneSettings.effect_flags turns on. Members of an effect that is off are zero. Without this
+// section every effect is off, whatever the flags say (2.0 packages).
+NANO_CONST uint NANO_MAX_CLIP_PLANES = 8u;
+struct SceneEffects {
+  vec4 clip_planes[8];     // (unit n, d), world Å: points with n·p + d ≥ 0 stay; the first clip_plane_count
+  vec4 clip_box_min;       // xyz: world minimum; w: 1 = the box clips, 0 = no box
+  vec4 clip_box_max;       // xyz: world maximum; w: reserved
+  vec4 spin;               // steady proxy motion (no keyframes): xyz unit axis, w degrees per second
+  vec4 velocity;           // xyz: Å per second; w: reserved
+  vec4 jitter;             // x: amplitude (degrees), y: frequency (Hz); zw: reserved
+  vec4 ambient_occlusion;  // x: rays per pixel, y: radius (Å); zw: reserved
+  vec4 shadow_light;       // xyz: unit direction towards the light (world); w: reserved
+  uint clip_plane_count;   // ≤ NANO_MAX_CLIP_PLANES
+  uint reserved0;
+  uint reserved1;
+  uint reserved2;
+};
+
+// Section "keyframes" (format 2.1, optional): keyframed proxy motion, ascending by (instance, time).
+// Between two keys of an instance its transform is interpolated; before the first and after the
+// last it holds; instances without keys keep their transform.
+struct InstanceKeyframe {
+  vec4 transform[3];  // rows of the 3x4 compartment → world transform at `time`
+  float time;         // seconds
+  uint instance;      // index into "compartment_instances"
+  uint reserved0;
+  uint reserved1;
+};
+
 // Section "compartment_instances": where each compartment is placed in the world.
 struct CompartmentInstance {
   vec4 transform[3];  // rows of a 3x4 row-major affine transform, compartment space -> world
@@ -187,6 +217,11 @@ NANO_END
 // std430 offsets and strides, pinned for C++ so a member added in the wrong place fails to compile.
 #define NANO_PIN(T, size) static_assert(sizeof(nano::gpu::T) == (size), #T " size");
 #define NANO_AT(T, m, off) static_assert(offsetof(nano::gpu::T, m) == (off), #T "." #m " offset");
+NANO_PIN(SceneEffects, 256)
+NANO_AT(SceneEffects, clip_box_min, 128) NANO_AT(SceneEffects, shadow_light, 224)
+NANO_AT(SceneEffects, clip_plane_count, 240)
+NANO_PIN(InstanceKeyframe, 64)
+NANO_AT(InstanceKeyframe, time, 48) NANO_AT(InstanceKeyframe, instance, 52)
 NANO_PIN(MoleculeType, 96)
 NANO_AT(MoleculeType, aabb_min, 0) NANO_AT(MoleculeType, aabb_max, 16) NANO_AT(MoleculeType, up_axis, 32)
 NANO_AT(MoleculeType, colour, 48) NANO_AT(MoleculeType, first_atom, 64) NANO_AT(MoleculeType, atom_count, 68)

@@ -200,7 +200,9 @@ TEST(SectionKinds, NamesRoundTripAndRecordSizes) {
     EXPECT_EQ(section_kind_from_name(section_kind_name(k)), k);
   }
   EXPECT_FALSE(is_known_section_kind(0));
-  EXPECT_FALSE(is_known_section_kind(23));
+  EXPECT_FALSE(is_known_section_kind(25));
+  EXPECT_EQ(record_size(SectionKind::effects), 256u);
+  EXPECT_EQ(record_size(SectionKind::keyframes), 64u);
   EXPECT_EQ(section_kind_name(4711u), "kind 4711");
   EXPECT_EQ(section_kind_from_name("nonsense"), std::nullopt);
   EXPECT_EQ(record_size(SectionKind::molecules), 96u);

@@ -69,7 +69,20 @@ SampleScene make_sample_scene() {
   s.boundary_boxes = {{199, 0}, {260, 1}};
   s.mask_words = {1, 0};
   s.scene = {{vec4(0, 0, 10, 0.8f), vec4(0, 0, 0, 0), vec4(0, 1, 0, 0),
-              gpu::NANO_EFFECT_AMBIENT_OCCLUSION | gpu::NANO_EFFECT_SHADOWS, 0, 0, 0}};
+              gpu::NANO_EFFECT_AMBIENT_OCCLUSION | gpu::NANO_EFFECT_SHADOWS | gpu::NANO_EFFECT_CLIPPING_PLANES |
+                  gpu::NANO_EFFECT_PROXY_ANIMATION,
+              0, 0, 0}};
+  // Clipping by one plane and a box, AO and shadows; instance 1 keyframed (so no steady motion).
+  gpu::SceneEffects e{};
+  e.clip_planes[0] = vec4(0, 0, 1, -2);
+  e.clip_plane_count = 1;
+  e.clip_box_min = vec4(-10, -10, -10, 1);
+  e.clip_box_max = vec4(60, 10, 10, 0);
+  e.ambient_occlusion = vec4(8, 40, 0, 0);
+  e.shadow_light = vec4(0, 0.6f, 0.8f, 0);
+  s.effects = {e};
+  s.keyframes = {{{vec4(0, -1, 0, 50), vec4(1, 0, 0, 0), vec4(0, 0, 1, -5)}, 0.0f, 1, 0, 0},
+                 {{vec4(-1, 0, 0, 50), vec4(0, -1, 0, 10), vec4(0, 0, 1, -5)}, 2.0f, 1, 0, 0}};
   s.compartment_instances = {{{vec4(1, 0, 0, 0), vec4(0, 1, 0, 0), vec4(0, 0, 1, 0)}, 0, 0, 0, 0},
                              {{vec4(0, -1, 0, 50), vec4(1, 0, 0, 0), vec4(0, 0, 1, -5)}, 0, 0, 0, 0}};
   s.provenance = R"({"baker":"nanobake 0.1.0","inputs":{"2HHB.cif":"xxh3:0123456789abcdef"},)"
@@ -102,6 +115,8 @@ std::vector<SectionSource> sections_of(const SampleScene& s, Compression c, std:
       text_source(K::provenance, s.provenance, c),
       source(K::boundary_boxes, s.boundary_boxes, c),
       source(K::mask_words, s.mask_words, c),
+      source(K::effects, s.effects, c),
+      source(K::keyframes, s.keyframes, c),
   };
   std::vector<SectionSource> out;
   for (const SectionSource& src : all)

@@ -31,6 +31,8 @@ struct SampleScene {
   std::string provenance;
   std::vector<gpu::BoundaryBox> boundary_boxes;
   std::vector<std::uint32_t> mask_words;
+  std::vector<gpu::SceneEffects> effects;
+  std::vector<gpu::InstanceKeyframe> keyframes;
 };
 
 SampleScene make_sample_scene();

@@ -22,6 +22,7 @@ struct Case {
 };
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
+using glm::vec4;
 
 // The sample's only cube grows from 1 to 33 molecules (copies of its instance), so the keep-masks
 // need two words per box instead of one.
@@ -161,6 +162,47 @@ const Case kCases[] = {
      Rule::index_out_of_range, SectionKind::compartment_instances, 64 + 48},
     {"NaN transform", [](SampleScene& s) { s.compartment_instances[0].transform[2].w = kNaN; }, Rule::non_finite,
      SectionKind::compartment_instances, 32 + 12},
+    {"two effects records", [](SampleScene& s) { s.effects.push_back(s.effects[0]); }, Rule::record_size, SectionKind::effects, 0},
+    {"NaN clip plane", [](SampleScene& s) { s.effects[0].clip_planes[0].w = kNaN; }, Rule::non_finite, SectionKind::effects, 12},
+    {"clip plane normal not unit", [](SampleScene& s) { s.effects[0].clip_planes[0] = vec4(0, 0, 2, 1); }, Rule::bad_value,
+     SectionKind::effects, 0},
+    {"nine clip planes", [](SampleScene& s) { s.effects[0].clip_plane_count = 9; }, Rule::bad_value, SectionKind::effects, 240},
+    {"plane past the count", [](SampleScene& s) { s.effects[0].clip_planes[3] = vec4(1, 0, 0, 0); }, Rule::nonzero_reserved,
+     SectionKind::effects, 48},
+    {"clip planes without the clipping flag",
+     [](SampleScene& s) { s.scene[0].effect_flags &= ~gpu::NANO_EFFECT_CLIPPING_PLANES; }, Rule::bad_value, SectionKind::effects, 240},
+    {"inverted clip box", [](SampleScene& s) { s.effects[0].clip_box_min.y = 20; }, Rule::inverted_aabb, SectionKind::effects, 132},
+    {"clip box flag 2", [](SampleScene& s) { s.effects[0].clip_box_min.w = 2; }, Rule::bad_value, SectionKind::effects, 140},
+    {"steady motion beside keyframes", [](SampleScene& s) { s.effects[0].velocity = vec4(1, 0, 0, 0); }, Rule::bad_value,
+     SectionKind::effects, 160},
+    {"spin axis not unit",
+     [](SampleScene& s) {
+       s.keyframes.clear();
+       s.effects[0].spin = vec4(0, 2, 0, 10);
+     },
+     Rule::bad_value, SectionKind::effects, 160},
+    {"AO rays 0", [](SampleScene& s) { s.effects[0].ambient_occlusion.x = 0; }, Rule::bad_value, SectionKind::effects, 208},
+    {"AO rays 2.5", [](SampleScene& s) { s.effects[0].ambient_occlusion.x = 2.5f; }, Rule::bad_value, SectionKind::effects, 208},
+    {"AO radius negative", [](SampleScene& s) { s.effects[0].ambient_occlusion.y = -1; }, Rule::bad_value, SectionKind::effects, 212},
+    {"jitter without the flag", [](SampleScene& s) { s.effects[0].jitter = vec4(5, 1, 0, 0); }, Rule::nonzero_reserved,
+     SectionKind::effects, 192},
+    {"jitter amplitude 200",
+     [](SampleScene& s) {
+       s.scene[0].effect_flags |= gpu::NANO_EFFECT_JITTER;
+       s.effects[0].jitter = vec4(200, 1, 0, 0);
+     },
+     Rule::bad_value, SectionKind::effects, 192},
+    {"shadow light zero", [](SampleScene& s) { s.effects[0].shadow_light = vec4(0); }, Rule::bad_value, SectionKind::effects, 224},
+    {"effects reserved", [](SampleScene& s) { s.effects[0].reserved1 = 1; }, Rule::nonzero_reserved, SectionKind::effects, 248},
+    {"keyframe instance", [](SampleScene& s) { s.keyframes[1].instance = 2; }, Rule::index_out_of_range, SectionKind::keyframes,
+     64 + 52},
+    {"keyframe times not increasing", [](SampleScene& s) { s.keyframes[1].time = 0; }, Rule::bad_value, SectionKind::keyframes,
+     64 + 48},
+    {"keyframe negative time", [](SampleScene& s) { s.keyframes[0].time = -1; }, Rule::bad_value, SectionKind::keyframes, 48},
+    {"keyframe singular", [](SampleScene& s) { s.keyframes[0].transform[1] = vec4(0, -1, 0, 3); }, Rule::bad_value,
+     SectionKind::keyframes, 0},
+    {"keyframe NaN", [](SampleScene& s) { s.keyframes[1].transform[2].y = kNaN; }, Rule::non_finite, SectionKind::keyframes,
+     64 + 32 + 4},
     {"NUL in provenance", [](SampleScene& s) { s.provenance[5] = '\0'; }, Rule::bad_value, SectionKind::provenance, 5},
 };
 

@@ -74,6 +74,8 @@ TEST(EffectsParser, KeyframeRules) {
                      "effects.animation.proxy_motion.keyframes[1].instance", "already has keyframes");
   EXPECT_INPUT_ERROR(with(R"([{"instance": 0, "keys": []}])"), "effects.animation.proxy_motion.keyframes[0].keys",
                      "at least 1 element");
+  EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"clipping": {"planes": [[1,0,0,0],[1,0,0,0],[1,0,0,0],[1,0,0,0],
+                     [1,0,0,0],[1,0,0,0],[1,0,0,0],[1,0,0,0],[1,0,0,0]]}}})"), "effects.clipping.planes", "at most 8 planes, got 9");
   EXPECT_INPUT_ERROR(with(R"([{"instance": 0, "keys": [{"time": 0, "matrix": [[0, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}]}])"),
                      "effects.animation.proxy_motion.keyframes[0].keys[0].matrix", "positive determinant");
 }
