@@ -6,15 +6,28 @@ function(nano_add_shaders)
   cmake_parse_arguments(ARG "" "TARGET" "SOURCES" ${ARGN})
   set(generated)
   file(GLOB_RECURSE shared_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/shaders/shared/*.h ${PROJECT_SOURCE_DIR}/shaders/*.glsl)
-  foreach(src IN LISTS ARG_SOURCES)
+  foreach(entry IN LISTS ARG_SOURCES)
+    # "path.comp" or "path.comp@DEFINE": a variant compiled with -DDEFINE, named path_define.comp.
+    string(REPLACE "@" ";" parts ${entry})
+    list(GET parts 0 src)
+    set(defines)
     get_filename_component(abs ${src} ABSOLUTE)
     get_filename_component(name ${src} NAME)
+    list(LENGTH parts n)
+    if(n GREATER 1)
+      list(GET parts 1 define)
+      set(defines -D${define})
+      get_filename_component(name_we ${src} NAME_WE)
+      get_filename_component(ext ${src} LAST_EXT)
+      string(TOLOWER ${define} variant)
+      set(name ${name_we}_${variant}${ext})
+    endif()
     string(MAKE_C_IDENTIFIER ${name} stem)
     set(spv ${CMAKE_CURRENT_BINARY_DIR}/${name}.spv)
     set(cpp ${CMAKE_CURRENT_BINARY_DIR}/${stem}_spv.cpp)
     add_custom_command(
       OUTPUT ${spv}
-      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.2 -V -I${PROJECT_SOURCE_DIR}/shaders -o ${spv} ${abs}
+      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.2 -V ${defines} -I${PROJECT_SOURCE_DIR}/shaders -o ${spv} ${abs}
       DEPENDS ${abs} ${shared_headers}
       COMMENT "glslang ${name}"
       VERBATIM)

@@ -1,11 +1,13 @@
 #include "runtime/render_session.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
 
 #include "common/error.hpp"
 #include "format/validator.hpp"
+#include "runtime/render/animation.hpp"
 
 namespace nano::view {
 
@@ -40,10 +42,70 @@ render::RenderSettings VariantOptions::render_settings() const {
   return s;
 }
 
+void EffectOptions::add_to(CLI::App& command) {
+  command.add_option("--clip-plane", clip_planes, "keep points with n·p + d ≥ 0: \"nx,ny,nz,d\" (world Å; repeatable, ≤ 8)");
+  command.add_option("--clip-box", clip_box, "keep points inside \"x0,y0,z0,x1,y1,z1\" (world Å)");
+  command.add_option("--time", time, "seconds: proxy animation and jitter are evaluated at this time")->capture_default_str();
+  command.add_option("--effect", on, "turn an effect on: clipping, animation, jitter, ao, shadows (repeatable)");
+  command.add_option("--no-effect", off, "turn an effect off (repeatable)");
+  command.add_flag("--no-scene-effects", no_scene_effects, "start with every effect off instead of the scene's");
+  command.add_option("--ao-rays", ao_rays, "ambient-occlusion rays per pixel (default: the scene's, or 8)");
+  command.add_option("--ao-radius", ao_radius, "ambient-occlusion ray length, Å (default: the scene's, or 40)");
+}
+
+render::EffectSettings EffectOptions::settings(const format::Package& package) const {
+  render::EffectSettings e = no_scene_effects ? render::EffectSettings{} : render::package_effects(package);
+  const auto parse = [](const char* option, auto&& f) {
+    try {
+      f();
+    } catch (const std::invalid_argument& error) {
+      throw InputError(option, "", error.what());
+    }
+  };
+  if (!std::isfinite(time)) throw InputError("--time", "", "must be finite");
+  e.time = time;
+  for (const std::string& plane : clip_planes) parse("--clip-plane", [&] { e.clipping.planes.push_back(render::parse_clip_plane(plane)); });
+  if (e.clipping.planes.size() > render::kMaxClipPlanes)
+    throw InputError("--clip-plane", "", "at most " + std::to_string(render::kMaxClipPlanes) + " planes in all (the scene's included)");
+  if (!clip_box.empty()) parse("--clip-box", [&] { e.clipping.box = render::parse_clip_box(clip_box); });
+  if (!clip_planes.empty() || !clip_box.empty()) e.clipping_on = true;
+  for (const std::string& name : on) parse("--effect", [&] { render::set_effect(e, name, true); });
+  for (const std::string& name : off) parse("--no-effect", [&] { render::set_effect(e, name, false); });
+  if (ao_rays != 0) {
+    if (ao_rays > 1024) throw InputError("--ao-rays", "", "at most 1024");
+    e.ao_rays = ao_rays;
+  }
+  if (ao_radius != 0) {
+    if (!(ao_radius > 0) || !std::isfinite(ao_radius)) throw InputError("--ao-radius", "", "must be a positive length in Å");
+    e.ao_radius = float(ao_radius);
+  }
+  return e;
+}
+
+OracleEffects oracle_effects(const format::Package& package, const render::EffectSettings& effects) {
+  OracleEffects o;
+  if (effects.animation_on) o.scene.instance_transforms = render::animated_instance_transforms(package, effects.time);
+  o.scene.jitter = effects.jitter_on && effects.jitter_degrees > 0;
+  o.scene.jitter_parameters = render::jitter_frame_parameters(effects);
+  if (effects.clipping_on) o.clip = render::clip_half_spaces(effects.clipping);
+  return o;
+}
+
 RenderSession::RenderSession(const std::filesystem::path& path, const render::SceneOptions& options)
     : package(format::open_validated(path)),
       instance(vk::InstanceOptions{.validation = vk::validation_requested_by_environment()}),
       device(vk::open_ray_query_device(instance)) {
+  std::fprintf(stderr, "device: %s\n", device.description().c_str());
+  scene = std::make_unique<render::GpuScene>(device, package, options);
+}
+
+RenderSession::RenderSession(const std::filesystem::path& path, const render::SceneOptions& options,
+                             const PresentationOptions& presentation)
+    : package(format::open_validated(path)),
+      instance(vk::InstanceOptions{.validation = vk::validation_requested_by_environment(),
+                                   .extensions = presentation.instance_extensions}),
+      surface(instance.handle(), presentation.create_surface(instance.handle())),
+      device(vk::open_ray_query_device(instance, vk::DeviceOptions{presentation.device_extensions, surface.handle()})) {
   std::fprintf(stderr, "device: %s\n", device.description().c_str());
   scene = std::make_unique<render::GpuScene>(device, package, options);
 }

@@ -2,10 +2,14 @@
 // What `render`, `verify` and `bench` share: a package opened and validated BEFORE any GPU work
 // (a package that fails validation never reaches the device), the Vulkan device, the scene on it.
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "format/package.hpp"
+#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/render/effects.hpp"
 #include "runtime/render/gpu_scene.hpp"
 #include "runtime/render/renderer.hpp"
 #include "runtime/vk/device.hpp"
@@ -24,14 +28,48 @@ struct VariantOptions {
   render::RenderSettings render_settings() const;
 };
 
+// The window case (`nanoview view`): the instance also enables `instance_extensions` (the surface
+// extensions GLFW names), `create_surface` makes the window's surface from it, and the device must
+// present to that surface from its one queue with `device_extensions` (VK_KHR_swapchain) enabled.
+struct PresentationOptions {
+  std::vector<std::string> instance_extensions, device_extensions;
+  std::function<VkSurfaceKHR(VkInstance)> create_surface;
+};
+
+// The effect options `render`, `verify`, `pick` and `bench` share. The package's effects are the
+// start (unless --no-scene-effects); --effect / --no-effect switch one; clip options turn clipping on.
+struct EffectOptions {
+  std::vector<std::string> clip_planes, on, off;
+  std::string clip_box;
+  double time = 0;
+  bool no_scene_effects = false;
+  std::uint32_t ao_rays = 0;  // 0: the scene's (or 8)
+  double ao_radius = 0;       // 0: the scene's (or 40 Å)
+  void add_to(CLI::App& command);
+  // Throws InputError naming the option that does not parse.
+  render::EffectSettings settings(const format::Package& package) const;
+};
+
+// What the effects change for the CPU oracle, as the renderer applies them: moved instances and
+// jittered copies (the scene) and clipped atoms (the render options). AO and shadows change colours
+// only, which the oracle does not produce.
+struct OracleEffects {
+  oracle::ExplicitSceneOptions scene;
+  std::vector<glm::dvec4> clip;
+};
+OracleEffects oracle_effects(const format::Package& package, const render::EffectSettings& effects);
+
 struct RenderSession {
   format::Package package;
   vk::Instance instance;
+  vk::Surface surface;  // presentation sessions only; between instance and device for destruction order
   vk::Device device;
   std::unique_ptr<render::GpuScene> scene;
 
   // Throws InputError (bad package), DeviceSelectionError (no device with ray queries) or vk errors.
   RenderSession(const std::filesystem::path& path, const render::SceneOptions& options);
+  RenderSession(const std::filesystem::path& path, const render::SceneOptions& options,
+                const PresentationOptions& presentation);
   ~RenderSession();
 
   // Validation-layer errors so far (0 without NANO_VALIDATION); commands fail when it is non-zero.

@@ -15,7 +15,9 @@
 #include "runtime/explicit/atom_radii_judge.hpp"
 #include "runtime/explicit/render_compare.hpp"
 #include "runtime/explicit/verify_cameras.hpp"
+#include "runtime/render/animation.hpp"
 #include "runtime/render/camera_spec.hpp"
+#include "runtime/render/image_io.hpp"
 #include "runtime/render/renderer.hpp"
 #include "runtime/render_session.hpp"
 
@@ -35,6 +37,8 @@ void add_verify_command(CLI::App& app) {
     bool json = false;
     double require = 0.999;
     std::uint64_t max_unexplained = 0;
+    std::string camera, ids;
+    EffectOptions effects;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("verify", "Compare the device's image with explicit instancing on the CPU, pixel by pixel");
@@ -49,12 +53,39 @@ void add_verify_command(CLI::App& app) {
                   "relative 1e-3 (all at once, or each on its own along the pixel's ray): grazing touches and float ties")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON (key `agreement`) instead of text");
+  cmd->add_option("--camera", o->camera, "one view \"pos=..;at=..;up=..;fov=..\" instead of the chosen set (keys left out keep the scene's)");
+  cmd->add_option("--ids", o->ids, "judge this ids file (render --ids, a viewer screenshot) instead of rendering; needs --camera");
+  o->effects.add_to(*cmd);
   cmd->callback([o] {
-    const auto [w, h] = parse_size(o->size);
-    const render::RenderSettings settings = o->variant.render_settings();
+    auto [w, h] = parse_size(o->size);
+    if (!o->ids.empty() && o->camera.empty()) throw InputError("--ids", "", "needs --camera: the view the ids file shows");
+    render::RenderSettings settings = o->variant.render_settings();
     RenderSession session(o->package, o->variant.scene_options());
-    const oracle::ExplicitScene scene(session.package);
+    settings.effects = o->effects.settings(session.package);
+    // The oracle sees what the effects change: moved instances, jittered copies, clipped atoms.
+    const OracleEffects oracle_view = oracle_effects(session.package, settings.effects);
+    const oracle::ExplicitScene scene(session.package, oracle_view.scene);
+    const std::vector<glm::dvec4>& clip = oracle_view.clip;
+    if (settings.effects.ambient_occlusion_on || settings.effects.shadows_on)
+      std::fprintf(stderr, "verify: ambient occlusion and shadows change colours only; the ids compared here do not see them\n");
     render::Renderer renderer(session.device, *session.scene, settings);
+    std::vector<oracle::VerifyCamera> cameras;
+    std::vector<gpu::PixelHit> given;
+    if (o->camera.empty()) {
+      cameras = oracle::verify_cameras(session.package, scene, o->cameras);
+    } else {
+      render::CameraSpec spec = render::package_camera(session.package);
+      try {
+        spec = render::parse_camera(o->camera, spec);
+      } catch (const std::invalid_argument& e) {
+        throw InputError("--camera", "", e.what());
+      }
+      oracle::VerifyCamera vc;
+      vc.name = "--camera";
+      vc.eye = spec.eye, vc.at = spec.at, vc.up = spec.up, vc.fov_degrees = spec.fov_degrees;
+      cameras.push_back(vc);
+      if (!o->ids.empty()) given = render::read_ids(o->ids, w, h);
+    }
 
     oracle::CompareResult total;
     std::uint64_t total_unexplained = 0;
@@ -63,14 +94,17 @@ void add_verify_command(CLI::App& app) {
       largest_atom = std::max(largest_atom, double(a.centre_radius.w));
     const double grazing_slack = largest_atom * std::sqrt(2 * kRadiusEpsilon);
     nlohmann::json views = nlohmann::json::array();
-    for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o->cameras)) {
+    for (const oracle::VerifyCamera& vc : cameras) {
       render::CameraSpec spec;
       spec.eye = vc.eye, spec.at = vc.at, spec.up = vc.up, spec.fov_degrees = vc.fov_degrees;
       const std::uint32_t cw = vc.odd_size ? (w | 1u) : w, ch = vc.odd_size ? (h | 1u) : h;
       const gpu::Camera camera = spec.to_gpu(cw, ch);
-      const render::Frame frame = renderer.render(camera);
+      render::Frame frame;
+      if (given.empty()) frame = renderer.render(camera);
+      else frame.width = w, frame.height = h, frame.hits = given;
       oracle::OracleRenderOptions oracle_options;
       oracle_options.camera_name = vc.name;
+      oracle_options.clip = clip;
       oracle::OracleRenderStats stats;
       const std::vector<gpu::PixelHit> reference = oracle::oracle_render(scene, session.package, camera, oracle_options, &stats);
       const oracle::CompareResult r = oracle::compare_images(reference, frame.hits, cw, ch);
@@ -82,7 +116,7 @@ void add_verify_command(CLI::App& app) {
         grow.radius_scale = 1 + kRadiusEpsilon;
         const auto shrunk = oracle::oracle_render(scene, session.package, camera, shrink);
         const auto grown = oracle::oracle_render(scene, session.package, camera, grow);
-        const oracle::WorldBox bounds = oracle::scene_world_bounds(session.package);
+        const oracle::WorldBox bounds = oracle::scene_world_bounds(session.package, &scene);
         for (std::size_t i = 0; i < reference.size(); ++i) {
           if (oracle::classify(reference[i], frame.hits[i]) == oracle::PixelDifference::none ||
               oracle::explained_by_radius_change(frame.hits[i], reference[i], shrunk[i], grown[i], grazing_slack))

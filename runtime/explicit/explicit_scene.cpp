@@ -9,6 +9,7 @@
 #include "format/checked_math.hpp"
 #include "format/package_view.hpp"
 #include "shared/ownership.h"
+#include "shared/effects.h"
 #include "shared/seam.h"
 #include "shared/tile_mapper.h"
 
@@ -79,8 +80,15 @@ struct ExplicitScene::Impl : format::PackageView {
   std::vector<InstancePlan> instance_plans;
   std::uint64_t number_limit = 0;
 
-  explicit Impl(const format::Package& package)
-      : PackageView(package), p(package), type_radius(atom_bounding_radii()) {
+  ExplicitSceneOptions options;
+
+  Impl(const format::Package& package, const ExplicitSceneOptions& o)
+      : PackageView(package), p(package), type_radius(atom_bounding_radii()), options(o) {
+    if (options.instance_transforms.empty())
+      for (const gpu::CompartmentInstance& ci : compartment_instances) options.instance_transforms.push_back(format::instance_transform(ci));
+    if (options.instance_transforms.size() != compartment_instances.size())
+      fail("compartment_instances", std::to_string(options.instance_transforms.size()) + " transforms given for " +
+                                        std::to_string(compartment_instances.size()) + " instances");
     for (std::uint32_t c = 0; c < compartments.size(); ++c) plans.push_back(plan(c));
     for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) instance_plans.push_back(plan_instance(i));
   }
@@ -203,7 +211,7 @@ struct ExplicitScene::Impl : format::PackageView {
   InstancePlan plan_instance(std::uint32_t i) {
     const gpu::CompartmentInstance& ci = compartment_instances[i];
     InstancePlan ip;
-    const format::InstanceTransform t = format::instance_transform(ci);
+    const format::InstanceTransform& t = options.instance_transforms[i];
     ip.linear = t.linear;
     ip.translation = t.translation;
     const double det = glm::determinant(ip.linear);
@@ -241,7 +249,12 @@ struct ExplicitScene::Impl : format::PackageView {
     const std::function<void(const Copy&)>& visit;
     Copy copy;
 
-    void operator()(const gpu::Affine3& placement, std::uint32_t type) {
+    void operator()(gpu::Affine3 placement, std::uint32_t type) {
+      if (scene.options.jitter) {
+        const glm::vec3& j = scene.options.jitter_parameters;
+        const glm::uvec2 number(std::uint32_t(copy.number), std::uint32_t(copy.number >> 32));
+        placement = gpu::jitter_placement(placement, gpu::jitter_rotation(number, j.x, j.y, j.z));
+      }
       copy.molecule_type = type;
       copy.linear = ip.linear * dmat3(placement.linear);
       copy.origin = ip.linear * dvec3(placement.translation) + ip.translation;
@@ -347,7 +360,11 @@ struct ExplicitScene::Impl : format::PackageView {
   }
 };
 
-ExplicitScene::ExplicitScene(const format::Package& package) : impl_(std::make_unique<Impl>(package)) {}
+ExplicitScene::ExplicitScene(const format::Package& package, const ExplicitSceneOptions& options)
+    : impl_(std::make_unique<Impl>(package, options)) {}
+const std::vector<format::InstanceTransform>& ExplicitScene::instance_transforms() const {
+  return impl_->options.instance_transforms;
+}
 ExplicitScene::~ExplicitScene() = default;
 ExplicitScene::ExplicitScene(ExplicitScene&&) noexcept = default;
 

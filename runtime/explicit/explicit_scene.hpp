@@ -21,6 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include "format/package.hpp"
+#include "format/package_view.hpp"
 
 namespace nano::oracle {
 
@@ -75,13 +76,21 @@ struct AtomSample {
   double radius = 0.0;                        // atom radius times Copy::stretch
 };
 
+// What the scene's effects change in the copies (runtime/render/effects.hpp): instances moved by
+// animation, and protein jitter with the shader's own function (shared/effects.h) on the same floats.
+struct ExplicitSceneOptions {
+  std::vector<format::InstanceTransform> instance_transforms;  // empty: the package's; else one per instance
+  bool jitter = false;
+  glm::vec3 jitter_parameters{0.0f};  // time (s), amplitude (radians), frequency (Hz), as the frame holds them
+};
+
 class ExplicitScene {
 public:
   // `package` must have passed format::validate_semantics and must outlive this object. Throws
   // nano::InputError for what the validator does not check but placement needs (UVs off the 2^-24
   // grid or |uv| ≥ 16, a triangle needing more than W×H tiles, tile or cube sizes that differ
   // from the compartment's, a singular instance transform, copy numbers beyond 64 bits).
-  explicit ExplicitScene(const format::Package& package);
+  explicit ExplicitScene(const format::Package& package, const ExplicitSceneOptions& options = {});
   ~ExplicitScene();
   ExplicitScene(ExplicitScene&&) noexcept;
 
@@ -95,6 +104,8 @@ public:
 
   // Copy numbers lie in [0, copy_number_limit()).
   std::uint64_t copy_number_limit() const;
+  // Where each compartment instance stands (the package's transforms unless the options moved them).
+  const std::vector<format::InstanceTransform>& instance_transforms() const;
 
   struct Impl;
 

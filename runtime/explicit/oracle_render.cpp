@@ -53,26 +53,33 @@ WorldBox compartment_reach(const format::Package& p, const gpu::Compartment& c, 
   return b;
 }
 
-WorldBox to_world(const gpu::CompartmentInstance& ci, const WorldBox& local) {
+WorldBox to_world(const format::InstanceTransform& t, const WorldBox& local) {
   WorldBox w{dvec3(kInf), dvec3(-kInf)};
   if (!(local.min.x <= local.max.x)) return w;
   for (int corner = 0; corner < 8; ++corner) {
     const dvec3 q((corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
                   (corner & 4) ? local.max.z : local.min.z);
-    dvec3 out;
-    for (int r = 0; r < 3; ++r) out[r] = glm::dot(dvec3(ci.transform[r]), q) + double(ci.transform[r].w);
+    const dvec3 out = t.linear * q + t.translation;
     w.min = glm::min(w.min, out), w.max = glm::max(w.max, out);
   }
   return w;
 }
 
-std::vector<WorldBox> instance_bounds(const format::Package& p) {
+// One per compartment instance, standing where `transforms` put them.
+std::vector<WorldBox> instance_bounds(const format::Package& p, const std::vector<format::InstanceTransform>& transforms) {
   const double type_radius = largest_type_radius(p);
   const auto compartments = p.records<SectionKind::compartments>();
+  const auto instances = p.records<SectionKind::compartment_instances>();
   std::vector<WorldBox> boxes;
-  for (const gpu::CompartmentInstance& ci : p.records<SectionKind::compartment_instances>())
-    boxes.push_back(to_world(ci, compartment_reach(p, compartments[ci.compartment], type_radius)));
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    boxes.push_back(to_world(transforms[i], compartment_reach(p, compartments[instances[i].compartment], type_radius)));
   return boxes;
+}
+
+std::vector<format::InstanceTransform> package_transforms(const format::Package& p) {
+  std::vector<format::InstanceTransform> t;
+  for (const gpu::CompartmentInstance& ci : p.records<SectionKind::compartment_instances>()) t.push_back(format::instance_transform(ci));
+  return t;
 }
 
 double distance_to_box(const dvec3& p, const WorldBox& b) {
@@ -86,11 +93,11 @@ double farthest_corner(const dvec3& p, const WorldBox& b) {
 }
 
 // Upper bound of any copy's stretch: the Frobenius norm bounds the largest singular value.
-double largest_instance_stretch(const format::Package& p) {
+double largest_instance_stretch(const std::vector<format::InstanceTransform>& transforms) {
   double s = 1;
-  for (const gpu::CompartmentInstance& ci : p.records<SectionKind::compartment_instances>()) {
+  for (const format::InstanceTransform& t : transforms) {
     double f = 0;
-    for (int r = 0; r < 3; ++r) f += glm::dot(dvec3(ci.transform[r]), dvec3(ci.transform[r]));
+    for (int c = 0; c < 3; ++c) f += glm::dot(t.linear[c], t.linear[c]);
     s = std::max(s, std::sqrt(f));
   }
   return s;
@@ -306,9 +313,9 @@ gpu::PixelHit background_pixel() {
   return h;
 }
 
-WorldBox scene_world_bounds(const format::Package& package) {
+WorldBox scene_world_bounds(const format::Package& package, const ExplicitScene* scene) {
   WorldBox all{dvec3(kInf), dvec3(-kInf)};
-  for (const WorldBox& b : instance_bounds(package)) all.min = glm::min(all.min, b.min), all.max = glm::max(all.max, b.max);
+  for (const WorldBox& b : instance_bounds(package, scene ? scene->instance_transforms() : package_transforms(package))) all.min = glm::min(all.min, b.min), all.max = glm::max(all.max, b.max);
   return all;
 }
 
@@ -351,10 +358,10 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
                       (1.0 - 2.0 * (y + 0.5) / height) * camera.forward.w);
   };
 
-  const std::vector<WorldBox> bounds = instance_bounds(package);
+  const std::vector<WorldBox> bounds = instance_bounds(package, scene.instance_transforms());
   double nearest = kInf, farthest = 0;
   for (const WorldBox& b : bounds) nearest = std::min(nearest, distance_to_box(view.eye, b)), farthest = std::max(farthest, farthest_corner(view.eye, b));
-  const double grow = largest_type_radius(package) * largest_instance_stretch(package) + 1e-3;
+  const double grow = largest_type_radius(package) * largest_instance_stretch(scene.instance_transforms()) + 1e-3;
   double depth_bound = (std::isfinite(nearest) ? nearest : 0) + options.first_margin;
 
   std::vector<std::uint32_t> pending(image.size());
@@ -377,6 +384,9 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
 
     atoms.clear(), copies.clear();
     scene.for_each_atom(box, [&](const AtomSample& s) {
+      // Clipping keeps or removes an atom whole, by its centre (as the renderer).
+      for (const glm::dvec4& h : options.clip)
+        if (!(glm::dot(dvec3(h), s.position) + h.w >= 0)) return;
       if (!view.meets_sphere(s.position, s.radius * std::max(1.0, options.radius_scale), depth_bound)) return;
       // A copy's atoms arrive consecutively and copy numbers are unique.
       if (copies.empty() || copies.back().number != s.copy->number) copies.push_back({s.copy->id, s.copy->number});

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 #include "format/package.hpp"
 #include "runtime/explicit/explicit_scene.hpp"
 #include "shared/camera.h"
@@ -29,6 +31,9 @@ struct OracleRenderOptions {
   // Every atom radius times this: verify renders the view again with radii 1 ± ε to tell which
   // differences a change of ε·r could flip (grazing touches, float ties) from real ones.
   double radius_scale = 1.0;
+  // Clipping half-spaces (unit n, d) in world Å: an atom whose centre p has n·p + d < 0 for one of
+  // them is left out whole (runtime/render/effects.hpp clip_half_spaces).
+  std::vector<glm::dvec4> clip;
 };
 
 // What one render cost; for reports and for choosing cameras.
@@ -50,6 +55,7 @@ gpu::PixelHit background_pixel();
 
 // A conservative world AABB of everything the package can place (atoms included); used to know
 // when a ray has left the scene. Built from vertices, grid dims and atoms, not from stored AABBs.
-WorldBox scene_world_bounds(const format::Package& package);
+// With `scene`, its instances stand where it put them (animation); else where the package does.
+WorldBox scene_world_bounds(const format::Package& package, const ExplicitScene* scene = nullptr);
 
 }  // namespace nano::oracle

@@ -1,5 +1,7 @@
 #include "runtime/render/camera_spec.hpp"
 
+#include <charconv>
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -37,10 +39,14 @@ gpu::Camera CameraSpec::to_gpu(std::uint32_t width, std::uint32_t height) const 
 }
 
 std::string CameraSpec::to_string() const {
-  char buffer[512];
-  std::snprintf(buffer, sizeof buffer, "pos=%.9g,%.9g,%.9g;at=%.9g,%.9g,%.9g;up=%.9g,%.9g,%.9g;fov=%.9g", eye.x, eye.y,
-                eye.z, at.x, at.y, at.z, up.x, up.y, up.z, fov_degrees);
-  return buffer;
+  // Shortest text that reads back to the same doubles: a printed camera renders the same frame.
+  const auto number = [](double v) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+    return std::string(buffer, end);
+  };
+  const auto triple = [&](const glm::dvec3& v) { return number(v.x) + "," + number(v.y) + "," + number(v.z); };
+  return "pos=" + triple(eye) + ";at=" + triple(at) + ";up=" + triple(up) + ";fov=" + number(fov_degrees);
 }
 
 CameraSpec parse_camera(std::string_view text, const CameraSpec& base) {

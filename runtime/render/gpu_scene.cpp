@@ -524,12 +524,16 @@ struct GpuScene::Impl : format::PackageView {
                              order_buffer.size();
   }
 
-  void set_eye(const dvec3& eye) {
+  void set_eye(const dvec3& eye, std::span<const format::InstanceTransform> moved) {
+    if (!moved.empty() && moved.size() != compartment_instances.size())
+      throw std::invalid_argument("set_eye: " + std::to_string(moved.size()) + " transforms for " +
+                                  std::to_string(compartment_instances.size()) + " compartment instances");
     std::vector<VkAccelerationStructureInstanceKHR> records;
     for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
       const gpu::CompartmentInstance& ci = compartment_instances[i];
       if (compartment_blas[ci.compartment].handle() == VK_NULL_HANDLE) continue;
-      const format::InstanceTransform t = format::instance_transform(ci);
+      const format::InstanceTransform t = moved.empty() ? format::instance_transform(ci) : moved[i];
+      if (!(std::abs(glm::determinant(t.linear)) > 1e-12)) throw std::invalid_argument("set_eye: singular instance transform");
       glm::dmat4 m(t.linear);
       m[3] = glm::dvec4(t.translation - eye, 1.0);
       // The eye in compartment space, L⁻¹(eye − T), in double, split into two floats.
@@ -554,7 +558,11 @@ GpuScene::GpuScene(const vk::Device& device, const format::Package& package, con
 GpuScene::~GpuScene() = default;
 GpuScene::GpuScene(GpuScene&&) noexcept = default;
 
-void GpuScene::set_eye(const glm::dvec3& eye) { impl_->set_eye(eye); }
+void GpuScene::set_eye(const glm::dvec3& eye) { impl_->set_eye(eye, {}); }
+void GpuScene::set_eye(const glm::dvec3& eye, std::span<const format::InstanceTransform> transforms) {
+  impl_->set_eye(eye, transforms);
+}
+const format::Package& GpuScene::package() const { return impl_->p; }
 
 void GpuScene::write_descriptors(VkDescriptorSet set) const {
   const Impl& s = *impl_;

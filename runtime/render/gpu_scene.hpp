@@ -5,6 +5,7 @@
 // compartment instances, rebuilt relative to the eye for every camera (precision far from the origin).
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +15,7 @@
 #include <vulkan/vulkan.h>
 
 #include "format/package.hpp"
+#include "format/package_view.hpp"
 #include "runtime/vk/acceleration_structure.hpp"
 #include "runtime/vk/buffer.hpp"
 #include "runtime/vk/device.hpp"
@@ -70,6 +72,12 @@ public:
   // (Re)builds the µLAS with instance translations relative to `eye` (world Å): the shader's rays
   // start at the origin, so far-from-origin scenes keep their precision near the camera.
   void set_eye(const glm::dvec3& eye);
+  // The same with every compartment instance moved to `transforms` (one per instance, animation):
+  // only the µLAS changes, never the mLAS or nLAS. Throws std::invalid_argument for a wrong count
+  // or a singular transform.
+  void set_eye(const glm::dvec3& eye, std::span<const format::InstanceTransform> transforms);
+
+  const format::Package& package() const;
 
   // Writes bindings 0 .. kSceneBindingCount−1 of the render pipeline's set. Call after set_eye.
   void write_descriptors(VkDescriptorSet set) const;

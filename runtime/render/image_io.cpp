@@ -118,4 +118,28 @@ void write_ids(const std::filesystem::path& path, std::uint32_t width, std::uint
   write_file_atomically(path, bytes);
 }
 
+std::vector<gpu::PixelHit> read_ids(const std::filesystem::path& path, std::uint32_t& width, std::uint32_t& height) {
+  const std::string name = path.string();
+  std::FILE* file = std::fopen(name.c_str(), "rb");
+  if (!file) throw InputError(name, "", "cannot open for reading");
+  char header[16];
+  const bool whole_header = std::fread(header, 1, 16, file) == 16;
+  std::vector<gpu::PixelHit> hits;
+  if (whole_header && std::memcmp(header, "NUIDS001", 8) == 0) {
+    std::memcpy(&width, header + 8, 4);
+    std::memcpy(&height, header + 12, 4);
+    if (width > 0 && height > 0 && width <= 16384 && height <= 16384) {
+      hits.resize(std::size_t(width) * height);
+      const std::size_t got = std::fread(hits.data(), sizeof(gpu::PixelHit), hits.size(), file);
+      const bool at_end = std::fgetc(file) == EOF;
+      std::fclose(file);
+      if (got != hits.size() || !at_end)
+        throw InputError(name, "", "expected exactly " + std::to_string(hits.size()) + " hit records of 48 bytes after the header");
+      return hits;
+    }
+  }
+  std::fclose(file);
+  throw InputError(name, "", "not an ids file (header \"NUIDS001\", width and height in [1, 16384])");
+}
+
 }  // namespace nano::render

@@ -24,5 +24,7 @@ void write_depth_pfm(const std::filesystem::path& path, std::uint32_t width, std
 // row-major from the top row, after a 16-byte header "NUIDS001", width, height (uint32).
 void write_ids(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,
                std::span<const gpu::PixelHit> hits);
+// Reads write_ids' file back; throws InputError naming the file for anything else.
+std::vector<gpu::PixelHit> read_ids(const std::filesystem::path& path, std::uint32_t& width, std::uint32_t& height);
 
 }  // namespace nano::render

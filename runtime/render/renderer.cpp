@@ -1,13 +1,18 @@
 #include "runtime/render/renderer.hpp"
 
 #include <chrono>
+#include <map>
 #include <stdexcept>
+#include <tuple>
 
+#include "runtime/render/animation.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
 #include "shared/render_scene.h"
 
 extern const std::uint32_t nano_spv_render_comp[];
 extern const std::size_t nano_spv_render_comp_words;
+extern const std::uint32_t nano_spv_render_nano_no_effects_comp[];
+extern const std::size_t nano_spv_render_nano_no_effects_comp_words;
 
 namespace nano::render {
 namespace {
@@ -15,17 +20,59 @@ namespace {
 constexpr std::uint32_t kWorkgroup = 8;  // local_size_x = local_size_y of render.comp
 constexpr std::uint32_t b_frame = kSceneBindingCount, b_hits = b_frame + 1, b_colours = b_frame + 2;
 
-vk::ComputePipelineDesc pipeline_desc(const RenderSettings& settings) {
+// What selects a pipeline: the shader build and its specialization constants.
+struct Variant {
+  bool exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows;
+  auto key() const {
+    return std::tuple(exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows);
+  }
+  bool operator<(const Variant& o) const { return key() < o.key(); }
+};
+
+Variant variant_of(const RenderSettings& s) {
+  const EffectSettings& e = s.effects;
+  const bool effects = !s.without_effect_code;
+  return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
+          effects && e.clipping_on && e.clipping.any(), effects && e.jitter_on && e.jitter_degrees > 0,
+          effects && e.ambient_occlusion_on && e.ao_rays > 0, effects && e.shadows_on};
+}
+
+vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   vk::ComputePipelineDesc desc;
-  desc.code = {nano_spv_render_comp, nano_spv_render_comp_words};
+  if (v.no_effect_code) desc.code = {nano_spv_render_nano_no_effects_comp, nano_spv_render_nano_no_effects_comp_words};
+  else desc.code = {nano_spv_render_comp, nano_spv_render_comp_words};
   std::vector<vk::DescriptorBinding> set{{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
   for (std::uint32_t b = 1; b <= b_colours; ++b) set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   desc.sets = {set};
-  desc.specialization.set_bool(0, settings.exact_prism);
-  desc.specialization.set_bool(1, settings.replication_las && !settings.two_level);
-  desc.specialization.set_bool(2, settings.two_level);
+  desc.specialization.set_bool(0, v.exact_prism);
+  desc.specialization.set_bool(1, v.replication_las);
+  desc.specialization.set_bool(2, v.two_level);
+  if (!v.no_effect_code) {
+    desc.specialization.set_bool(3, v.clipping);
+    desc.specialization.set_bool(4, v.jitter);
+    desc.specialization.set_bool(5, v.ambient_occlusion);
+    desc.specialization.set_bool(6, v.shadows);
+  }
   return desc;
 }
+
+void check(const RenderSettings& s) {
+  const EffectSettings& e = s.effects;
+  if (e.clipping_on && clip_half_spaces(e.clipping).size() > gpu::NANO_MAX_CLIP_HALF_SPACES)
+    throw std::invalid_argument("at most 8 clip planes (plus the clip box)");
+  if (s.two_level && ((e.clipping_on && e.clipping.any()) || e.jitter_on))
+    throw std::invalid_argument("--levels 2 (the paper's two-level membrane) has no clipping or jitter; use 3+rep or 3");
+  if (e.ambient_occlusion_on && !(e.ao_rays >= 1 && e.ao_rays <= 1024 && e.ao_radius > 0))
+    throw std::invalid_argument("ambient occlusion needs 1 to 1024 rays and a positive radius");
+  if (e.shadows_on && !(glm::length(e.light_direction) > 0)) throw std::invalid_argument("shadows need a light direction");
+}
+
+struct Pipeline {
+  vk::ComputePipeline pipeline;
+  vk::DescriptorPool pool;
+  VkDescriptorSet set;
+  Pipeline(const vk::Device& d, const Variant& v) : pipeline(d, pipeline_desc(v)), pool(d, pipeline), set(pool.allocate(pipeline.set_layout(0))) {}
+};
 
 }  // namespace
 
@@ -33,39 +80,70 @@ struct Renderer::Impl {
   const vk::Device& device;
   GpuScene& scene;
   RenderSettings settings;
-  vk::ComputePipeline pipeline;
-  vk::DescriptorPool pool;
-  VkDescriptorSet set;
+  std::map<Variant, std::unique_ptr<Pipeline>> pipelines;  // built on first use, kept for toggling back
   vk::Buffer frame_buffer, hit_buffer, colour_buffer;
 
-  Impl(const vk::Device& d, GpuScene& s, const RenderSettings& r)
-      : device(d), scene(s), settings(r), pipeline(d, pipeline_desc(r)), pool(d, pipeline), set(pool.allocate(pipeline.set_layout(0))) {
+  Impl(const vk::Device& d, GpuScene& s, const RenderSettings& r) : device(d), scene(s) {
     frame_buffer = vk::Buffer(d, sizeof(gpu::RenderFrame), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
+    set_settings(r);
+  }
+
+  void set_settings(const RenderSettings& r) {
+    check(r);
+    settings = r;
+    const Variant v = variant_of(r);
+    if (!pipelines.count(v)) pipelines.emplace(v, std::make_unique<Pipeline>(device, v));
+  }
+
+  gpu::RenderFrame frame_record(const gpu::Camera& camera) const {
+    const EffectSettings& e = settings.effects;
+    gpu::RenderFrame frame{};
+    frame.camera = camera;
+    frame.levels = glm::uvec4(scene.first_square_level(), scene.first_cube_level(), scene.molecule_type_count(),
+                              scene.first_atom_square_level());
+    const glm::vec3 light = e.shadows_on ? glm::vec3(e.light_direction) : settings.light;
+    frame.light = glm::vec4(glm::normalize(light), settings.depth_cue);
+    if (e.clipping_on) {
+      // Camera-relative, like the µLAS: n·(x' + eye) + d = n·x' + (d + n·eye), in double.
+      const glm::dvec3 eye(glm::vec3(camera.position));
+      const std::vector<glm::dvec4> half_spaces = clip_half_spaces(e.clipping);
+      for (std::size_t k = 0; k < half_spaces.size(); ++k)
+        frame.clip[k] = glm::vec4(glm::vec3(half_spaces[k]), float(half_spaces[k].w + glm::dot(glm::dvec3(half_spaces[k]), eye)));
+      frame.effects.x = std::uint32_t(half_spaces.size());
+    }
+    frame.effects.y = e.ao_rays;
+    frame.effects.z = e.sample_index;
+    const glm::vec3 jitter = jitter_frame_parameters(e);
+    frame.effect_parameters = glm::vec4(e.ao_radius, jitter.x, jitter.y, jitter.z);
+    return frame;
   }
 
   Frame render(const gpu::Camera& camera) {
     const std::uint32_t w = camera.size.x, h = camera.size.y;
     if (w == 0 || h == 0) throw std::invalid_argument("render: image size must be positive");
     const auto start = std::chrono::steady_clock::now();
-    scene.set_eye(glm::dvec3(glm::vec3(camera.position)));
-    gpu::RenderFrame frame{};
-    frame.camera = camera;
-    frame.levels = glm::uvec4(scene.first_square_level(), scene.first_cube_level(), scene.molecule_type_count(),
-                              scene.first_atom_square_level());
-    frame.light = glm::vec4(glm::normalize(settings.light), settings.depth_cue);
+    const glm::dvec3 eye(glm::vec3(camera.position));
+    if (settings.effects.animation_on) {
+      const std::vector<format::InstanceTransform> moved = animated_instance_transforms(scene.package(), settings.effects.time);
+      scene.set_eye(eye, moved);
+    } else {
+      scene.set_eye(eye);
+    }
+    const gpu::RenderFrame frame = frame_record(camera);
     frame_buffer.write(std::as_bytes(std::span(&frame, 1)));
     const VkDeviceSize pixels = VkDeviceSize(w) * h;
     if (hit_buffer.size() != pixels * sizeof(gpu::PixelHit)) {
       hit_buffer = vk::Buffer(device, pixels * sizeof(gpu::PixelHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
       colour_buffer = vk::Buffer(device, pixels * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
     }
-    scene.write_descriptors(set);
-    vk::write_storage_buffer(device.handle(), set, b_frame, frame_buffer);
-    vk::write_storage_buffer(device.handle(), set, b_hits, hit_buffer);
-    vk::write_storage_buffer(device.handle(), set, b_colours, colour_buffer);
+    Pipeline& p = *pipelines.at(variant_of(settings));
+    scene.write_descriptors(p.set);
+    vk::write_storage_buffer(device.handle(), p.set, b_frame, frame_buffer);
+    vk::write_storage_buffer(device.handle(), p.set, b_hits, hit_buffer);
+    vk::write_storage_buffer(device.handle(), p.set, b_colours, colour_buffer);
     device.submit_once([&](VkCommandBuffer commands) {
-      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
-      vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline.handle());
+      vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline.layout(), 0, 1, &p.set, 0, nullptr);
       vkCmdDispatch(commands, (w + kWorkgroup - 1) / kWorkgroup, (h + kWorkgroup - 1) / kWorkgroup, 1);
       VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -88,5 +166,12 @@ Renderer::Renderer(const vk::Device& device, GpuScene& scene, const RenderSettin
     : impl_(std::make_unique<Impl>(device, scene, settings)) {}
 Renderer::~Renderer() = default;
 Frame Renderer::render(const gpu::Camera& camera) { return impl_->render(camera); }
+void Renderer::set_settings(const RenderSettings& settings) { impl_->set_settings(settings); }
+const RenderSettings& Renderer::settings() const { return impl_->settings; }
+
+std::uint64_t Renderer::rays_per_frame(const RenderSettings& settings, std::uint64_t pixels) {
+  const Variant v = variant_of(settings);
+  return pixels * (1 + (v.shadows ? 1 : 0) + (v.ambient_occlusion ? settings.effects.ao_rays : 0));
+}
 
 }  // namespace nano::render

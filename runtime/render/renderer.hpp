@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "runtime/render/effects.hpp"
 #include "runtime/render/gpu_scene.hpp"
 #include "runtime/vk/device.hpp"
 #include "shared/camera.h"
@@ -19,6 +20,8 @@ struct RenderSettings {
   bool two_level = false;            // membranes through the scene's atom squares (needs two_level_membranes)
   glm::vec3 light{0.3f, 0.5f, 0.8f}; // direction towards the light (world; normalised here)
   float depth_cue = 0;               // Å over which colour fades towards the background (0: off)
+  EffectSettings effects;            // all off by default; render::package_effects gives the scene's
+  bool without_effect_code = false;  // the shader built without any effect code (bench: what "off" costs)
 };
 
 struct Frame {
@@ -35,6 +38,15 @@ public:
 
   // camera.position is the world eye; the µLAS is rebuilt relative to it before tracing.
   Frame render(const gpu::Camera& camera);
+
+  // Effects and knobs for the next frames. A change of what is compiled in (the specialization
+  // constants) builds another pipeline, once; parameters (planes, time, AO radius) cost nothing.
+  // Throws std::invalid_argument for more than 8 clip planes or effects the two-level path lacks.
+  void set_settings(const RenderSettings& settings);
+  const RenderSettings& settings() const;
+
+  // Rays one frame of `pixels` pixels traces with these settings (primary + shadow + AO).
+  static std::uint64_t rays_per_frame(const RenderSettings& settings, std::uint64_t pixels);
 
   struct Impl;
 

@@ -1,6 +1,8 @@
 #include "runtime/vk/device.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -9,6 +11,33 @@
 
 namespace nano::vk {
 namespace {
+
+bool has_device_extension(VkPhysicalDevice device, const std::string& name) {
+  std::uint32_t count = 0;
+  check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr), "vkEnumerateDeviceExtensionProperties");
+  std::vector<VkExtensionProperties> extensions(count);
+  check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()), "vkEnumerateDeviceExtensionProperties");
+  for (const auto& e : extensions)
+    if (name == e.extensionName) return true;
+  return false;
+}
+
+// One queue does everything (ray-query dispatch, upload into the swapchain image, the overlay's
+// draw, present), so frames need no queue-ownership transfers.
+std::uint32_t find_present_queue_family(VkPhysicalDevice device, VkSurfaceKHR surface) {
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if ((families[i].queueFlags & needed) != needed || families[i].queueCount == 0) continue;
+    VkBool32 present = VK_FALSE;
+    check(vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface, &present), "vkGetPhysicalDeviceSurfaceSupportKHR");
+    if (present) return i;
+  }
+  return kNoQueueFamily;
+}
 
 template <typename Pfn>
 Pfn load(VkDevice device, const char* name) {
@@ -19,7 +48,7 @@ Pfn load(VkDevice device, const char* name) {
 
 }  // namespace
 
-Device::Device(VkPhysicalDevice physical_device, DeviceReport report)
+Device::Device(VkPhysicalDevice physical_device, DeviceReport report, const DeviceOptions& options)
     : physical_device_(physical_device), report_(std::move(report)) {
   if (!report_.qualifies())
     throw DeviceSelectionError("device cannot run ray queries: " + report_.name + " lacks " + report_.missing.front());
@@ -63,6 +92,9 @@ Device::Device(VkPhysicalDevice physical_device, DeviceReport report)
     extensions.push_back(VK_KHR_EXTERNAL_MEMORY_EXTENSION_NAME);  // core in 1.1; listed for 1.0-era loaders
     extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
   }
+  for (const auto& name : options.extensions)
+    if (std::find_if(extensions.begin(), extensions.end(), [&](const char* e) { return name == e; }) == extensions.end())
+      extensions.push_back(name.c_str());
   info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
   check(vkCreateDevice(physical_device_, &info, nullptr, &device_), "vkCreateDevice");
@@ -169,6 +201,26 @@ Device open_ray_query_device(const Instance& instance, const std::optional<std::
 
 Device open_ray_query_device(const Instance& instance) {
   return open_ray_query_device(instance, device_override_from_environment());
+}
+
+Device open_ray_query_device(const Instance& instance, const DeviceOptions& options) {
+  const auto physical_devices = enumerate_physical_devices(instance.handle());
+  std::vector<DeviceReport> reports;
+  for (std::uint32_t i = 0; i < physical_devices.size(); ++i) {
+    DeviceReport report = survey_device(physical_devices[i], i);
+    for (const auto& name : options.extensions)
+      if (!has_device_extension(physical_devices[i], name)) report.missing.push_back(name);
+    if (options.present_surface != VK_NULL_HANDLE) {
+      const std::uint32_t family = find_present_queue_family(physical_devices[i], options.present_surface);
+      if (family == kNoQueueFamily)
+        report.missing.emplace_back("a queue family with graphics, compute and present support for the window");
+      else
+        report.compute_queue_family = family;
+    }
+    reports.push_back(std::move(report));
+  }
+  const std::size_t chosen = choose_device(reports, device_override_from_environment());
+  return Device(physical_devices[reports[chosen].index], reports[chosen], options);
 }
 
 }  // namespace nano::vk

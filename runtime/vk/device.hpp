@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -23,9 +24,18 @@ struct AccelerationStructureFunctions {
   PFN_vkGetAccelerationStructureDeviceAddressKHR get_device_address = nullptr;
 };
 
+// What a caller needs beyond the headless renderer. The defaults open exactly the device `render`
+// and `verify` use; the viewer asks for VK_KHR_swapchain and a queue that can present to its window.
+struct DeviceOptions {
+  std::vector<std::string> extensions;             // extra device extensions (required, not optional)
+  VkSurfaceKHR present_surface = VK_NULL_HANDLE;   // when set, the one queue must also present to it
+};
+
 class Device {
 public:
-  Device(VkPhysicalDevice physical_device, DeviceReport report);
+  // `report.compute_queue_family` is the queue the device opens; with DeviceOptions::present_surface
+  // open_ray_query_device has already replaced it by a graphics + compute + present family.
+  Device(VkPhysicalDevice physical_device, DeviceReport report, const DeviceOptions& options = {});
   Device(Device&& other) noexcept;
   Device& operator=(Device&&) = delete;
   Device(const Device&) = delete;
@@ -75,5 +85,9 @@ private:
 // `override_spec` is given) and opens the chosen one.
 Device open_ray_query_device(const Instance& instance, const std::optional<std::string>& override_spec);
 Device open_ray_query_device(const Instance& instance);
+// Same policy, but a device only qualifies when it also has `options.extensions` and, with a
+// present surface, a queue family with graphics, compute and present support (both recorded in
+// DeviceReport::missing, so "no device" names what each device lacks).
+Device open_ray_query_device(const Instance& instance, const DeviceOptions& options);
 
 }  // namespace nano::vk

@@ -1,8 +1,11 @@
 #include "runtime/vk/instance.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -74,6 +77,12 @@ Instance::Instance(const InstanceOptions& options) {
 
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
+  for (const auto& name : options.extensions) {
+    // Named here rather than left to vkCreateInstance's bare VK_ERROR_EXTENSION_NOT_PRESENT.
+    if (!layer_offers_extension(nullptr, name.c_str()))
+      throw std::runtime_error("Vulkan instance extension " + name + " is not available from the loader/drivers");
+    extensions.push_back(name.c_str());
+  }
   VkDebugUtilsMessengerCreateInfoEXT messenger_create = messenger_info(counts_.get());
   // Synchronization validation catches missing barriers (e.g. after acceleration-structure builds),
   // which no driver-level check would report.
@@ -89,7 +98,9 @@ Instance::Instance(const InstanceOptions& options) {
       throw std::runtime_error(std::string("validation requested but ") + kValidationLayer +
                                " is not installed (Debian package vulkan-validationlayers)");
     layers.push_back(kValidationLayer);
-    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (std::find(options.extensions.begin(), options.extensions.end(), VK_EXT_DEBUG_UTILS_EXTENSION_NAME) ==
+        options.extensions.end())
+      extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     // Chaining the messenger info also reports problems inside vkCreateInstance/vkDestroyInstance.
     info.pNext = &messenger_create;
     if (layer_offers_extension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME)) {
@@ -147,6 +158,23 @@ void Instance::destroy() {
   }
   vkDestroyInstance(instance_, nullptr);
   instance_ = VK_NULL_HANDLE;
+}
+
+Surface::Surface(Surface&& other) noexcept
+    : instance_(std::exchange(other.instance_, VK_NULL_HANDLE)), surface_(std::exchange(other.surface_, VK_NULL_HANDLE)) {}
+
+Surface& Surface::operator=(Surface&& other) noexcept {
+  if (this != &other) {
+    this->~Surface();
+    instance_ = std::exchange(other.instance_, VK_NULL_HANDLE);
+    surface_ = std::exchange(other.surface_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+Surface::~Surface() {
+  if (surface_ != VK_NULL_HANDLE) vkDestroySurfaceKHR(instance_, surface_, nullptr);
+  surface_ = VK_NULL_HANDLE;
 }
 
 }  // namespace nano::vk

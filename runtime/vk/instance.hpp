@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -15,6 +16,9 @@ struct InstanceOptions {
   // not installed, because a test that asked for validation must not silently run without it.
   bool validation = false;
   std::string application_name = "nanouniverse";
+  // Extra instance extensions, e.g. the surface extensions a window system needs (GLFW names them);
+  // the headless commands leave this empty.
+  std::vector<std::string> extensions;
 };
 
 // NANO_VALIDATION=1 (or any value other than empty/"0") asks for validation in tools.
@@ -46,6 +50,25 @@ private:
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   // Heap-allocated so the address handed to the messenger callback survives moves of Instance.
   std::unique_ptr<ValidationCounts> counts_ = std::make_unique<ValidationCounts>();
+};
+
+// A presentation surface (VK_KHR_surface) owned with the instance it was made from; destroyed
+// before that instance, which the owner guarantees by declaring it after the Instance.
+class Surface {
+public:
+  Surface() = default;
+  Surface(VkInstance instance, VkSurfaceKHR surface) : instance_(instance), surface_(surface) {}
+  Surface(Surface&& other) noexcept;
+  Surface& operator=(Surface&& other) noexcept;
+  Surface(const Surface&) = delete;
+  Surface& operator=(const Surface&) = delete;
+  ~Surface();
+
+  VkSurfaceKHR handle() const { return surface_; }
+
+private:
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
 };
 
 }  // namespace nano::vk

@@ -25,6 +25,7 @@
 #include "shared/grid_dda.h"
 #include "shared/ray_sphere.h"
 #include "shared/copy_number.h"
+#include "shared/effects.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -35,6 +36,21 @@ layout(constant_id = 1) const bool kReplicationLas = true;
 // 1: the paper's two-level membrane: every atom of a Wang square in one BLAS, placed in tile space by
 // the affine M1 (an approximation of the true placement that verify measures); 0: mLAS → nLAS.
 layout(constant_id = 2) const bool kTwoLevel = false;
+// Scene effects (runtime/render/effects.hpp), each compiled in only when on: a specialization
+// constant that is false removes the effect's code before the driver compiles the pipeline. The
+// NANO_NO_EFFECTS build of this file (render_no_effects) has no effect code at all, to measure that
+// claim (`nanoview bench --effects`).
+#ifdef NANO_NO_EFFECTS
+const bool kClipping = false;
+const bool kJitter = false;
+const bool kAmbientOcclusion = false;
+const bool kShadows = false;
+#else
+layout(constant_id = 3) const bool kClipping = false;         // frame.clip half-spaces, per atom centre
+layout(constant_id = 4) const bool kJitter = false;           // protein jitter (frame.effect_parameters)
+layout(constant_id = 5) const bool kAmbientOcclusion = false; // frame.effects.y short rays per pixel
+layout(constant_id = 6) const bool kShadows = false;          // one shadow ray towards frame.light
+#endif
 
 layout(set = 0, binding = 0) uniform accelerationStructureEXT ulas;
 layout(set = 0, binding = 1, std430) readonly buffer Molecules { MoleculeType molecules[]; };
@@ -70,6 +86,48 @@ mat4x3 best_to_world;    // compartment → camera-relative world of the hit's i
 uint best_type;          // molecule type of the hit atom
 
 vec3 eye_lo;  // low part of the compartment-space eye (RenderInstance.eye_lo) of the instance being traced
+vec4 clip_c[NANO_MAX_CLIP_HALF_SPACES];  // the clipping half-spaces in the space of the instance being traced
+
+// The frame's camera-relative half-spaces in the compartment space of the instance whose
+// object → world transform is `to_world`: n·(A c + b) + d = (Aᵀn)·c + (n·b + d), renormalised so
+// distances are compartment Å (instances may scale).
+void load_clip_half_spaces(mat4x3 to_world) {
+  mat3 a = mat3(to_world);
+  for (uint k = 0u; k < frame.effects.x && k < NANO_MAX_CLIP_HALF_SPACES; ++k) {
+    vec4 w = frame.clip[k];
+    vec3 n = transpose(a) * w.xyz;
+    float len = length(n);
+    clip_c[k] = vec4(n / len, (dot(w.xyz, to_world[3]) + w.w) / len);
+  }
+}
+
+bool clip_removes_point(vec3 p) {
+  for (uint k = 0u; k < frame.effects.x && k < NANO_MAX_CLIP_HALF_SPACES; ++k)
+    if (!clip_keeps_point(clip_c[k], p)) return true;
+  return false;
+}
+
+bool clip_removes_whole_ball(vec3 c, float r) {
+  for (uint k = 0u; k < frame.effects.x && k < NANO_MAX_CLIP_HALF_SPACES; ++k)
+    if (clip_removes_ball(clip_c[k], c, r)) return true;
+  return false;
+}
+
+// True iff one half-space removes all of the AABB [lo, hi] (its corner nearest the kept side is out).
+bool clip_removes_box(vec3 lo, vec3 hi) {
+  for (uint k = 0u; k < frame.effects.x && k < NANO_MAX_CLIP_HALF_SPACES; ++k) {
+    vec3 n = clip_c[k].xyz;
+    vec3 best_corner = mix(lo, hi, greaterThan(n, vec3(0.0)));
+    if (!clip_keeps_point(clip_c[k], best_corner)) return true;
+  }
+  return false;
+}
+
+// The jittered placement of copy `number` (kJitter only).
+Affine3 jittered(Affine3 m, uvec2 number) {
+  vec4 p = frame.effect_parameters;
+  return jitter_placement(m, jitter_rotation(number, p.y, p.z, p.w));
+}
 
 // Nearest atom of molecule type `type` placed by `m` (compartment space) on the ray (o, d) within
 // [0, best_t]; o is the compartment-space eye (high part). Updates best_t, best.atom and
@@ -93,6 +151,8 @@ bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d) {
     if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) continue;
     float t = tn >= 0.0 ? tn : tf;
     if (!(t >= 0.0) || !(t < best_t)) continue;
+    // An atom is clipped whole, by its centre: never cut in half.
+    if (kClipping && clip_removes_point(m.linear * cr.xyz + m.translation)) continue;
     best_t = t;
     best.atom = a;
     best_type = type;
@@ -190,6 +250,12 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
     vec2 uv_m;
     Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, mi.position.xyz, mi.rotation, uv_m);
     if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
+    // mLAS-level trivial reject: the copy's bounding sphere wholly clipped.
+    if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
+    uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
+    uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
+                                        slot, rc.counts.x, m);
+    if (kJitter) placement = jittered(placement, number);
     if (!trace_molecule(mi.molecule_type, placement, o, d)) continue;
     found = true;
     best.compartment_instance = inst;
@@ -197,9 +263,6 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
     best.kind = 0u;
     best.cell = ivec4(cell, 0, 0);
     best.instance = m;
-    uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
-    uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
-                                        slot, rc.counts.x, m);
     best.copy_number_lo = number.x;
     best.copy_number_hi = number.y;
     rayQueryGenerateIntersectionEXT(q, best_t);
@@ -229,6 +292,22 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
     off.side = sh.side_offset;
     PrismInterval iv;
     if (!prism_intersect(shell_prism_make(p0, p1, p2, n0, n1, n2, off), o, d, 0.0, best_t, iv)) return false;
+  }
+  if (kClipping) {
+    // µLAS-level trivial reject: every molecule the prism owns lies in the convex hull of its six
+    // corners (bilinear walls included), so a hull wholly outside one half-space has nothing to show.
+    ShellOffsets off;
+    off.h_plus = sh.h_plus;
+    off.h_minus = sh.h_minus;
+    off.side = sh.side_offset;
+    Prism pr = shell_prism_make(p0, p1, p2, n0, n1, n2, off);
+    vec3 lo = pr.v[0];
+    vec3 hi = pr.v[0];
+    for (int k = 1; k < 6; ++k) {
+      lo = min(lo, pr.v[k]);
+      hi = max(hi, pr.v[k]);
+    }
+    if (clip_removes_box(lo, hi)) return false;
   }
   MembraneTriangle mt;
   mt.p0 = p0;
@@ -302,6 +381,7 @@ bool trace_box(uint inst, uint ci, ivec3 ijk, vec3 o, vec3 d) {
   float tn;
   float tf;
   if (!aabb_intersect(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
+  if (kClipping && clip_removes_box(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz)) return false;
   uint mask = NANO_NO_INDEX;
   if (occ == NANO_BOX_BOUNDARY) {
     mask = keep_mask_first_word(c, box);
@@ -320,14 +400,17 @@ bool trace_box(uint inst, uint ci, ivec3 ijk, vec3 o, vec3 d) {
     uint m = orders[level.order_first + p];
     if (mask != NANO_NO_INDEX && ((mask_words[mask + m / 32u] >> (m % 32u)) & 1u) == 0u) continue;
     MoleculeInstance mi = instances[first + m];
-    if (!trace_molecule(mi.molecule_type, core_soluble_molecule(box_min, mi.position.xyz, mi.rotation), o, d)) continue;
+    Affine3 placement = core_soluble_molecule(box_min, mi.position.xyz, mi.rotation);
+    if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
+    uvec2 number = copy_number_core(render_instances[inst].base.xy, rc.span.xy, box, rc.counts.y, m);
+    if (kJitter) placement = jittered(placement, number);
+    if (!trace_molecule(mi.molecule_type, placement, o, d)) continue;
     found = true;
     best.compartment_instance = inst;
     best.element = box;
     best.kind = 1u;
     best.cell = ivec4(ijk, 0);
     best.instance = m;
-    uvec2 number = copy_number_core(render_instances[inst].base.xy, rc.span.xy, box, rc.counts.y, m);
     best.copy_number_lo = number.x;
     best.copy_number_hi = number.y;
     rayQueryGenerateIntersectionEXT(q, best_t);
@@ -339,6 +422,7 @@ bool trace_core(uint inst, uint ci, vec3 o, vec3 d) {
   Compartment c = compartments[ci];
   float B = c.grid_min.w;
   ivec3 dims = ivec3(c.grid_dims.xyz);
+  if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(dims + ivec3(1)) * B)) return false;
   // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
   // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
   GridDda it;
@@ -365,18 +449,12 @@ bool trace_core(uint inst, uint ci, vec3 o, vec3 d) {
   return found;
 }
 
-vec3 srgb_from_linear(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
-}
-
-void main() {
-  Camera cam = frame.camera;
-  uvec2 px = gl_GlobalInvocationID.xy;
-  if (px.x >= cam.size.x || px.y >= cam.size.y) return;
-  vec3 d = camera_ray_direction(cam, px.x, px.y);
-
-  best_t = placement_inf();
+// Traces one ray through the whole scene: origin camera-relative world, unit direction d, hits in
+// [0, t_max]. Primary rays take each instance's eye from the host's double computation
+// (RenderInstance), not the hardware's float transform of the origin; secondary rays (AO, shadows)
+// start elsewhere and take the transformed origin. Leaves the hit in best*.
+bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
+  best_t = t_max;
   best.depth = placement_inf();
   best.compartment_instance = kNoHit;
   best.element = kNoHit;
@@ -390,16 +468,21 @@ void main() {
   best_type = 0u;
 
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, ulas, gl_RayFlagsNoneEXT, 0xFF, vec3(0.0), 0.0, d, placement_inf());
+  rayQueryInitializeEXT(q, ulas, gl_RayFlagsNoneEXT, 0xFF, origin, 0.0, d, t_max);
   while (rayQueryProceedEXT(q)) {
     if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
     uint inst = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
     uint prim = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
-    // The eye in compartment space from the host's double computation, not the hardware's float
-    // transform of the origin (see RenderInstance).
-    vec3 o = render_instances[inst].eye_hi.xyz;
-    eye_lo = render_instances[inst].eye_lo.xyz;
+    vec3 o;
+    if (primary) {
+      o = render_instances[inst].eye_hi.xyz;
+      eye_lo = render_instances[inst].eye_lo.xyz;
+    } else {
+      o = rayQueryGetIntersectionObjectRayOriginEXT(q, false);
+      eye_lo = vec3(0.0);
+    }
     vec3 od = rayQueryGetIntersectionObjectRayDirectionEXT(q, false);
+    if (kClipping) load_clip_half_spaces(rayQueryGetIntersectionObjectToWorldEXT(q, false));
     uint ci = render_instances[inst].base.z;
     RenderCompartment rc = render_compartments[ci];
     bool found = false;
@@ -413,20 +496,57 @@ void main() {
       rayQueryGenerateIntersectionEXT(q, best_t);
     }
   }
+  return best.atom != kNoHit;
+}
+
+vec3 srgb_from_linear(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
+void main() {
+  Camera cam = frame.camera;
+  uvec2 px = gl_GlobalInvocationID.xy;
+  if (px.x >= cam.size.x || px.y >= cam.size.y) return;
+  vec3 d = camera_ray_direction(cam, px.x, px.y);
+
+  trace_scene(vec3(0.0), d, placement_inf(), true);
 
   uint index = px.y * cam.size.x + px.x;
   vec3 colour = vec3(1.0);  // background
-  if (best.atom != kNoHit) {
-    best.depth = best_t;
+  PixelHit hit = best;
+  if (hit.atom != kNoHit) {
+    float t = best_t;
+    hit.depth = t;
     vec3 n = normalize(mat3(best_to_world) * best_normal_c);
     vec3 base = molecules[best_type].colour.rgb;
-    float lambert = abs(dot(n, frame.light.xyz));
+    vec3 light = frame.light.xyz;
     float facing = abs(dot(n, d));
-    vec3 lit = base * (0.25 + 0.55 * lambert + 0.2 * facing);
-    float cue = frame.light.w > 0.0 ? exp(-best_t / frame.light.w) : 1.0;
+    float lambert = abs(dot(n, light));
+    float ambient = 1.0;
+    // Secondary rays leave the side of the sphere the camera sees.
+    vec3 n_view = dot(n, d) > 0.0 ? -n : n;
+    vec3 p = offset_ray_origin(t * d, n_view);
+    if (kShadows) {
+      lambert = max(dot(n_view, light), 0.0);
+      if (lambert > 0.0 && trace_scene(p, light, placement_inf(), false)) lambert = 0.0;
+    }
+    if (kAmbientOcclusion) {
+      uint rays = max(frame.effects.y, 1u);
+      uint seed = effect_hash(index ^ effect_hash(frame.effects.z + 0x68bc21ebu));
+      uint open = 0u;
+      for (uint k = 0u; k < rays; ++k) {
+        uint h = effect_hash(seed + 2u * k);
+        vec3 dir = cosine_hemisphere(n_view, effect_unit(h), effect_unit(effect_hash(h + 1u)));
+        if (!trace_scene(p, dir, frame.effect_parameters.x, false)) ++open;
+      }
+      ambient = float(open) / float(rays);
+    }
+    vec3 lit = base * ((0.25 + 0.2 * facing) * ambient + 0.55 * lambert);
+    float cue = frame.light.w > 0.0 ? exp(-t / frame.light.w) : 1.0;
     colour = mix(vec3(1.0), lit, 0.35 + 0.65 * cue);
   }
-  hits[index] = best;
+  hits[index] = hit;
   vec3 srgb = srgb_from_linear(colour);
   uvec3 b = uvec3(round(srgb * 255.0));
   colours[index] = b.r | (b.g << 8) | (b.b << 16) | (255u << 24);

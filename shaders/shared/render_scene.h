@@ -45,8 +45,14 @@ struct RenderFrame {
   Camera camera;
   uvec4 levels;  // x: first Wang-square entry in `levels` (after one nLAS per molecule type); y: first
                  // cube entry; z: molecule types; w: first two-level atom square (--levels 2)
-  vec4 light;    // xyz: unit direction towards the light (world); w: depth-cue distance (Å, 0 = off)
+  vec4 light;    // xyz: unit direction towards the light (world; the shadow light when shadows are on);
+                 // w: depth-cue distance (Å, 0 = off)
+  uvec4 effects; // x: clipping half-spaces in `clip` (≤ NANO_MAX_CLIP_HALF_SPACES); y: ambient-occlusion
+                 // rays; z: sample index (seeds the AO directions); w: reserved
+  vec4 effect_parameters;  // x: AO radius (Å); y: time (s); z: jitter amplitude (radians); w: jitter frequency (Hz)
+  vec4 clip[14];  // camera-relative world half-spaces (unit n, d): a point p stays iff n·p + d ≥ 0 for all
 };
+NANO_CONST uint NANO_MAX_CLIP_HALF_SPACES = 14u;  // 8 planes + the 6 faces of the clip box
 
 NANO_END
 
@@ -56,7 +62,7 @@ static_assert(sizeof(nano::gpu::RenderCompartment) == 80);
 static_assert(sizeof(nano::gpu::RenderInstance) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);
 static_assert(sizeof(nano::gpu::Camera) == 80);
-static_assert(sizeof(nano::gpu::RenderFrame) == 112);
+static_assert(sizeof(nano::gpu::RenderFrame) == 368);
 static_assert(sizeof(nano::gpu::PixelHit) == 48 && offsetof(nano::gpu::PixelHit, cell) == 16 &&
               offsetof(nano::gpu::PixelHit, instance) == 32);
 #endif

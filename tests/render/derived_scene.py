@@ -2,7 +2,9 @@
 """Writes a variant of a bundled scene for the renderer's hard cases, structure paths made absolute:
   derived_scene.py SRC DST [--offset OFFSET] [--mesh COMPARTMENT=FILE]
 --offset translates every instance by OFFSET·(1, −0.7, 0.3) Å (far from the origin, no axis special);
---mesh replaces a compartment's mesh by a mesh file (e.g. one with sliver triangles)."""
+--mesh replaces a compartment's mesh by a mesh file (e.g. one with sliver triangles);
+--effects JSON sets the scene's "effects" object; --transform JSON sets instance 0's transform
+(before --offset)."""
 import argparse, json, os
 
 ap = argparse.ArgumentParser()
@@ -10,6 +12,8 @@ ap.add_argument("src")
 ap.add_argument("dst")
 ap.add_argument("--offset", type=float, default=0.0)
 ap.add_argument("--mesh", action="append", default=[])
+ap.add_argument("--effects")
+ap.add_argument("--transform")
 a = ap.parse_args()
 with open(a.src) as f:
     scene = json.load(f)
@@ -19,6 +23,10 @@ for mol in scene["molecules"].values():
 for membrane in scene.get("membranes", {}).values():
     if "lipid_patch" in membrane:
         membrane["lipid_patch"]["file"] = os.path.join(base, membrane["lipid_patch"]["file"])
+if a.effects:
+    scene["effects"] = json.loads(a.effects)
+if a.transform:
+    scene["instances"][0]["transform"] = json.loads(a.transform)
 for inst in scene["instances"]:
     t = inst.setdefault("transform", {})
     x, y, z = t.get("translate", [0, 0, 0])

@@ -1,0 +1,88 @@
+// `nanoview pick PKG --camera SPEC --size WxH X Y [--oracle] [--shell …] [effect options]`: what pixel (X, Y) of a
+// view shows, as one line of JSON (render::describe_hit plus "x", "y"), from the device's frame or,
+// with --oracle, from the CPU explicit-instancing oracle: the two must name the same atom.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error.hpp"
+#include "format/validator.hpp"
+#include "runtime/commands.hpp"
+#include "runtime/explicit/oracle_render.hpp"
+#include "runtime/render/animation.hpp"
+#include "runtime/render/camera_spec.hpp"
+#include "runtime/render/effects.hpp"
+#include "runtime/render/pick_info.hpp"
+#include "runtime/render/renderer.hpp"
+#include "runtime/render_session.hpp"
+
+namespace nano::view {
+
+void add_pick_command(CLI::App& app) {
+  struct Options {
+    std::string package, size = "384x384", camera;
+    std::uint32_t x = 0, y = 0;
+    bool oracle = false;
+    VariantOptions variant;
+    EffectOptions effects;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("pick", "Name the atom, molecule, compartment and copy one pixel of a view shows (JSON)");
+  cmd->add_option("PKG", o->package, "package (.nup)")->required();
+  cmd->add_option("X", o->x, "pixel column (0 = left)")->required();
+  cmd->add_option("Y", o->y, "pixel row (0 = top)")->required();
+  cmd->add_option("--size", o->size, "image size WxH")->capture_default_str();
+  cmd->add_option("--camera", o->camera,
+                  "\"pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG\" (world Å, vertical fov); keys left out keep the scene's camera");
+  cmd->add_flag("--oracle", o->oracle,
+                "trace the pixel with the CPU oracle (explicit instancing, no device needed) instead of the GPU; "
+                "the variant options then do not apply, the effect options do");
+  o->variant.add_to(*cmd);
+  o->effects.add_to(*cmd);
+  cmd->callback([o] {
+    const auto [w, h] = parse_size(o->size);
+    if (o->x >= w || o->y >= h)
+      throw InputError("X Y", "", "pixel (" + std::to_string(o->x) + ", " + std::to_string(o->y) + ") lies outside the " +
+                                      o->size + " image");
+    const auto view_of = [&](const format::Package& package) {
+      try {
+        return o->camera.empty() ? render::package_camera(package)
+                                 : render::parse_camera(o->camera, render::package_camera(package));
+      } catch (const std::invalid_argument& e) {
+        throw InputError("--camera", "", e.what());
+      }
+    };
+    const std::size_t pixel = std::size_t(o->y) * w + o->x;
+    nlohmann::json out;
+    if (o->oracle) {
+      // The oracle needs no device: open the package as RenderSession would, without Vulkan.
+      const format::Package package = format::open_validated(o->package);
+      // What the effects change for ids, as verify gives them to the oracle: moved instances,
+      // jittered copies, clipped atoms (AO and shadows change colours only).
+      const render::EffectSettings effects = o->effects.settings(package);
+      const OracleEffects oracle_view = oracle_effects(package, effects);
+      const oracle::ExplicitScene scene(package, oracle_view.scene);
+      oracle::OracleRenderOptions render_options;
+      render_options.clip = oracle_view.clip;
+      const gpu::Camera camera = view_of(package).to_gpu(w, h);
+      // The oracle renders whole images only; --size should be kept small.
+      out = render::describe_hit(package, oracle::oracle_render(scene, package, camera, render_options)[pixel]);
+    } else {
+      render::RenderSettings settings = o->variant.render_settings();
+      RenderSession session(o->package, o->variant.scene_options());
+      settings.effects = o->effects.settings(session.package);
+      render::Renderer renderer(session.device, *session.scene, settings);
+      const render::Frame frame = renderer.render(view_of(session.package).to_gpu(w, h));
+      out = render::describe_hit(session.package, frame.hits[pixel]);
+      if (session.validation_errors() != 0)
+        throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");
+    }
+    out["x"] = o->x;
+    out["y"] = o->y;
+    std::printf("%s\n", out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+  });
+}
+
+}  // namespace nano::view

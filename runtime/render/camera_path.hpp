@@ -1,0 +1,63 @@
+#pragma once
+// Camera paths for movies: keyframed cameras in a JSON file, evaluated at any time.
+//
+//   {"format": "nanouniverse-camera-path", "version": 1, "fps": 30,
+//    "keyframes": [{"time": 0, "camera": "pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG"},
+//                  {"time": 2.5, "position": [x, y, z], "look_at": [x, y, z], "up": [x, y, z], "fov_degrees": 40}]}
+//
+// Times are seconds ≥ 0, strictly increasing. Keys a keyframe leaves out keep the previous
+// keyframe's values (CameraSpec's defaults for the first). Frame k is at time k / fps, so a movie
+// starts at time 0 and ends at the last keyframe; before the first keyframe the camera holds still.
+// Eye and target follow a C¹ cubic Hermite spline in time with Catmull–Rom tangents (one-sided at
+// the ends), up is a normalised lerp and the field of view a lerp between neighbouring keys; each
+// keyframe is reached exactly.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "runtime/render/camera_spec.hpp"
+
+namespace nano::render {
+
+struct CameraKeyframe {
+  double time = 0;  // s
+  CameraSpec camera;
+};
+
+struct CameraPath {
+  double fps = 30;
+  std::vector<CameraKeyframe> keyframes;  // at least one
+
+  double duration() const { return keyframes.empty() ? 0.0 : keyframes.back().time; }
+  // floor(duration · fps) + 1: frames 0 … frame_count() − 1 at times k / fps.
+  std::uint64_t frame_count() const;
+  double frame_time(std::uint64_t frame) const { return double(frame) / fps; }
+};
+
+// Strict: unknown keys, wrong types, times that do not increase, invalid cameras (also between
+// keyframes, at every frame time) throw InputError naming `file` and the key path (keyframes[2].up).
+CameraPath parse_camera_path(const nlohmann::json& json, const std::string& file);
+CameraPath read_camera_path(const std::filesystem::path& path);
+
+// The object form of every keyframe, numbers written so they read back bit for bit.
+nlohmann::json to_json(const CameraPath& path);
+// Written atomically (temporary file, then rename): the viewer records paths while a movie job may
+// be reading the previous version. Throws InputError (as parse_camera_path) for a path that would
+// not read back, before anything is written.
+void write_camera_path(const std::filesystem::path& path, const CameraPath& camera_path);
+
+// The camera at `time` seconds, clamped to the keyframes' range. Throws std::invalid_argument if
+// the interpolated camera is degenerate (parse_camera_path rules this out at every frame time).
+CameraSpec camera_at(const CameraPath& path, double time);
+
+// Movie frame file names ("frames/%05d.png"): `pattern` holds exactly one printf-style integer
+// conversion, %d with an optional 0 flag and width (%d, %5d, %05d), and no other % but %%.
+// Throws std::invalid_argument saying what is wrong.
+void check_frame_pattern(std::string_view pattern);
+std::string frame_file_name(std::string_view pattern, std::uint64_t frame);
+
+}  // namespace nano::render

@@ -1,0 +1,253 @@
+#include "runtime/viewer/script.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/error.hpp"
+#include "runtime/render/camera_spec.hpp"
+#include "runtime/render/effects.hpp"
+
+namespace nano::viewer {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+// Splits off the first whitespace-separated word; `rest` is the remainder, trimmed.
+std::string_view next_word(std::string_view s, std::string_view& rest) {
+  s = trim(s);
+  const auto end = s.find_first_of(" \t");
+  if (end == std::string_view::npos) {
+    rest = {};
+    return s;
+  }
+  rest = trim(s.substr(end));
+  return s.substr(0, end);
+}
+
+template <typename T>
+bool parse_number(std::string_view s, T& value) {
+  const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
+  return error == std::errc() && end == s.data() + s.size();
+}
+
+std::uint32_t parse_count(std::string_view s, const char* what, std::uint32_t max) {
+  std::uint32_t value = 0;
+  if (!parse_number(s, value) || value > max)
+    throw std::invalid_argument(std::string(what) + " must be a whole number from 0 to " + std::to_string(max) +
+                                ", got '" + std::string(s) + "'");
+  return value;
+}
+
+void expect_no_more(std::string_view rest, std::string_view command) {
+  if (!rest.empty())
+    throw std::invalid_argument("unexpected '" + std::string(rest) + "' after '" + std::string(command) + "'");
+}
+
+// A camera spec may leave keys out (they keep the camera current when the line runs), so it can
+// only be checked against a stand-in camera here. Two unrelated stand-ins: a spec that parses
+// against either is well formed; one that fails against both is wrong whatever camera it meets
+// (bad syntax, pos = at, fov out of range).
+void check_camera_syntax(const std::string& spec) {
+  const render::CameraSpec a{};
+  render::CameraSpec b;
+  b.eye = {-311.0, 517.0, 1931.0};
+  b.at = {7.0, -11.0, 13.0};
+  b.up = {0.3, 0.5, 0.8};
+  b.fov_degrees = 33;
+  try {
+    (void)render::parse_camera(spec, a);
+  } catch (const std::invalid_argument& first) {
+    try {
+      (void)render::parse_camera(spec, b);
+    } catch (const std::invalid_argument&) {
+      throw first;
+    }
+  }
+}
+
+// Paths have at most 10 million frames (render/camera_path.cpp), so a frame number fits 32 bits.
+constexpr std::uint32_t kMaxPathFrame = 10'000'000;
+
+// `path save FILE | load FILE | clear | frame K | play A B`; `rest` is what follows "path".
+void parse_path_command(std::string_view rest, ScriptCommand& c) {
+  using K = ScriptCommand::Kind;
+  std::string_view args;
+  const std::string_view what = next_word(rest, args);
+  if (what == "save" || what == "load") {
+    // The rest of the line, spaces included, as screenshot takes it.
+    if (args.empty()) throw std::invalid_argument("path " + std::string(what) + " expects a FILE (.json)");
+    c.kind = what == "save" ? K::path_save : K::path_load;
+    c.text = std::string(args);
+  } else if (what == "clear") {
+    expect_no_more(args, "path clear");
+    c.kind = K::path_clear;
+  } else if (what == "frame") {
+    std::string_view tail;
+    const std::string_view k = next_word(args, tail);
+    if (k.empty()) throw std::invalid_argument("path frame expects a frame number K");
+    c.first = parse_count(k, "path frame K", kMaxPathFrame);
+    expect_no_more(tail, "path frame K");
+    c.kind = K::path_frame;
+  } else if (what == "play") {
+    std::string_view tail;
+    const std::string_view a = next_word(args, args);
+    const std::string_view b = next_word(args, tail);
+    if (a.empty() || b.empty()) throw std::invalid_argument("path play expects A B (first and last frame)");
+    c.first = parse_count(a, "path play A", kMaxPathFrame);
+    c.last = parse_count(b, "path play B", kMaxPathFrame);
+    if (c.first > c.last)
+      throw std::invalid_argument("path play A B needs A ≤ B, got " + std::to_string(c.first) + " > " + std::to_string(c.last));
+    expect_no_more(tail, "path play A B");
+    c.kind = K::path_play;
+  } else {
+    throw std::invalid_argument("path expects 'save FILE', 'load FILE', 'clear', 'frame K' or 'play A B', got '" +
+                                std::string(rest) + "'");
+  }
+}
+
+ScriptCommand parse_line(std::string_view line) {
+  ScriptCommand c;
+  std::string_view rest;
+  const std::string_view word = next_word(line, rest);
+  using K = ScriptCommand::Kind;
+  if (word == "camera") {
+    if (rest.empty()) throw std::invalid_argument("camera needs a spec pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG");
+    c.kind = K::camera;
+    c.text = std::string(rest);
+    check_camera_syntax(c.text);
+  } else if (word == "clip") {
+    std::string_view args;
+    const std::string_view what = next_word(rest, args);
+    if (what == "plane") {
+      c.kind = K::clip_plane;
+      c.plane = render::parse_clip_plane(args);
+    } else if (what == "box") {
+      c.kind = K::clip_box;
+      c.box = render::parse_clip_box(args);
+    } else if (what == "off") {
+      c.kind = K::clip_off;
+      expect_no_more(args, "clip off");
+    } else {
+      throw std::invalid_argument("clip expects 'plane nx,ny,nz,d', 'box x0,y0,z0,x1,y1,z1' or 'off', got '" +
+                                  std::string(rest) + "'");
+    }
+  } else if (word == "effect") {
+    std::string_view tail;
+    const std::string_view name = next_word(rest, rest);
+    const std::string_view state = next_word(rest, tail);
+    if (std::find(std::begin(render::kEffectNames), std::end(render::kEffectNames), name) == std::end(render::kEffectNames)) {
+      std::string names;
+      for (auto n : render::kEffectNames) names += (names.empty() ? "" : ", ") + std::string(n);
+      throw std::invalid_argument("unknown effect '" + std::string(name) + "' (" + names + ")");
+    }
+    if (state != "on" && state != "off")
+      throw std::invalid_argument("effect " + std::string(name) + " expects on or off, got '" + std::string(state) + "'");
+    expect_no_more(tail, "effect NAME on|off");
+    c.kind = K::effect;
+    c.text = std::string(name);
+    c.on = state == "on";
+  } else if (word == "time") {
+    std::string_view tail;
+    const std::string_view value = next_word(rest, tail);
+    if (!parse_number(value, c.seconds) || !std::isfinite(c.seconds) || c.seconds < 0)
+      throw std::invalid_argument("time expects seconds ≥ 0, got '" + std::string(value) + "'");
+    expect_no_more(tail, "time SECONDS");
+    c.kind = K::time;
+  } else if (word == "wait") {
+    std::string_view tail;
+    c.count = parse_count(next_word(rest, tail), "wait N", 100000);
+    expect_no_more(tail, "wait N");
+    c.kind = K::wait;
+  } else if (word == "pick") {
+    std::string_view tail;
+    const std::string_view x = next_word(rest, rest);
+    const std::string_view y = next_word(rest, tail);
+    if (x.empty() || y.empty()) throw std::invalid_argument("pick expects X Y (pixel column and row)");
+    c.x = parse_count(x, "pick X", 16383);
+    c.y = parse_count(y, "pick Y", 16383);
+    expect_no_more(tail, "pick X Y");
+    c.kind = K::pick;
+  } else if (word == "screenshot") {
+    if (rest.empty()) throw std::invalid_argument("screenshot expects a PATH (.png)");
+    c.kind = K::screenshot;
+    c.text = std::string(rest);
+    if (std::filesystem::path(c.text).extension() == ".ids")
+      throw std::invalid_argument("screenshot PATH must not end in .ids: the hit ids are written beside it as PATH.ids");
+  } else if (word == "size") {
+    std::string_view tail;
+    const auto [w, h] = parse_size_text(next_word(rest, tail));
+    expect_no_more(tail, "size WxH");
+    c.kind = K::size;
+    c.x = w, c.y = h;
+  } else if (word == "keyframe") {
+    std::string_view tail;
+    const std::string_view value = next_word(rest, tail);
+    if (!parse_number(value, c.seconds) || !std::isfinite(c.seconds) || c.seconds < 0)
+      throw std::invalid_argument("keyframe expects its time in seconds ≥ 0, got '" + std::string(value) + "'");
+    expect_no_more(tail, "keyframe SECONDS");
+    c.kind = K::keyframe;
+  } else if (word == "path") {
+    parse_path_command(rest, c);
+  } else if (word == "quit") {
+    expect_no_more(rest, "quit");
+    c.kind = K::quit;
+  } else {
+    throw std::invalid_argument("unknown command '" + std::string(word) +
+                                "' (camera, clip, effect, time, wait, pick, screenshot, size, keyframe, path, quit)");
+  }
+  return c;
+}
+
+}  // namespace
+
+std::pair<std::uint32_t, std::uint32_t> parse_size_text(std::string_view text) {
+  const auto x = text.find('x');
+  std::uint32_t w = 0, h = 0;
+  if (x == std::string_view::npos || !parse_number(text.substr(0, x), w) || !parse_number(text.substr(x + 1), h) ||
+      w == 0 || h == 0 || w > 16384 || h > 16384)
+    throw std::invalid_argument("expected a size WxH with 1 ≤ W, H ≤ 16384, got '" + std::string(text) + "'");
+  return {w, h};
+}
+
+Script parse_script(std::string_view text, const std::string& file) {
+  Script script;
+  script.file = file;
+  std::size_t line_number = 0;
+  while (!text.empty()) {
+    const auto end = text.find('\n');
+    std::string_view line = text.substr(0, end);
+    text = end == std::string_view::npos ? std::string_view{} : text.substr(end + 1);
+    ++line_number;
+    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    line = trim(line);
+    if (line.empty()) continue;
+    try {
+      ScriptCommand command = parse_line(line);
+      command.line = line_number;
+      script.commands.push_back(std::move(command));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(file, "line " + std::to_string(line_number), e.what());
+    }
+  }
+  return script;
+}
+
+Script load_script(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "", "cannot read the script file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_script(text.str(), path.string());
+}
+
+}  // namespace nano::viewer

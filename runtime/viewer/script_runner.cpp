@@ -1,0 +1,132 @@
+#include "runtime/viewer/script_runner.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "common/error.hpp"
+#include "runtime/render/camera_path.hpp"
+#include "runtime/render/camera_spec.hpp"
+#include "runtime/render/effects.hpp"
+#include "runtime/render/image_io.hpp"
+#include "runtime/viewer/path_recording.hpp"
+
+namespace nano::viewer {
+namespace {
+
+void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
+  ViewerState& s = host.state();
+  render::EffectSettings& effects = s.settings.effects;
+  using K = ScriptCommand::Kind;
+  switch (c.kind) {
+    case K::camera:
+      s.camera.set_camera(render::parse_camera(c.text, s.camera.camera()));
+      s.touch();
+      break;
+    case K::clip_plane:
+      if (effects.clipping.planes.size() >= render::kMaxClipPlanes)
+        throw std::invalid_argument("at most " + std::to_string(render::kMaxClipPlanes) +
+                                    " clip planes (the scene's included); 'clip off' removes them");
+      effects.clipping.planes.push_back(c.plane);
+      effects.clipping_on = true;
+      s.touch();
+      break;
+    case K::clip_box:
+      effects.clipping.box = c.box;
+      effects.clipping_on = true;
+      s.touch();
+      break;
+    case K::clip_off:
+      effects.clipping = {};
+      effects.clipping_on = false;
+      s.touch();
+      break;
+    case K::effect:
+      render::set_effect(effects, c.text, c.on);
+      s.touch();
+      break;
+    case K::time:
+      effects.time = c.seconds;
+      s.touch();
+      break;
+    case K::wait:
+      host.render_frames(c.count);
+      break;
+    case K::pick: {
+      const render::Frame& frame = host.current_frame();
+      if (c.x >= frame.width || c.y >= frame.height)
+        throw std::invalid_argument("pixel (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") lies outside the " +
+                                    std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame");
+      nlohmann::json j = host.describe(frame.hits[std::size_t(c.y) * frame.width + c.x]);
+      j["x"] = c.x;
+      j["y"] = c.y;
+      out << j.dump() << '\n' << std::flush;  // one line per pick: scripts parse stdout line by line
+      s.last_pick = std::move(j);
+      break;
+    }
+    case K::screenshot: {
+      const render::Frame& frame = host.current_frame();
+      const auto image = host.current_image();
+      render::write_png(c.text, frame.width, frame.height, image);
+      render::write_ids(ids_path_for(c.text), frame.width, frame.height, frame.hits);
+      s.status = "screenshot " + c.text;
+      break;
+    }
+    case K::size:
+      host.resize(c.x, c.y);
+      s.touch();
+      break;
+    case K::keyframe:
+      // Only the path changes, not what the frame shows: no touch().
+      add_keyframe(s.path.path, s.camera.camera(), c.seconds);
+      break;
+    case K::path_save:
+      if (s.path.path.keyframes.empty()) throw std::invalid_argument("no keyframes to save ('keyframe SECONDS' adds one)");
+      render::write_camera_path(c.text, s.path.path);
+      s.status = "saved path " + c.text;
+      break;
+    case K::path_load:
+      s.path.path = render::read_camera_path(c.text);
+      stop_playback(s);
+      break;
+    case K::path_clear:
+      stop_playback(s);
+      s.path.path.keyframes.clear();
+      break;
+    case K::path_frame:
+      show_path_at(s, path_frame_time(s.path.path, c.first));
+      break;
+    case K::path_play:
+      (void)path_frame_time(s.path.path, c.last);  // a range past the end fails before any frame
+      for (std::uint32_t k = c.first; k <= c.last; ++k) {
+        show_path_at(s, path_frame_time(s.path.path, k));
+        host.render_frames(1);
+      }
+      break;
+    case K::quit:
+      break;
+  }
+}
+
+}  // namespace
+
+std::string ids_path_for(const std::string& png_path) {
+  return std::filesystem::path(png_path).replace_extension(".ids").string();
+}
+
+bool run_command(const ScriptCommand& command, const std::string& file, ScriptHost& host, std::ostream& out) {
+  if (command.kind == ScriptCommand::Kind::quit) return false;
+  const std::string where = "line " + std::to_string(command.line);
+  try {
+    execute(command, host, out);
+  } catch (const InputError& e) {
+    // An image file that cannot be written names itself; say which line asked for it.
+    throw InputError(file, where, e.what());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file, where, e.what());
+  } catch (const std::filesystem::filesystem_error& e) {
+    throw InputError(file, where, e.what());
+  }
+  return true;
+}
+
+}  // namespace nano::viewer

@@ -1,0 +1,412 @@
+#include "runtime/viewer/viewer_app.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <ctime>
+#include <iostream>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+#include <imgui.h>
+
+#include "common/error.hpp"
+#include "runtime/render/camera_path.hpp"
+#include "runtime/render/camera_spec.hpp"
+#include "runtime/render/image_io.hpp"
+#include "runtime/render/pick_info.hpp"
+#include "runtime/viewer/camera_controller.hpp"
+#include "runtime/viewer/camera_input.hpp"
+#include "runtime/viewer/overlay.hpp"
+#include "runtime/viewer/panel.hpp"
+#include "runtime/viewer/path_recording.hpp"
+#include "runtime/viewer/presenter.hpp"
+#include "runtime/viewer/progressive.hpp"
+#include "runtime/viewer/script.hpp"
+#include "runtime/viewer/script_runner.hpp"
+#include "runtime/viewer/viewer_state.hpp"
+#include "runtime/viewer/window.hpp"
+
+namespace nano::viewer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::pair<std::uint32_t, std::uint32_t> kDefaultSize{960, 720};
+
+render::CameraSpec start_camera(const format::Package& package, const std::string& spec) {
+  const render::CameraSpec base = render::package_camera(package);
+  if (spec.empty()) return base;
+  try {
+    return render::parse_camera(spec, base);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--camera", "", e.what());
+  }
+}
+
+std::optional<double> centre_depth(const render::Frame& frame) {
+  if (frame.hits.empty()) return std::nullopt;
+  const gpu::PixelHit& hit = frame.hits[std::size_t(frame.height / 2) * frame.width + frame.width / 2];
+  if (hit.atom == gpu::kNoHit || !std::isfinite(hit.depth)) return std::nullopt;
+  return double(hit.depth);
+}
+
+bool same_camera(const render::CameraSpec& a, const render::CameraSpec& b) {
+  return a.eye == b.eye && a.at == b.at && a.up == b.up && a.fov_degrees == b.fov_degrees;
+}
+
+std::string timestamped_name() {
+  const std::time_t now = std::time(nullptr);
+  char name[64];
+  std::strftime(name, sizeof name, "nanoview-%Y%m%d-%H%M%S.png", std::localtime(&now));
+  return name;
+}
+
+class Viewer final : public ScriptHost {
+public:
+  Viewer(const ViewerOptions& options, render::RenderSettings settings, std::optional<Script> script,
+         std::optional<render::CameraPath> path)
+      : options_(options),
+        script_(std::move(script)),
+        window_(options.size.value_or(kDefaultSize).first, options.size.value_or(kDefaultSize).second,
+                "nanoview — " + options.package),
+        session_(options.package, options.variant.scene_options(),
+                 view::PresentationOptions{window_.required_instance_extensions(), {VK_KHR_SWAPCHAIN_EXTENSION_NAME},
+                                           [this](VkInstance instance) { return window_.create_surface(instance); }}),
+        bounds_(scene_bounds(session_.package)),
+        state_(CameraController(start_camera(session_.package, options.camera), bounds_.radius()), settings) {
+    settings.effects = options.effects.settings(session_.package);
+    state_.settings = settings;
+    state_.ao_samples = std::max(options.ao_samples, 1u);
+    if (path) {
+      state_.path.path = std::move(*path);
+      state_.path.file = options.path;  // "Save path" writes the edited path back where it came from
+    }
+    if (script_) fixed_size_ = options.size.value_or(kDefaultSize);
+    presenter_ = std::make_unique<Presenter>(session_.device, session_.surface.handle(), window_);
+    overlay_ = std::make_unique<Overlay>(window_, session_.instance.handle(), session_.device, *presenter_);
+    presenter_->on_recreate = [this](std::uint32_t count) { overlay_->set_min_image_count(count); };
+    renderer_ = std::make_unique<render::Renderer>(session_.device, *session_.scene, state_.settings);
+  }
+
+  ~Viewer() override { shutdown(); }
+
+  int run() {
+    if (script_) {
+      for (const ScriptCommand& command : script_->commands) {
+        window_.poll_events();
+        if (window_.should_close()) {
+          std::fprintf(stderr, "%s: the window was closed; the script stopped before line %zu\n", script_->file.c_str(),
+                       command.line);
+          return 1;
+        }
+        if (!run_command(command, script_->file, *this, std::cout)) return 0;  // quit
+      }
+      if (!options_.stay) return 0;
+      fixed_size_.reset();  // from here the window's size rules, as in interactive use
+    }
+    interactive_loop();
+    return 0;
+  }
+
+  // Destroys what lives on the device before the session, and reports the validation layer's
+  // findings; throws when it found errors.
+  void finish() {
+    shutdown();
+    if (session_.instance.validation_enabled())
+      std::fprintf(stderr, "view: validation layer: %u error(s), %u warning(s)\n", session_.instance.validation_errors(),
+                   session_.instance.validation_warnings());
+    std::fprintf(stderr, "view: %llu frame(s) rendered, %llu presented\n", (unsigned long long)rendered_,
+                 (unsigned long long)presented_);
+    if (session_.validation_errors() != 0)
+      throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session_.validation_errors()) +
+                               " error(s)");
+  }
+
+  // ScriptHost
+  ViewerState& state() override { return state_; }
+
+  void render_frames(std::uint32_t count) override {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      window_.poll_events();
+      if (window_.should_close()) throw std::invalid_argument("the window was closed");
+      render_full();
+      present_with_panel();
+    }
+  }
+
+  const render::Frame& current_frame() override {
+    if (!full_is_current()) render_frames(1);
+    return full_;
+  }
+
+  std::span<const std::uint32_t> current_image() override {
+    (void)current_frame();
+    return accumulator_.result();
+  }
+
+  void resize(std::uint32_t width, std::uint32_t height) override {
+    if (fixed_size_) fixed_size_ = {width, height};
+    window_.resize(width, height);
+  }
+
+  nlohmann::json describe(const gpu::PixelHit& hit) override { return render::describe_hit(session_.package, hit); }
+
+private:
+  std::pair<std::uint32_t, std::uint32_t> render_size() const {
+    if (fixed_size_) return *fixed_size_;
+    return window_.framebuffer_size();
+  }
+
+  bool full_is_current() const {
+    const auto [w, h] = render_size();
+    return full_version_ == state_.version && full_.width == w && full_.height == h && !full_.hits.empty();
+  }
+
+  bool wants_more_samples() const {
+    return state_.settings.effects.ambient_occlusion_on && accumulator_.count() < state_.ao_samples;
+  }
+
+  render::Frame render_frame(std::uint32_t width, std::uint32_t height, std::uint32_t sample) {
+    render::RenderSettings s = state_.settings;
+    // As `nanoview render` does: the colour fades over four times the target distance.
+    s.depth_cue = float(4 * state_.camera.distance());
+    s.effects.sample_index = sample;
+    renderer_->set_settings(s);
+    render::Frame frame = renderer_->render(state_.camera.camera().to_gpu(width, height));
+    ++rendered_;
+    const std::uint64_t pixels = std::uint64_t(width) * height;
+    state_.stats.seconds = frame.seconds;
+    state_.stats.width = width, state_.stats.height = height;
+    state_.stats.rays_per_second =
+        frame.seconds > 0 ? double(render::Renderer::rays_per_frame(s, pixels)) / frame.seconds : 0;
+    seconds_per_pixel_ = frame.seconds / double(pixels);
+    state_.camera.set_focus_depth(centre_depth(frame));
+    return frame;
+  }
+
+  // The next full-resolution frame of the current state: a new average when the state changed,
+  // otherwise (AO on) one more sample into it.
+  void render_full() {
+    const auto [w, h] = render_size();
+    const bool ao = state_.settings.effects.ambient_occlusion_on;
+    if (!full_is_current() || !ao) accumulator_.reset();
+    full_ = render_frame(w, h, accumulator_.count());
+    full_version_ = state_.version;
+    accumulator_.add(full_.rgba, w, h);
+    state_.stats.scale = 1;
+    state_.stats.samples = accumulator_.count();
+    shown_ = &full_;
+    shown_image_ = accumulator_.result();
+  }
+
+  // One frame at 1/scale resolution per axis (the presenter stretches it over the window).
+  void render_reduced(std::uint32_t scale) {
+    const auto [w, h] = render_size();
+    reduced_ = render_frame(reduced_extent(w, scale), reduced_extent(h, scale), 0);
+    reduced_version_ = state_.version;
+    reduced_scale_ = scale;
+    reduced_size_ = {w, h};
+    state_.stats.scale = scale;
+    state_.stats.samples = 1;
+    shown_ = &reduced_;
+    shown_image_ = reduced_.rgba;
+  }
+
+  // At rest: the next refinement step towards the full-resolution frame of the current state.
+  // Each step is one frame between two polls of the window, so a big window on a slow device
+  // still answers input after every step instead of after one long full-resolution frame.
+  // Returns whether it showed a reduced frame (false: the full one).
+  bool refine() {
+    const auto [w, h] = render_size();
+    const bool reduced_current =
+        shown_ == &reduced_ && reduced_version_ == state_.version && reduced_size_ == std::pair(w, h);
+    const std::uint32_t scale = full_is_current() ? 1
+                                                  : rest_scale(reduced_current ? reduced_scale_ : 0, seconds_per_pixel_,
+                                                               w, h, state_.rest_step_budget);
+    if (scale == 1) {
+      render_full();
+      return false;
+    }
+    render_reduced(scale);
+    return true;
+  }
+
+  bool present() {
+    if (shown_ == nullptr) return false;
+    const bool shown = presenter_->present(shown_image_, shown_->width, shown_->height,
+                                           [this](VkCommandBuffer commands) { overlay_->record(commands); });
+    presented_ += shown;
+    return shown;
+  }
+
+  void present_with_panel() {
+    overlay_->begin_frame();
+    draw_panel(state_, panel_context());
+    overlay_->end_frame();
+    present();
+  }
+
+  PanelContext panel_context() const {
+    return PanelContext{&session_.scene->report(), bounds_, fixed_size_.has_value()};
+  }
+
+  void pick(double x, double y) {
+    if (shown_ == nullptr) return;
+    const ImVec2 window = ImGui::GetIO().DisplaySize;
+    if (window.x <= 0 || window.y <= 0) return;
+    // The shown frame is stretched over the whole window, whatever resolution it has.
+    const auto px = std::uint32_t(std::clamp(x / window.x * shown_->width, 0.0, shown_->width - 1.0));
+    const auto py = std::uint32_t(std::clamp(y / window.y * shown_->height, 0.0, shown_->height - 1.0));
+    nlohmann::json j = describe(shown_->hits[std::size_t(py) * shown_->width + px]);
+    j["x"] = px;
+    j["y"] = py;
+    std::cout << j.dump() << std::endl;
+    state_.last_pick = std::move(j);
+  }
+
+  void screenshot() {
+    if (!full_is_current()) render_full();
+    const std::string path = timestamped_name();
+    try {
+      render::write_png(path, full_.width, full_.height, accumulator_.result());
+      render::write_ids(ids_path_for(path), full_.width, full_.height, full_.hits);
+      state_.status = "wrote " + path + " (and .ids)";
+    } catch (const std::exception& e) {
+      state_.status = std::string("screenshot failed: ") + e.what();
+    }
+  }
+
+  // Every new status line (screenshots, keyframes, path files, refused settings) also goes to
+  // stderr: the panel shows only the last, and a session log should keep them all.
+  void log_status() {
+    if (state_.status == logged_status_) return;
+    logged_status_ = state_.status;
+    if (!logged_status_.empty()) std::fprintf(stderr, "view: %s\n", logged_status_.c_str());
+  }
+
+  void interactive_loop() {
+    auto last = Clock::now();
+    bool shown_reduced = false, active = false;
+    while (!window_.should_close()) {
+      const bool busy = active || shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples() ||
+                        state_.playing || state_.path.play_time;
+      // At rest with every sample in, sleep until something happens: no frame, no CPU.
+      if (busy) window_.poll_events();
+      else window_.wait_events(0.5);
+      const auto now = Clock::now();
+      const double dt = std::chrono::duration<double>(now - last).count();
+      last = now;
+      const auto [w, h] = window_.framebuffer_size();
+      if (w == 0 || h == 0) {  // minimised: nothing to render or show until it comes back
+        window_.wait_events(0.5);
+        continue;
+      }
+
+      overlay_->begin_frame();
+      const InputResult input = handle_camera_input(window_, state_.camera, dt);
+      if (input.camera_moved) {
+        state_.touch();
+        if (state_.path.play_time) {  // the user takes the camera back
+          stop_playback(state_);
+          state_.status = "path playback stopped by camera input";
+        }
+      }
+      // Advanced before K, L and the panel act: a playback they start shows time 0 first instead of
+      // jumping ahead by however long the previous (perhaps full-resolution) frame took.
+      advance_playback(state_, dt);
+      if (input.add_keyframe) record_keyframe(state_);
+      if (input.toggle_path) toggle_playback(state_);
+      if (state_.playing && !state_.path.play_time) {  // while a path plays, it drives the time
+        state_.settings.effects.time += dt * state_.play_speed;
+        state_.touch();
+      }
+      const std::uint64_t before_panel = state_.version;
+      const render::CameraSpec camera_before_panel = state_.camera.camera();
+      draw_panel(state_, panel_context());
+      if (state_.path.play_time && !same_camera(camera_before_panel, state_.camera.camera())) {
+        stop_playback(state_);  // an edit in the camera section is camera input too
+        state_.status = "path playback stopped by a camera edit";
+      }
+      // A slider being dragged is motion too: preview it at reduced resolution.
+      const bool panel_dragging = ImGui::IsAnyItemActive() && state_.version != before_panel;
+      overlay_->end_frame();
+      active = input.dragging || ImGui::IsAnyItemActive();
+
+      if (input.click) pick(input.click->first, input.click->second);
+      const bool moving = input.camera_moved || state_.playing || panel_dragging || state_.path.play_time.has_value();
+      try {
+        if (input.screenshot || state_.screenshot_requested) {
+          state_.screenshot_requested = false;
+          screenshot();
+          shown_reduced = false;
+        }
+        if (moving) {
+          const auto [rw, rh] = render_size();
+          render_reduced(motion_scale(seconds_per_pixel_, rw, rh, state_.motion_budget));
+          shown_reduced = true;
+        } else if (shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples()) {
+          shown_reduced = refine();
+        }
+      } catch (const std::invalid_argument& e) {
+        // Settings the renderer refuses (e.g. an effect the two-level path lacks): say so, keep going.
+        state_.status = e.what();
+        state_.touch();
+      }
+      log_status();
+      present();
+    }
+  }
+
+  void shutdown() {
+    renderer_.reset();
+    overlay_.reset();
+    presenter_.reset();
+  }
+
+  ViewerOptions options_;
+  std::optional<Script> script_;
+  Window window_;
+  view::RenderSession session_;
+  Bounds bounds_;
+  ViewerState state_;
+  std::unique_ptr<Presenter> presenter_;
+  std::unique_ptr<Overlay> overlay_;
+  std::unique_ptr<render::Renderer> renderer_;
+  std::optional<std::pair<std::uint32_t, std::uint32_t>> fixed_size_;  // scripted: exactly this render size
+
+  render::Frame full_, reduced_;
+  std::uint64_t full_version_ = ~std::uint64_t(0);
+  std::uint64_t reduced_version_ = ~std::uint64_t(0);  // the state reduced_ shows, at reduced_scale_
+  std::uint32_t reduced_scale_ = 1;
+  std::pair<std::uint32_t, std::uint32_t> reduced_size_{0, 0};  // the full size it was reduced from
+  Accumulator accumulator_;
+  const render::Frame* shown_ = nullptr;  // what the window shows (its hits answer clicks)
+  std::vector<std::uint32_t> shown_image_;
+  double seconds_per_pixel_ = 0;
+  std::string logged_status_;
+  std::uint64_t rendered_ = 0, presented_ = 0;
+};
+
+}  // namespace
+
+int run_viewer(const ViewerOptions& options) {
+  // Everything that can be checked without a window is checked first (the package itself is
+  // validated by RenderSession, which needs the window's surface extensions).
+  if (!std::filesystem::is_regular_file(options.package))
+    throw InputError(options.package, "", "no such package file");
+  const render::RenderSettings settings = options.variant.render_settings();
+  (void)options.variant.scene_options();
+  std::optional<Script> script;
+  if (!options.script.empty()) script = load_script(options.script);
+  std::optional<render::CameraPath> path;
+  if (!options.path.empty()) path = render::read_camera_path(options.path);
+  Viewer viewer(options, settings, std::move(script), std::move(path));
+  const int status = viewer.run();
+  viewer.finish();
+  return status;
+}
+
+}  // namespace nano::viewer

@@ -1,0 +1,212 @@
+// Scene effects on the host and in the shared shader math: the package's effects read back, the CLI
+// and script syntax of clip planes and boxes, animation poses against analytic rigid motions, and
+// the jitter / ray-offset / sampling functions of shared/effects.h.
+#include <cmath>
+#include <set>
+
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "format/validator.hpp"
+#include "runtime/render/animation.hpp"
+#include "runtime/render/effects.hpp"
+#include "shared/effects.h"
+#include "tests/format/sample_scene.hpp"
+
+namespace {
+
+using namespace nano;
+using namespace nano::render;
+using glm::dvec3;
+
+struct Opened {
+  explicit Opened(const format::test::SampleScene& s)
+      : package(format::Package::from_bytes(format::test::build(s, format::Compression::none), "effects.nup")) {
+    format::validate_semantics(package);
+  }
+  format::Package package;
+};
+
+TEST(PackageEffects, ReadsWhatTheSectionsHold) {
+  const Opened p(format::test::make_sample_scene());
+  const EffectSettings e = package_effects(p.package);
+  EXPECT_TRUE(e.clipping_on);
+  ASSERT_EQ(e.clipping.planes.size(), 1u);
+  EXPECT_EQ(e.clipping.planes[0], glm::dvec4(0, 0, 1, -2));
+  ASSERT_TRUE(e.clipping.box.has_value());
+  EXPECT_EQ(e.clipping.box->first, dvec3(-10, -10, -10));
+  EXPECT_EQ(e.clipping.box->second, dvec3(60, 10, 10));
+  EXPECT_TRUE(e.animation_on);
+  EXPECT_FALSE(e.jitter_on);
+  EXPECT_TRUE(e.ambient_occlusion_on);
+  EXPECT_EQ(e.ao_rays, 8u);
+  EXPECT_EQ(e.ao_radius, 40.f);
+  EXPECT_TRUE(e.shadows_on);
+  EXPECT_NEAR(e.light_direction.y, 0.6, 1e-7);
+}
+
+TEST(PackageEffects, AllOffWithoutTheSection) {
+  format::test::SampleScene s = format::test::make_sample_scene();
+  s.effects.clear();
+  s.keyframes.clear();
+  const Opened p(s);
+  const EffectSettings e = package_effects(p.package);
+  EXPECT_FALSE(e.clipping_on || e.animation_on || e.jitter_on || e.ambient_occlusion_on || e.shadows_on);
+  // Without effects the instances stand where the package puts them, at any time.
+  const auto t = animated_instance_transforms(p.package, 5.0);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[1].translation, dvec3(50, 0, -5));
+}
+
+TEST(ClipSyntax, PlanesAndBoxes) {
+  EXPECT_EQ(parse_clip_plane("0,0,2,-4"), glm::dvec4(0, 0, 1, -2));  // normalised: d in Å
+  EXPECT_EQ(parse_clip_plane(" 1, 0,0, 5"), glm::dvec4(1, 0, 0, 5));
+  EXPECT_THROW(parse_clip_plane("0,0,0,1"), std::invalid_argument);
+  EXPECT_THROW(parse_clip_plane("1,0,0"), std::invalid_argument);
+  EXPECT_THROW(parse_clip_plane("1,0,0,1,2"), std::invalid_argument);
+  EXPECT_THROW(parse_clip_plane("1,0,x,1"), std::invalid_argument);
+  EXPECT_THROW(parse_clip_plane("1,0,nan,1"), std::invalid_argument);
+  const auto box = parse_clip_box("-1,-2,-3,4,5,6");
+  EXPECT_EQ(box.first, dvec3(-1, -2, -3));
+  EXPECT_EQ(box.second, dvec3(4, 5, 6));
+  EXPECT_THROW(parse_clip_box("1,0,0,0,1,1"), std::invalid_argument);
+}
+
+TEST(ClipHalfSpaces, BoxFacesKeepExactlyTheInside) {
+  Clipping c;
+  c.planes.push_back(glm::dvec4(0, 0, 3, 0));
+  c.box = {dvec3(-1, -2, -3), dvec3(4, 5, 6)};
+  const auto h = clip_half_spaces(c);
+  ASSERT_EQ(h.size(), 7u);
+  EXPECT_EQ(h[0], glm::dvec4(0, 0, 1, 0));
+  const auto kept = [&](dvec3 p) {
+    for (const auto& s : h)
+      if (glm::dot(dvec3(s), p) + s.w < 0) return false;
+    return true;
+  };
+  EXPECT_TRUE(kept(dvec3(0, 0, 1)));
+  EXPECT_TRUE(kept(dvec3(4, 5, 6)));    // closed box
+  EXPECT_FALSE(kept(dvec3(0, 0, -0.1)));  // the plane
+  EXPECT_FALSE(kept(dvec3(4.01, 0, 1)));
+  EXPECT_FALSE(kept(dvec3(0, -2.01, 1)));
+  EXPECT_FALSE(kept(dvec3(0, 0, 6.01)));
+}
+
+TEST(SetEffect, NamesAndDefaults) {
+  EffectSettings e;
+  for (std::string_view name : kEffectNames) {
+    set_effect(e, name, true);
+  }
+  EXPECT_TRUE(e.clipping_on && e.animation_on && e.jitter_on && e.ambient_occlusion_on && e.shadows_on);
+  EXPECT_GT(e.jitter_degrees, 0.0);  // a scene without jitter parameters still wobbles when asked
+  set_effect(e, "ao", false);
+  EXPECT_FALSE(e.ambient_occlusion_on);
+  EXPECT_THROW(set_effect(e, "bloom", true), std::invalid_argument);
+}
+
+// A rotation by `degrees` about `axis`, then a translation (world).
+format::InstanceTransform rigid(dvec3 axis, double degrees, dvec3 translation) {
+  format::InstanceTransform t;
+  t.linear = glm::mat3_cast(glm::angleAxis(glm::radians(degrees), glm::normalize(axis)));
+  t.translation = translation;
+  return t;
+}
+
+void expect_near(const format::InstanceTransform& a, const format::InstanceTransform& b, double tol) {
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) EXPECT_NEAR(a.linear[c][r], b.linear[c][r], tol) << c << "," << r;
+  for (int r = 0; r < 3; ++r) EXPECT_NEAR(a.translation[r], b.translation[r], tol * std::max(1.0, glm::length(b.translation)));
+}
+
+TEST(Animation, InterpolationIsExactAtKeysAndRigidBetween) {
+  const auto a = rigid(dvec3(0, 0, 1), 10, dvec3(1, 2, 3));
+  const auto b = rigid(dvec3(0, 0, 1), 100, dvec3(11, 2, -7));
+  expect_near(interpolate_transform(a, b, 0), a, 1e-12);
+  expect_near(interpolate_transform(a, b, 1), b, 1e-12);
+  // Halfway: 55° about z (slerp of rotations about one axis is linear in the angle), midpoint translation.
+  expect_near(interpolate_transform(a, b, 0.5), rigid(dvec3(0, 0, 1), 55, dvec3(6, 2, -2)), 1e-12);
+  // Scales interpolate per axis.
+  format::InstanceTransform big = a;
+  big.linear *= 3.0;
+  const auto mid = interpolate_transform(a, big, 0.5);
+  EXPECT_NEAR(glm::determinant(mid.linear), 8.0, 1e-9);
+}
+
+TEST(Animation, KeyframesHoldOutsideTheirRange) {
+  const Opened p(format::test::make_sample_scene());
+  const auto at = [&](double t) { return animated_instance_transforms(p.package, t); };
+  // Instance 1: 90° about z at (50, 0, −5) at t = 0, 180° at (50, 10, −5) at t = 2; instance 0 has no keys.
+  expect_near(at(0)[1], rigid(dvec3(0, 0, 1), 90, dvec3(50, 0, -5)), 1e-6);
+  expect_near(at(-1)[1], at(0)[1], 0);
+  expect_near(at(1)[1], rigid(dvec3(0, 0, 1), 135, dvec3(50, 5, -5)), 1e-6);
+  expect_near(at(2)[1], rigid(dvec3(0, 0, 1), 180, dvec3(50, 10, -5)), 1e-6);
+  expect_near(at(9)[1], at(2)[1], 0);
+  expect_near(at(1)[0], format::InstanceTransform{}, 0);
+}
+
+TEST(Animation, SteadyMotionSpinsAboutTheInstanceOriginAndDrifts) {
+  format::test::SampleScene s = format::test::make_sample_scene();
+  s.keyframes.clear();
+  s.effects[0].spin = glm::vec4(0, 1, 0, 30);  // 30°/s about +y
+  s.effects[0].velocity = glm::vec4(100, 0, 0, 0);
+  const Opened p(s);
+  const auto t = animated_instance_transforms(p.package, 2.0);
+  // Instance 0 (identity) after 2 s: 60° about y, 200 Å along x; instance 1 keeps its own origin.
+  expect_near(t[0], rigid(dvec3(0, 1, 0), 60, dvec3(200, 0, 0)), 1e-12);
+  const format::InstanceTransform base = rigid(dvec3(0, 0, 1), 90, dvec3(50, 0, -5));
+  format::InstanceTransform expected = base;
+  expected.linear = rigid(dvec3(0, 1, 0), 60, dvec3(0)).linear * base.linear;
+  expected.translation += dvec3(200, 0, 0);
+  expect_near(t[1], expected, 1e-6);
+}
+
+TEST(SharedEffects, JitterIsBoundedPerCopyAndPeriodic) {
+  const float amplitude = glm::radians(6.0f);
+  std::set<std::uint32_t> different;
+  for (std::uint32_t copy = 0; copy < 200; ++copy) {
+    const glm::uvec2 number(copy * 7919u, copy >> 3);
+    const glm::vec4 q = gpu::jitter_rotation(number, 0.7f, amplitude, 0.5f);
+    EXPECT_NEAR(glm::length(q), 1.0f, 1e-6f);
+    const float angle = 2.0f * std::acos(std::min(1.0f, std::abs(q.w)));
+    EXPECT_LE(angle, amplitude + 1e-5f);
+    // One period later (f = 0.5 Hz: 2 s) the same rotation.
+    const glm::vec4 later = gpu::jitter_rotation(number, 2.7f, amplitude, 0.5f);
+    EXPECT_NEAR(std::abs(glm::dot(q, later)), 1.0f, 1e-5f);
+    different.insert(std::uint32_t(std::round(angle * 1e5f)));
+  }
+  EXPECT_GT(different.size(), 150u);  // copies wobble on their own
+  // Zero amplitude is the identity; a rotation about the origin keeps |atom| (the mLAS bound).
+  EXPECT_EQ(gpu::jitter_rotation(glm::uvec2(5, 0), 1.0f, 0.0f, 1.0f), glm::vec4(0, 0, 0, 1));
+  gpu::Affine3 m{glm::mat3(1.0f), glm::vec3(10, 0, 0)};
+  const gpu::Affine3 j = gpu::jitter_placement(m, gpu::jitter_rotation(glm::uvec2(3, 1), 0.3f, amplitude, 1.0f));
+  const glm::vec3 atom(4, -3, 2);
+  EXPECT_NEAR(glm::length(gpu::affine_point(j, atom) - m.translation), glm::length(atom), 1e-5f);
+}
+
+TEST(SharedEffects, RayOffsetLeavesTheSurfaceAtAnyScale) {
+  for (float scale : {0.001f, 1.0f, 1e3f, 1e6f}) {
+    const glm::vec3 n = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+    const glm::vec3 p = glm::vec3(0.7f, -1.3f, 2.1f) * scale;
+    const glm::vec3 o = gpu::offset_ray_origin(p, n);
+    const float moved = glm::dot(o - p, n);
+    EXPECT_GT(moved, 0.0f) << scale;
+    // A few hundred ulps at most, never a visible gap.
+    EXPECT_LT(glm::length(o - p), 1e-3f * std::max(1.0f, scale)) << scale;
+  }
+}
+
+TEST(SharedEffects, CosineSamplesStayInTheHemisphere) {
+  const glm::vec3 n = glm::normalize(glm::vec3(-0.2f, 0.9f, 0.1f));
+  double mean_cos = 0;
+  const int count = 4096;
+  for (int k = 0; k < count; ++k) {
+    const std::uint32_t h = gpu::effect_hash(std::uint32_t(k) * 2u);
+    const glm::vec3 d = gpu::cosine_hemisphere(n, gpu::effect_unit(h), gpu::effect_unit(gpu::effect_hash(h + 1u)));
+    EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
+    EXPECT_GE(glm::dot(d, n), -1e-6f);
+    mean_cos += glm::dot(d, n);
+  }
+  EXPECT_NEAR(mean_cos / count, 2.0 / 3.0, 0.02);  // E[cos θ] under a cosine-weighted hemisphere
+}
+
+}  // namespace
