@@ -27,6 +27,9 @@ namespace {
 // 1e-3·r is 0.0017 Å on a carbon, far above float error in molecule space yet far below any
 // misplaced atom.
 constexpr double kRadiusEpsilon = 1e-3;
+// Å by which clip planes move to tell float ties at a plane from real clipping errors: the device
+// tests atom centres in compartment space in float (~4e-3 Å ulp at 4·10^4 Å).
+constexpr double kClipEpsilon = 1e-2;
 }  // namespace
 
 void add_verify_command(CLI::App& app) {
@@ -117,15 +120,28 @@ void add_verify_command(CLI::App& app) {
         const auto shrunk = oracle::oracle_render(scene, session.package, camera, shrink);
         const auto grown = oracle::oracle_render(scene, session.package, camera, grow);
         const oracle::WorldBox bounds = oracle::scene_world_bounds(session.package, &scene);
+        // Clip ties: an atom centre within ε of a plane is kept or removed by float rounding; the
+        // oracle with every half-space moved by ±ε says which pixels such ties decide.
+        std::vector<gpu::PixelHit> clipped_more, clipped_less;
+        if (!clip.empty()) {
+          oracle::OracleRenderOptions more = oracle_options, less = oracle_options;
+          for (glm::dvec4& h : more.clip) h.w -= kClipEpsilon;
+          for (glm::dvec4& h : less.clip) h.w += kClipEpsilon;
+          clipped_more = oracle::oracle_render(scene, session.package, camera, more);
+          clipped_less = oracle::oracle_render(scene, session.package, camera, less);
+        }
         for (std::size_t i = 0; i < reference.size(); ++i) {
           if (oracle::classify(reference[i], frame.hits[i]) == oracle::PixelDifference::none ||
               oracle::explained_by_radius_change(frame.hits[i], reference[i], shrunk[i], grown[i], grazing_slack))
+            continue;
+          if (!clip.empty() && (oracle::classify(clipped_more[i], frame.hits[i]) == oracle::PixelDifference::none ||
+                                oracle::classify(clipped_less[i], frame.hits[i]) == oracle::PixelDifference::none))
             continue;
           // Per-atom radii: two grazing touches on one ray, one shrunk and one grown.
           const std::uint32_t x = std::uint32_t(i % cw), y = std::uint32_t(i / cw);
           if (!oracle::explained_by_atom_radii(scene, bounds, glm::dvec3(glm::vec3(camera.position)),
                                                glm::dvec3(gpu::camera_ray_direction(camera, x, y)), frame.hits[i],
-                                               kRadiusEpsilon, largest_atom))
+                                               kRadiusEpsilon, largest_atom, clip))
             ++unexplained;
         }
       }

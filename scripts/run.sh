@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job: set up, build, bake the bundled default scene, validate the package and render it
-# with nested ray queries into out/ (PNG, depth PFM, hit ids).
+# with nested ray queries into out/ (PNG, depth PFM, hit ids); then, when a display exists, open the
+# interactive viewer on it (NANO_NO_VIEWER=1 skips that).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${NANO_BUILD_DIR:-$here/build}
@@ -26,3 +27,8 @@ echo "== Render"
 
 echo
 echo "Image, depth and ids: $out_dir/$name.png, $name-depth.pfm, $name-ids.bin (package and bake report beside them)."
+
+if [[ -n "${DISPLAY:-}" && -z "${NANO_NO_VIEWER:-}" ]]; then  # GLFW here is built for X11
+  echo "== Viewer (a display exists): drag to orbit, Tab for fly mode, click to pick, F12 for a screenshot"
+  "$nanoview" view "$out_dir/$name.nup" ${NANO_CAMERA:+--camera "$NANO_CAMERA"}
+fi

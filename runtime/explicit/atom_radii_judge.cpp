@@ -32,7 +32,7 @@ double exit_distance(const WorldBox& box, const glm::dvec3& eye, const glm::dvec
 
 bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds, const glm::dvec3& eye,
                              const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,
-                             double largest_atom) {
+                             double largest_atom, std::span<const glm::dvec4> clip) {
   const bool background = test.atom == gpu::kNoHit;
   if (!background && !(std::isfinite(test.depth) && test.depth > 0)) return false;
   const glm::dvec3 dir = glm::normalize(direction);
@@ -49,6 +49,8 @@ bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds,
     const glm::dvec3 a = eye + t0 * dir, b = eye + std::min(end, t0 + kChunk) * dir;
     const WorldBox box{glm::min(a, b) - reach, glm::max(a, b) + reach};
     scene.for_each_atom(box, [&](const AtomSample& s) {
+      for (const glm::dvec4& h : clip)  // clipped atoms are not there, whatever their radius
+        if (!(glm::dot(glm::dvec3(h), s.position) + h.w >= 0)) return;
       const glm::dvec3 oc = s.position - eye;
       const double tc = glm::dot(oc, dir);
       const double d2 = std::max(0.0, glm::dot(oc, oc) - tc * tc);

@@ -1,4 +1,7 @@
 #pragma once
+#include <span>
+
+#include <glm/vec4.hpp>
 // Judges one differing pixel of `verify` against the explicit scene itself: is there a change of
 // every atom's radius, each on its own within a relative ±ε, that makes the first hit along the
 // pixel's ray the one the device reports? Unlike re-rendering with every radius scaled by one
@@ -24,6 +27,6 @@ namespace nano::oracle {
 // `largest_atom`: the largest atom radius of the package (Å), bounding the search around the ray.
 bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds, const glm::dvec3& eye,
                              const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,
-                             double largest_atom);
+                             double largest_atom, std::span<const glm::dvec4> clip = {});
 
 }  // namespace nano::oracle

@@ -71,13 +71,21 @@ bool advance_playback(ViewerState& state, double seconds) {
   if (!state.path.play_time) return false;
   const double time = *state.path.play_time + std::max(seconds, 0.0);
   const double end = state.path.path.duration();
-  if (time >= end) {
-    show_path_at(state, end);
+  try {
+    if (time >= end) {
+      show_path_at(state, end);
+      state.path.play_time.reset();
+      state.status = "path played to its end (" + seconds_text(end) + ")";
+      return false;
+    }
+    show_path_at(state, time);
+  } catch (const std::invalid_argument& e) {
+    // Reading a path checks the camera at every frame time; wall-clock playback also visits the
+    // times between, where the spline could (just) pass the eye through the target.
     state.path.play_time.reset();
-    state.status = "path played to its end (" + seconds_text(end) + ")";
+    state.status = "path playback stopped at " + seconds_text(time) + ": " + e.what();
     return false;
   }
-  show_path_at(state, time);
   state.path.play_time = time;
   return true;
 }
@@ -88,7 +96,9 @@ void record_keyframe(ViewerState& state) {
   PathRecording& r = state.path;
   try {
     add_keyframe(r.path, state.camera.camera(), next_keyframe_time(r.path, r.step));
-    state.status = "keyframe " + std::to_string(r.path.keyframes.size()) + " at " + seconds_text(r.path.duration());
+    // The camera too: the session log then holds the recording in the syntax --camera reads.
+    state.status = "keyframe " + std::to_string(r.path.keyframes.size()) + " at " + seconds_text(r.path.duration()) + ": " +
+                   r.path.keyframes.back().camera.to_string();
   } catch (const std::invalid_argument& e) {
     state.status = e.what();
   }

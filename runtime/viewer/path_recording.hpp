@@ -41,7 +41,8 @@ void show_path_at(ViewerState& state, double time);
 // Playback in the window. start_playback shows time 0 (throws std::invalid_argument without
 // keyframes) and pauses the free-running animation clock, which the path now drives;
 // advance_playback moves on by `seconds` of wall-clock time and returns whether it still plays
-// (at the end it shows the last keyframe and stops). stop_playback leaves the camera where it is.
+// (at the end it shows the last keyframe and stops; a degenerate camera between frame times stops
+// it with a status line instead of throwing). stop_playback leaves the camera where it is.
 void start_playback(ViewerState& state);
 bool advance_playback(ViewerState& state, double seconds);
 void stop_playback(ViewerState& state);

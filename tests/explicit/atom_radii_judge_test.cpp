@@ -88,6 +88,17 @@ TEST_F(AtomRadiiJudge, ClearHitsAreNotExplainedAway) {
   EXPECT_FALSE(judge_down(hit(other, 30 - top.radius)));
 }
 
+TEST_F(AtomRadiiJudge, ClippedAtomsExplainNothing) {
+  // Grazing the topmost atom explains a hit on it — unless a clip plane removes its centre, then a
+  // hit on it is a clipping error however the radii change.
+  const double d = top.radius * (1 - kEpsilon / 2);
+  const glm::dvec3 eye = top.centre + glm::dvec3(-20, 0, d);
+  const glm::dvec4 removes_top(0, 0, -1, top.centre.z - 0.5);  // keeps z ≤ centre − 0.5
+  const std::vector<glm::dvec4> clip{removes_top};
+  EXPECT_TRUE(oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, hit(top, 20), kEpsilon, largest));
+  EXPECT_FALSE(oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, hit(top, 20), kEpsilon, largest, clip));
+}
+
 TEST_F(AtomRadiiJudge, EyeInsideAnAtomIsNeverExplained) {
   const glm::dvec3 eye = top.centre;
   EXPECT_FALSE(oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, hit(top, 1.0), kEpsilon, largest));
