@@ -1,11 +1,18 @@
-// `nanoview bench PKG --effects [--size WxH] [--frames N] [--camera SPEC] [--json out.json]`: what
-// each scene effect costs. One run renders the same view with every variant in turn, round after
-// round (so drifts of a shared, noisy machine hit all variants alike), and reports the median frame
-// time of each as a ratio to "all off" — including the renderer built without any effect code, to
-// show that an effect that is off costs nothing.
+// `nanoview bench PKG`: what loading and rendering a package cost on this device, and what
+// accuracy costs in time.
+//   (default)   load time by stage, device memory by category, frame times over a camera path
+//               (--path, or an orbit about the scene's camera target) after a warm-up frame
+//   --effects   each scene effect off vs on, and all off vs the renderer built without effect code
+//   --explicit  explicit instancing (a TLAS of every molecule copy, the conventional design) against
+//               virtual instancing: memory and frame time on the same frames, and pixel agreement
+//   --matrix    every knob of DESIGN.md's accuracy/time table against the default: time ratio and
+//               pixels differing from the CPU oracle (JSON, Markdown table, SVG plot)
+// Variants are always measured alternately in one run, so a noisy shared machine shifts them alike.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -13,13 +20,132 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "runtime/bench/accuracy_matrix.hpp"
+#include "runtime/bench/frame_stats.hpp"
+#include "runtime/bench/svg_plot.hpp"
 #include "runtime/commands.hpp"
+#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/explicit/verify_cameras.hpp"
+#include "runtime/instanced/explicit_vs_virtual.hpp"
+#include "runtime/render/camera_path.hpp"
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/renderer.hpp"
 #include "runtime/render_session.hpp"
 
 namespace nano::view {
 namespace {
+
+struct Options {
+  std::string package, size, camera, path, json, markdown, plot;
+  unsigned frames = 0;
+  unsigned matrix_cameras = 4;
+  bool effects = false, matrix = false, explicit_instancing = false;
+  VariantOptions variant;
+  EffectOptions effect_options;
+};
+
+void write_text(const std::string& path, const std::string& text) {
+  write_file_atomically(path, std::as_bytes(std::span(text.data(), text.size())));
+}
+
+render::CameraSpec chosen_camera(const Options& o, const format::Package& package) {
+  render::CameraSpec camera = render::package_camera(package);
+  try {
+    if (!o.camera.empty()) camera = render::parse_camera(o.camera, camera);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--camera", "", e.what());
+  }
+  return camera;
+}
+
+// The cameras of the timed frames: the path's frames, or one turn about the target's up axis.
+std::vector<render::CameraSpec> frame_cameras(const Options& o, const render::CameraSpec& start, unsigned count) {
+  std::vector<render::CameraSpec> cameras;
+  if (!o.path.empty()) {
+    const render::CameraPath path = render::read_camera_path(o.path);
+    const std::uint64_t n = std::min<std::uint64_t>(path.frame_count(), count);
+    for (std::uint64_t k = 0; k < n; ++k) cameras.push_back(render::camera_at(path, path.frame_time(k)));
+    return cameras;
+  }
+  const glm::dvec3 axis = glm::normalize(start.up);
+  for (unsigned k = 0; k < count; ++k) {
+    const double angle = 2 * M_PI * double(k) / double(count);
+    const glm::dvec3 r = start.eye - start.at;
+    // Rodrigues: r turned by `angle` about `axis`.
+    const glm::dvec3 turned = r * std::cos(angle) + glm::cross(axis, r) * std::sin(angle) + axis * glm::dot(axis, r) * (1 - std::cos(angle));
+    render::CameraSpec c = start;
+    c.eye = start.at + turned;
+    cameras.push_back(c);
+  }
+  return cameras;
+}
+
+// Molecule copies on screen and the atoms they are made of (what the frame represents).
+std::pair<std::uint64_t, std::uint64_t> on_screen(const format::Package& package, const std::vector<gpu::PixelHit>& hits) {
+  const auto molecules = package.records<format::SectionKind::molecules>();
+  std::set<std::uint64_t> copies;
+  std::uint64_t atoms = 0;
+  for (const gpu::PixelHit& h : hits) {
+    if (h.atom == gpu::kNoHit) continue;
+    const std::uint64_t number = std::uint64_t(h.copy_number_lo) | (std::uint64_t(h.copy_number_hi) << 32);
+    if (!copies.insert(number).second) continue;
+    for (const gpu::MoleculeType& m : molecules)
+      if (h.atom >= m.first_atom && h.atom - m.first_atom < m.atom_count) atoms += m.atom_count;
+  }
+  return {copies.size(), atoms};
+}
+
+nlohmann::ordered_json memory_json(const render::MemoryReport& m) {
+  return {{"package_data", m.package_data}, {"derived", m.derived}, {"nlas", m.nlas}, {"mlas", m.mlas},
+          {"ulas", m.ulas}, {"package_imported_in_place", m.package_imported}, {"build_scratch_peak", m.scratch_peak}};
+}
+
+void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+  const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
+  const render::CameraSpec start = chosen_camera(o, session.package);
+  render::RenderSettings settings = o.variant.render_settings();
+  settings.effects = o.effect_options.settings(session.package);
+  settings.depth_cue = float(4 * glm::length(start.at - start.eye));
+  render::Renderer renderer(session.device, *session.scene, settings);
+  const std::vector<render::CameraSpec> cameras = frame_cameras(o, start, o.frames ? o.frames : 24);
+  renderer.render(cameras.front().to_gpu(w, h));  // warm-up: the first dispatch compiles the pipeline
+  std::vector<double> seconds;
+  std::uint64_t molecules = 0, atoms = 0;
+  for (const render::CameraSpec& c : cameras) {
+    const render::Frame f = renderer.render(c.to_gpu(w, h));
+    seconds.push_back(f.seconds);
+    const auto [m, a] = on_screen(session.package, f.hits);
+    molecules += m, atoms += a;
+  }
+  const bench::FrameStats stats = bench::frame_stats(seconds);
+  const render::LoadReport& load = session.scene->report();
+  const SessionTimings& t = session.timings;
+  const std::uint64_t rays = render::Renderer::rays_per_frame(settings, std::uint64_t(w) * h);
+  out["size"] = {w, h};
+  out["frames"] = cameras.size();
+  out["camera_path"] = o.path.empty() ? "orbit of " + std::to_string(cameras.size()) + " frames about " + start.to_string() : o.path;
+  out["load_seconds"] = t.map + t.validate + t.device + t.scene;
+  out["load_stages_seconds"] = {{"map", t.map},           {"validate", t.validate},      {"device", t.device},
+                                {"upload", load.upload_seconds}, {"nlas_builds", load.nlas_seconds},
+                                {"mlas_builds", load.mlas_seconds}, {"ulas_builds", load.ulas_seconds},
+                                {"scene_total", t.scene}};
+  out["frame_seconds"] = bench::to_json(stats);
+  out["rays_per_second"] = double(rays) / stats.median;
+  out["molecules_on_screen"] = double(molecules) / double(cameras.size());
+  out["atoms_of_molecules_on_screen"] = double(atoms) / double(cameras.size());
+  out["device_memory_bytes"] = load.memory.total();
+  out["device_memory"] = memory_json(load.memory);
+  out["acceleration_structures"] = {{"nlas", load.nlas_count}, {"mlas", load.mlas_count}, {"prisms", load.prisms}};
+  std::printf("load %.3f s (map %.3f, validate %.3f, device %.3f, upload %.3f, nLAS %.3f, mLAS %.3f, µLAS %.3f)\n",
+              double(out["load_seconds"]), t.map, t.validate, t.device, load.upload_seconds, load.nlas_seconds,
+              load.mlas_seconds, load.ulas_seconds);
+  std::printf("frames %zu at %ux%u: min %.4f s, median %.4f s, p95 %.4f s; %.3g rays/s; %.0f molecules (%.3g atoms) on screen\n",
+              cameras.size(), w, h, stats.min, stats.median, stats.p95, double(rays) / stats.median,
+              double(molecules) / double(cameras.size()), double(atoms) / double(cameras.size()));
+  std::printf("device memory %.2f MB: package %.2f, derived %.2f, nLAS %.2f, mLAS %.2f, µLAS %.2f (build scratch peak %.2f, freed)\n",
+              load.memory.total() / 1e6, load.memory.package_data / 1e6, load.memory.derived / 1e6, load.memory.nlas / 1e6,
+              load.memory.mlas / 1e6, load.memory.ulas / 1e6, load.memory.scratch_peak / 1e6);
+}
 
 struct EffectVariant {
   std::string name;
@@ -66,79 +192,127 @@ std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, c
   return v;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
+void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+  const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
+  const unsigned rounds = o.frames ? o.frames : 5;
+  const render::CameraSpec camera = chosen_camera(o, session.package);
+  render::RenderSettings base = o.variant.render_settings();
+  base.depth_cue = float(4 * glm::length(camera.at - camera.eye));
+  const std::vector<EffectVariant> variants = effect_variants(base, render::package_effects(session.package), camera);
+  render::Renderer renderer(session.device, *session.scene, variants.front().settings);
+  const gpu::Camera gpu_camera = camera.to_gpu(w, h);
+  std::vector<std::vector<double>> seconds(variants.size());
+  // Each round starts one variant later, so no variant always follows the costly "all on" frame.
+  for (unsigned round = 0; round <= rounds; ++round)
+    for (std::size_t k = 0; k < variants.size(); ++k) {
+      const std::size_t v = (k + round) % variants.size();
+      renderer.set_settings(variants[v].settings);
+      const double s = renderer.render(gpu_camera).seconds;
+      if (round > 0) seconds[v].push_back(s);  // round 0 compiles every pipeline
+    }
+  const double reference = bench::frame_stats(seconds[1]).median;
+  out["size"] = {w, h};
+  out["rounds"] = rounds;
+  out["camera"] = camera.to_string();
+  out["reference"] = variants[1].name;
+  std::printf("%-16s %12s %12s %14s\n", "variant", "median s", "vs all off", "rays/frame");
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const bench::FrameStats stats = bench::frame_stats(seconds[v]);
+    const std::uint64_t rays = render::Renderer::rays_per_frame(variants[v].settings, std::uint64_t(w) * h);
+    std::printf("%-16s %12.4f %12.3f %14llu\n", variants[v].name.c_str(), stats.median, stats.median / reference, (unsigned long long)rays);
+    out["variants"].push_back({{"name", variants[v].name},
+                               {"frame_seconds", bench::to_json(stats)},
+                               {"ratio_to_all_off", stats.median / reference},
+                               {"rays_per_frame_at_most", rays}});
+  }
+}
+
+void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+  const auto [w, h] = parse_size(o.size.empty() ? "96x96" : o.size);
+  const unsigned rounds = o.frames ? o.frames : 3;
+  const render::CameraSpec focus = chosen_camera(o, session.package);
+  // The verify views: chosen so the oracle can resolve them, the hard cases first.
+  const oracle::ExplicitScene scene(session.package);
+  std::vector<gpu::Camera> cameras;
+  for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o.matrix_cameras)) {
+    render::CameraSpec spec;
+    spec.eye = vc.eye, spec.at = vc.at, spec.up = vc.up, spec.fov_degrees = vc.fov_degrees;
+    cameras.push_back(spec.to_gpu(w, h));
+  }
+  if (o.variant.shell != "adaptive-overlap" || o.variant.levels != "3+rep" || o.variant.prism != "exact")
+    throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
+  const std::vector<bench::MatrixVariant> variants = bench::matrix_variants(o.variant.render_settings(), session.package, focus);
+  const std::vector<bench::MatrixRow> rows = bench::run_accuracy_matrix(
+      session.device, session.package, *session.scene, cameras, variants, rounds,
+      [](const std::string& what) { std::fprintf(stderr, "matrix: %s\n", what.c_str()); });
+  out["size"] = {w, h};
+  out["cameras"] = cameras.size();
+  out["rounds"] = rounds;
+  out["matrix"] = bench::to_json(rows);
+  const std::string heading = "Accuracy/time matrix of " + session.package.name() + " on " + session.device.description() + ", " +
+                              std::to_string(cameras.size()) + " verify views at " + std::to_string(w) + "×" + std::to_string(h) +
+                              ", " + std::to_string(rounds) + " rounds";
+  const std::string md = bench::matrix_markdown(rows, heading);
+  std::printf("%s", md.c_str());
+  if (!o.markdown.empty()) write_text(o.markdown, md);
+  if (!o.plot.empty())
+    write_text(o.plot, bench::svg_plot(bench::matrix_plot(rows, "Error against time: " + std::filesystem::path(session.package.name()).filename().string())));
+}
+
+void run_explicit(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+  const auto [w, h] = parse_size(o.size.empty() ? "128x128" : o.size);
+  const unsigned rounds = o.frames ? o.frames : 3;
+  std::vector<gpu::Camera> cameras;
+  for (const render::CameraSpec& c : frame_cameras(o, chosen_camera(o, session.package), 4)) cameras.push_back(c.to_gpu(w, h));
+  const instanced::ExplicitVsVirtual r =
+      instanced::compare_explicit_and_virtual(session.device, session.package, *session.scene, cameras, rounds);
+  out["size"] = {w, h};
+  out["explicit_vs_virtual"] = r.to_json();
+  std::printf("%llu copies; frame median: explicit %.4f s, virtual %.4f s (virtual / explicit %.2f); device memory: explicit "
+              "%.2f MB, virtual %.2f MB; pixel agreement %.5f over %llu frames each\n",
+              (unsigned long long)r.copies, r.explicit_seconds_median, r.virtual_seconds_median,
+              r.virtual_seconds_median / r.explicit_seconds_median, r.explicit_device_bytes / 1e6, r.virtual_device_bytes / 1e6,
+              r.agreement, (unsigned long long)r.frames);
 }
 
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
-  struct Options {
-    std::string package, size = "256x256", camera, json;
-    unsigned frames = 5;
-    bool effects = false;
-    VariantOptions variant;
-  };
   auto o = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("bench", "Measure frame times on this device (--effects: what each scene effect costs)");
+  auto* cmd = app.add_subcommand("bench", "Measure load and frame times, memory, effect costs and the accuracy/time matrix on this device");
   cmd->add_option("PKG", o->package, "package (.nup)")->required();
-  cmd->add_flag("--effects", o->effects, "each effect off vs on, and all off vs the renderer without effect code")->required();
-  cmd->add_option("--size", o->size, "image size WxH")->capture_default_str();
-  cmd->add_option("--frames", o->frames, "measured rounds (each renders every variant once, after one warm-up round)")
-      ->check(CLI::Range(1u, 1000u))
-      ->capture_default_str();
-  cmd->add_option("--camera", o->camera, "\"pos=..;at=..;up=..;fov=..\" (default: the scene's camera)");
-  cmd->add_option("--json", o->json, "also write the results as JSON");
+  cmd->add_option("--size", o->size, "image size WxH (default 256x256; --matrix 96x96)");
+  cmd->add_option("--frames", o->frames, "timed frames (default 24), or rounds with --effects (5) and --matrix (3)")
+      ->check(CLI::Range(1u, 10000u));
+  cmd->add_option("--path", o->path, "camera path (.json) of the timed frames (default: an orbit about the scene's target)");
+  cmd->add_option("--camera", o->camera, "\"pos=..;at=..;up=..;fov=..\" start of the orbit / the --effects view / the --matrix clip plane");
+  cmd->add_option("--json", o->json, "write the results as JSON");
+  cmd->add_flag("--effects", o->effects, "each effect off vs on, and all off vs the renderer without effect code");
+  cmd->add_flag("--explicit", o->explicit_instancing,
+                "explicit instancing (one TLAS instance per molecule copy) against virtual instancing on the same frames");
+  cmd->add_flag("--matrix", o->matrix, "every accuracy knob against the default: time ratio and pixels differing from the oracle");
+  cmd->add_option("--matrix-cameras", o->matrix_cameras, "verify views of the matrix")->capture_default_str()->check(CLI::Range(1u, 16u));
+  cmd->add_option("--markdown", o->markdown, "with --matrix: write the table as Markdown");
+  cmd->add_option("--plot", o->plot, "with --matrix: write error against time as SVG");
   o->variant.add_to(*cmd);
+  o->effect_options.add_to(*cmd);
   cmd->callback([o] {
-    const auto [w, h] = parse_size(o->size);
+    if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) > 1)
+      throw InputError("--effects/--matrix/--explicit", "", "choose one mode");
+    if ((!o->markdown.empty() || !o->plot.empty()) && !o->matrix) throw InputError("--markdown/--plot", "", "need --matrix");
     RenderSession session(o->package, o->variant.scene_options());
-    render::CameraSpec camera = render::package_camera(session.package);
-    try {
-      if (!o->camera.empty()) camera = render::parse_camera(o->camera, camera);
-    } catch (const std::invalid_argument& e) {
-      throw InputError("--camera", "", e.what());
-    }
-    render::RenderSettings base = o->variant.render_settings();
-    base.depth_cue = float(4 * glm::length(camera.at - camera.eye));
-    const std::vector<EffectVariant> variants = effect_variants(base, render::package_effects(session.package), camera);
-    render::Renderer renderer(session.device, *session.scene, variants.front().settings);
-    const gpu::Camera gpu_camera = camera.to_gpu(w, h);
-    std::vector<std::vector<double>> seconds(variants.size());
-    // Each round starts one variant later, so no variant always follows the costly "all on" frame.
-    for (unsigned round = 0; round <= o->frames; ++round)
-      for (std::size_t k = 0; k < variants.size(); ++k) {
-        const std::size_t v = (k + round) % variants.size();
-        renderer.set_settings(variants[v].settings);
-        const double s = renderer.render(gpu_camera).seconds;
-        if (round > 0) seconds[v].push_back(s);  // round 0 compiles every pipeline
-      }
-    const double reference = median(seconds[1]);
     nlohmann::ordered_json out;
-    out["device"] = session.device.description();
     out["package"] = o->package;
-    out["size"] = {w, h};
-    out["rounds"] = o->frames;
-    out["camera"] = camera.to_string();
-    out["reference"] = variants[1].name;
-    std::printf("%s, %ux%u, %u rounds, camera %s\n%-16s %12s %12s %14s\n", session.device.description().c_str(), w, h, o->frames,
-                camera.to_string().c_str(), "variant", "median s", "vs all off", "rays/frame");
-    for (std::size_t v = 0; v < variants.size(); ++v) {
-      const double m = median(seconds[v]);
-      const std::uint64_t rays = render::Renderer::rays_per_frame(variants[v].settings, std::uint64_t(w) * h);
-      std::printf("%-16s %12.4f %12.3f %14llu\n", variants[v].name.c_str(), m, m / reference, (unsigned long long)rays);
-      out["variants"].push_back({{"name", variants[v].name},
-                                 {"median_seconds", m},
-                                 {"min_seconds", *std::min_element(seconds[v].begin(), seconds[v].end())},
-                                 {"ratio_to_all_off", m / reference},
-                                 {"rays_per_frame_at_most", rays},
-                                 {"seconds", seconds[v]}});
-    }
-    if (!o->json.empty()) {
-      const std::string text = out.dump(2) + "\n";
-      write_file_atomically(o->json, std::as_bytes(std::span(text.data(), text.size())));
-    }
+    out["package_bytes"] = session.package.file_size();
+    out["device"] = session.device.description();
+    out["mode"] = o->effects ? "effects" : o->matrix ? "matrix" : o->explicit_instancing ? "explicit" : "frames";
+    std::printf("%s on %s\n", o->package.c_str(), session.device.description().c_str());
+    if (o->effects) run_effects(*o, session, out);
+    else if (o->matrix) run_matrix(*o, session, out);
+    else if (o->explicit_instancing) run_explicit(*o, session, out);
+    else run_frames(*o, session, out);
+    out["validation_errors"] = session.validation_errors();
+    if (!o->json.empty()) write_text(o->json, out.dump(2) + "\n");
     if (session.validation_errors() != 0)
       throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");
   });

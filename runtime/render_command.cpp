@@ -20,15 +20,17 @@
 #include "runtime/render/image_io.hpp"
 #include "runtime/render/renderer.hpp"
 #include "runtime/render_session.hpp"
+#include "runtime/viewer/script.hpp"
 
 namespace nano::view {
 
+// One strict rule for every image size (the viewer's scripts read sizes with it too).
 std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text) {
-  unsigned w = 0, h = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%ux%u%c", &w, &h, &tail) != 2 || w == 0 || h == 0 || w > 16384 || h > 16384)
-    throw InputError("--size", "", "expected WxH with 1 ≤ W, H ≤ 16384, got '" + text + "'");
-  return {w, h};
+  try {
+    return viewer::parse_size_text(text);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--size", "", e.what());
+  }
 }
 
 namespace {

@@ -18,6 +18,10 @@ void VariantOptions::add_to(CLI::App& command) {
   command.add_option("--levels", levels, "3+rep (µLAS, repLAS, mLAS, nLAS) | 3 (every replication slot queried) | 2 (membrane atoms directly in "
                   "the tile BLASes, placed in tile space: the paper's two-level design)")
       ->capture_default_str();
+  command.add_option("--precision", precision,
+                     "two-float-eye (the eye enters compartment space as a double-computed float pair) | camera-relative "
+                     "(float transform of the eye) | world (world-space µLAS, plain float)")
+      ->capture_default_str();
 }
 
 render::SceneOptions VariantOptions::scene_options() const {
@@ -36,6 +40,11 @@ render::RenderSettings VariantOptions::render_settings() const {
   if (levels != "3+rep" && levels != "3" && levels != "2")
     throw InputError("--levels", "", "expected 3+rep, 3 or 2, got '" + levels + "'");
   render::RenderSettings s;
+  try {
+    s.precision = render::parse_precision(precision);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--precision", "", e.what());
+  }
   s.exact_prism = prism == "exact";
   s.replication_las = levels == "3+rep";
   s.two_level = levels == "2";
@@ -91,23 +100,49 @@ OracleEffects oracle_effects(const format::Package& package, const render::Effec
   return o;
 }
 
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point& mark) {
+  const auto now = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(now - mark).count();
+  mark = now;
+  return s;
+}
+
+// Opens and validates (a package that fails never reaches the device), timing both steps.
+format::Package open_timed(const std::filesystem::path& path, SessionTimings& t) {
+  t.mark = std::chrono::steady_clock::now();
+  format::Package p = format::Package::open(path);
+  t.map = seconds_since(t.mark);
+  format::validate_semantics(p);
+  t.validate = seconds_since(t.mark);
+  return p;
+}
+
+void build_scene(RenderSession& s, const render::SceneOptions& options) {
+  s.timings.device = seconds_since(s.timings.mark);
+  std::fprintf(stderr, "device: %s\n", s.device.description().c_str());
+  s.scene = std::make_unique<render::GpuScene>(s.device, s.package, options);
+  s.timings.scene = seconds_since(s.timings.mark);
+}
+
+}  // namespace
+
 RenderSession::RenderSession(const std::filesystem::path& path, const render::SceneOptions& options)
-    : package(format::open_validated(path)),
+    : package(open_timed(path, timings)),
       instance(vk::InstanceOptions{.validation = vk::validation_requested_by_environment()}),
       device(vk::open_ray_query_device(instance)) {
-  std::fprintf(stderr, "device: %s\n", device.description().c_str());
-  scene = std::make_unique<render::GpuScene>(device, package, options);
+  build_scene(*this, options);
 }
 
 RenderSession::RenderSession(const std::filesystem::path& path, const render::SceneOptions& options,
                              const PresentationOptions& presentation)
-    : package(format::open_validated(path)),
+    : package(open_timed(path, timings)),
       instance(vk::InstanceOptions{.validation = vk::validation_requested_by_environment(),
                                    .extensions = presentation.instance_extensions}),
       surface(instance.handle(), presentation.create_surface(instance.handle())),
       device(vk::open_ray_query_device(instance, vk::DeviceOptions{presentation.device_extensions, surface.handle()})) {
-  std::fprintf(stderr, "device: %s\n", device.description().c_str());
-  scene = std::make_unique<render::GpuScene>(device, package, options);
+  build_scene(*this, options);
 }
 
 RenderSession::~RenderSession() { scene.reset(); }  // before the device goes

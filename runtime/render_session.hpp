@@ -1,6 +1,7 @@
 #pragma once
 // What `render`, `verify` and `bench` share: a package opened and validated BEFORE any GPU work
 // (a package that fails validation never reaches the device), the Vulkan device, the scene on it.
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -21,7 +22,7 @@ namespace nano::view {
 
 // The variant options `render`, `verify` and `bench` share: --shell, --prism, --levels.
 struct VariantOptions {
-  std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep";
+  std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep", precision = "two-float-eye";
   void add_to(CLI::App& command);
   // Throw InputError naming the option whose value is not one of its choices.
   render::SceneOptions scene_options() const;
@@ -59,7 +60,17 @@ struct OracleEffects {
 };
 OracleEffects oracle_effects(const format::Package& package, const render::EffectSettings& effects);
 
+// Wall-clock seconds of each step of opening a session (bench's load time by stage).
+struct SessionTimings {
+  double map = 0;       // open and map the file, check the header, table and checksums
+  double validate = 0;  // format::validate_semantics
+  double device = 0;    // Vulkan instance and device
+  double scene = 0;     // GpuScene: uploads and acceleration-structure builds (LoadReport splits it)
+  std::chrono::steady_clock::time_point mark;  // end of the previous step
+};
+
 struct RenderSession {
+  SessionTimings timings;  // first: the members after it are timed as they are built
   format::Package package;
   vk::Instance instance;
   vk::Surface surface;  // presentation sessions only; between instance and device for destruction order

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <map>
+#include <string>
 #include <stdexcept>
 #include <tuple>
 
@@ -22,9 +23,11 @@ constexpr std::uint32_t b_frame = kSceneBindingCount, b_hits = b_frame + 1, b_co
 
 // What selects a pipeline: the shader build and its specialization constants.
 struct Variant {
-  bool exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows;
+  bool exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows, eye_from_host,
+      world_space_ulas;
   auto key() const {
-    return std::tuple(exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows);
+    return std::tuple(exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows,
+                      eye_from_host, world_space_ulas);
   }
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
@@ -34,7 +37,8 @@ Variant variant_of(const RenderSettings& s) {
   const bool effects = !s.without_effect_code;
   return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
           effects && e.clipping_on && e.clipping.any(), effects && e.jitter_on && e.jitter_degrees > 0,
-          effects && e.ambient_occlusion_on && e.ao_rays > 0, effects && e.shadows_on};
+          effects && e.ambient_occlusion_on && e.ao_rays > 0, effects && e.shadows_on,
+          s.precision == Precision::two_float_eye, s.precision == Precision::world};
 }
 
 vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
@@ -47,6 +51,8 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   desc.specialization.set_bool(0, v.exact_prism);
   desc.specialization.set_bool(1, v.replication_las);
   desc.specialization.set_bool(2, v.two_level);
+  desc.specialization.set_bool(7, v.eye_from_host);
+  desc.specialization.set_bool(8, v.world_space_ulas);
   if (!v.no_effect_code) {
     desc.specialization.set_bool(3, v.clipping);
     desc.specialization.set_bool(4, v.jitter);
@@ -104,8 +110,8 @@ struct Renderer::Impl {
     const glm::vec3 light = e.shadows_on ? glm::vec3(e.light_direction) : settings.light;
     frame.light = glm::vec4(glm::normalize(light), settings.depth_cue);
     if (e.clipping_on) {
-      // Camera-relative, like the µLAS: n·(x' + eye) + d = n·x' + (d + n·eye), in double.
-      const glm::dvec3 eye(glm::vec3(camera.position));
+      // In the µLAS's frame: camera-relative, n·(x' + eye) + d = n·x' + (d + n·eye), in double.
+      const glm::dvec3 eye = ulas_origin(camera);
       const std::vector<glm::dvec4> half_spaces = clip_half_spaces(e.clipping);
       for (std::size_t k = 0; k < half_spaces.size(); ++k)
         frame.clip[k] = glm::vec4(glm::vec3(half_spaces[k]), float(half_spaces[k].w + glm::dot(glm::dvec3(half_spaces[k]), eye)));
@@ -118,11 +124,16 @@ struct Renderer::Impl {
     return frame;
   }
 
+  // Where the µLAS's origin lies in the world: the eye, or the world origin (Precision::world).
+  glm::dvec3 ulas_origin(const gpu::Camera& camera) const {
+    return settings.precision == Precision::world ? glm::dvec3(0.0) : glm::dvec3(glm::vec3(camera.position));
+  }
+
   Frame render(const gpu::Camera& camera) {
     const std::uint32_t w = camera.size.x, h = camera.size.y;
     if (w == 0 || h == 0) throw std::invalid_argument("render: image size must be positive");
     const auto start = std::chrono::steady_clock::now();
-    const glm::dvec3 eye(glm::vec3(camera.position));
+    const glm::dvec3 eye = ulas_origin(camera);
     if (settings.effects.animation_on) {
       const std::vector<format::InstanceTransform> moved = animated_instance_transforms(scene.package(), settings.effects.time);
       scene.set_eye(eye, moved);
@@ -161,6 +172,22 @@ struct Renderer::Impl {
     return out;
   }
 };
+
+Precision parse_precision(std::string_view text) {
+  if (text == "two-float-eye") return Precision::two_float_eye;
+  if (text == "camera-relative") return Precision::camera_relative;
+  if (text == "world") return Precision::world;
+  throw std::invalid_argument("expected two-float-eye, camera-relative or world, got '" + std::string(text) + "'");
+}
+
+const char* to_string(Precision precision) {
+  switch (precision) {
+    case Precision::two_float_eye: return "two-float-eye";
+    case Precision::camera_relative: return "camera-relative";
+    case Precision::world: return "world";
+  }
+  return "?";
+}
 
 Renderer::Renderer(const vk::Device& device, GpuScene& scene, const RenderSettings& settings)
     : impl_(std::make_unique<Impl>(device, scene, settings)) {}

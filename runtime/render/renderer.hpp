@@ -3,6 +3,7 @@
 // the hit ids, depth and a shaded colour out.
 #include <cstdint>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -14,10 +15,20 @@
 
 namespace nano::render {
 
+// Where the primary ray's precision comes from (bench knob; README "Knobs").
+enum class Precision {
+  two_float_eye,    // µLAS relative to the eye and the compartment-space eye as a double-computed float pair
+  camera_relative,  // µLAS relative to the eye; the eye enters compartment space by the float transform
+  world,            // µLAS in world coordinates, rays from the world eye: plain float everywhere
+};
+Precision parse_precision(std::string_view text);  // throws std::invalid_argument naming the choices
+const char* to_string(Precision precision);
+
 struct RenderSettings {
   bool exact_prism = true;           // false: a prism's AABB is its only test (bench knob)
   bool replication_las = true;       // false: query every replication slot's mLAS (no repLAS; bench knob)
   bool two_level = false;            // membranes through the scene's atom squares (needs two_level_membranes)
+  Precision precision = Precision::two_float_eye;
   glm::vec3 light{0.3f, 0.5f, 0.8f}; // direction towards the light (world; normalised here)
   float depth_cue = 0;               // Å over which colour fades towards the background (0: off)
   EffectSettings effects;            // all off by default; render::package_effects gives the scene's

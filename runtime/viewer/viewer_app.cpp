@@ -312,13 +312,22 @@ private:
         if (state_.path.play_time) {  // the user takes the camera back
           stop_playback(state_);
           state_.status = "path playback stopped by camera input";
+          log_status();
         }
       }
       // Advanced before K, L and the panel act: a playback they start shows time 0 first instead of
       // jumping ahead by however long the previous (perhaps full-resolution) frame took.
       advance_playback(state_, dt);
-      if (input.add_keyframe) record_keyframe(state_);
-      if (input.toggle_path) toggle_playback(state_);
+      log_status();
+      // K and L can both arrive during one long frame: each outcome is logged.
+      if (input.add_keyframe) {
+        record_keyframe(state_);
+        log_status();
+      }
+      if (input.toggle_path) {
+        toggle_playback(state_);
+        log_status();
+      }
       if (state_.playing && !state_.path.play_time) {  // while a path plays, it drives the time
         state_.settings.effects.time += dt * state_.play_speed;
         state_.touch();
@@ -330,6 +339,7 @@ private:
         stop_playback(state_);  // an edit in the camera section is camera input too
         state_.status = "path playback stopped by a camera edit";
       }
+      log_status();
       // A slider being dragged is motion too: preview it at reduced resolution.
       const bool panel_dragging = ImGui::IsAnyItemActive() && state_.version != before_panel;
       overlay_->end_frame();

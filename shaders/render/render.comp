@@ -36,6 +36,11 @@ layout(constant_id = 1) const bool kReplicationLas = true;
 // 1: the paper's two-level membrane: every atom of a Wang square in one BLAS, placed in tile space by
 // the affine M1 (an approximation of the true placement that verify measures); 0: mLAS → nLAS.
 layout(constant_id = 2) const bool kTwoLevel = false;
+// Precision knob (bench): 7: the primary ray's compartment-space eye from the host's double
+// computation as a two-float sum (RenderInstance) — false: the hardware's float transform of the ray
+// origin; 8: the µLAS in world coordinates with the ray from the world eye — false: camera-relative.
+layout(constant_id = 7) const bool kEyeFromHost = true;
+layout(constant_id = 8) const bool kWorldSpaceUlas = false;
 // Scene effects (runtime/render/effects.hpp), each compiled in only when on: a specialization
 // constant that is false removes the effect's code before the driver compiles the pipeline. The
 // NANO_NO_EFFECTS build of this file (render_no_effects) has no effect code at all, to measure that
@@ -474,7 +479,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
     uint inst = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
     uint prim = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     vec3 o;
-    if (primary) {
+    if (primary && kEyeFromHost) {
       o = render_instances[inst].eye_hi.xyz;
       eye_lo = render_instances[inst].eye_lo.xyz;
     } else {
@@ -510,7 +515,8 @@ void main() {
   if (px.x >= cam.size.x || px.y >= cam.size.y) return;
   vec3 d = camera_ray_direction(cam, px.x, px.y);
 
-  trace_scene(vec3(0.0), d, placement_inf(), true);
+  vec3 origin = kWorldSpaceUlas ? frame.camera.position.xyz : vec3(0.0);
+  trace_scene(origin, d, placement_inf(), true);
 
   uint index = px.y * cam.size.x + px.x;
   vec3 colour = vec3(1.0);  // background
@@ -526,7 +532,7 @@ void main() {
     float ambient = 1.0;
     // Secondary rays leave the side of the sphere the camera sees.
     vec3 n_view = dot(n, d) > 0.0 ? -n : n;
-    vec3 p = offset_ray_origin(t * d, n_view);
+    vec3 p = offset_ray_origin(origin + t * d, n_view);
     if (kShadows) {
       lambert = max(dot(n_view, light), 0.0);
       if (lambert > 0.0 && trace_scene(p, light, placement_inf(), false)) lambert = 0.0;

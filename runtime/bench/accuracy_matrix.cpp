@@ -1,0 +1,188 @@
+#include "runtime/bench/accuracy_matrix.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include "runtime/bench/frame_stats.hpp"
+#include "runtime/explicit/oracle_render.hpp"
+#include "runtime/explicit/render_compare.hpp"
+#include "runtime/render_session.hpp"
+
+namespace nano::bench {
+namespace {
+
+// What the oracle must know of a variant's effects: only clipping, jitter and animation change
+// which atom a pixel shows.
+std::string oracle_key(const render::EffectSettings& e) {
+  char key[160];
+  std::snprintf(key, sizeof key, "c%d j%d a%d t%.9g", int(e.clipping_on && e.clipping.any()), int(e.jitter_on), int(e.animation_on), e.time);
+  return key;
+}
+
+}  // namespace
+
+std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package,
+                                           const render::CameraSpec& focus) {
+  std::vector<MatrixVariant> v;
+  const auto add = [&](std::string knob, std::string value, auto&& change, std::string note = {}) {
+    MatrixVariant m;
+    m.knob = std::move(knob), m.value = std::move(value), m.settings = base, m.note = std::move(note);
+    change(m);
+    v.push_back(std::move(m));
+  };
+  add("default", "3+rep, adaptive-overlap, exact, two-float-eye, effects off", [](MatrixVariant& m) { m.is_default = true; });
+  add("hierarchy", "3 (no repLAS)", [](MatrixVariant& m) { m.settings.replication_las = false; });
+  add("hierarchy", "2 (atoms in tile BLAS)", [](MatrixVariant& m) {
+    m.settings.two_level = true;
+    m.scene.two_level_membranes = true;
+  }, "membranes placed by the affine M1: an approximation");
+  for (render::ShellMode shell : {render::ShellMode::adaptive, render::ShellMode::fixed_overlap, render::ShellMode::fixed})
+    add("shell", render::to_string(shell), [&](MatrixVariant& m) { m.scene.shell = shell; },
+        shell == render::ShellMode::fixed_overlap ? "" : "without overlap, molecules on triangle edges lose their outer part");
+  add("prism test", "aabb only", [](MatrixVariant& m) { m.settings.exact_prism = false; });
+  add("precision", "camera-relative float", [](MatrixVariant& m) { m.settings.precision = render::Precision::camera_relative; });
+  add("precision", "world float", [](MatrixVariant& m) { m.settings.precision = render::Precision::world; });
+  render::EffectSettings effects = render::package_effects(package);
+  effects.clipping_on = effects.animation_on = effects.jitter_on = effects.ambient_occlusion_on = effects.shadows_on = false;
+  effects.time = 1.0;
+  if (!effects.clipping.any()) {
+    const glm::dvec3 n = glm::normalize(focus.at - focus.eye);
+    effects.clipping.planes.push_back(glm::dvec4(n, -glm::dot(n, focus.at)));
+  }
+  if (effects.jitter_degrees == 0) effects.jitter_degrees = 5, effects.jitter_hz = 1;
+  if (effects.ao_rays == 0) effects.ao_rays = 8;
+  const auto effect = [&](const char* name, bool render::EffectSettings::*flag, std::string note = {}) {
+    add("effect", name, [&](MatrixVariant& m) {
+      m.settings.effects = effects;
+      m.settings.effects.*flag = true;
+    }, std::move(note));
+  };
+  effect("clipping", &render::EffectSettings::clipping_on, "the oracle clips too: error is disagreement, not what is cut");
+  const bool animated = package.record_count(format::SectionKind::scene) == 1 &&
+                        (package.records<format::SectionKind::scene>()[0].effect_flags & gpu::NANO_EFFECT_PROXY_ANIMATION);
+  if (animated) effect("animation", &render::EffectSettings::animation_on, "the oracle moves the instances too");
+  effect("jitter", &render::EffectSettings::jitter_on, "the oracle jitters too");
+  effect("ao", &render::EffectSettings::ambient_occlusion_on, "shading only: ids unchanged by design");
+  effect("shadows", &render::EffectSettings::shadows_on, "shading only: ids unchanged by design");
+  return v;
+}
+
+std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const format::Package& package,
+                                           render::GpuScene& default_scene, const std::vector<gpu::Camera>& cameras,
+                                           const std::vector<MatrixVariant>& variants, unsigned rounds,
+                                           const Progress& progress) {
+  const auto say = [&](const std::string& text) {
+    if (progress) progress(text);
+  };
+  const MatrixVariant* reference = nullptr;
+  for (const MatrixVariant& v : variants)
+    if (v.is_default) reference = &v;
+  if (!reference) throw std::invalid_argument("run_accuracy_matrix: no default variant");
+  render::Renderer default_renderer(device, default_scene, reference->settings);
+  for (const gpu::Camera& c : cameras) default_renderer.render(c);  // compiles the default pipeline
+
+  // Oracle images per effect signature and camera, made once.
+  std::map<std::string, std::vector<std::vector<gpu::PixelHit>>> oracle_images;
+  const auto oracle_for = [&](const render::EffectSettings& e) -> const std::vector<std::vector<gpu::PixelHit>>& {
+    const std::string key = oracle_key(e);
+    auto it = oracle_images.find(key);
+    if (it != oracle_images.end()) return it->second;
+    say("oracle for " + key);
+    const view::OracleEffects o = view::oracle_effects(package, e);
+    const oracle::ExplicitScene scene(package, o.scene);
+    std::vector<std::vector<gpu::PixelHit>> images;
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      oracle::OracleRenderOptions options;
+      options.camera_name = "matrix view " + std::to_string(k);
+      options.clip = o.clip;
+      images.push_back(oracle::oracle_render(scene, package, cameras[k], options));
+    }
+    return oracle_images.emplace(key, std::move(images)).first->second;
+  };
+
+  std::vector<MatrixRow> rows;
+  for (const MatrixVariant& v : variants) {
+    say(v.knob + " = " + v.value);
+    const bool own_scene = v.scene.shell != render::SceneOptions{}.shell || v.scene.two_level_membranes;
+    std::unique_ptr<render::GpuScene> scene;
+    if (own_scene) scene = std::make_unique<render::GpuScene>(device, package, v.scene);
+    render::GpuScene& target = own_scene ? *scene : default_scene;
+    render::Renderer renderer(device, target, v.settings);
+    MatrixRow row;
+    row.variant = v;
+    row.device_bytes = target.report().memory.total();
+    // Warm-up and accuracy: one frame per camera against the oracle.
+    const auto& reference_images = oracle_for(v.settings.effects);
+    std::uint64_t agree = 0;
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      const render::Frame f = renderer.render(cameras[k]);
+      const oracle::CompareResult r = oracle::compare_images(reference_images[k], f.hits, cameras[k].size.x, cameras[k].size.y, 0);
+      agree += r.agree, row.pixels += r.pixels;
+    }
+    row.wrong_percent = row.pixels ? 100.0 * double(row.pixels - agree) / double(row.pixels) : 0.0;
+    // Time: the variant and the default alternately on the same frames, the order flipping per
+    // round, so both see the same machine.
+    std::vector<double> mine, theirs;
+    for (unsigned round = 0; round < rounds; ++round)
+      for (const gpu::Camera& c : cameras) {
+        if (round % 2 == 0) {
+          mine.push_back(renderer.render(c).seconds);
+          theirs.push_back(default_renderer.render(c).seconds);
+        } else {
+          theirs.push_back(default_renderer.render(c).seconds);
+          mine.push_back(renderer.render(c).seconds);
+        }
+      }
+    row.seconds_median = frame_stats(mine).median;
+    row.default_seconds_median = frame_stats(theirs).median;
+    row.time_ratio = row.seconds_median / row.default_seconds_median;
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+nlohmann::json to_json(const std::vector<MatrixRow>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const MatrixRow& r : rows)
+    out.push_back({{"knob", r.variant.knob},
+                   {"value", r.variant.value},
+                   {"default", r.variant.is_default},
+                   {"time_ratio", r.time_ratio},
+                   {"frame_seconds_median", r.seconds_median},
+                   {"default_frame_seconds_median", r.default_seconds_median},
+                   {"wrong_pixels_percent", r.wrong_percent},
+                   {"pixels", r.pixels},
+                   {"device_memory_bytes", r.device_bytes},
+                   {"note", r.variant.note}});
+  return out;
+}
+
+std::string matrix_markdown(const std::vector<MatrixRow>& rows, const std::string& heading) {
+  std::string md = heading + "\n\n| knob | value | frame time vs default | pixels wrong vs oracle | device memory | note |\n|---|---|---|---|---|---|\n";
+  for (const MatrixRow& r : rows) {
+    char line[512];
+    std::snprintf(line, sizeof line, "| %s | %s | %.2f× | %.3f %% | %.1f MB | %s |\n", r.variant.knob.c_str(), r.variant.value.c_str(),
+                  r.time_ratio, r.wrong_percent, double(r.device_bytes) / 1e6, r.variant.note.c_str());
+    md += line;
+  }
+  return md;
+}
+
+PlotSpec matrix_plot(const std::vector<MatrixRow>& rows, const std::string& title) {
+  PlotSpec spec;
+  spec.title = title;
+  spec.x_label = "frame time / default";
+  spec.y_label = "% pixels differing from the oracle";
+  std::map<std::string, PlotSeries> by_knob;
+  std::vector<std::string> order;
+  for (const MatrixRow& r : rows) {
+    if (!by_knob.count(r.variant.knob)) order.push_back(r.variant.knob), by_knob[r.variant.knob].name = r.variant.knob;
+    by_knob[r.variant.knob].points.push_back({r.time_ratio, r.wrong_percent, r.variant.is_default ? "default" : r.variant.value});
+  }
+  for (const std::string& k : order) spec.series.push_back(by_knob[k]);
+  return spec;
+}
+
+}  // namespace nano::bench

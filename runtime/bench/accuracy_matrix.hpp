@@ -1,0 +1,58 @@
+#pragma once
+// The accuracy/time matrix of `nanoview bench --matrix` (DESIGN.md "Knobs that trade accuracy for
+// time"): every knob value against the default on the same frames in one run — frame time as a
+// ratio to the default measured alternately with it, and the share of pixels that differ from the
+// CPU oracle (explicit instancing with the same effects).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "format/package.hpp"
+#include "runtime/bench/svg_plot.hpp"
+#include "runtime/render/camera_spec.hpp"
+#include "runtime/render/gpu_scene.hpp"
+#include "runtime/render/renderer.hpp"
+#include "runtime/vk/device.hpp"
+
+namespace nano::bench {
+
+struct MatrixVariant {
+  std::string knob, value;
+  render::SceneOptions scene;  // a value that needs other acceleration structures gets its own GpuScene
+  render::RenderSettings settings;
+  bool is_default = false;
+  std::string note;  // what the error column means for it, when not the obvious
+};
+
+// The default first, then hierarchy, shell, prism test, precision and each effect. `base` holds the
+// default knobs; `focus` places the clipping plane (through its target, facing the camera).
+std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package,
+                                           const render::CameraSpec& focus);
+
+struct MatrixRow {
+  MatrixVariant variant;
+  double seconds_median = 0;          // per frame, over cameras × rounds
+  double default_seconds_median = 0;  // the default's, measured alternately with this variant
+  double time_ratio = 1;              // seconds_median / default_seconds_median
+  double wrong_percent = 0;           // pixels not agreeing with the oracle (oracle::compare_images)
+  std::uint64_t pixels = 0;
+  std::uint64_t device_bytes = 0;     // device memory of the scene the variant renders
+};
+
+using Progress = std::function<void(const std::string&)>;
+
+// Renders every camera with every variant (after one warm-up frame each), `rounds` times, and
+// compares one frame per camera with the oracle. `default_scene` must hold the default scene options.
+std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const format::Package& package,
+                                           render::GpuScene& default_scene, const std::vector<gpu::Camera>& cameras,
+                                           const std::vector<MatrixVariant>& variants, unsigned rounds,
+                                           const Progress& progress = {});
+
+nlohmann::json to_json(const std::vector<MatrixRow>& rows);
+std::string matrix_markdown(const std::vector<MatrixRow>& rows, const std::string& heading);
+PlotSpec matrix_plot(const std::vector<MatrixRow>& rows, const std::string& title);
+
+}  // namespace nano::bench

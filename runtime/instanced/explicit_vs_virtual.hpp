@@ -1,0 +1,52 @@
+#pragma once
+// Explicit against virtual instancing on the same device, package and cameras (issue #7 item 5):
+// frame time, device memory and whether both show the same atom of the same copy in every pixel.
+#include <cstdint>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "format/package.hpp"
+#include "runtime/instanced/instanced_scene.hpp"
+#include "runtime/render/gpu_scene.hpp"
+#include "runtime/vk/device.hpp"
+#include "shared/camera.h"
+
+namespace nano::instanced {
+
+// Pixels that agree: both background, or the same (atom, copy number) with depths within
+// oracle::depth_tolerance of the reference's (max(1e-3 Å, 1e-5·t)). Only these fields: explicit
+// instancing does not know a copy's placement ids. Throws std::invalid_argument for images of
+// different sizes.
+struct HitAgreement {
+  std::uint64_t pixels = 0, agree = 0;
+  std::uint64_t missed = 0;          // exactly one side hit something
+  std::uint64_t different_atom = 0;  // both hit, another (atom, copy number)
+  std::uint64_t depth_only = 0;      // same atom and copy, depth beyond the tolerance
+  double max_depth_difference = 0;   // over pixels with the same atom and copy
+  double agreement() const { return pixels == 0 ? 1.0 : double(agree) / double(pixels); }
+  HitAgreement& operator+=(const HitAgreement& other);
+};
+HitAgreement compare_hits(const std::vector<gpu::PixelHit>& reference, const std::vector<gpu::PixelHit>& test);
+
+struct ExplicitVsVirtual {
+  double explicit_seconds_median = 0, virtual_seconds_median = 0;  // per frame, wall clock with read-back
+  std::uint64_t explicit_device_bytes = 0, virtual_device_bytes = 0;
+  std::uint64_t copies = 0;
+  double agreement = 0;            // HitAgreement over every camera's first-round frames
+  InstancedReport explicit_report; // the explicit scene's build: memory by category, seconds
+  std::uint64_t frames = 0;        // per renderer, warm-ups excluded
+  nlohmann::json to_json() const;
+};
+
+// Builds the explicit scene (default InstancedOptions: refuses > 2,000,000 copies with InputError),
+// warms both renderers up with one frame each, then renders `cameras` for `rounds` rounds, each
+// camera by explicit then virtual instancing, and takes the median frame time of each. Virtual
+// memory is virtual_scene.report().memory.total() (sections the device imports in place are not
+// counted there; the explicit scene copies its atoms). Throws std::invalid_argument without
+// cameras or rounds.
+ExplicitVsVirtual compare_explicit_and_virtual(const vk::Device& device, const format::Package& package,
+                                               render::GpuScene& virtual_scene, const std::vector<gpu::Camera>& cameras,
+                                               unsigned rounds);
+
+}  // namespace nano::instanced

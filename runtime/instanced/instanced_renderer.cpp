@@ -1,0 +1,101 @@
+#include "runtime/instanced/instanced_renderer.hpp"
+
+#include <chrono>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "runtime/vk/buffer.hpp"
+#include "runtime/vk/compute_pipeline.hpp"
+
+extern const std::uint32_t nano_spv_instanced_comp[];
+extern const std::size_t nano_spv_instanced_comp_words;
+
+namespace nano::instanced {
+namespace {
+
+constexpr std::uint32_t kWorkgroup = 8;  // local_size_x = local_size_y of instanced.comp
+constexpr std::uint32_t b_frame = kSceneBindingCount, b_hits = b_frame + 1, b_colours = b_frame + 2;
+
+// The Frame block of instanced.comp (std430).
+struct FrameRecord {
+  gpu::Camera camera;
+  glm::vec4 origin;  // xyz: eye in the TLAS's space
+  glm::vec4 light;   // xyz: unit direction towards the light
+};
+static_assert(sizeof(gpu::Camera) == 80 && sizeof(FrameRecord) == 112);
+static_assert(sizeof(gpu::PixelHit) == 48);
+
+vk::ComputePipelineDesc pipeline_desc() {
+  vk::ComputePipelineDesc desc;
+  desc.code = {nano_spv_instanced_comp, nano_spv_instanced_comp_words};
+  std::vector<vk::DescriptorBinding> set{{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
+  for (std::uint32_t b = 1; b <= b_colours; ++b) set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  desc.sets = {set};
+  return desc;
+}
+
+}  // namespace
+
+struct InstancedRenderer::Impl {
+  const vk::Device& device;
+  InstancedScene& scene;
+  glm::vec3 light;
+  vk::ComputePipeline pipeline;
+  vk::DescriptorPool pool;
+  VkDescriptorSet set;
+  vk::Buffer frame_buffer, hit_buffer, colour_buffer;
+
+  Impl(const vk::Device& d, InstancedScene& s, const glm::vec3& l)
+      : device(d), scene(s), pipeline(d, pipeline_desc()), pool(d, pipeline), set(pool.allocate(pipeline.set_layout(0))) {
+    if (!(glm::length(l) > 0)) throw std::invalid_argument("InstancedRenderer: the light direction must be non-zero");
+    light = glm::normalize(l);
+    frame_buffer = vk::Buffer(d, sizeof(FrameRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
+  }
+
+  InstancedFrame render(const gpu::Camera& camera) {
+    const std::uint32_t w = camera.size.x, h = camera.size.y;
+    if (w == 0 || h == 0) throw std::invalid_argument("InstancedRenderer::render: image size must be positive");
+    const auto start = std::chrono::steady_clock::now();
+    FrameRecord frame{};
+    frame.camera = camera;
+    frame.origin = glm::vec4(scene.prepare(glm::dvec3(glm::vec3(camera.position))), 0.0f);
+    frame.light = glm::vec4(light, 0.0f);
+    frame_buffer.write(std::as_bytes(std::span(&frame, 1)));
+    const VkDeviceSize pixels = VkDeviceSize(w) * h;
+    if (hit_buffer.size() != pixels * sizeof(gpu::PixelHit)) {
+      hit_buffer = vk::Buffer(device, pixels * sizeof(gpu::PixelHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
+      colour_buffer = vk::Buffer(device, pixels * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
+    }
+    // Rewritten every frame: prepare() may have replaced the TLAS.
+    scene.write_descriptors(set);
+    vk::write_storage_buffer(device.handle(), set, b_frame, frame_buffer);
+    vk::write_storage_buffer(device.handle(), set, b_hits, hit_buffer);
+    vk::write_storage_buffer(device.handle(), set, b_colours, colour_buffer);
+    device.submit_once([&](VkCommandBuffer commands) {
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+      vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
+      vkCmdDispatch(commands, (w + kWorkgroup - 1) / kWorkgroup, (h + kWorkgroup - 1) / kWorkgroup, 1);
+      VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+      to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+      to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0,
+                           nullptr, 0, nullptr);
+    });
+    InstancedFrame out;
+    out.width = w, out.height = h;
+    out.hits.resize(pixels);
+    out.rgba.resize(pixels);
+    hit_buffer.read(std::as_writable_bytes(std::span(out.hits)));
+    colour_buffer.read(std::as_writable_bytes(std::span(out.rgba)));
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
+};
+
+InstancedRenderer::InstancedRenderer(const vk::Device& device, InstancedScene& scene, const glm::vec3& light)
+    : impl_(std::make_unique<Impl>(device, scene, light)) {}
+InstancedRenderer::~InstancedRenderer() = default;
+InstancedFrame InstancedRenderer::render(const gpu::Camera& camera) { return impl_->render(camera); }
+
+}  // namespace nano::instanced

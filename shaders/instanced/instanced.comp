@@ -1,0 +1,111 @@
+#version 460
+// Explicit instancing, the conventional design the virtual renderer (shaders/render/render.comp) is
+// measured against (runtime/instanced/): one TLAS with one instance per molecule copy, each
+// referencing its molecule type's BLAS of atom boxes. One ray query per pixel; every candidate box
+// is an atom, tested as a sphere in the copy's object (molecule) space with the ray the hardware
+// transformed. Hit rule (as render.comp and the oracle): the smallest root t ≥ 0; t along an affine
+// object-space ray equals t along the unit world ray, so depths compare directly.
+//
+// Every index read from a buffer is checked against the buffer's length: a record that names
+// something outside it is skipped, never read.
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+#include "shared/camera.h"
+#include "shared/ray_sphere.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+// Layouts mirror runtime/instanced/instanced_scene.cpp (static_asserts there).
+// Per TLAS instance (its custom index): x, y: copy number low / high word (oracle::Copy::number);
+// z: molecule type; w: reserved.
+layout(set = 0, binding = 0) uniform accelerationStructureEXT tlas;
+layout(set = 0, binding = 1, std430) readonly buffer Copies { uvec4 copies[]; };
+// Per molecule type: range.x: first entry in `orders`, range.y: primitives of its BLAS; colour: linear RGB.
+struct TypeRecord {
+  uvec4 range;
+  vec4 colour;
+};
+layout(set = 0, binding = 2, std430) readonly buffer Types { TypeRecord types[]; };
+layout(set = 0, binding = 3, std430) readonly buffer Atoms { vec4 atoms[]; };   // section atoms: centre, radius
+layout(set = 0, binding = 4, std430) readonly buffer Orders { uint orders[]; }; // BLAS primitive → atom index
+layout(set = 0, binding = 5, std430) readonly buffer Frame {
+  Camera camera;
+  vec4 origin;  // xyz: the eye in the TLAS's space (eye − anchor, rounded once from double)
+  vec4 light;   // xyz: unit direction towards the light (world)
+} frame;
+layout(set = 0, binding = 6, std430) writeonly buffer Hits { PixelHit hits[]; };
+layout(set = 0, binding = 7, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+
+vec3 srgb_from_linear(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
+void main() {
+  Camera cam = frame.camera;
+  uvec2 px = gl_GlobalInvocationID.xy;
+  if (px.x >= cam.size.x || px.y >= cam.size.y) return;
+  uint index = px.y * cam.size.x + px.x;
+  if (index >= uint(hits.length()) || index >= uint(colours.length())) return;
+  vec3 d = camera_ray_direction(cam, px.x, px.y);
+
+  PixelHit best;
+  best.depth = placement_inf();
+  best.compartment_instance = kNoHit;  // the copy's identity beyond its number is not kept here
+  best.element = kNoHit;
+  best.kind = kNoHit;
+  best.cell = ivec4(-1);
+  best.instance = kNoHit;
+  best.atom = kNoHit;
+  best.copy_number_lo = kNoHit;
+  best.copy_number_hi = kNoHit;
+  float best_t = placement_inf();
+  vec3 best_normal_o = vec3(0.0);  // object-space outward normal (unnormalised) of the best atom
+  mat3 best_world_to_object = mat3(1.0);
+  uint best_type = 0u;
+
+  rayQueryEXT q;
+  rayQueryInitializeEXT(q, tlas, gl_RayFlagsNoneEXT, 0xFF, frame.origin.xyz, 0.0, d, placement_inf());
+  while (rayQueryProceedEXT(q)) {
+    if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
+    uint c = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
+    if (c >= uint(copies.length())) continue;
+    uvec4 copy = copies[c];
+    if (copy.z >= uint(types.length())) continue;
+    uvec4 range = types[copy.z].range;
+    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+    if (p >= range.y || range.x + p >= uint(orders.length())) continue;
+    uint a = orders[range.x + p];
+    if (a >= uint(atoms.length())) continue;
+    vec4 cr = atoms[a];
+    vec3 om = rayQueryGetIntersectionObjectRayOriginEXT(q, false);
+    vec3 dm = rayQueryGetIntersectionObjectRayDirectionEXT(q, false);
+    float tn;
+    float tf;
+    if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) continue;
+    float t = tn >= 0.0 ? tn : tf;  // the eye inside an atom sees its far side
+    if (!(t >= 0.0) || !(t < best_t)) continue;
+    best_t = t;
+    best.atom = a;
+    best.copy_number_lo = copy.x;
+    best.copy_number_hi = copy.y;
+    best_type = copy.z;
+    best_normal_o = om + t * dm - cr.xyz;
+    best_world_to_object = mat3(rayQueryGetIntersectionWorldToObjectEXT(q, false));
+    rayQueryGenerateIntersectionEXT(q, t);  // later candidates beyond t are culled by the traversal
+  }
+
+  vec3 colour = vec3(1.0);  // background
+  if (best.atom != kNoHit) {
+    best.depth = best_t;
+    // Normals go through the inverse transpose (a non-rigid instance makes the sphere an ellipsoid).
+    vec3 n = normalize(transpose(best_world_to_object) * best_normal_o);
+    // The same simple shading as render.comp without effects or depth cue.
+    float facing = abs(dot(n, d));
+    float lambert = abs(dot(n, frame.light.xyz));
+    colour = types[best_type].colour.rgb * ((0.25 + 0.2 * facing) + 0.55 * lambert);
+  }
+  hits[index] = best;
+  uvec3 b = uvec3(round(srgb_from_linear(colour) * 255.0));
+  colours[index] = b.r | (b.g << 8) | (b.b << 16) | (255u << 24);
+}

@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Checks a `nanoview bench --json` file holds every key the README promises for its mode, with
+values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit"""
+import json, math, sys
+
+path, mode = sys.argv[1], sys.argv[2]
+d = json.load(open(path))
+problems = []
+
+def need(obj, key, where, kind=(int, float), positive=False):
+    if key not in obj:
+        problems.append(f"{where}: missing '{key}'")
+        return None
+    v = obj[key]
+    if kind and not isinstance(v, kind):
+        problems.append(f"{where}.{key}: expected {kind}, got {v!r}")
+    elif positive and not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+        problems.append(f"{where}.{key}: expected a positive finite number, got {v!r}")
+    return v
+
+for k in ("package", "device", "mode"):
+    need(d, k, "top", str)
+need(d, "package_bytes", "top", int, positive=True)
+if d.get("mode") != mode:
+    problems.append(f"mode is {d.get('mode')!r}, expected {mode!r}")
+if d.get("validation_errors", 1) != 0:
+    problems.append("validation_errors must be 0")
+if mode == "frames":
+    need(d, "load_seconds", "top", positive=True)
+    stages = need(d, "load_stages_seconds", "top", dict) or {}
+    for k in ("map", "validate", "device", "upload", "nlas_builds", "mlas_builds", "ulas_builds"):
+        need(stages, k, "load_stages_seconds")
+    fs = need(d, "frame_seconds", "top", dict) or {}
+    for k in ("min", "median", "p95"):
+        need(fs, k, "frame_seconds", positive=True)
+    if fs and not (fs.get("min", 0) <= fs.get("median", 0) <= fs.get("p95", 0)):
+        problems.append("frame_seconds: expected min <= median <= p95")
+    need(d, "rays_per_second", "top", positive=True)
+    need(d, "device_memory_bytes", "top", int, positive=True)
+    mem = need(d, "device_memory", "top", dict) or {}
+    for k in ("package_data", "derived", "nlas", "mlas", "ulas"):
+        need(mem, k, "device_memory", int)
+    total = sum(mem.get(k, 0) for k in ("package_data", "derived", "nlas", "mlas", "ulas"))
+    if total != d.get("device_memory_bytes"):
+        problems.append(f"device_memory categories sum to {total}, not device_memory_bytes")
+    need(d, "molecules_on_screen", "top", positive=True)
+elif mode == "effects":
+    names = [v.get("name") for v in need(d, "variants", "top", list) or []]
+    for n in ("no effect code", "all off", "clipping", "animation", "jitter", "ao", "shadows", "all on"):
+        if n not in names:
+            problems.append(f"variants: missing {n!r}")
+    for v in d.get("variants", []):
+        need(v, "ratio_to_all_off", v.get("name", "?"), positive=True)
+elif mode == "matrix":
+    rows = need(d, "matrix", "top", list) or []
+    knobs = {r.get("knob") for r in rows}
+    for k in ("default", "hierarchy", "shell", "prism test", "precision", "effect"):
+        if k not in knobs:
+            problems.append(f"matrix: no row for knob {k!r}")
+    for r in rows:
+        where = f"{r.get('knob')}={r.get('value')}"
+        need(r, "time_ratio", where, positive=True)
+        w = need(r, "wrong_pixels_percent", where)
+        if isinstance(w, (int, float)) and not 0 <= w <= 100:
+            problems.append(f"{where}: wrong_pixels_percent {w} outside [0, 100]")
+elif mode == "explicit":
+    r = need(d, "explicit_vs_virtual", "top", dict) or {}
+    for k in ("explicit_seconds_median", "virtual_seconds_median", "explicit_device_bytes", "virtual_device_bytes", "copies"):
+        need(r, k, "explicit_vs_virtual", positive=True)
+    a = need(r, "agreement", "explicit_vs_virtual")
+    if isinstance(a, (int, float)) and a < 0.999:
+        problems.append(f"explicit and virtual instancing agree on only {a} of the pixels")
+else:
+    problems.append(f"unknown mode {mode}")
+if problems:
+    print("\n".join(problems))
+    sys.exit(1)
+print(f"{path}: complete ({mode})")

@@ -1,0 +1,145 @@
+// Explicit instancing (one TLAS instance per molecule copy) against virtual instancing (nested ray
+// queries) on the bundled virion: both are exact renderers of the same scene, so they must show the
+// same atom of the same copy at the same depth in (nearly) every pixel.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "format/validator.hpp"
+#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/explicit/verify_cameras.hpp"
+#include "runtime/instanced/explicit_vs_virtual.hpp"
+#include "runtime/instanced/instanced_renderer.hpp"
+#include "runtime/instanced/instanced_scene.hpp"
+#include "runtime/render/camera_spec.hpp"
+#include "runtime/render/gpu_scene.hpp"
+#include "runtime/render/renderer.hpp"
+#include "runtime/vk/device.hpp"
+#include "runtime/vk/instance.hpp"
+
+namespace nano::instanced {
+namespace {
+
+// One package, device and virtual scene for every test of the process (opening them dominates).
+struct Session {
+  format::Package package = format::open_validated(NANO_VIRION_PACKAGE);
+  // Under NANO_VALIDATION=1 (as CTest runs it) the Khronos layer checks every call; tests fail on its errors.
+  vk::Instance instance{vk::InstanceOptions{.validation = vk::validation_requested_by_environment()}};
+  vk::Device device = vk::open_ray_query_device(instance);
+  std::unique_ptr<render::GpuScene> virtual_scene = std::make_unique<render::GpuScene>(device, package);
+  ~Session() { virtual_scene.reset(); }  // before the device
+};
+
+Session& session() {
+  static Session s;
+  return s;
+}
+
+class Instanced : public ::testing::Test {
+protected:
+  void TearDown() override { EXPECT_EQ(session().instance.validation_errors(), 0u) << "validation-layer errors"; }
+};
+
+// The package's own camera and a few of verify's close views (grazing membrane, core, inside an atom).
+std::vector<gpu::Camera> views(std::uint32_t size, std::size_t close_views) {
+  Session& s = session();
+  std::vector<gpu::Camera> cameras{render::package_camera(s.package).to_gpu(size, size)};
+  const oracle::ExplicitScene oracle_scene(s.package);
+  for (const oracle::VerifyCamera& v : oracle::verify_cameras(s.package, oracle_scene, close_views)) {
+    render::CameraSpec spec{v.eye, v.at, v.up, v.fov_degrees};
+    cameras.push_back(spec.to_gpu(size, size));
+  }
+  return cameras;
+}
+
+std::uint64_t hit_pixels(const std::vector<gpu::PixelHit>& hits) {
+  std::uint64_t n = 0;
+  for (const gpu::PixelHit& h : hits) n += h.atom != gpu::kNoHit;
+  return n;
+}
+
+void expect_agreement(InstancedRenderer& explicit_renderer, render::Renderer& virtual_renderer, const gpu::Camera& camera,
+                      const std::string& name) {
+  const InstancedFrame e = explicit_renderer.render(camera);
+  const render::Frame v = virtual_renderer.render(camera);
+  const HitAgreement a = compare_hits(v.hits, e.hits);
+  std::printf("%s: %llu/%llu agree (missed %llu, other atom %llu, depth %llu, max |Δt| %.3g Å), %llu hit pixels; "
+              "explicit %.3f s, virtual %.3f s\n",
+              name.c_str(), (unsigned long long)a.agree, (unsigned long long)a.pixels, (unsigned long long)a.missed,
+              (unsigned long long)a.different_atom, (unsigned long long)a.depth_only, a.max_depth_difference,
+              (unsigned long long)hit_pixels(v.hits), e.seconds, v.seconds);
+  EXPECT_GE(a.agreement(), 0.999) << name;
+  // Explicit instancing names only the atom and the copy; the placement ids stay unknown.
+  for (const gpu::PixelHit& h : e.hits) {
+    ASSERT_EQ(h.compartment_instance, gpu::kNoHit);
+    ASSERT_EQ(h.kind, gpu::kNoHit);
+  }
+}
+
+TEST_F(Instanced, VirionAgreesWithVirtualRenderer) {
+  Session& s = session();
+  InstancedScene scene(s.device, s.package);
+  const InstancedReport& r = scene.report();
+  std::printf("explicit scene: %s\n", to_json(r).dump().c_str());
+  EXPECT_GT(r.copies, 0u);
+  EXPECT_GT(r.instances, 0u);
+  EXPECT_EQ(r.memory.instance_buffer, r.instances * 64);
+  EXPECT_EQ(r.memory.copy_records, r.instances * 16);
+  EXPECT_GT(r.memory.blas, 0u);
+  EXPECT_GT(r.memory.tlas, 0u);
+  EXPECT_GT(r.memory.atoms, 0u);
+  InstancedRenderer explicit_renderer(s.device, scene);
+  render::Renderer virtual_renderer(s.device, *s.virtual_scene);
+  const std::vector<gpu::Camera> cameras = views(64, 4);
+  for (std::size_t i = 0; i < cameras.size(); ++i)
+    expect_agreement(explicit_renderer, virtual_renderer, cameras[i], "view " + std::to_string(i));
+  // The package's view shows molecules, so agreement is not just background against background.
+  EXPECT_GT(hit_pixels(explicit_renderer.render(cameras[0]).hits), 64u * 64u / 10);
+}
+
+// The TLAS rebuilt relative to each eye (as GpuScene::set_eye) renders the same pixels.
+TEST_F(Instanced, EyeRelativeTlasAgrees) {
+  Session& s = session();
+  InstancedScene scene(s.device, s.package, InstancedOptions{.eye_relative = true});
+  InstancedRenderer explicit_renderer(s.device, scene);
+  render::Renderer virtual_renderer(s.device, *s.virtual_scene);
+  const std::vector<gpu::Camera> cameras = views(64, 2);
+  for (std::size_t i = 0; i < cameras.size(); ++i)
+    expect_agreement(explicit_renderer, virtual_renderer, cameras[i], "eye-relative view " + std::to_string(i));
+}
+
+TEST_F(Instanced, RefusesMoreCopiesThanTheLimit) {
+  Session& s = session();
+  try {
+    InstancedScene scene(s.device, s.package, InstancedOptions{.max_copies = 10});
+    FAIL() << "a scene of more than 10 copies was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(s.package.name()), std::string::npos) << what;
+    EXPECT_NE(what.find("more than 10 molecule copies"), std::string::npos) << what;
+    EXPECT_NE(what.find("virtual instancing"), std::string::npos) << what;
+  }
+  EXPECT_THROW(InstancedScene(s.device, s.package, InstancedOptions{.max_copies = (1u << 24) + 1}), std::invalid_argument);
+}
+
+TEST_F(Instanced, CompareExplicitAndVirtual) {
+  Session& s = session();
+  const std::vector<gpu::Camera> cameras{render::package_camera(s.package).to_gpu(128, 128)};
+  const ExplicitVsVirtual c = compare_explicit_and_virtual(s.device, s.package, *s.virtual_scene, cameras, 3);
+  std::printf("explicit vs virtual (128x128): %s\nvirtual scene: %s\n", c.to_json().dump(2).c_str(),
+              render::to_json(s.virtual_scene->report()).dump().c_str());
+  EXPECT_GE(c.agreement, 0.999);
+  EXPECT_EQ(c.frames, 3u);
+  EXPECT_GT(c.copies, 0u);
+  EXPECT_GT(c.explicit_device_bytes, 0u);
+  EXPECT_GT(c.virtual_device_bytes, 0u);
+  EXPECT_GT(c.explicit_seconds_median, 0);
+  EXPECT_GT(c.virtual_seconds_median, 0);
+  EXPECT_THROW(compare_explicit_and_virtual(s.device, s.package, *s.virtual_scene, {}, 1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace nano::instanced
