@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   nano::view::add_render_command(app);
   nano::view::add_verify_command(app);
   nano::view::add_bench_command(app);
+  nano::view::add_plot_command(app);
   nano::view::add_pick_command(app);
   nano::view::add_view_command(app);
   return nano::run_cli(app, argc, argv);

@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""Scale study (issue #7): the blood scene with N red blood cells and 5·N virions at the density of
+data/blood.json (its 9 µm slab grows in x and y as N^(1/2): a cell's bounding sphere must fit the
+slab's thickness), for each N: bake time, package size, device memory,
+load time and frame time at a fixed screen coverage (an orbit about cell 0 at a fixed distance, so
+one cell fills the same part of the image whatever N). Writes OUT/scale.json, OUT/scale.md and
+OUT/scale.svg (through `nanoview plot`).
+usage: bench_scale.py BUILD_DIR OUT_DIR [--cells 1,4,20,100,1000] [--size 128x128] [--frames 8]"""
+import argparse, json, os, subprocess, sys, time
+
+ap = argparse.ArgumentParser()
+ap.add_argument("build")
+ap.add_argument("out")
+ap.add_argument("--cells", default="1,4,20,100,1000")
+ap.add_argument("--size", default="128x128")
+ap.add_argument("--frames", type=int, default=8)
+ap.add_argument("--jobs", default="2")
+a = ap.parse_args()
+here = os.path.dirname(os.path.abspath(__file__))
+data = os.path.join(os.path.dirname(here), "data")
+nanobake = os.path.join(a.build, "bake", "nanobake")
+nanoview = os.path.join(a.build, "runtime", "nanoview")
+work = os.path.join(a.out, "scale-work")
+os.makedirs(work, exist_ok=True)
+
+with open(os.path.join(data, "blood.json")) as f:
+    blood = json.load(f)
+base_cells = blood["instances"][0]["count"]
+base_box = blood["instances"][0]["box"]
+
+
+def scene_for(cells):
+    s = json.loads(json.dumps(blood))
+    for mol in s["molecules"].values():
+        mol["file"] = os.path.join(data, mol["file"])
+    for m in s.get("membranes", {}).values():
+        if "lipid_patch" in m:
+            m["lipid_patch"]["file"] = os.path.join(data, m["lipid_patch"]["file"])
+    k = (cells / base_cells) ** 0.5  # same area per cell as blood.json, same thickness
+    box = [[base_box[0][0] * k, base_box[0][1] * k, base_box[0][2]], [base_box[1][0] * k, base_box[1][1] * k, base_box[1][2]]]
+    s["instances"][0]["count"] = cells
+    s["instances"][0]["box"] = box
+    s["instances"][1]["count"] = 5 * cells
+    s["instances"][1]["box"] = box
+    s.pop("camera", None)
+    s["description"] = f"Scale study: {cells} red blood cells and {5 * cells} virions at blood.json's density"
+    return s
+
+
+rows = []
+for cells in [int(c) for c in a.cells.split(",")]:
+    name = f"blood-{cells}"
+    scene_path = os.path.join(work, name + ".json")
+    pkg = os.path.join(work, name + ".nup")
+    report = os.path.join(work, name + "-report.json")
+    with open(scene_path, "w") as f:
+        json.dump(scene_for(cells), f, indent=1)
+    t0 = time.monotonic()
+    subprocess.run([nanobake, scene_path, "-o", pkg, "--report", report, "--jobs", a.jobs], check=True,
+                   stdout=subprocess.DEVNULL)
+    bake_seconds = time.monotonic() - t0
+    with open(report) as f:
+        rep = json.load(f)
+    lo, hi = rep["instances"][0]["aabb"]
+    centre = [(l + h) / 2 for l, h in zip(lo, hi)]
+    distance = 150000.0  # Å: an 8 µm cell fills about half the height of a 45° view
+    camera = "pos={},{},{};at={},{},{};up=0,1,0;fov=45".format(centre[0], centre[1], centre[2] + distance, *centre)
+    bench_json = os.path.join(work, name + "-bench.json")
+    subprocess.run([nanoview, "bench", pkg, "--size", a.size, "--frames", str(a.frames), "--camera", camera,
+                    "--json", bench_json], check=True, stdout=subprocess.DEVNULL)
+    with open(bench_json) as f:
+        b = json.load(f)
+    row = {"cells": cells, "virions": 5 * cells, "instances": len(rep["instances"]),
+           "represented_atoms": rep["represented_atoms"], "bake_seconds": bake_seconds,
+           "package_bytes": os.path.getsize(pkg), "device_memory_bytes": b["device_memory_bytes"],
+           "device_memory": b["device_memory"], "load_seconds": b["load_seconds"],
+           "frame_seconds": b["frame_seconds"], "device": b["device"]}
+    rows.append(row)
+    print(f"{cells:5d} cells: bake {bake_seconds:.1f} s, package {row['package_bytes'] / 1e6:.2f} MB, device "
+          f"{row['device_memory_bytes'] / 1e6:.2f} MB, load {row['load_seconds']:.2f} s, frame median "
+          f"{row['frame_seconds']['median']:.3f} s", flush=True)
+    os.remove(pkg)  # the packages are reproducible from the scene files and seed
+
+with open(os.path.join(a.out, "scale.json"), "w") as f:
+    json.dump({"size": a.size, "frames": a.frames, "rows": rows}, f, indent=1)
+first = rows[0]
+md = [f"Scale study on {first['device']}, frames {a.size}, orbit of {a.frames} frames about cell 0 at 15 µm "
+      "(fixed screen coverage); ratios to the smallest scene in brackets.", "",
+      "| cells | virions | represented atoms | bake | package | device memory | load | frame (median) |",
+      "|---|---|---|---|---|---|---|---|"]
+for r in rows:
+    md.append(f"| {r['cells']} | {r['virions']} | {r['represented_atoms']:.3g} | {r['bake_seconds']:.1f} s | "
+              f"{r['package_bytes'] / 1e6:.2f} MB | {r['device_memory_bytes'] / 1e6:.2f} MB "
+              f"({r['device_memory_bytes'] / first['device_memory_bytes']:.2f}×) | {r['load_seconds']:.2f} s | "
+              f"{r['frame_seconds']['median']:.3f} s ({r['frame_seconds']['median'] / first['frame_seconds']['median']:.2f}×) |")
+with open(os.path.join(a.out, "scale.md"), "w") as f:
+    f.write("\n".join(md) + "\n")
+series = []
+for key, label in [("device_memory_bytes", "device memory"), ("package_bytes", "package size"),
+                   ("load_seconds", "load time"), ("bake_seconds", "bake time")]:
+    series.append({"name": label, "lines": True, "points": [[r["cells"], r[key] / first[key]] for r in rows]})
+series.append({"name": "frame time (median)", "lines": True,
+               "points": [[r["cells"], r["frame_seconds"]["median"] / first["frame_seconds"]["median"]] for r in rows]})
+spec = {"title": "Cost against scene size (blood scene, 5 virions per cell)", "x_label": "red blood cells",
+        "y_label": "ratio to 1 cell", "log_x": True, "log_y": True, "series": series}
+spec_path = os.path.join(work, "scale-plot.json")
+with open(spec_path, "w") as f:
+    json.dump(spec, f)
+subprocess.run([nanoview, "plot", spec_path, "-o", os.path.join(a.out, "scale.svg")], check=True)
+print("\n".join(md))
