@@ -97,6 +97,7 @@ OracleEffects oracle_effects(const format::Package& package, const render::Effec
   o.scene.jitter = effects.jitter_on && effects.jitter_degrees > 0;
   o.scene.jitter_parameters = render::jitter_frame_parameters(effects);
   if (effects.clipping_on) o.clip = render::clip_half_spaces(effects.clipping);
+  o.scene.clip = o.clip;
   return o;
 }
 

@@ -28,7 +28,7 @@ struct MatrixVariant {
 };
 
 // The default first, then hierarchy, shell, prism test, precision and each effect. `base` holds the
-// default knobs; `focus` places the clipping plane (through its target, facing the camera).
+// default knobs. Clipping gets one plane per view, 400 Å ahead of its eye, keeping the near side.
 std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package,
                                            const render::CameraSpec& focus);
 

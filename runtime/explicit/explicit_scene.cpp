@@ -32,12 +32,25 @@ std::uint32_t wrap(std::int64_t a, std::uint32_t n) {
   return static_cast<std::uint32_t>(r < 0 ? r + n : r);
 }
 
+// Å by which culling keeps copies near a clip plane that the caller judges atom by atom: verify
+// moves the planes by 0.01 Å to tell rounding ties from errors, and must see those atoms.
+constexpr double kClipCullSlack = 0.1;
+
 struct Aabb {
   dvec3 lo{std::numeric_limits<double>::infinity()};
   dvec3 hi{-std::numeric_limits<double>::infinity()};
   void add(const dvec3& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
   void add(const Aabb& b) { lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi); }
   Aabb grown(double r) const { return {lo - r, hi + r}; }
+  // True iff one half-space (n, d) — keep n·p + d ≥ 0 — removes every point of the box.
+  bool clipped_by_any(const std::vector<glm::dvec4>& half_spaces) const {
+    for (const glm::dvec4& h : half_spaces) {
+      const dvec3 n(h);
+      const dvec3 best(n.x > 0 ? hi.x : lo.x, n.y > 0 ? hi.y : lo.y, n.z > 0 ? hi.z : lo.z);
+      if (glm::dot(n, best) + h.w < 0) return true;
+    }
+    return false;
+  }
   bool meets(const Aabb& b) const {
     return lo.x <= b.hi.x && lo.y <= b.hi.y && lo.z <= b.hi.z && b.lo.x <= hi.x && b.lo.y <= hi.y && b.lo.z <= hi.z;
   }
@@ -248,6 +261,7 @@ struct ExplicitScene::Impl : format::PackageView {
     const WorldBox& box;
     const std::function<void(const Copy&)>& visit;
     Copy copy;
+    std::vector<glm::dvec4> local_clip;  // the clip half-spaces in the instance's compartment space
 
     void operator()(gpu::Affine3 placement, std::uint32_t type) {
       if (scene.options.jitter) {
@@ -260,6 +274,8 @@ struct ExplicitScene::Impl : format::PackageView {
       copy.origin = ip.linear * dvec3(placement.translation) + ip.translation;
       copy.stretch = ip.stretch;
       copy.radius = scene.type_radius[type] * ip.stretch;
+      for (const glm::dvec4& h : scene.options.clip)  // every atom centre of the copy clipped
+        if (glm::dot(dvec3(h), copy.origin) + h.w + kClipCullSlack < -copy.radius) return;
       if (box.meets_sphere(copy.origin, copy.radius)) visit(copy);
     }
   };
@@ -275,6 +291,7 @@ struct ExplicitScene::Impl : format::PackageView {
       Aabb reach;
       for (std::uint32_t v : {tri.v0, tri.v1, tri.v2}) reach.add(dvec3(vertex(f, v)));
       if (!reach.grown(plan.membrane_reach + plan.tolerance).meets(query)) continue;
+      if (reach.grown(plan.membrane_reach + plan.tolerance).clipped_by_any(emit.local_clip)) continue;
       const vec2 t0 = uvs[f + tri.v0], t1 = uvs[f + tri.v1], t2 = uvs[f + tri.v2];
       if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) continue;
       const gpu::TriangleChart chart = make_chart(mesh, tri);
@@ -338,8 +355,16 @@ struct ExplicitScene::Impl : format::PackageView {
     }
     emit.copy.id.kind = CopyKind::core;
     const std::uint64_t core_base = emit.ip.base + plan.membrane_span;
-    for (int k = first.z; k <= last.z; ++k)
-      for (int j = first.y; j <= last.y; ++j)
+    // Where the boxes [lo, hi] (inclusive) let their copies reach; clipped slabs and rows are skipped
+    // whole, so a view behind a clip plane does not visit every box it removes.
+    const auto reach_of = [&](ivec3 lo, ivec3 hi) {
+      return Aabb{grid_min + dvec3(lo) * B + plan.cube_reach.lo, grid_min + dvec3(hi) * B + plan.cube_reach.hi}.grown(plan.tolerance);
+    };
+    const bool clipping = !emit.local_clip.empty();
+    for (int k = first.z; k <= last.z; ++k) {
+      if (clipping && reach_of(ivec3(first.x, first.y, k), ivec3(last.x, last.y, k)).clipped_by_any(emit.local_clip)) continue;
+      for (int j = first.y; j <= last.y; ++j) {
+        if (clipping && reach_of(ivec3(first.x, j, k), ivec3(last.x, j, k)).clipped_by_any(emit.local_clip)) continue;
         for (int i = first.x; i <= last.x; ++i) {
           const std::uint32_t box = std::uint32_t(i) + dims.x * (std::uint32_t(j) + dims.y * std::uint32_t(k));
           const std::uint8_t occ = occupancy[c.grid_dims.w + box];
@@ -347,6 +372,7 @@ struct ExplicitScene::Impl : format::PackageView {
           const std::uint32_t* mask = occ == gpu::NANO_BOX_BOUNDARY ? keep_mask(c, box) : nullptr;
           const gpu::Tile3D& cube = cubes[recipe_cell(c.soluble_recipe, i, j, k)];
           const vec3 box_min = gpu::core_box_min(vec3(c.grid_min), vec3(c.grid_min.w), ivec3(i, j, k));
+          if (clipping && reach_of(ivec3(i, j, k), ivec3(i, j, k)).clipped_by_any(emit.local_clip)) continue;
           emit.copy.id.element = box;
           emit.copy.id.cell = ivec3(i, j, k);
           for (std::uint32_t m = 0; m < cube.instance_count; ++m) {
@@ -357,6 +383,8 @@ struct ExplicitScene::Impl : format::PackageView {
             emit(gpu::core_soluble_molecule(box_min, vec3(inst.position), inst.rotation), inst.molecule_type);
           }
         }
+      }
+    }
   }
 };
 
@@ -378,8 +406,12 @@ void ExplicitScene::for_each_copy(const WorldBox& box, const std::function<void(
     const InstancePlan& ip = s.instance_plans[i];
     const Aabb query = s.local_query(ip, box);
     if (!plan.bound.meets(query)) continue;
-    Impl::Emitter emit{s, ip, box, visit, {}};
+    Impl::Emitter emit{s, ip, box, visit, {}, {}};
     emit.copy.id.compartment_instance = i;
+    // n·(L c + T) + d = (Lᵀn)·c + (n·T + d): the world half-spaces in compartment space.
+    for (const glm::dvec4& h : s.options.clip)
+      emit.local_clip.push_back(
+          glm::dvec4(glm::transpose(ip.linear) * dvec3(h), glm::dot(dvec3(h), ip.translation) + h.w + kClipCullSlack));
     if (plan.membrane) s.walk_membrane(plan, s.compartments[ci], query, emit);
     if (plan.core) s.walk_core(plan, s.compartments[ci], query, emit);
   }

@@ -19,6 +19,7 @@
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "format/package.hpp"
 #include "format/package_view.hpp"
@@ -82,6 +83,10 @@ struct ExplicitSceneOptions {
   std::vector<format::InstanceTransform> instance_transforms;  // empty: the package's; else one per instance
   bool jitter = false;
   glm::vec3 jitter_parameters{0.0f};  // time (s), amplitude (radians), frequency (Hz), as the frame holds them
+  // Clipping half-spaces (unit n, d), world Å: copies, core boxes and membrane triangles whose
+  // every atom centre lies outside one of them are skipped (an oracle view behind a clip plane
+  // would otherwise enumerate everything it removes). Atoms are still judged one by one by the caller.
+  std::vector<glm::dvec4> clip;
 };
 
 class ExplicitScene {

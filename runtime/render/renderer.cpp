@@ -152,16 +152,7 @@ struct Renderer::Impl {
     vk::write_storage_buffer(device.handle(), p.set, b_frame, frame_buffer);
     vk::write_storage_buffer(device.handle(), p.set, b_hits, hit_buffer);
     vk::write_storage_buffer(device.handle(), p.set, b_colours, colour_buffer);
-    device.submit_once([&](VkCommandBuffer commands) {
-      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline.handle());
-      vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline.layout(), 0, 1, &p.set, 0, nullptr);
-      vkCmdDispatch(commands, (w + kWorkgroup - 1) / kWorkgroup, (h + kWorkgroup - 1) / kWorkgroup, 1);
-      VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-      to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-      to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0,
-                           nullptr, 0, nullptr);
-    });
+    vk::dispatch_pixels_and_wait(device, p.pipeline, p.set, w, h, kWorkgroup);
     Frame out;
     out.width = w, out.height = h;
     out.hits.resize(pixels);

@@ -146,4 +146,18 @@ void write_acceleration_structure(VkDevice device, VkDescriptorSet set, std::uin
   vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
 }
 
+void dispatch_pixels_and_wait(const Device& device, const ComputePipeline& pipeline, VkDescriptorSet set,
+                              std::uint32_t width, std::uint32_t height, std::uint32_t workgroup) {
+  device.submit_once([&](VkCommandBuffer commands) {
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
+    vkCmdDispatch(commands, (width + workgroup - 1) / workgroup, (height + workgroup - 1) / workgroup, 1);
+    VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0,
+                         nullptr, 0, nullptr);
+  });
+}
+
 }  // namespace nano::vk

@@ -82,4 +82,9 @@ void write_storage_buffer(VkDevice device, VkDescriptorSet set, std::uint32_t bi
 void write_acceleration_structure(VkDevice device, VkDescriptorSet set, std::uint32_t binding,
                                   const AccelerationStructure& structure);
 
+// One invocation per pixel of a width × height image (workgroups of `workgroup`² invocations) with
+// set 0 bound, then a barrier that makes the shader's writes visible to host reads; waits for it.
+void dispatch_pixels_and_wait(const Device& device, const ComputePipeline& pipeline, VkDescriptorSet set,
+                              std::uint32_t width, std::uint32_t height, std::uint32_t workgroup);
+
 }  // namespace nano::vk
