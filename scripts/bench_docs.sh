@@ -33,4 +33,5 @@ for b in structure_bench tiles_bench shell_bench package_bench; do
   "$build/benchmarks/$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
     --benchmark_format=json --benchmark_out="$out/micro-$b.json" > /dev/null
 done
+python3 "$here/scripts/bench_summary.py" "$out"
 echo "docs/bench regenerated in $out"
