@@ -48,16 +48,6 @@ void write_text(const std::string& path, const std::string& text) {
   write_file_atomically(path, std::as_bytes(std::span(text.data(), text.size())));
 }
 
-render::CameraSpec chosen_camera(const Options& o, const format::Package& package) {
-  render::CameraSpec camera = render::package_camera(package);
-  try {
-    if (!o.camera.empty()) camera = render::parse_camera(o.camera, camera);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--camera", "", e.what());
-  }
-  return camera;
-}
-
 // The cameras of the timed frames: the path's frames, or one turn about the target's up axis.
 std::vector<render::CameraSpec> frame_cameras(const Options& o, const render::CameraSpec& start, unsigned count) {
   std::vector<render::CameraSpec> cameras;
@@ -102,7 +92,7 @@ nlohmann::ordered_json memory_json(const render::MemoryReport& m) {
 
 void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
-  const render::CameraSpec start = chosen_camera(o, session.package);
+  const render::CameraSpec start = camera_option(session.package, o.camera);
   render::RenderSettings settings = o.variant.render_settings();
   settings.effects = o.effect_options.settings(session.package);
   settings.depth_cue = float(4 * glm::length(start.at - start.eye));
@@ -152,8 +142,8 @@ struct EffectVariant {
   render::RenderSettings settings;
 };
 
-// Every effect on its own, with parameters a user would pick when the scene names none: a cut-away
-// plane through the target facing the camera, 8 AO rays of 40 Å, the default light.
+// Every effect on its own, with the scene's parameters or EffectSettings' defaults (8 AO rays of
+// 40 Å, 5° jitter at 1 Hz), and a cut-away plane through the target when the scene clips nothing.
 std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, const render::EffectSettings& scene,
                                            const render::CameraSpec& camera) {
   render::EffectSettings off;
@@ -164,8 +154,6 @@ std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, c
     const glm::dvec3 n = glm::normalize(camera.at - camera.eye);  // keep what lies beyond the target
     with.clipping.planes.push_back(glm::dvec4(n, -glm::dot(n, camera.at)));
   }
-  if (with.jitter_degrees == 0) with.jitter_degrees = 5, with.jitter_hz = 1;
-  if (!scene.ambient_occlusion_on) with.ao_rays = 8, with.ao_radius = 40;
   std::vector<EffectVariant> v;
   const auto add = [&](std::string name, render::EffectSettings e, bool no_code = false) {
     render::RenderSettings s = base;
@@ -195,7 +183,7 @@ std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, c
 void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
   const unsigned rounds = o.frames ? o.frames : 5;
-  const render::CameraSpec camera = chosen_camera(o, session.package);
+  const render::CameraSpec camera = camera_option(session.package, o.camera);
   render::RenderSettings base = o.variant.render_settings();
   base.depth_cue = float(4 * glm::length(camera.at - camera.eye));
   const std::vector<EffectVariant> variants = effect_variants(base, render::package_effects(session.package), camera);
@@ -230,7 +218,6 @@ void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_jso
 void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "96x96" : o.size);
   const unsigned rounds = o.frames ? o.frames : 3;
-  const render::CameraSpec focus = chosen_camera(o, session.package);
   // The verify views: chosen so the oracle can resolve them, the hard cases first.
   const oracle::ExplicitScene scene(session.package);
   std::vector<gpu::Camera> cameras;
@@ -241,7 +228,7 @@ void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json
   }
   if (o.variant.shell != "adaptive-overlap" || o.variant.levels != "3+rep" || o.variant.prism != "exact")
     throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
-  const std::vector<bench::MatrixVariant> variants = bench::matrix_variants(o.variant.render_settings(), session.package, focus);
+  const std::vector<bench::MatrixVariant> variants = bench::matrix_variants(o.variant.render_settings(), session.package);
   const std::vector<bench::MatrixRow> rows = bench::run_accuracy_matrix(
       session.device, session.package, *session.scene, cameras, variants, rounds,
       [](const std::string& what) { std::fprintf(stderr, "matrix: %s\n", what.c_str()); });
@@ -263,7 +250,7 @@ void run_explicit(const Options& o, RenderSession& session, nlohmann::ordered_js
   const auto [w, h] = parse_size(o.size.empty() ? "128x128" : o.size);
   const unsigned rounds = o.frames ? o.frames : 3;
   std::vector<gpu::Camera> cameras;
-  for (const render::CameraSpec& c : frame_cameras(o, chosen_camera(o, session.package), 4)) cameras.push_back(c.to_gpu(w, h));
+  for (const render::CameraSpec& c : frame_cameras(o, camera_option(session.package, o.camera), 4)) cameras.push_back(c.to_gpu(w, h));
   const instanced::ExplicitVsVirtual r =
       instanced::compare_explicit_and_virtual(session.device, session.package, *session.scene, cameras, rounds);
   out["size"] = {w, h};
@@ -285,7 +272,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--frames", o->frames, "timed frames (default 24), or rounds with --effects (5) and --matrix (3)")
       ->check(CLI::Range(1u, 10000u));
   cmd->add_option("--path", o->path, "camera path (.json) of the timed frames (default: an orbit about the scene's target)");
-  cmd->add_option("--camera", o->camera, "\"pos=..;at=..;up=..;fov=..\" start of the orbit / the --effects view / the --matrix clip plane");
+  cmd->add_option("--camera", o->camera, "\"pos=..;at=..;up=..;fov=..\" start of the orbit / the --effects and --explicit view");
   cmd->add_option("--json", o->json, "write the results as JSON");
   cmd->add_flag("--effects", o->effects, "each effect off vs on, and all off vs the renderer without effect code");
   cmd->add_flag("--explicit", o->explicit_instancing,

@@ -46,14 +46,6 @@ void add_pick_command(CLI::App& app) {
     if (o->x >= w || o->y >= h)
       throw InputError("X Y", "", "pixel (" + std::to_string(o->x) + ", " + std::to_string(o->y) + ") lies outside the " +
                                       o->size + " image");
-    const auto view_of = [&](const format::Package& package) {
-      try {
-        return o->camera.empty() ? render::package_camera(package)
-                                 : render::parse_camera(o->camera, render::package_camera(package));
-      } catch (const std::invalid_argument& e) {
-        throw InputError("--camera", "", e.what());
-      }
-    };
     const std::size_t pixel = std::size_t(o->y) * w + o->x;
     nlohmann::json out;
     if (o->oracle) {
@@ -66,7 +58,7 @@ void add_pick_command(CLI::App& app) {
       const oracle::ExplicitScene scene(package, oracle_view.scene);
       oracle::OracleRenderOptions render_options;
       render_options.clip = oracle_view.clip;
-      const gpu::Camera camera = view_of(package).to_gpu(w, h);
+      const gpu::Camera camera = camera_option(package, o->camera).to_gpu(w, h);
       // The oracle renders whole images only; --size should be kept small.
       out = render::describe_hit(package, oracle::oracle_render(scene, package, camera, render_options)[pixel]);
     } else {
@@ -74,7 +66,7 @@ void add_pick_command(CLI::App& app) {
       RenderSession session(o->package, o->variant.scene_options());
       settings.effects = o->effects.settings(session.package);
       render::Renderer renderer(session.device, *session.scene, settings);
-      const render::Frame frame = renderer.render(view_of(session.package).to_gpu(w, h));
+      const render::Frame frame = renderer.render(camera_option(session.package, o->camera).to_gpu(w, h));
       out = render::describe_hit(session.package, frame.hits[pixel]);
       if (session.validation_errors() != 0)
         throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");

@@ -68,14 +68,14 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("PKG", o->package, "package (.nup)")->required();
   cmd->add_option("-o,--output", o->output, "colour image (.png); with --path a pattern such as frames/%05d.png")->required();
   cmd->add_option("--size", o->size, "image size WxH")->capture_default_str();
-  auto* camera_option = cmd->add_option(
+  auto* camera_flag = cmd->add_option(
       "--camera", o->camera, "\"pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG\" (world Å, vertical fov); keys left out keep the scene's camera");
   cmd->add_option("--depth", o->depth, "depth along the unit ray in Å as PFM (+inf: background); a pattern with --path");
   cmd->add_option("--ids", o->ids, "per-pixel hit ids (see README); a pattern with --path");
   o->variant.add_to(*cmd);
   o->effects.add_to(*cmd);  // --time among them: with --path also the camera's time (-o is then one file)
   auto* path_option = cmd->add_option("--path", o->path, "camera path (.json, README \"Movies\"): render its frames")
-                          ->excludes(camera_option);
+                          ->excludes(camera_flag);
   auto* frames_option =
       cmd->add_option("--frames", o->frames, "A:B: frames A to B inclusive of --path, frame k at time k / fps (default: all)")
           ->needs(path_option);
@@ -109,12 +109,7 @@ void add_render_command(CLI::App& app) {
     render::RenderSettings settings = o->variant.render_settings();
     RenderSession session(o->package, o->variant.scene_options());
     settings.effects = o->effects.settings(session.package);
-    render::CameraSpec camera = render::package_camera(session.package);
-    try {
-      if (!o->camera.empty()) camera = render::parse_camera(o->camera, camera);
-    } catch (const std::invalid_argument& e) {
-      throw InputError("--camera", "", e.what());
-    }
+    render::CameraSpec camera = camera_option(session.package, o->camera);
     if (path) camera = render::camera_at(*path, settings.effects.time);
     settings.depth_cue = float(4 * glm::length(camera.at - camera.eye));
     render::Renderer renderer(session.device, *session.scene, settings);

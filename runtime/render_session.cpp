@@ -91,6 +91,16 @@ render::EffectSettings EffectOptions::settings(const format::Package& package) c
   return e;
 }
 
+render::CameraSpec camera_option(const format::Package& package, const std::string& text) {
+  const render::CameraSpec base = render::package_camera(package);
+  if (text.empty()) return base;
+  try {
+    return render::parse_camera(text, base);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--camera", "", e.what());
+  }
+}
+
 OracleEffects oracle_effects(const format::Package& package, const render::EffectSettings& effects) {
   OracleEffects o;
   if (effects.animation_on) o.scene.instance_transforms = render::animated_instance_transforms(package, effects.time);

@@ -10,6 +10,7 @@
 
 #include "format/package.hpp"
 #include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/render/camera_spec.hpp"
 #include "runtime/render/effects.hpp"
 #include "runtime/render/gpu_scene.hpp"
 #include "runtime/render/renderer.hpp"
@@ -50,6 +51,10 @@ struct EffectOptions {
   // Throws InputError naming the option that does not parse.
   render::EffectSettings settings(const format::Package& package) const;
 };
+
+// The camera a command's --camera option names: keys it leaves out (or all, when empty) keep the
+// package's camera. Throws InputError naming --camera when the text does not parse.
+render::CameraSpec camera_option(const format::Package& package, const std::string& text);
 
 // What the effects change for the CPU oracle, as the renderer applies them: moved instances and
 // jittered copies (the scene) and clipped atoms (the render options). AO and shadows change colours

@@ -77,12 +77,7 @@ void add_verify_command(CLI::App& app) {
     if (o->camera.empty()) {
       cameras = oracle::verify_cameras(session.package, scene, o->cameras);
     } else {
-      render::CameraSpec spec = render::package_camera(session.package);
-      try {
-        spec = render::parse_camera(o->camera, spec);
-      } catch (const std::invalid_argument& e) {
-        throw InputError("--camera", "", e.what());
-      }
+      const render::CameraSpec spec = camera_option(session.package, o->camera);
       oracle::VerifyCamera vc;
       vc.name = "--camera";
       vc.eye = spec.eye, vc.at = spec.at, vc.up = spec.up, vc.fov_degrees = spec.fov_degrees;

@@ -37,8 +37,7 @@ std::string oracle_key(const render::EffectSettings& e) {
 
 }  // namespace
 
-std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package,
-                                           const render::CameraSpec& focus) {
+std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package) {
   std::vector<MatrixVariant> v;
   const auto add = [&](std::string knob, std::string value, auto&& change, std::string note = {}) {
     MatrixVariant m;
@@ -61,9 +60,6 @@ std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, c
   render::EffectSettings effects = render::package_effects(package);
   effects.clipping_on = effects.animation_on = effects.jitter_on = effects.ambient_occlusion_on = effects.shadows_on = false;
   effects.time = 1.0;
-  (void)focus;
-  if (effects.jitter_degrees == 0) effects.jitter_degrees = 5, effects.jitter_hz = 1;
-  if (effects.ao_rays == 0) effects.ao_rays = 8;
   const auto effect = [&](const char* name, bool render::EffectSettings::*flag, std::string note = {}) {
     add("effect", name, [&](MatrixVariant& m) {
       m.settings.effects = effects;

@@ -29,8 +29,7 @@ struct MatrixVariant {
 
 // The default first, then hierarchy, shell, prism test, precision and each effect. `base` holds the
 // default knobs. Clipping gets one plane per view, 400 Å ahead of its eye, keeping the near side.
-std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package,
-                                           const render::CameraSpec& focus);
+std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package);
 
 struct MatrixRow {
   MatrixVariant variant;

@@ -68,11 +68,8 @@ EffectSettings package_effects(const format::Package& package) {
 void set_effect(EffectSettings& effects, std::string_view name, bool on) {
   if (name == "clipping") effects.clipping_on = on;
   else if (name == "animation") effects.animation_on = on;
-  else if (name == "jitter") {
-    effects.jitter_on = on;
-    // A scene without jitter parameters still wobbles visibly when the user asks for it.
-    if (on && effects.jitter_degrees == 0) effects.jitter_degrees = 5, effects.jitter_hz = 1;
-  } else if (name == "ao") effects.ambient_occlusion_on = on;
+  else if (name == "jitter") effects.jitter_on = on;
+  else if (name == "ao") effects.ambient_occlusion_on = on;
   else if (name == "shadows") effects.shadows_on = on;
   else throw std::invalid_argument("unknown effect '" + std::string(name) + "' (expected clipping, animation, jitter, ao or shadows)");
 }

@@ -33,7 +33,7 @@ struct EffectSettings {
   double time = 0;              // seconds: proxy animation and jitter are evaluated at this time
   bool animation_on = false;    // compartment instances move as the package's animation says
   bool jitter_on = false;       // proteins wobble about their own origin (shared/effects.h)
-  double jitter_degrees = 0, jitter_hz = 1;
+  double jitter_degrees = 5, jitter_hz = 1;  // what a user gets asking for jitter the scene does not set
 
   bool ambient_occlusion_on = false;
   std::uint32_t ao_rays = 8;

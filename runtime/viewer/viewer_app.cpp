@@ -36,16 +36,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr std::pair<std::uint32_t, std::uint32_t> kDefaultSize{960, 720};
 
-render::CameraSpec start_camera(const format::Package& package, const std::string& spec) {
-  const render::CameraSpec base = render::package_camera(package);
-  if (spec.empty()) return base;
-  try {
-    return render::parse_camera(spec, base);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--camera", "", e.what());
-  }
-}
-
 std::optional<double> centre_depth(const render::Frame& frame) {
   if (frame.hits.empty()) return std::nullopt;
   const gpu::PixelHit& hit = frame.hits[std::size_t(frame.height / 2) * frame.width + frame.width / 2];
@@ -76,7 +66,7 @@ public:
                  view::PresentationOptions{window_.required_instance_extensions(), {VK_KHR_SWAPCHAIN_EXTENSION_NAME},
                                            [this](VkInstance instance) { return window_.create_surface(instance); }}),
         bounds_(scene_bounds(session_.package)),
-        state_(CameraController(start_camera(session_.package, options.camera), bounds_.radius()), settings) {
+        state_(CameraController(view::camera_option(session_.package, options.camera), bounds_.radius()), settings) {
     settings.effects = options.effects.settings(session_.package);
     state_.settings = settings;
     state_.ao_samples = std::max(options.ao_samples, 1u);

@@ -290,22 +290,18 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
   vec3 n1 = normals[f + tri.v1].xyz;
   vec3 n2 = normals[f + tri.v2].xyz;
   TriangleShell sh = shells[t];
+  ShellOffsets off;
+  off.h_plus = sh.h_plus;
+  off.h_minus = sh.h_minus;
+  off.side = sh.side_offset;
+  Prism pr = shell_prism_make(p0, p1, p2, n0, n1, n2, off);  // compiled out when neither test below is on
   if (kExactPrism) {
-    ShellOffsets off;
-    off.h_plus = sh.h_plus;
-    off.h_minus = sh.h_minus;
-    off.side = sh.side_offset;
     PrismInterval iv;
-    if (!prism_intersect(shell_prism_make(p0, p1, p2, n0, n1, n2, off), o, d, 0.0, best_t, iv)) return false;
+    if (!prism_intersect(pr, o, d, 0.0, best_t, iv)) return false;
   }
   if (kClipping) {
     // µLAS-level trivial reject: every molecule the prism owns lies in the convex hull of its six
     // corners (bilinear walls included), so a hull wholly outside one half-space has nothing to show.
-    ShellOffsets off;
-    off.h_plus = sh.h_plus;
-    off.h_minus = sh.h_minus;
-    off.side = sh.side_offset;
-    Prism pr = shell_prism_make(p0, p1, p2, n0, n1, n2, off);
     vec3 lo = pr.v[0];
     vec3 hi = pr.v[0];
     for (int k = 1; k < 6; ++k) {
