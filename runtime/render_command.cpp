@@ -19,6 +19,7 @@
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/image_io.hpp"
 #include "runtime/render/renderer.hpp"
+#include "runtime/bench/frame_stats.hpp"
 #include "runtime/render_session.hpp"
 #include "runtime/viewer/script.hpp"
 
@@ -147,9 +148,8 @@ void add_render_command(CLI::App& app) {
       if (!o->depth.empty()) render::write_depth_pfm(o->depth, w, h, frame.hits);
       if (!o->ids.empty()) render::write_ids(o->ids, w, h, frame.hits);
       if (!times.empty()) {
-        std::sort(times.begin(), times.end());
-        std::printf("frames after the first: %zu, min %.4f s, median %.4f s\n", times.size(), times.front(),
-                    times[times.size() / 2]);
+        const bench::FrameStats stats = bench::frame_stats(times);
+        std::printf("frames after the first: %zu, min %.4f s, median %.4f s\n", stats.frames, stats.min, stats.median);
       }
       std::printf("%s: %ux%u, %zu of %zu pixels hit an atom, frame %.3f s; camera %s\n", o->output.c_str(), w, h,
                   count_hits(frame), frame.hits.size(), frame.seconds, camera.to_string().c_str());

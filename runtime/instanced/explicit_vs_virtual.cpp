@@ -4,52 +4,18 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "runtime/explicit/render_compare.hpp"
+#include "runtime/bench/frame_stats.hpp"
 #include "runtime/instanced/instanced_renderer.hpp"
 #include "runtime/render/renderer.hpp"
 
 namespace nano::instanced {
-namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-bool is_hit(const gpu::PixelHit& h) { return h.atom != gpu::kNoHit; }
-
-}  // namespace
-
-HitAgreement& HitAgreement::operator+=(const HitAgreement& o) {
-  pixels += o.pixels, agree += o.agree, missed += o.missed, different_atom += o.different_atom, depth_only += o.depth_only;
-  max_depth_difference = std::max(max_depth_difference, o.max_depth_difference);
-  return *this;
-}
-
-HitAgreement compare_hits(const std::vector<gpu::PixelHit>& reference, const std::vector<gpu::PixelHit>& test) {
-  if (reference.size() != test.size())
-    throw std::invalid_argument("compare_hits: images of " + std::to_string(reference.size()) + " and " +
-                                std::to_string(test.size()) + " pixels");
-  HitAgreement r;
-  r.pixels = reference.size();
-  for (std::size_t i = 0; i < reference.size(); ++i) {
-    const gpu::PixelHit& a = reference[i];
-    const gpu::PixelHit& b = test[i];
-    if (!is_hit(a) && !is_hit(b)) {
-      ++r.agree;
-    } else if (is_hit(a) != is_hit(b)) {
-      ++r.missed;
-    } else if (a.atom != b.atom || a.copy_number_lo != b.copy_number_lo || a.copy_number_hi != b.copy_number_hi) {
-      ++r.different_atom;
-    } else {
-      const double difference = std::abs(double(a.depth) - double(b.depth));  // NaN fails the test below
-      if (std::isfinite(difference)) r.max_depth_difference = std::max(r.max_depth_difference, difference);
-      if (difference <= oracle::depth_tolerance(a.depth)) ++r.agree;
-      else ++r.depth_only;
-    }
+oracle::CompareResult compare_hits(std::vector<gpu::PixelHit> reference, const std::vector<gpu::PixelHit>& test) {
+  for (gpu::PixelHit& h : reference) {
+    h.compartment_instance = h.element = h.kind = h.instance = gpu::kNoHit;
+    h.cell = glm::ivec4(-1);
   }
-  return r;
+  return oracle::compare_images(reference, test, std::uint32_t(reference.size()), 1, 0);
 }
 
 nlohmann::json ExplicitVsVirtual::to_json() const {
@@ -77,7 +43,7 @@ ExplicitVsVirtual compare_explicit_and_virtual(const vk::Device& device, const f
   explicit_renderer.render(cameras.front());
   virtual_renderer.render(cameras.front());
   std::vector<double> explicit_seconds, virtual_seconds;
-  HitAgreement agreement;
+  std::uint64_t pixels = 0, agree = 0;
   for (unsigned round = 0; round < rounds; ++round)
     for (const gpu::Camera& camera : cameras) {
       // Alternating, so drift of the machine (other jobs, clocks) falls on both alike.
@@ -85,16 +51,19 @@ ExplicitVsVirtual compare_explicit_and_virtual(const vk::Device& device, const f
       const render::Frame v = virtual_renderer.render(camera);
       explicit_seconds.push_back(e.seconds);
       virtual_seconds.push_back(v.seconds);
-      if (round == 0) agreement += compare_hits(v.hits, e.hits);
+      if (round == 0) {
+        const oracle::CompareResult r = compare_hits(v.hits, e.hits);
+        pixels += r.pixels, agree += r.agree;
+      }
     }
   ExplicitVsVirtual out;
-  out.explicit_seconds_median = median(explicit_seconds);
-  out.virtual_seconds_median = median(virtual_seconds);
+  out.explicit_seconds_median = bench::frame_stats(explicit_seconds).median;
+  out.virtual_seconds_median = bench::frame_stats(virtual_seconds).median;
   out.explicit_report = explicit_scene.report();
   out.explicit_device_bytes = out.explicit_report.memory.total();
   out.virtual_device_bytes = virtual_scene.report().memory.total();
   out.copies = out.explicit_report.copies;
-  out.agreement = agreement.agreement();
+  out.agreement = double(agree) / double(pixels);
   out.frames = explicit_seconds.size();
   return out;
 }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "format/package.hpp"
+#include "runtime/explicit/render_compare.hpp"
 #include "runtime/instanced/instanced_scene.hpp"
 #include "runtime/render/gpu_scene.hpp"
 #include "runtime/vk/device.hpp"
@@ -14,26 +15,17 @@
 
 namespace nano::instanced {
 
-// Pixels that agree: both background, or the same (atom, copy number) with depths within
-// oracle::depth_tolerance of the reference's (max(1e-3 Å, 1e-5·t)). Only these fields: explicit
-// instancing does not know a copy's placement ids. Throws std::invalid_argument for images of
-// different sizes.
-struct HitAgreement {
-  std::uint64_t pixels = 0, agree = 0;
-  std::uint64_t missed = 0;          // exactly one side hit something
-  std::uint64_t different_atom = 0;  // both hit, another (atom, copy number)
-  std::uint64_t depth_only = 0;      // same atom and copy, depth beyond the tolerance
-  double max_depth_difference = 0;   // over pixels with the same atom and copy
-  double agreement() const { return pixels == 0 ? 1.0 : double(agree) / double(pixels); }
-  HitAgreement& operator+=(const HitAgreement& other);
-};
-HitAgreement compare_hits(const std::vector<gpu::PixelHit>& reference, const std::vector<gpu::PixelHit>& test);
+// oracle::compare_images of two frames after blanking `reference`'s placement ids (compartment
+// instance, element, kind, cell, instance): explicit instancing names a copy only by its number, so
+// pixels are judged by (atom, copy number), depth within max(1e-3 Å, 1e-5·t), and bad depths.
+// Throws std::invalid_argument for images of different sizes.
+oracle::CompareResult compare_hits(std::vector<gpu::PixelHit> reference, const std::vector<gpu::PixelHit>& test);
 
 struct ExplicitVsVirtual {
   double explicit_seconds_median = 0, virtual_seconds_median = 0;  // per frame, wall clock with read-back
   std::uint64_t explicit_device_bytes = 0, virtual_device_bytes = 0;
   std::uint64_t copies = 0;
-  double agreement = 0;            // HitAgreement over every camera's first-round frames
+  double agreement = 0;            // compare_hits over every camera's first-round frames
   InstancedReport explicit_report; // the explicit scene's build: memory by category, seconds
   std::uint64_t frames = 0;        // per renderer, warm-ups excluded
   nlohmann::json to_json() const;

@@ -176,10 +176,7 @@ struct InstancedScene::Impl : format::PackageView {
     const auto storage = [&](std::span<const std::byte> bytes) {
       return vk::Buffer::with_data(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::DeviceLocal);
     };
-    std::vector<glm::vec4> spheres;
-    spheres.reserve(atoms.size());
-    for (const gpu::Atom& a : atoms) spheres.push_back(a.centre_radius);
-    atom_buffer = storage(std::as_bytes(std::span(spheres)));  // non-empty: some type has atoms (enumerate)
+    atom_buffer = storage(std::as_bytes(atoms));  // gpu::Atom is the shader's vec4; non-empty: some type has atoms
     order_buffer = storage(std::as_bytes(std::span(orders)));
     type_buffer = storage(std::as_bytes(std::span(types)));
     report.memory.atoms = atom_buffer.size() + order_buffer.size() + type_buffer.size();

@@ -65,7 +65,7 @@ void expect_agreement(InstancedRenderer& explicit_renderer, render::Renderer& vi
                       const std::string& name) {
   const InstancedFrame e = explicit_renderer.render(camera);
   const render::Frame v = virtual_renderer.render(camera);
-  const HitAgreement a = compare_hits(v.hits, e.hits);
+  const oracle::CompareResult a = compare_hits(v.hits, e.hits);
   std::printf("%s: %llu/%llu agree (missed %llu, other atom %llu, depth %llu, max |Δt| %.3g Å), %llu hit pixels; "
               "explicit %.3f s, virtual %.3f s\n",
               name.c_str(), (unsigned long long)a.agree, (unsigned long long)a.pixels, (unsigned long long)a.missed,

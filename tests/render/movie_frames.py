@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """`nanoview render --path --frames A:B` against single renders.
 
-A 3-keyframe path at 2 fps; frames 0:2 (times 0, 0.5, 1) at 48x48 must give exactly three PNGs
+A 3-keyframe path at 2 fps; frames 1:3 (times 0.5, 1, 1.5: between keys in both segments, and on
+the middle key) at 48x48 must give exactly three PNGs
 (and ids files) in a directory the command creates, and frame k must be byte for byte the image and
 ids of `render --camera C_k --time k/fps`, where C_k is computed here from the path: Catmull–Rom
 tangents with time spacing (one-sided at the ends), cubic Hermite on eye and target, lerp on fov
@@ -23,6 +24,7 @@ KEYS = [  # time, eye, target, fov
     (2.0, (768, 768, 1408), (0, 16, 0), 60.0),
 ]
 FPS = 2
+FRAMES = range(1, 4)
 SIZE = "48x48"
 
 
@@ -76,14 +78,14 @@ def main():
     if os.path.exists(frames):
         sys.exit("FAIL: a rejected command left files behind")
 
-    run(base + ["--path", path, "--frames", "0:2", "-o", os.path.join(frames, "%03d.png"), "--ids",
+    run(base + ["--path", path, "--frames", "1:3", "-o", os.path.join(frames, "%03d.png"), "--ids",
                 os.path.join(frames, "%03d.ids")], env)
     got = sorted(os.listdir(frames))
-    want = [f"{k:03d}.{ext}" for k in range(3) for ext in ("ids", "png")]
+    want = [f"{k:03d}.{ext}" for k in FRAMES for ext in ("ids", "png")]
     if got != sorted(want):
         sys.exit(f"FAIL: frames directory holds {got}, expected {sorted(want)}")
 
-    for k in range(3):
+    for k in FRAMES:
         t = k / FPS
         single = os.path.join(work, f"single{k}")
         run(base + ["--camera", camera(t), "--time", repr(t), "-o", single + ".png", "--ids", single + ".ids"], env)
