@@ -95,7 +95,7 @@ void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json
   const render::CameraSpec start = camera_option(session.package, o.camera);
   render::RenderSettings settings = o.variant.render_settings();
   settings.effects = o.effect_options.settings(session.package);
-  settings.depth_cue = float(4 * glm::length(start.at - start.eye));
+  settings.depth_cue = render::depth_cue_for(start);
   render::Renderer renderer(session.device, *session.scene, settings);
   const std::vector<render::CameraSpec> cameras = frame_cameras(o, start, o.frames ? o.frames : 24);
   renderer.render(cameras.front().to_gpu(w, h));  // warm-up: the first dispatch compiles the pipeline
@@ -185,7 +185,7 @@ void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_jso
   const unsigned rounds = o.frames ? o.frames : 5;
   const render::CameraSpec camera = camera_option(session.package, o.camera);
   render::RenderSettings base = o.variant.render_settings();
-  base.depth_cue = float(4 * glm::length(camera.at - camera.eye));
+  base.depth_cue = render::depth_cue_for(camera);
   const std::vector<EffectVariant> variants = effect_variants(base, render::package_effects(session.package), camera);
   render::Renderer renderer(session.device, *session.scene, variants.front().settings);
   const gpu::Camera gpu_camera = camera.to_gpu(w, h);

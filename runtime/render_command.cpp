@@ -21,14 +21,12 @@
 #include "runtime/render/renderer.hpp"
 #include "runtime/bench/frame_stats.hpp"
 #include "runtime/render_session.hpp"
-#include "runtime/viewer/script.hpp"
 
 namespace nano::view {
 
-// One strict rule for every image size (the viewer's scripts read sizes with it too).
 std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text) {
   try {
-    return viewer::parse_size_text(text);
+    return render::parse_image_size(text);
   } catch (const std::invalid_argument& e) {
     throw InputError("--size", "", e.what());
   }
@@ -112,7 +110,7 @@ void add_render_command(CLI::App& app) {
     settings.effects = o->effects.settings(session.package);
     render::CameraSpec camera = camera_option(session.package, o->camera);
     if (path) camera = render::camera_at(*path, settings.effects.time);
-    settings.depth_cue = float(4 * glm::length(camera.at - camera.eye));
+    settings.depth_cue = render::depth_cue_for(camera);
     render::Renderer renderer(session.device, *session.scene, settings);
 
     const auto count_hits = [](const render::Frame& frame) {
@@ -126,7 +124,7 @@ void add_render_command(CLI::App& app) {
         const render::CameraSpec frame_camera = render::camera_at(*path, time);
         // Exactly what `render --camera <frame_camera> --time <time>` would use, so a movie frame
         // can be re-rendered alone; neither changes the compiled pipeline.
-        settings.depth_cue = float(4 * glm::length(frame_camera.at - frame_camera.eye));
+        settings.depth_cue = render::depth_cue_for(frame_camera);
         settings.effects.time = time;
         renderer.set_settings(settings);
         const render::Frame frame = renderer.render(frame_camera.to_gpu(w, h));

@@ -36,13 +36,7 @@ void add_view_command(CLI::App& app) {
   o->viewer.variant.add_to(*cmd);
   o->viewer.effects.add_to(*cmd);
   cmd->callback([o] {
-    if (!o->size.empty()) {
-      try {
-        o->viewer.size = viewer::parse_size_text(o->size);
-      } catch (const std::invalid_argument& e) {
-        throw InputError("--size", "", e.what());
-      }
-    }
+    if (!o->size.empty()) o->viewer.size = parse_size(o->size);
     const int status = viewer::run_viewer(o->viewer);
     if (status != 0) throw std::runtime_error("view: stopped before the script's end");
   });

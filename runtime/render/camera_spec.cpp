@@ -49,6 +49,8 @@ std::string CameraSpec::to_string() const {
   return "pos=" + triple(eye) + ";at=" + triple(at) + ";up=" + triple(up) + ";fov=" + number(fov_degrees);
 }
 
+float depth_cue_for(const CameraSpec& camera) { return float(4 * glm::length(camera.at - camera.eye)); }
+
 CameraSpec parse_camera(std::string_view text, const CameraSpec& base) {
   CameraSpec c = base;
   std::size_t start = 0;

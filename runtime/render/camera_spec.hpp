@@ -24,6 +24,10 @@ struct CameraSpec {
   std::string to_string() const;  // in the syntax parse_camera reads
 };
 
+// The depth cue `render`, `bench` and the viewer shade with: colour fades over four times the
+// distance to the target (RenderSettings::depth_cue). One rule, so their frames stay identical.
+float depth_cue_for(const CameraSpec& camera);
+
 // Keys may come in any order and any may be left out (they keep `base`'s value). Throws
 // std::invalid_argument naming the part that does not parse.
 CameraSpec parse_camera(std::string_view text, const CameraSpec& base = {});

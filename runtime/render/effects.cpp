@@ -65,13 +65,13 @@ EffectSettings package_effects(const format::Package& package) {
   return e;
 }
 
-void set_effect(EffectSettings& effects, std::string_view name, bool on) {
-  if (name == "clipping") effects.clipping_on = on;
-  else if (name == "animation") effects.animation_on = on;
-  else if (name == "jitter") effects.jitter_on = on;
-  else if (name == "ao") effects.ambient_occlusion_on = on;
-  else if (name == "shadows") effects.shadows_on = on;
-  else throw std::invalid_argument("unknown effect '" + std::string(name) + "' (expected clipping, animation, jitter, ao or shadows)");
+bool& effect_flag(EffectSettings& effects, std::string_view name) {
+  if (name == "clipping") return effects.clipping_on;
+  if (name == "animation") return effects.animation_on;
+  if (name == "jitter") return effects.jitter_on;
+  if (name == "ao") return effects.ambient_occlusion_on;
+  if (name == "shadows") return effects.shadows_on;
+  throw std::invalid_argument("unknown effect '" + std::string(name) + "' (clipping, animation, jitter, ao, shadows)");
 }
 
 glm::dvec4 parse_clip_plane(std::string_view text) {

@@ -49,8 +49,10 @@ EffectSettings package_effects(const format::Package& package);
 
 // Names of the switchable effects, as the CLI and the viewer script spell them.
 inline constexpr std::string_view kEffectNames[] = {"clipping", "animation", "jitter", "ao", "shadows"};
-// Turns effect `name` on or off; throws std::invalid_argument naming the choices for another name.
-void set_effect(EffectSettings& effects, std::string_view name, bool on);
+// The switch of effect `name` (one of kEffectNames); throws std::invalid_argument naming the
+// choices for another name.
+bool& effect_flag(EffectSettings& effects, std::string_view name);
+inline void set_effect(EffectSettings& effects, std::string_view name, bool on) { effect_flag(effects, name) = on; }
 
 // "nx,ny,nz,d" → plane; "x0,y0,z0,x1,y1,z1" → box. Throw std::invalid_argument saying what is wrong.
 glm::dvec4 parse_clip_plane(std::string_view text);

@@ -1,5 +1,6 @@
 #include "runtime/render/image_io.hpp"
 
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -105,6 +106,19 @@ void write_depth_pfm(const std::filesystem::path& path, std::uint32_t width, std
     }
   }
   write_file_atomically(path, std::as_bytes(std::span(bytes.data(), bytes.size())));
+}
+
+std::pair<std::uint32_t, std::uint32_t> parse_image_size(std::string_view text) {
+  const auto number = [](std::string_view digits, std::uint32_t& value) {
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    return !digits.empty() && error == std::errc() && end == digits.data() + digits.size();
+  };
+  const auto x = text.find('x');
+  std::uint32_t w = 0, h = 0;
+  if (x == std::string_view::npos || !number(text.substr(0, x), w) || !number(text.substr(x + 1), h) || w == 0 || h == 0 ||
+      w > 16384 || h > 16384)
+    throw std::invalid_argument("expected a size WxH with 1 ≤ W, H ≤ 16384, got '" + std::string(text) + "'");
+  return {w, h};
 }
 
 void write_ids(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,

@@ -15,15 +15,6 @@
 namespace nano::viewer {
 namespace {
 
-bool& effect_flag(render::EffectSettings& e, std::string_view name) {
-  if (name == "clipping") return e.clipping_on;
-  if (name == "animation") return e.animation_on;
-  if (name == "jitter") return e.jitter_on;
-  if (name == "ao") return e.ambient_occlusion_on;
-  if (name == "shadows") return e.shadows_on;
-  throw std::invalid_argument("panel: no switch for effect '" + std::string(name) + "'");
-}
-
 std::string megabytes(std::uint64_t bytes) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2f MB", double(bytes) / 1e6);
@@ -129,7 +120,7 @@ void effects_section(ViewerState& s, const PanelContext& c) {
   if (!ImGui::CollapsingHeader("effects")) return;
   render::EffectSettings& e = s.settings.effects;
   for (std::string_view name : render::kEffectNames) {
-    bool& flag = effect_flag(e, name);
+    bool& flag = render::effect_flag(e, name);
     if (ImGui::Checkbox(std::string(name).c_str(), &flag)) s.touch();
   }
   if (ImGui::TreeNode("clipping planes and box")) {

@@ -28,10 +28,8 @@ public:
   ~Presenter();
 
   VkRenderPass overlay_pass() const { return render_pass_.get(); }
-  VkFormat format() const { return format_; }
   std::uint32_t min_image_count() const { return min_image_count_; }
   std::uint32_t image_count() const { return std::uint32_t(images_.size()); }
-  VkExtent2D extent() const { return extent_; }
   // Called after each swapchain re-creation with the new minimum image count (ImGui needs it).
   std::function<void(std::uint32_t)> on_recreate;
 

@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "runtime/render/camera_spec.hpp"
+#include "runtime/render/image_io.hpp"
 #include "runtime/render/effects.hpp"
 
 namespace nano::viewer {
@@ -145,11 +146,8 @@ ScriptCommand parse_line(std::string_view line) {
     std::string_view tail;
     const std::string_view name = next_word(rest, rest);
     const std::string_view state = next_word(rest, tail);
-    if (std::find(std::begin(render::kEffectNames), std::end(render::kEffectNames), name) == std::end(render::kEffectNames)) {
-      std::string names;
-      for (auto n : render::kEffectNames) names += (names.empty() ? "" : ", ") + std::string(n);
-      throw std::invalid_argument("unknown effect '" + std::string(name) + "' (" + names + ")");
-    }
+    render::EffectSettings scratch;
+    (void)render::effect_flag(scratch, name);  // throws for an unknown name
     if (state != "on" && state != "off")
       throw std::invalid_argument("effect " + std::string(name) + " expects on or off, got '" + std::string(state) + "'");
     expect_no_more(tail, "effect NAME on|off");
@@ -185,7 +183,7 @@ ScriptCommand parse_line(std::string_view line) {
       throw std::invalid_argument("screenshot PATH must not end in .ids: the hit ids are written beside it as PATH.ids");
   } else if (word == "size") {
     std::string_view tail;
-    const auto [w, h] = parse_size_text(next_word(rest, tail));
+    const auto [w, h] = render::parse_image_size(next_word(rest, tail));
     expect_no_more(tail, "size WxH");
     c.kind = K::size;
     c.x = w, c.y = h;
@@ -209,15 +207,6 @@ ScriptCommand parse_line(std::string_view line) {
 }
 
 }  // namespace
-
-std::pair<std::uint32_t, std::uint32_t> parse_size_text(std::string_view text) {
-  const auto x = text.find('x');
-  std::uint32_t w = 0, h = 0;
-  if (x == std::string_view::npos || !parse_number(text.substr(0, x), w) || !parse_number(text.substr(x + 1), h) ||
-      w == 0 || h == 0 || w > 16384 || h > 16384)
-    throw std::invalid_argument("expected a size WxH with 1 ≤ W, H ≤ 16384, got '" + std::string(text) + "'");
-  return {w, h};
-}
 
 Script parse_script(std::string_view text, const std::string& file) {
   Script script;

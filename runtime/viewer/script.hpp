@@ -64,7 +64,5 @@ Script parse_script(std::string_view text, const std::string& file);
 // Reads and parses; InputError naming the path when it cannot be read.
 Script load_script(const std::filesystem::path& path);
 
-// "WxH" with 1 ≤ W, H ≤ 16384; throws std::invalid_argument saying what is wrong.
-std::pair<std::uint32_t, std::uint32_t> parse_size_text(std::string_view text);
 
 }  // namespace nano::viewer

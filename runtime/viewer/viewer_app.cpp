@@ -161,8 +161,7 @@ private:
 
   render::Frame render_frame(std::uint32_t width, std::uint32_t height, std::uint32_t sample) {
     render::RenderSettings s = state_.settings;
-    // As `nanoview render` does: the colour fades over four times the target distance.
-    s.depth_cue = float(4 * state_.camera.distance());
+    s.depth_cue = render::depth_cue_for(state_.camera.camera());
     s.effects.sample_index = sample;
     renderer_->set_settings(s);
     render::Frame frame = renderer_->render(state_.camera.camera().to_gpu(width, height));
@@ -189,7 +188,6 @@ private:
     state_.stats.scale = 1;
     state_.stats.samples = accumulator_.count();
     shown_ = &full_;
-    shown_image_ = accumulator_.result();
   }
 
   // One frame at 1/scale resolution per axis (the presenter stretches it over the window).
@@ -202,7 +200,6 @@ private:
     state_.stats.scale = scale;
     state_.stats.samples = 1;
     shown_ = &reduced_;
-    shown_image_ = reduced_.rgba;
   }
 
   // At rest: the next refinement step towards the full-resolution frame of the current state.
@@ -226,7 +223,10 @@ private:
 
   bool present() {
     if (shown_ == nullptr) return false;
-    const bool shown = presenter_->present(shown_image_, shown_->width, shown_->height,
+    // The full frame shows its accumulated AO samples; a reduced frame shows itself.
+    const std::span<const std::uint32_t> image =
+        shown_ == &full_ ? std::span<const std::uint32_t>(accumulator_.result()) : std::span<const std::uint32_t>(reduced_.rgba);
+    const bool shown = presenter_->present(image, shown_->width, shown_->height,
                                            [this](VkCommandBuffer commands) { overlay_->record(commands); });
     presented_ += shown;
     return shown;
@@ -384,7 +384,6 @@ private:
   std::pair<std::uint32_t, std::uint32_t> reduced_size_{0, 0};  // the full size it was reduced from
   Accumulator accumulator_;
   const render::Frame* shown_ = nullptr;  // what the window shows (its hits answer clicks)
-  std::vector<std::uint32_t> shown_image_;
   double seconds_per_pixel_ = 0;
   std::string logged_status_;
   std::uint64_t rendered_ = 0, presented_ = 0;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
+#include "runtime/render/image_io.hpp"
 #include "runtime/viewer/script.hpp"
 
 namespace nano::viewer {
@@ -161,9 +162,10 @@ TEST(Script, MissingFileIsAnInputError) {
 }
 
 TEST(Script, SizeText) {
-  EXPECT_EQ(parse_size_text("640x480"), std::pair(640u, 480u));
-  EXPECT_THROW(parse_size_text("16385x1"), std::invalid_argument);
-  EXPECT_THROW(parse_size_text("x1"), std::invalid_argument);
+  EXPECT_EQ(render::parse_image_size("640x480"), std::pair(640u, 480u));
+  EXPECT_THROW(render::parse_image_size("16385x1"), std::invalid_argument);
+  EXPECT_THROW(render::parse_image_size("x1"), std::invalid_argument);
+  EXPECT_THROW(render::parse_image_size("+64x48"), std::invalid_argument);
 }
 
 }  // namespace
