@@ -3,6 +3,7 @@
 // walk a whole scene (the explicit-instancing oracle, the renderer's upload) declare them once.
 // Spans point into the Package, which must outlive the view; an absent section is an empty span.
 #include <cstdint>
+#include <algorithm>
 #include <span>
 #include <vector>
 
@@ -50,6 +51,8 @@ struct PackageView {
   std::span<const gpu::CompartmentInstance> compartment_instances;
   std::span<const gpu::BoundaryBox> boundary_boxes;
   std::span<const std::uint32_t> mask_words;
+  std::span<const gpu::TriangleDrops> triangle_drops;  // empty (no drops) or parallel to triangles
+  std::span<const std::uint32_t> dropped_copies;
 
   explicit PackageView(const Package& p)
       : molecules(p.records<SectionKind::molecules>()),
@@ -70,7 +73,17 @@ struct PackageView {
         occupancy(p.records<SectionKind::occupancy>()),
         compartment_instances(p.records<SectionKind::compartment_instances>()),
         boundary_boxes(p.records<SectionKind::boundary_boxes>()),
-        mask_words(p.records<SectionKind::mask_words>()) {}
+        mask_words(p.records<SectionKind::mask_words>()),
+        triangle_drops(p.records<SectionKind::triangle_drops>()),
+        dropped_copies(p.records<SectionKind::dropped_copies>()) {}
+
+  // True iff the baker dropped membrane copy `key` (membrane_copy_key) of triangle t: a binary
+  // search over the triangle's ascending keys, as the shader does.
+  bool membrane_copy_dropped(std::uint32_t t, std::uint32_t key) const {
+    if (triangle_drops.empty()) return false;
+    const auto keys = dropped_copies.subspan(triangle_drops[t].first, triangle_drops[t].count);
+    return std::binary_search(keys.begin(), keys.end(), key);
+  }
 
   // Per molecule type, the radius about its origin that holds every atom sphere (max |centre| +
   // radius), computed from the atoms themselves rather than trusted from MoleculeType.aabb_min.w.

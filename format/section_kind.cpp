@@ -40,6 +40,8 @@ constexpr std::array kKinds = {
     info<SectionKind::mask_words>("mask_words"),
     info<SectionKind::effects>("effects"),
     info<SectionKind::keyframes>("keyframes"),
+    info<SectionKind::triangle_drops>("triangle_drops"),
+    info<SectionKind::dropped_copies>("dropped_copies"),
 };
 static_assert(kKinds.size() == std::size(kAllSectionKinds), "every kind has a name");
 

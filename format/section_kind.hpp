@@ -35,6 +35,8 @@ enum class SectionKind : std::uint32_t {
   mask_words = 22,
   effects = 23,    // format 2.1
   keyframes = 24,  // format 2.1
+  triangle_drops = 25,   // format 2.2
+  dropped_copies = 26,   // format 2.2
 };
 
 // Every kind this reader knows, in numeric order.
@@ -47,6 +49,7 @@ inline constexpr SectionKind kAllSectionKinds[] = {
     SectionKind::compartments,    SectionKind::occupancy,       SectionKind::scene,
     SectionKind::compartment_instances, SectionKind::provenance,  SectionKind::boundary_boxes,
     SectionKind::mask_words,      SectionKind::effects,         SectionKind::keyframes,
+    SectionKind::triangle_drops,  SectionKind::dropped_copies,
 };
 
 bool is_known_section_kind(std::uint32_t kind);
@@ -83,6 +86,8 @@ template <> struct RecordOf<SectionKind::boundary_boxes> { using type = gpu::Bou
 template <> struct RecordOf<SectionKind::mask_words> { using type = std::uint32_t; };
 template <> struct RecordOf<SectionKind::effects> { using type = gpu::SceneEffects; };
 template <> struct RecordOf<SectionKind::keyframes> { using type = gpu::InstanceKeyframe; };
+template <> struct RecordOf<SectionKind::triangle_drops> { using type = gpu::TriangleDrops; };
+template <> struct RecordOf<SectionKind::dropped_copies> { using type = std::uint32_t; };
 template <SectionKind K> using record_t = typename RecordOf<K>::type;
 
 }  // namespace nano::format

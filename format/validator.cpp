@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -41,6 +42,7 @@ public:
     check_compartment_instances();
     check_effects();
     check_keyframes();
+    check_membrane_drops();
     check_provenance();
   }
 
@@ -238,11 +240,13 @@ private:
         throw PackageError(p_.name(), Rule::record_size, p_.locate(k, 0),
                            section_kind_name(k) + " has " + str(p_.record_count(k)) + " records for " + str(vertices) +
                                " vertex positions");
-    if (p_.has(SectionKind::triangle_shells) &&
-        p_.record_count(SectionKind::triangle_shells) != p_.record_count(SectionKind::triangles))
-      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::triangle_shells, 0),
-                         "triangle_shells has " + str(p_.record_count(SectionKind::triangle_shells)) +
-                             " records for " + str(p_.record_count(SectionKind::triangles)) + " triangles");
+    // An empty triangle_drops is the same as none: no triangle drops a copy.
+    for (SectionKind k : {SectionKind::triangle_shells, SectionKind::triangle_drops})
+      if (p_.has(k) && (k != SectionKind::triangle_drops || p_.record_count(k) > 0) &&
+          p_.record_count(k) != p_.record_count(SectionKind::triangles))
+        throw PackageError(p_.name(), Rule::record_size, p_.locate(k, 0),
+                           section_kind_name(k) + " has " + str(p_.record_count(k)) + " records for " +
+                               str(p_.record_count(SectionKind::triangles)) + " triangles");
     const auto tris = p_.records<SectionKind::triangles>();
     for (std::uint64_t i = 0; i < meshes.size(); ++i) {
       const gpu::Mesh& m = meshes[i];
@@ -404,6 +408,54 @@ private:
                "boundary box " + str(box) + whose + " has no record in boundary_boxes");
         ++next;
       }
+    }
+  }
+
+  // The membrane copies the baker dropped (format 2.2): per triangle a strictly ascending key range,
+  // every key naming a replication slot and an instance that the triangle's compartment can hold, so
+  // a shader's binary search over a triangle's keys reads only that triangle's keys.
+  void check_membrane_drops() {
+    const auto drops = p_.records<SectionKind::triangle_drops>();
+    if (drops.empty()) return;
+    const auto keys = p_.records<SectionKind::dropped_copies>();
+    for (std::uint64_t t = 0; t < drops.size(); ++t) {
+      const Cursor c = cursor<SectionKind::triangle_drops>(t);
+      range(c, 0, drops[t].first, drops[t].count, SectionKind::dropped_copies, "dropped-copy range");
+      for (std::uint64_t k = std::uint64_t{drops[t].first} + 1; k < std::uint64_t{drops[t].first} + drops[t].count; ++k)
+        if (keys[k] <= keys[k - 1])
+          fail(cursor<SectionKind::dropped_copies>(k), 0, Rule::bad_value,
+               "key " + str(keys[k]) + " does not follow key " + str(keys[k - 1]) + " of triangle " + str(t));
+    }
+    // What the keys may name: per mesh, the smallest replication area and tile set among the
+    // compartments wearing a membrane on it; a mesh without a membrane drops nothing.
+    const auto meshes = p_.records<SectionKind::meshes>();
+    const auto comps = p_.records<SectionKind::compartments>();
+    const auto squares = p_.records<SectionKind::tiles2d>();
+    std::vector<std::uint64_t> slots(meshes.size(), 0), instances(meshes.size(), 0);
+    std::vector<bool> seen(meshes.size(), false);
+    for (const gpu::Compartment& k : comps) {
+      if (k.membrane_recipe == gpu::NANO_NO_INDEX) continue;
+      std::uint64_t largest = 0;
+      for (std::uint64_t i = k.membrane_first_tile; i < std::uint64_t{k.membrane_first_tile} + k.membrane_tile_count; ++i)
+        largest = std::max<std::uint64_t>(largest, squares[i].instance_count);
+      const std::uint64_t area = std::uint64_t{k.replication_width} * k.replication_height;
+      slots[k.mesh] = seen[k.mesh] ? std::min(slots[k.mesh], area) : area;
+      instances[k.mesh] = seen[k.mesh] ? std::min(instances[k.mesh], largest) : largest;
+      seen[k.mesh] = true;
+    }
+    constexpr std::uint64_t kInstanceLimit = std::uint64_t{1} << gpu::NANO_DROP_INSTANCE_BITS;
+    for (std::uint64_t m = 0; m < meshes.size(); ++m) {
+      const std::uint64_t slot_limit = std::min(slots[m], std::uint64_t{1} << (32 - gpu::NANO_DROP_INSTANCE_BITS));
+      const std::uint64_t instance_limit = std::min(instances[m], kInstanceLimit);
+      for (std::uint64_t t = meshes[m].first_triangle; t < std::uint64_t{meshes[m].first_triangle} + meshes[m].triangle_count; ++t)
+        for (std::uint64_t k = drops[t].first; k < std::uint64_t{drops[t].first} + drops[t].count; ++k) {
+          const std::uint64_t slot = keys[k] >> gpu::NANO_DROP_INSTANCE_BITS, instance = keys[k] & (kInstanceLimit - 1);
+          if (slot >= slot_limit || instance >= instance_limit)
+            fail(cursor<SectionKind::dropped_copies>(k), 0, Rule::index_out_of_range,
+                 "key " + str(keys[k]) + " of triangle " + str(t) + " names slot " + str(slot) + ", instance " +
+                     str(instance) + "; mesh " + str(m) + " holds " + str(slot_limit) + " slots of at most " +
+                     str(instance_limit) + " instances");
+        }
     }
   }
 

@@ -10,6 +10,7 @@
 #include "format/package_view.hpp"
 #include "shared/ownership.h"
 #include "shared/effects.h"
+#include "shared/render_membrane_filter.h"
 #include "shared/seam.h"
 #include "shared/tile_mapper.h"
 
@@ -321,6 +322,7 @@ struct ExplicitScene::Impl : format::PackageView {
             if (gpu::seam_drops(seam_edges, p0, p1, p2, gpu::chart_position(chart, uv_m),
                                 molecules[inst.molecule_type].aabb_min.w))
               continue;
+            if (membrane_copy_dropped(t, gpu::membrane_copy_key(std::uint32_t(slot), m))) continue;
             emit.copy.id.instance = m;
             emit.copy.number = emit.ip.base + (std::uint64_t{tl} * plan.membrane_slots + slot) * plan.square_instances + m;
             emit(placement, inst.molecule_type);

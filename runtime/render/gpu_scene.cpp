@@ -47,9 +47,9 @@ VkAabbPositionsKHR outward_box(const vec3& lo, const vec3& hi) {
 enum Binding : std::uint32_t {
   b_ulas = 0, b_molecules, b_atoms, b_squares, b_cubes, b_instances, b_recipes, b_recipe_indices, b_meshes,
   b_positions, b_normals, b_uvs, b_triangles, b_shells, b_compartments, b_occupancy, b_boundary_boxes,
-  b_mask_words, b_render_compartments, b_render_instances, b_levels, b_orders,
+  b_mask_words, b_render_compartments, b_render_instances, b_levels, b_orders, b_triangle_drops, b_dropped_copies,
 };
-static_assert(b_orders + 1 == kSceneBindingCount);
+static_assert(b_dropped_copies + 1 == kSceneBindingCount);
 
 }  // namespace
 
@@ -96,7 +96,7 @@ struct GpuScene::Impl : format::PackageView {
   SceneOptions options;
   LoadReport report;
 
-  std::vector<vk::Buffer> section_buffers;  // indexed by Binding (b_molecules .. b_mask_words), [0] unused
+  std::vector<vk::Buffer> section_buffers;  // indexed by Binding (package sections), others unused
   vk::Buffer shell_buffer, render_compartment_buffer, render_instance_buffer, level_buffer, order_buffer;
 
   std::vector<double> type_radius;                   // from the atoms (as the oracle)
@@ -157,10 +157,19 @@ struct GpuScene::Impl : format::PackageView {
         {b_uvs, SectionKind::vertex_uvs},            {b_triangles, SectionKind::triangles},
         {b_compartments, SectionKind::compartments}, {b_occupancy, SectionKind::occupancy},
         {b_boundary_boxes, SectionKind::boundary_boxes}, {b_mask_words, SectionKind::mask_words},
+        {b_triangle_drops, SectionKind::triangle_drops}, {b_dropped_copies, SectionKind::dropped_copies},
     };
     section_buffers.resize(kSceneBindingCount);
     for (const auto& [binding, kind] : kinds) {
       std::span<const std::byte> bytes = p.raw_bytes(kind);
+      if (kind == SectionKind::triangle_drops && triangle_drops.empty()) {
+        // No drops (a package before 2.2, or nothing dropped): one zero range per triangle, so the
+        // shader reads every triangle's range without asking whether the section exists.
+        const std::vector<gpu::TriangleDrops> none(std::max<std::size_t>(triangles.size(), 1));
+        section_buffers[binding] = storage(std::as_bytes(std::span(none)));
+        report.memory.derived += section_buffers[binding].size();
+        continue;
+      }
       if (vk::Buffer imported = try_import(kind, bytes); imported.handle() != VK_NULL_HANDLE) {
         section_buffers[binding] = std::move(imported);
         continue;
@@ -573,6 +582,7 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
     if (b == b_shells) continue;
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   }
+  for (std::uint32_t b : {b_triangle_drops, b_dropped_copies}) vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   vk::write_storage_buffer(d, set, b_shells, s.shell_buffer);
   vk::write_storage_buffer(d, set, b_render_compartments, s.render_compartment_buffer);
   vk::write_storage_buffer(d, set, b_render_instances, s.render_instance_buffer);

@@ -58,7 +58,7 @@ struct LoadReport {
 nlohmann::json to_json(const LoadReport& report);
 
 // Binding numbers of shaders/render/render.comp that the scene fills (0 .. kSceneBindingCount−1).
-inline constexpr std::uint32_t kSceneBindingCount = 22;
+inline constexpr std::uint32_t kSceneBindingCount = 24;
 
 class GpuScene {
 public:

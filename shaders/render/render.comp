@@ -79,9 +79,11 @@ layout(set = 0, binding = 18, std430) readonly buffer RenderCompartments { Rende
 layout(set = 0, binding = 19, std430) readonly buffer RenderInstances { RenderInstance render_instances[]; };
 layout(set = 0, binding = 20, std430) readonly buffer Levels { RenderLevel levels[]; };
 layout(set = 0, binding = 21, std430) readonly buffer Orders { uint orders[]; };
-layout(set = 0, binding = 22, std430) readonly buffer Frame { RenderFrame frame; };
-layout(set = 0, binding = 23, std430) writeonly buffer Hits { PixelHit hits[]; };
-layout(set = 0, binding = 24, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+layout(set = 0, binding = 22, std430) readonly buffer TriangleDropRanges { TriangleDrops triangle_drops[]; };
+layout(set = 0, binding = 23, std430) readonly buffer DroppedCopies { uint dropped_copies[]; };
+layout(set = 0, binding = 24, std430) readonly buffer Frame { RenderFrame frame; };
+layout(set = 0, binding = 25, std430) writeonly buffer Hits { PixelHit hits[]; };
+layout(set = 0, binding = 26, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
 
 // The best hit so far. Ids follow PixelHit (shared/camera.h).
 float best_t;
@@ -175,6 +177,18 @@ uint recipe_cell(uint recipe, ivec3 cell) {
   return recipe_indices[r.first_index + uint(w.x) + r.dims.x * (uint(w.y) + r.dims.y * uint(w.z))];
 }
 
+// True iff the baker dropped the copy `key` (membrane_copy_key) of the triangle: binary search over
+// its strictly ascending keys (the validator checks the order and the range).
+bool membrane_copy_dropped(MembraneTriangle mt, uint key) {
+  uint lo = mt.drop_first;
+  uint hi = mt.drop_first + mt.drop_count;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1;
+    if (dropped_copies[mid] < key) lo = mid + 1u; else hi = mid;
+  }
+  return lo < mt.drop_first + mt.drop_count && dropped_copies[lo] == key;
+}
+
 // Two-level membrane tile: atoms straight from the square's atom BLAS, intersected as spheres in tile
 // space (ellipsoids in the world under M1's stretch and shear), with the molecule's ownership and seam
 // rule decided at its true centre.
@@ -208,6 +222,7 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
     if (!(t >= 0.0) || !(t < best_t)) continue;
     vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
     if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
+    if (membrane_copy_dropped(mt, membrane_copy_key(slot, m))) continue;
     best_t = t;
     best.atom = a;
     best_type = mi.molecule_type;
@@ -255,9 +270,10 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
     vec2 uv_m;
     Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, mi.position.xyz, mi.rotation, uv_m);
     if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
+    uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
+    if (membrane_copy_dropped(mt, membrane_copy_key(slot, m))) continue;
     // mLAS-level trivial reject: the copy's bounding sphere wholly clipped.
     if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
-    uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
     uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
                                         slot, rc.counts.x, m);
     if (kJitter) placement = jittered(placement, number);
@@ -318,6 +334,10 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
   mt.t1 = uvs[f + tri.v1];
   mt.t2 = uvs[f + tri.v2];
   mt.seam_edges = sh.seam_edges;
+  // A package without drops gets a zero record per triangle from the loader (gpu_scene.cpp).
+  TriangleDrops td = triangle_drops[t];
+  mt.drop_first = td.first;
+  mt.drop_count = td.count;
   TriangleChart chart = chart_make(p0, p1, p2, mt.t0, mt.t1, mt.t2, n0, n1, n2);
   float s = rc.membrane.x;
   float s_over_S = rc.membrane.y;

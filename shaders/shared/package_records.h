@@ -124,6 +124,20 @@ struct TriangleShell {
                       // yields on. Molecules near them are dropped. Only bits 0-5
 };
 
+// Section "triangle_drops" (format 2.2, optional; parallel to "triangles" when present): the
+// membrane copies a triangle owns that the baker removed because, placed on the real surface, they
+// would clash with a kept copy (or stand where a compartment-level protein replaced them). Keys of
+// section "dropped_copies" [first, +count), strictly ascending:
+// membrane_copy_key(slot, instance) = slot · 2^16 + instance, slot = sx + W·sy in the replication
+// area (W = the compartment's replication_width), instance < 2^16 within the slot's Wang square.
+NANO_CONST uint NANO_DROP_INSTANCE_BITS = 16u;
+struct TriangleDrops {
+  uint first;  // range in section "dropped_copies"
+  uint count;
+};
+
+// Section "dropped_copies": uint keys, see TriangleDrops.
+
 // Section "compartments": a mesh with its membrane shell and its soluble core grid.
 struct Compartment {
   vec4 grid_min;   // xyz: core-grid AABB minimum (mesh space); w: box edge length (Å)
@@ -261,6 +275,8 @@ NANO_AT(Compartment, soluble_first_tile, 64) NANO_AT(Compartment, soluble_tile_c
 NANO_AT(Compartment, soluble_recipe, 72) NANO_AT(Compartment, replication_width, 76)
 NANO_AT(Compartment, replication_height, 80) NANO_AT(Compartment, name_offset, 84)
 NANO_AT(Compartment, name_length, 88) NANO_AT(Compartment, reserved0, 92) NANO_AT(Compartment, core_masks, 96)
+NANO_PIN(TriangleDrops, 8)
+NANO_AT(TriangleDrops, first, 0) NANO_AT(TriangleDrops, count, 4)
 NANO_PIN(BoundaryBox, 8)
 NANO_AT(BoundaryBox, box, 0) NANO_AT(BoundaryBox, first_word, 4)
 NANO_PIN(SceneSettings, 64)

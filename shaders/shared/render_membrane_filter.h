@@ -4,6 +4,7 @@
 #ifndef NANO_RENDER_MEMBRANE_FILTER_H
 #define NANO_RENDER_MEMBRANE_FILTER_H
 #include "shared/ownership.h"
+#include "shared/package_records.h"
 #include "shared/seam.h"
 
 NANO_BEGIN
@@ -17,8 +18,16 @@ struct MembraneTriangle {
   vec2 t1;
   vec2 t2;
   uint seam_edges;     // TriangleShell.seam_edges (0 without triangle_shells)
+  uint drop_first;     // TriangleDrops of the triangle: its dropped copies' keys (count 0 without drops)
+  uint drop_count;
 };
 
+// The key of a membrane copy among its triangle's dropped copies (package_records.h, TriangleDrops):
+// replication slot sx + W·sy and instance index in the slot's Wang square.
+NANO_FN uint membrane_copy_key(uint slot, uint instance) { return (slot << NANO_DROP_INSTANCE_BITS) | instance; }
+
+// Whether the baker dropped the copy is the last test (a binary search over the triangle's keys in
+// section dropped_copies): the shader and the oracle each search their own copy of the section.
 // True iff the triangle keeps the copy whose molecule UV is uv_m, surface point `surface`
 // (chart_position(chart, uv_m)) and bounding radius `radius` (MoleculeType.aabb_min.w): it owns uv_m
 // and the seam rule keeps it.

@@ -25,6 +25,28 @@ TEST(PackageView, SpansAreTheSectionsAsWritten) {
   EXPECT_EQ(v.atoms.back().centre_radius, s.atoms.back().centre_radius);
 }
 
+// The sample drops slot 0 instance 1 and slot 4 instance 0 of triangle 1, slot 8 instance 1 of
+// triangle 3: exactly those keys, on exactly those triangles.
+TEST(PackageView, DroppedMembraneCopiesAreFoundPerTriangle) {
+  const Package p = Package::from_bytes(build(make_sample_scene(), Compression::zstd_if_smaller));
+  const PackageView v(p);
+  const auto key = [](std::uint32_t slot, std::uint32_t instance) { return (slot << 16) | instance; };
+  int found = 0;
+  for (std::uint32_t t = 0; t < 4; ++t)
+    for (std::uint32_t slot = 0; slot < 9; ++slot)
+      for (std::uint32_t m = 0; m < 2; ++m) found += v.membrane_copy_dropped(t, key(slot, m));
+  EXPECT_EQ(found, 3);
+  EXPECT_TRUE(v.membrane_copy_dropped(1, key(0, 1)));
+  EXPECT_TRUE(v.membrane_copy_dropped(1, key(4, 0)));
+  EXPECT_TRUE(v.membrane_copy_dropped(3, key(8, 1)));
+  EXPECT_FALSE(v.membrane_copy_dropped(0, key(0, 1)));  // another triangle's key
+  SampleScene none = make_sample_scene();
+  none.triangle_drops.clear();
+  none.dropped_copies.clear();
+  const Package q = Package::from_bytes(build(none));
+  EXPECT_FALSE(PackageView(q).membrane_copy_dropped(1, key(0, 1)));
+}
+
 TEST(PackageView, BoundingRadiusIsTheFarthestAtomSurfaceFromTheOrigin) {
   SampleScene s = make_sample_scene();
   // Type 0: atoms at known places; the farthest surface is |(3, 4, 0)| + 1.5 = 6.5 Å.

@@ -44,6 +44,7 @@ auto fields(const gpu::Compartment& c) {
                   c.replication_height, c.name_offset, c.name_length, c.reserved0, c.core_masks);
 }
 auto fields(const gpu::BoundaryBox& b) { return std::tie(b.box, b.first_word); }
+auto fields(const gpu::TriangleDrops& d) { return std::tie(d.first, d.count); }
 auto fields(const gpu::SceneSettings& s) {
   return std::tie(s.camera_eye, s.camera_target, s.camera_up, s.effect_flags, s.reserved0, s.reserved1, s.reserved2);
 }
@@ -87,6 +88,8 @@ void expect_scene(const Package& p, const SampleScene& s) {
   expect_section<K::provenance>(p, s.provenance);
   expect_section<K::boundary_boxes>(p, s.boundary_boxes);
   expect_section<K::mask_words>(p, s.mask_words);
+  expect_section<K::triangle_drops>(p, s.triangle_drops);
+  expect_section<K::dropped_copies>(p, s.dropped_copies);
 }
 
 TEST(RoundTrip, EverySectionKindUncompressed) {
@@ -200,7 +203,9 @@ TEST(SectionKinds, NamesRoundTripAndRecordSizes) {
     EXPECT_EQ(section_kind_from_name(section_kind_name(k)), k);
   }
   EXPECT_FALSE(is_known_section_kind(0));
-  EXPECT_FALSE(is_known_section_kind(25));
+  EXPECT_FALSE(is_known_section_kind(27));
+  EXPECT_EQ(record_size(SectionKind::triangle_drops), 8u);
+  EXPECT_EQ(record_size(SectionKind::dropped_copies), 4u);
   EXPECT_EQ(record_size(SectionKind::effects), 256u);
   EXPECT_EQ(record_size(SectionKind::keyframes), 64u);
   EXPECT_EQ(section_kind_name(4711u), "kind 4711");

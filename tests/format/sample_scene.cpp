@@ -68,6 +68,10 @@ SampleScene make_sample_scene() {
   // per box; box 199 keeps it, box 260 does not.
   s.boundary_boxes = {{199, 0}, {260, 1}};
   s.mask_words = {1, 0};
+  // Membrane copies the baker dropped: triangle 1 drops slot 0's instance 1 and slot 4's instance
+  // 0, triangle 3 slot 8's instance 1 (W x H = 3 x 3 slots, squares of at most 2 instances).
+  s.triangle_drops = {{0, 0}, {0, 2}, {2, 0}, {2, 1}};
+  s.dropped_copies = {1, 4u << 16, (8u << 16) | 1u};
   s.scene = {{vec4(0, 0, 10, 0.8f), vec4(0, 0, 0, 0), vec4(0, 1, 0, 0),
               gpu::NANO_EFFECT_AMBIENT_OCCLUSION | gpu::NANO_EFFECT_SHADOWS | gpu::NANO_EFFECT_CLIPPING_PLANES |
                   gpu::NANO_EFFECT_PROXY_ANIMATION,
@@ -117,6 +121,8 @@ std::vector<SectionSource> sections_of(const SampleScene& s, Compression c, std:
       source(K::mask_words, s.mask_words, c),
       source(K::effects, s.effects, c),
       source(K::keyframes, s.keyframes, c),
+      source(K::triangle_drops, s.triangle_drops, c),
+      source(K::dropped_copies, s.dropped_copies, c),
   };
   std::vector<SectionSource> out;
   for (const SectionSource& src : all)

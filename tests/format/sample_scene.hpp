@@ -31,6 +31,8 @@ struct SampleScene {
   std::string provenance;
   std::vector<gpu::BoundaryBox> boundary_boxes;
   std::vector<std::uint32_t> mask_words;
+  std::vector<gpu::TriangleDrops> triangle_drops;
+  std::vector<std::uint32_t> dropped_copies;
   std::vector<gpu::SceneEffects> effects;
   std::vector<gpu::InstanceKeyframe> keyframes;
 };

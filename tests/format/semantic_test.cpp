@@ -203,6 +203,19 @@ const Case kCases[] = {
      SectionKind::keyframes, 0},
     {"keyframe NaN", [](SampleScene& s) { s.keyframes[1].transform[2].y = kNaN; }, Rule::non_finite, SectionKind::keyframes,
      64 + 32 + 4},
+    {"dropped keys not ascending", [](SampleScene& s) { s.dropped_copies[1] = 0; }, Rule::bad_value,
+     SectionKind::dropped_copies, 4},
+    {"dropped copy past the replication area", [](SampleScene& s) { s.dropped_copies[2] = 9u << 16; },
+     Rule::index_out_of_range, SectionKind::dropped_copies, 8},
+    {"dropped copy past the largest square", [](SampleScene& s) { s.dropped_copies[2] = (8u << 16) | 2u; },
+     Rule::index_out_of_range, SectionKind::dropped_copies, 8},
+    {"drop range past the keys", [](SampleScene& s) { s.triangle_drops[3].count = 2; }, Rule::index_out_of_range,
+     SectionKind::triangle_drops, 3 * 8},
+    {"drop ranges not parallel to triangles", [](SampleScene& s) { s.triangle_drops.pop_back(); }, Rule::record_size,
+     SectionKind::triangle_drops, 0},
+    {"drops on a mesh without membrane",
+     [](SampleScene& s) { s.compartments[0].membrane_recipe = gpu::NANO_NO_INDEX; s.compartments[0].membrane_tile_count = 0; },
+     Rule::index_out_of_range, SectionKind::dropped_copies, 0},
     {"NUL in provenance", [](SampleScene& s) { s.provenance[5] = '\0'; }, Rule::bad_value, SectionKind::provenance, 5},
 };
 
@@ -276,6 +289,16 @@ TEST(SemanticOptional, NoMembraneAndNoCoreGrid) {
   s.compartments[0].soluble_recipe = gpu::NANO_NO_INDEX;
   s.compartments[0].grid_dims = glm::uvec4(0);
   s.compartments[0].core_masks = glm::uvec4(0);
+  s.triangle_drops.assign(4, {0, 0});  // a mesh without membrane drops nothing
+  s.dropped_copies.clear();
+  EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
+}
+
+// A package may leave out the drops (before format 2.2, or nothing dropped).
+TEST(SemanticOptional, NoDroppedCopies) {
+  SampleScene s = make_sample_scene();
+  s.triangle_drops.clear();
+  s.dropped_copies.clear();
   EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
 }
 
