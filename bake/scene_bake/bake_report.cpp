@@ -10,6 +10,28 @@ namespace {
 
 nlohmann::ordered_json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
+std::uint64_t total(const std::vector<std::pair<std::string, std::uint64_t>>& list) {
+  std::uint64_t n = 0;
+  for (const auto& e : list) n += e.second;
+  return n;
+}
+
+nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
+  nlohmann::ordered_json per_species = nlohmann::ordered_json::object(), dropped = nlohmann::ordered_json::object();
+  for (const auto& [name, n] : m.lipids) per_species[name] = n / m.area_um2;
+  for (const auto& [name, n] : m.dropped) dropped[name] = n;
+  const double lipids = total(m.lipids) / m.area_um2;
+  return {{"area_um2", m.area_um2},
+          {"lipids_per_um2", per_species},
+          {"lipids_per_um2_total", lipids},
+          {"real_bilayer_lipids_per_um2", kRealBilayerLipidsPerUm2},
+          {"fraction_of_real_bilayer", lipids / kRealBilayerLipidsPerUm2},
+          {"dropped_as_clashing", dropped},
+          {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams"},
+          {"pruning_checked_copies", m.checked_copies},
+          {"pruning_atom_tests", m.atom_tests}};
+}
+
 }  // namespace
 
 nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Package& package) {
@@ -27,6 +49,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
                             {"copies", copies},
                             {"core_boxes", {{"inside", c.core_boxes_inside}, {"boundary", c.core_boxes_boundary}}},
                             {"replication_area", {c.replication_width, c.replication_height}}});
+    if (c.membrane) compartments.back()["membrane"] = membrane_json(*c.membrane);
   }
   auto& instances = j["instances"] = nlohmann::ordered_json::array();
   for (const InstanceSummary& i : scene.instances)
@@ -66,6 +89,20 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       out << line;
     }
     out << "\n";
+    if (c.membrane) {
+      const MembraneSummary& m = *c.membrane;
+      const double lipids = total(m.lipids) / m.area_um2;
+      std::snprintf(line, sizeof line, "  %s membrane: %.4g µm², %.3g lipids/µm² (%.0f%% of a real bilayer's %.3g)", c.name.c_str(),
+                    m.area_um2, lipids, 100.0 * lipids / kRealBilayerLipidsPerUm2, kRealBilayerLipidsPerUm2);
+      out << line;
+      for (const auto& [name, n] : m.lipids) {
+        std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), n / m.area_um2);
+        out << line;
+      }
+      std::snprintf(line, sizeof line, "; %.3g copies dropped as clashing (checked %s)\n", static_cast<double>(total(m.dropped)),
+                    m.pruned_everywhere ? "everywhere" : "along UV seams");
+      out << line;
+    }
   }
   for (const WangSetSummary& s : scene.wang_sets) {
     if (s.surface) {

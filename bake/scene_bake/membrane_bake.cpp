@@ -45,7 +45,9 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   baked.recipe = membrane_recipe(tiles.set, tiles.set.edge / k, seed);
   std::vector<tiles::MoleculeType> types;
   for (const std::uint32_t m : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[m]));
-  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, types, "membrane");
+  // Copies that clash across seams (and wherever the surface distorts the tiles) are found and
+  // dropped by the pruning below, so no seam band is emptied.
+  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, types, "membrane", shell::SeamRule::ignore);
   baked.uv_scale = stored_uv_scale(tiles.set.edge, mapping.tile_uv_size());
   // The package stores the UVs ownership was decided on.
   const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();
@@ -56,8 +58,16 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
     throw InputError("", "membrane", std::to_string(shells.stats.uncontained_triangles) +
                                          " triangles could not be given a prism that contains their molecules");
 
+  shell::PruningSettings pruning;
+  pruning.flat_clearance = tiles.flat_clearance;
+  baked.pruning = shell::prune_membrane(mapping, mesh, types, pruning, threads);
+  baked.dropped = std::move(baked.pruning.dropped);
   baked.copies_by_molecule.assign(library.size(), 0);
-  for (std::size_t i = 0; i < types.size(); ++i) baked.copies_by_molecule[tiles.molecule_of_type[i]] += shells.owned_by_type[i];
+  baked.dropped_by_molecule.assign(library.size(), 0);
+  for (std::size_t i = 0; i < types.size(); ++i) {
+    baked.copies_by_molecule[tiles.molecule_of_type[i]] += shells.owned_by_type[i] - baked.pruning.dropped_by_type[i];
+    baked.dropped_by_molecule[tiles.molecule_of_type[i]] += baked.pruning.dropped_by_type[i];
+  }
   baked.shells.resize(mapping.triangle_count());
   for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
     const shell::TriangleMapping& tm = mapping.triangle(t);

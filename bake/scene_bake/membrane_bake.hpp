@@ -7,6 +7,7 @@
 #include "bake/mesh/proxy_mesh.hpp"
 #include "bake/scene_bake/molecule_library.hpp"
 #include "bake/scene_bake/wang_bake.hpp"
+#include "bake/shell/membrane_pruning.hpp"
 #include "shared/package_records.h"
 
 namespace nano::bake {
@@ -17,8 +18,11 @@ struct BakedMembrane {
   double tile_size = 0.0;  // S, Å
   std::uint32_t replication_width = 0, replication_height = 0;
   std::vector<gpu::TriangleShell> shells;         // one per mesh triangle
-  std::vector<std::uint64_t> copies_by_molecule;  // indexed like the molecule library
+  std::vector<std::vector<std::uint32_t>> dropped;  // per mesh triangle: keys of the copies it drops
+  std::vector<std::uint64_t> copies_by_molecule;  // kept copies, indexed like the molecule library
+  std::vector<std::uint64_t> dropped_by_molecule;  // copies dropped because they clash on the surface
   double inner_height = 0.0;                      // largest h₋: how deep the shell reaches
+  shell::PrunedMembrane pruning;                  // what the clash pruning looked at (dropped moved out)
 };
 
 // The float UV scale k stored in the package: float(S) / k == s exactly, as the renderer computes it.

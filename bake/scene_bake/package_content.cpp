@@ -123,8 +123,10 @@ std::uint32_t PackageContent::add_recipe(const tiles::TilingRecipe& recipe, cons
   return index;
 }
 
-std::uint32_t PackageContent::add_mesh(const PackedMesh& mesh, const std::vector<gpu::TriangleShell>& shells) {
+std::uint32_t PackageContent::add_mesh(const PackedMesh& mesh, const std::vector<gpu::TriangleShell>& shells,
+                                      const std::vector<std::vector<std::uint32_t>>& dropped) {
   if (shells.size() != mesh.triangles.size()) throw std::invalid_argument("one shell per triangle");
+  if (!dropped.empty() && dropped.size() != mesh.triangles.size()) throw std::invalid_argument("one drop list per triangle");
   gpu::Mesh record{};
   record.aabb_min = glm::vec4(mesh.aabb_min, 0.f);
   record.aabb_max = glm::vec4(mesh.aabb_max, 0.f);
@@ -137,6 +139,16 @@ std::uint32_t PackageContent::add_mesh(const PackedMesh& mesh, const std::vector
   vertex_uvs.insert(vertex_uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
   triangles.insert(triangles.end(), mesh.triangles.begin(), mesh.triangles.end());
   triangle_shells.insert(triangle_shells.end(), shells.begin(), shells.end());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const std::uint32_t first = checked_index(dropped_copies);
+    if (!dropped.empty()) {
+      if (!std::is_sorted(dropped[t].begin(), dropped[t].end()) ||
+          std::adjacent_find(dropped[t].begin(), dropped[t].end()) != dropped[t].end())
+        throw std::invalid_argument("dropped-copy keys must ascend strictly");
+      dropped_copies.insert(dropped_copies.end(), dropped[t].begin(), dropped[t].end());
+    }
+    triangle_drops.push_back({first, static_cast<std::uint32_t>(dropped_copies.size() - first)});
+  }
   const std::uint32_t index = checked_index(meshes);
   meshes.push_back(record);
   return index;
@@ -182,6 +194,13 @@ std::vector<format::SectionSource> PackageContent::sections() const {
   add(SectionKind::vertex_uvs, std::span(vertex_uvs));
   add(SectionKind::triangles, std::span(triangles));
   add(SectionKind::triangle_shells, std::span(triangle_shells));
+  // Required: a 2.1 reader that skipped them would render the copies that clash.
+  if (!dropped_copies.empty()) {
+    s.push_back(section_source(SectionKind::triangle_drops, std::span(triangle_drops), format::Compression::zstd_if_smaller,
+                               format::kSectionRequired));
+    s.push_back(section_source(SectionKind::dropped_copies, std::span(dropped_copies), format::Compression::zstd_if_smaller,
+                               format::kSectionRequired));
+  }
   add(SectionKind::compartments, std::span(compartments));
   add(SectionKind::occupancy, std::span(occupancy));
   add(SectionKind::boundary_boxes, std::span(boundary_boxes));

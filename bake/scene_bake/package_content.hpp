@@ -35,6 +35,8 @@ struct PackageContent {
   std::vector<glm::vec2> vertex_uvs;
   std::vector<gpu::Triangle> triangles;
   std::vector<gpu::TriangleShell> triangle_shells;
+  std::vector<gpu::TriangleDrops> triangle_drops;  // parallel to triangles; written only if a copy is dropped
+  std::vector<std::uint32_t> dropped_copies;
   std::vector<gpu::Compartment> compartments;
   std::vector<std::uint8_t> occupancy;
   std::vector<gpu::BoundaryBox> boundary_boxes;
@@ -53,7 +55,9 @@ struct PackageContent {
   TileRange add_wang_set(const BakedWangSet& set, const std::vector<BakedMolecule>& library);
   // Recipe cells index the set's tiles; the package stores them as absolute record indices.
   std::uint32_t add_recipe(const tiles::TilingRecipe& recipe, const TileRange& set);
-  std::uint32_t add_mesh(const PackedMesh& mesh, const std::vector<gpu::TriangleShell>& shells);
+  // `dropped`: per triangle the ascending keys of the membrane copies it drops (empty: none).
+  std::uint32_t add_mesh(const PackedMesh& mesh, const std::vector<gpu::TriangleShell>& shells,
+                         const std::vector<std::vector<std::uint32_t>>& dropped = {});
   // The occupancy bytes of a grid; returns the offset of its first byte.
   std::uint32_t add_occupancy(const std::vector<std::uint8_t>& classes);
   // Boundary boxes with W = ceil(largest cube / 32) words each; returns (first record, count).

@@ -1,9 +1,6 @@
 #include "bake/scene_bake/scene_baker.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <thread>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -18,6 +15,7 @@
 #include "bake/scene_bake/membrane_bake.hpp"
 #include "bake/scene_bake/provenance.hpp"
 #include "bake/tiles/tile_random.hpp"
+#include "common/parallel_for.hpp"
 
 namespace nano::bake {
 namespace {
@@ -27,31 +25,6 @@ enum class SeedTag : std::uint64_t { membrane_tiles = 1, soluble_cubes, membrane
 
 std::uint64_t derive_seed(std::uint64_t seed, SeedTag tag, std::size_t index) {
   return tiles::mix64(seed ^ tiles::mix64(static_cast<std::uint64_t>(tag) * 0x100000001B3ull + index));
-}
-
-// Calls task(0 .. count−1) on up to `threads` threads; the first exception by index is rethrown once
-// all have finished, so an error does not depend on scheduling.
-template <class Task>
-void run_in_parallel(std::size_t count, int threads, const Task& task) {
-  std::vector<std::exception_ptr> errors(count);
-  std::atomic<std::size_t> next{0};
-  const auto worker = [&] {
-    for (std::size_t k = next++; k < count; k = next++) {
-      try {
-        task(k);
-      } catch (...) {
-        errors[k] = std::current_exception();
-      }
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    const std::size_t workers = std::min<std::size_t>(count, static_cast<std::size_t>(std::max(threads, 1)));
-    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(worker);
-    worker();
-  }
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
 }
 
 class StageClock {
@@ -95,6 +68,46 @@ double mesh_bounding_radius(const mesh::ProxyMesh& mesh) {
   double r2 = 0.0;
   for (const glm::dvec3& p : mesh.positions) r2 = std::max(r2, glm::dot(p, p));
   return std::sqrt(r2);
+}
+
+// Copies a membrane puts on a mesh, estimated from the mesh area and the requested densities (a
+// lipid patch at its own density), to choose between pruning everywhere and along seams only.
+double estimated_membrane_copies(const mesh::ProxyMesh& mesh, const scene::MembraneDescription& membrane,
+                                 const std::optional<BakedLipidPatch>& patch) {
+  double area = 0.0;  // Å²
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) area += mesh::world_area(mesh, t);
+  double per_a2 = 0.0;
+  if (patch && patch->period_x > 0 && patch->period_y > 0) per_a2 += patch->molecules.size() / (patch->period_x * patch->period_y);
+  if (membrane.lipids && membrane.lipids->area_per_lipid > 0) per_a2 += 2.0 / membrane.lipids->area_per_lipid;
+  for (const scene::MembraneProtein& p : membrane.proteins)
+    if (p.abundance.unit == scene::SurfaceAbundance::Unit::per_um2) per_a2 += p.abundance.value / 1e8;
+    else per_a2 += p.abundance.value / (membrane.tile_size * membrane.tile_size);
+  return area * per_a2;
+}
+
+// Adds n to the entry called `name`, keeping first-appearance order.
+void add_named(std::vector<std::pair<std::string, std::uint64_t>>& list, const std::string& name, std::uint64_t n) {
+  auto it = std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == name; });
+  if (it == list.end()) list.emplace_back(name, n);
+  else it->second += n;
+}
+
+MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembrane& m, const std::vector<BakedMolecule>& library,
+                                 const std::optional<BakedLipidPatch>& patch, const scene::MembraneDescription& membrane) {
+  MembraneSummary s;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) s.area_um2 += mesh::world_area(mesh, t) * 1e-8;
+  std::vector<bool> lipid(library.size(), false);
+  if (patch)
+    for (const std::uint32_t i : patch->molecules) lipid[i] = true;
+  if (membrane.lipids) lipid[membrane.lipids->molecule.index] = true;
+  for (std::size_t i = 0; i < library.size(); ++i) {
+    if (lipid[i] && m.copies_by_molecule[i] > 0) add_named(s.lipids, library[i].name, m.copies_by_molecule[i]);
+    if (m.dropped_by_molecule[i] > 0) add_named(s.dropped, library[i].name, m.dropped_by_molecule[i]);
+  }
+  s.pruned_everywhere = m.pruning.whole_surface;
+  s.checked_copies = m.pruning.checked_copies;
+  s.atom_tests = m.pruning.atom_tests;
+  return s;
 }
 
 std::uint32_t largest_tile(const BakedWangSet& set) {
@@ -219,10 +232,16 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
   // A membrane's tiles must survive the most anisotropic chart, the most curved surface and the
   // most tilted normals among the meshes that wear it (5% on the curvature for what the
   // corner-normal estimate misses).
+  // Small membranes (a virion's) are pruned on their real surface everywhere (membrane_pruning.hpp),
+  // so their tiles are packed rigid, as dense as the patch; a large one (a cell's 10^8 lipids) is
+  // pruned only along its seams and its tiles must survive what its charts do elsewhere.
   std::vector<tiles::SurfaceDistortion> membrane_surface(scene.membranes.size());
   for (std::size_t c = 0; c < scene.compartments.size(); ++c)
     if (const auto& membrane = scene.compartments[c].membrane) {
       const mesh::ProxyMesh& m = compartments[c].mesh.mesh;
+      if (estimated_membrane_copies(m, scene.membranes[membrane->index], patches[membrane->index]) <=
+          shell::PruningSettings{}.whole_surface_budget)
+        continue;
       tiles::SurfaceDistortion& s = membrane_surface[membrane->index];
       s.lateral_stretch = std::max(s.lateral_stretch, static_cast<float>(mesh::chart_anisotropy(m) - 1.0));
       s.curvature = std::max(s.curvature, static_cast<float>(1.05 * mesh::normal_turn_rate(m)));
@@ -235,7 +254,7 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
   const std::size_t membrane_count = scene.membranes.size();
   std::vector<BakedWangSet> membrane_sets(membrane_count), soluble_sets(scene.solubles.size());
   clock.run("tile sets", [&] {
-    run_in_parallel(membrane_count + scene.solubles.size(), threads, [&](std::size_t k) {
+    parallel_for(membrane_count + scene.solubles.size(), threads, [&](std::size_t k) {
       if (k < membrane_count) {
         membrane_sets[k] = bake_membrane_tiles(scene.membranes[k], library, patches[k] ? &*patches[k] : nullptr,
                                                membrane_surface[k], derive_seed(seed, SeedTag::membrane_tiles, k));
@@ -290,7 +309,8 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       gpu::Compartment record{};
       record.membrane_recipe = record.soluble_recipe = gpu::NANO_NO_INDEX;
       const PackedMesh packed = pack_mesh(bake.mesh.mesh);
-      record.mesh = content.add_mesh(packed, bake.membrane ? bake.membrane->shells : empty_shells(bake.mesh.mesh));
+      record.mesh = bake.membrane ? content.add_mesh(packed, bake.membrane->shells, bake.membrane->dropped)
+                                  : content.add_mesh(packed, empty_shells(bake.mesh.mesh));
       std::tie(record.name_offset, record.name_length) = content.add_string(description.name);
       std::vector<std::uint64_t> copies(library.size(), 0);
       CompartmentSummary summary;
@@ -308,6 +328,8 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
         record.scales.x = static_cast<float>(m.uv_scale);
         record.scales.y = static_cast<float>(m.tile_size);
         for (std::size_t i = 0; i < copies.size(); ++i) copies[i] += m.copies_by_molecule[i];
+        summary.membrane = membrane_summary(bake.mesh.mesh, m, library, patches[description.membrane->index],
+                                            scene.membranes[description.membrane->index]);
         summary.replication_width = m.replication_width;
         summary.replication_height = m.replication_height;
       }

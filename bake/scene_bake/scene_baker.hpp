@@ -19,7 +19,21 @@ struct BakeOptions {
   std::function<void(const std::string&)> progress;  // stage announcements; may be empty
 };
 
+// A real bilayer's lipids per µm² of membrane: two leaflets of one lipid per ~0.66 nm²
+// (phosphatidylcholine; BIOLOGY.md section 1.4 cross-checks 0.5 nm² with cholesterol mixed in).
+inline constexpr double kRealBilayerLipidsPerUm2 = 2.0 / 0.66e-6;
+
+// What a compartment's membrane holds per area, as a structural biologist would count it.
+struct MembraneSummary {
+  double area_um2 = 0.0;                                               // the mesh's surface
+  std::vector<std::pair<std::string, std::uint64_t>> lipids;           // species -> kept copies
+  std::vector<std::pair<std::string, std::uint64_t>> dropped;          // molecule -> copies dropped as clashing
+  bool pruned_everywhere = false;                                      // else along UV seams only
+  std::uint64_t checked_copies = 0, atom_tests = 0;
+};
+
 struct CompartmentSummary {
+  std::optional<MembraneSummary> membrane;
   std::string name;
   std::string mesh_origin;
   std::uint32_t triangles = 0;

@@ -100,6 +100,8 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
                                glm::vec3(patch->positions[i]), glm::quat(1.f, 0.f, 0.f, 0.f)});
     request.lipid_patch = std::move(lipids);
   }
+  baked.flat_clearance = request.budget.clearance;
+  if (request.lipid_patch) baked.flat_clearance = std::min(baked.flat_clearance, request.lipid_patch->clearance);
   try {
     baked.set = tiles::make_membrane_tiles(request);
   } catch (const InputError& e) {
@@ -138,6 +140,7 @@ BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
     request.molecules.push_back(m);
   }
   baked.set = tiles::make_soluble_cubes(request);
+  baked.flat_clearance = request.budget.clearance;
   return baked;
 }
 

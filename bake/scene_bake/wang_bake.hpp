@@ -16,6 +16,9 @@ namespace nano::bake {
 struct BakedWangSet {
   tiles::WangSet set;
   std::vector<std::uint32_t> molecule_of_type;  // the set's type index -> index into the library
+  // Atoms of any two copies of any valid tiling stay >= this x (r1 + r2) apart in flat tile space:
+  // the smallest clearance the set was packed with (its budget's, its lipid patch's).
+  float flat_clearance = 1.f;
 };
 
 // A 2D recipe axis never needs more cells than this: beyond it the periodic recipe repeats.

@@ -44,7 +44,7 @@ struct TriangleMapping {
 };
 
 // Whether the enumerator applies the seam rule (shared/seam.h). `ignore` yields the plain
-// ownership partition (every molecule of the chart exactly once), for tests of ownership itself.
+// ownership partition (every molecule of the chart exactly once).
 enum class SeamRule { apply, ignore };
 
 // One membrane molecule as the triangle that owns it sees it.
@@ -71,8 +71,12 @@ public:
   // (by position index) shared by exactly two triangles that carry different snapped UVs at an
   // endpoint; both triangles get the edge bit and every triangle at the seam edge's endpoints gets
   // the corner bit (seam.h).
+  // `seam_rule`: whether the package this mapping bakes applies the seam rule (format 2.0-2.1
+  // packages did); ignore when the copies that really clash across seams are dropped instead
+  // (membrane_pruning.hpp). The seams themselves are found either way (TriangleMapping.seam_edges).
   MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangSet& set, const tiles::TilingRecipe& recipe,
-                  double k, const std::vector<tiles::MoleculeType>& types, std::string context = "membrane");
+                  double k, const std::vector<tiles::MoleculeType>& types, std::string context = "membrane",
+                  SeamRule seam_rule = SeamRule::apply);
 
   std::size_t triangle_count() const { return triangles_.size(); }
   const TriangleMapping& triangle(std::size_t t) const { return triangles_[t]; }
@@ -87,7 +91,8 @@ public:
 
   // Seam rule input: the radius of each type (bounding_radius).
   float type_radius(std::uint32_t type) const { return type_radius_[type]; }
-  std::uint32_t seam_edges(std::size_t t) const { return triangles_[t].seam_edges; }
+  // The seam bits the package stores: the seams' bits, or none when the seam rule is not applied.
+  std::uint32_t seam_edges(std::size_t t) const { return seam_rule_ == SeamRule::apply ? triangles_[t].seam_edges : 0u; }
   // The number of (triangle, owned molecule) pairs the seam rule drops, over the whole mesh.
   std::size_t seam_dropped_count() const;
 
@@ -122,7 +127,7 @@ public:
           m.type = in.type;
           const glm::vec4 q(in.rotation.x, in.rotation.y, in.rotation.z, in.rotation.w);  // glm quat is (w,x,y,z)
           m.transform = gpu::chart_membrane_molecule(tm.chart, g, s_over_S_, in.position, q, m.uv);
-          if (rule == SeamRule::apply &&
+          if (rule == SeamRule::apply && seam_rule_ == SeamRule::apply &&
               gpu::seam_drops(tm.seam_edges, tm.position[0], tm.position[1], tm.position[2],
                               gpu::chart_position(tm.chart, m.uv), type_radius_[in.type]))
             continue;
@@ -134,6 +139,7 @@ public:
 private:
   const tiles::WangSet* set_;
   const tiles::TilingRecipe* recipe_;
+  SeamRule seam_rule_ = SeamRule::apply;
   float s_ = 0.f;
   float s_over_S_ = 0.f;
   glm::ivec2 area_{0};

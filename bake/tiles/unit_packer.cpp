@@ -193,8 +193,10 @@ public:
 
   // Decides every layer copy in every unit instance against the packed copies only (the layer is
   // clash-free with itself), then adds the kept ones. Returns kept copies per tile, per type.
-  std::vector<double> lay(const FixedLayer& layer) {
-    std::vector<std::pair<size_t, Instance>> kept;
+  std::vector<double> lay(const FixedLayer& layer, SplitMix64& rng) {
+    std::vector<std::pair<size_t, Instance>> kept, refused;
+    ClashRule rule = rule_;
+    if (layer.clearance > 0.f) rule.clearance = layer.clearance;
     std::vector<double> per_tile(shapes_.size(), 0.0);
     constexpr size_t kNone = ~size_t(0);
     for (const Instance& copy : layer.copies) {
@@ -208,7 +210,11 @@ public:
         }
       }
       for (size_t a = 0; a < units_.size(); ++a) {
-        if (units_[a].mask != mask || !fits(a, local, kNone)) continue;
+        if (units_[a].mask != mask) continue;
+        if (!fits(a, local, kNone, rule)) {
+          refused.emplace_back(a, local);
+          continue;
+        }
         kept.emplace_back(a, local);
         per_tile[copy.type] += units_[a].per_tile;
       }
@@ -217,6 +223,29 @@ public:
       units_[a].copies.push_back(copy);
       units_[a].spec_of.push_back(kLayerSpec);
       track(a, copy);
+    }
+    // Where a packed copy (a protein) pushed a layer lipid out, the hole would show what lies
+    // beneath the membrane. Membrane builders pack lipids right against the protein: try other
+    // conformers of the same leaflet at the same place, turned about the normal and nudged, and
+    // keep the first that fits.
+    std::vector<const Instance*> upper, lower;
+    for (const Instance& c : layer.copies) (c.position.z >= 0.f ? upper : lower).push_back(&c);
+    for (const auto& [a, hole] : refused) {
+      const std::vector<const Instance*>& pool = hole.position.z >= 0.f ? upper : lower;
+      if (pool.empty()) continue;
+      for (int attempt = 0; attempt < layer.refill_attempts; ++attempt) {
+        const Instance& conformer = *pool[rng.below(static_cast<uint32_t>(pool.size()))];
+        Instance candidate = conformer;
+        for (int k = 0; k < D_; ++k)
+          candidate.position[k] = hole.position[k] + static_cast<float>(attempt == 0 ? 0.0 : rng.uniform(-6.0, 6.0));
+        candidate.rotation = glm::normalize(spin_about_z(static_cast<float>(rng.uniform(0.0, 2.0 * M_PI))) * conformer.rotation);
+        if (!in_zone(candidate.position, units_[a].mask, layer.band, D_, S_) || !fits(a, candidate, kNone, rule)) continue;
+        units_[a].copies.push_back(candidate);
+        units_[a].spec_of.push_back(kLayerSpec);
+        track(a, candidate);
+        per_tile[candidate.type] += units_[a].per_tile;
+        break;
+      }
     }
     const double measure = std::pow(static_cast<double>(S_), D_);
     for (double& v : per_tile) v /= measure;
@@ -263,13 +292,14 @@ private:
     return false;
   }
 
-  bool fits(size_t a, const Instance& copy, size_t skip) const {
+  bool fits(size_t a, const Instance& copy, size_t skip) const { return fits(a, copy, skip, rule_); }
+  bool fits(size_t a, const Instance& copy, size_t skip, const ClashRule& rule) const {
     Offset owner;
     if (!owner_shift(copy, units_[a].mask, D_, S_, owner)) return false;
     const CollisionShape& shape = shapes_[copy.type];
     const Pose pose = pose_of(copy, {0, 0, 0}, D_, S_);
     return !any_near(a, pose.position, shape.radius(), skip, [&](uint32_t type, const Pose& other) {
-      return copies_collide(shape, pose, shapes_[type], other, rule_);
+      return copies_collide(shape, pose, shapes_[type], other, rule);
     });
   }
 
@@ -404,7 +434,7 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
   if (settings.relaxation_rounds > 0 || !layer.copies.empty()) {
     UnitWorld world(units, shapes, specs, set, settings);
     if (settings.relaxation_rounds > 0) world.run(achieved, rng);
-    if (!layer.copies.empty()) out.layer_per_volume = world.lay(layer);
+    if (!layer.copies.empty()) out.layer_per_volume = world.lay(layer, rng);
   }
   out.tiles.resize(set.tile_count());
   for (uint32_t t = 0; t < set.tile_count(); ++t) {

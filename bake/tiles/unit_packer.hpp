@@ -58,9 +58,15 @@ struct PackerSettings {
 // itself and its images one edge away. Each copy joins the unit whose zone (with `band`) holds its
 // centre, and each instance of that unit keeps it unless it touches a packed copy the unit can meet
 // in some tiling: one decision per unit instance, so neighbouring tiles always agree.
+// Where a packed copy refuses a layer copy, up to refill_attempts other layer copies of the same
+// side of z = 0 (the same leaflet), turned about z and nudged by up to 4 Å, are tried in its place.
 struct FixedLayer {
   std::vector<Instance> copies;  // x, y (and z for cubes) in [0, edge)
   float band = 0.f;              // extent radius of any copy along the lattice axes, <= edge / 2
+  // Atoms of a layer copy and of a packed copy stay >= clearance · (r1 + r2) apart (0: the
+  // packer's clearance). A lipid packs closer against a protein than two proteins against each other.
+  float clearance = 0.f;
+  int refill_attempts = 64;
 };
 
 struct PackedUnits {

@@ -117,6 +117,7 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
     throw InputError(what, "lipid patch", "the patch clearance must be in (0, 2]");
   requested.assign(types.size(), 0.0);
   FixedLayer layer;
+  layer.clearance = patch.clearance;
   float largest = 0.f;
   for (const Instance& l : patch.lipids) {
     check_type(what, types, l.type, 1.0);

@@ -1,0 +1,307 @@
+#include "bake/shell/membrane_pruning.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "bake/tiles/collision_shape.hpp"
+#include "common/error.hpp"
+#include "common/parallel_for.hpp"
+#include "shared/render_membrane_filter.h"
+
+namespace nano::shell {
+namespace {
+
+using glm::dmat3;
+using glm::dvec3;
+
+// One owned copy where the triangle places it.
+struct Placed {
+  std::uint32_t triangle = 0;
+  std::uint32_t key = 0;     // membrane_copy_key(slot, instance)
+  std::uint32_t type = 0;
+  std::uint32_t island = 0;  // UV island of the triangle: copies of one island share one flat tiling
+  dvec3 flat{0.0};           // tile-space centre in the island's unwrapped tiling: cell·S + position
+  dmat3 flat_rotation{1.0};
+  dvec3 centre{0.0};         // compartment space
+  dmat3 rotation{1.0};
+};
+
+// UV islands: triangles that share a UV index lie in one connected piece of the chart.
+std::vector<std::uint32_t> uv_islands(const mesh::ProxyMesh& mesh) {
+  std::vector<std::uint32_t> parent(mesh.uvs.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](std::uint32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (const auto& tri : mesh.uv_triangles) {
+    const std::uint32_t root = find(tri[0]);
+    for (int c = 1; c < 3; ++c) parent[find(tri[c])] = root;
+  }
+  std::vector<std::uint32_t> island(mesh.uv_triangles.size());
+  for (std::size_t t = 0; t < island.size(); ++t) island[t] = find(mesh.uv_triangles[t][0]);
+  return island;
+}
+
+struct Segment {
+  dvec3 a, b;
+};
+
+double point_segment_distance(const dvec3& p, const Segment& s) {
+  const dvec3 ab = s.b - s.a;
+  const double len2 = glm::dot(ab, ab);
+  const double t = len2 > 0.0 ? std::clamp(glm::dot(p - s.a, ab) / len2, 0.0, 1.0) : 0.0;
+  return glm::length(p - (s.a + t * ab));
+}
+
+// The UV-seam edges of the mesh as segments (compartment space), from the mapping's edge bits.
+std::vector<Segment> seam_segments(const MembraneMapping& mapping) {
+  std::vector<Segment> segments;
+  for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
+    const TriangleMapping& tm = mapping.triangle(t);
+    for (int k = 0; k < 3; ++k)
+      if ((tm.seam_edges >> k) & 1u) segments.push_back({dvec3(tm.position[k]), dvec3(tm.position[(k + 1) % 3])});
+  }
+  return segments;
+}
+
+// Copy a relative to copy b, as CollisionShape poses: b's centre is formed as a difference in double
+// so compartment coordinates of tens of µm lose nothing to float.
+bool atoms_clash(const tiles::CollisionShape& sa, const Placed& a, const tiles::CollisionShape& sb, const Placed& b,
+                 float clearance) {
+  const tiles::Pose pa{glm::vec3(0.f), glm::mat3(a.rotation)};
+  const tiles::Pose pb{glm::vec3(b.centre - a.centre), glm::mat3(b.rotation)};
+  return tiles::copies_collide(sa, pa, sb, pb, tiles::ClashRule{clearance, {}});
+}
+
+// How far any atom of b moves relative to a between the flat tiling and the surface, in a's frame:
+// |u| + ‖M‖_F · r_b with u = R_aᵀ(c_b − c_a) − Q_aᵀ(T_b − T_a) and M = R_aᵀR_b − Q_aᵀQ_b.
+double relative_displacement(const Placed& a, const Placed& b, double radius_b) {
+  const dvec3 u = glm::transpose(a.rotation) * (b.centre - a.centre) - glm::transpose(a.flat_rotation) * (b.flat - a.flat);
+  const dmat3 m = glm::transpose(a.rotation) * b.rotation - glm::transpose(a.flat_rotation) * b.flat_rotation;
+  double f = 0.0;
+  for (int c = 0; c < 3; ++c) f += glm::dot(m[c], m[c]);
+  return glm::length(u) + std::sqrt(f) * radius_b;
+}
+
+std::uint64_t cell_key(const glm::ivec3& c) {
+  return (std::uint64_t(std::uint32_t(c.x) & 0x1FFFFF) << 42) | (std::uint64_t(std::uint32_t(c.y) & 0x1FFFFF) << 21) |
+         std::uint64_t(std::uint32_t(c.z) & 0x1FFFFF);
+}
+
+}  // namespace
+
+std::uint64_t PrunedMembrane::dropped_count() const {
+  std::uint64_t n = 0;
+  for (const auto& keys : dropped) n += keys.size();
+  return n;
+}
+
+PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh,
+                              const std::vector<tiles::MoleculeType>& types, const PruningSettings& settings,
+                              int threads) {
+  const std::size_t triangles = mapping.triangle_count();
+  PrunedMembrane out;
+  out.dropped.assign(triangles, {});
+  out.dropped_by_type.assign(types.size(), 0);
+  if (triangles == 0 || types.empty()) return out;
+
+  std::vector<tiles::CollisionShape> shapes;
+  std::vector<double> radius, smallest_atom;
+  for (const tiles::MoleculeType& t : types) {
+    shapes.emplace_back(t);
+    radius.push_back(shapes.back().radius());
+    double r = INFINITY;
+    for (const tiles::AtomSphere& a : t.atoms) r = std::min(r, double(a.radius));
+    smallest_atom.push_back(r);
+  }
+  const tiles::WangSet& set = mapping.set();
+  double highest = 0.0, widest = 0.0;  // largest |z| of an instance and largest type radius
+  for (const tiles::WangTile& tile : set.tiles)
+    for (const tiles::Instance& in : tile.instances) {
+      highest = std::max(highest, std::abs(double(in.position.z)));
+      widest = std::max(widest, radius[in.type]);
+    }
+
+  std::vector<std::uint64_t> owned(triangles, 0);
+  parallel_for(triangles, threads, [&](std::size_t t) {
+    mapping.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++owned[t]; }, SeamRule::ignore);
+  });
+  out.owned_copies = std::accumulate(owned.begin(), owned.end(), std::uint64_t{0});
+  out.whole_surface = out.owned_copies <= settings.whole_surface_budget;
+
+  // Which triangles, and within them which copies, to check. Two copies on the two sides of a seam
+  // that clash have surface points X, X' with |X − X'| < r + r' + |z| + |z'|, and the seam passes
+  // between them: each lies within its own r + |z| plus the widest r' + |z'| of the seam.
+  const std::vector<Segment> seams = out.whole_surface ? std::vector<Segment>{} : seam_segments(mapping);
+  const double reach_other = widest + highest + 2.0;
+  std::vector<std::vector<std::uint32_t>> near_seams(triangles);
+  if (!out.whole_surface) {
+    parallel_for(triangles, threads, [&](std::size_t t) {
+      const TriangleMapping& tm = mapping.triangle(t);
+      const dvec3 centre = (dvec3(tm.position[0]) + dvec3(tm.position[1]) + dvec3(tm.position[2])) / 3.0;
+      double extent = 0.0;
+      for (const glm::vec3& p : tm.position) extent = std::max(extent, glm::length(dvec3(p) - centre));
+      for (std::uint32_t s = 0; s < seams.size(); ++s)
+        if (point_segment_distance(centre, seams[s]) < extent + widest + highest + reach_other)
+          near_seams[t].push_back(s);
+    });
+  }
+
+  const std::vector<std::uint32_t> island = uv_islands(mesh);
+  const double S = set.edge;
+  const std::uint32_t W = static_cast<std::uint32_t>(mapping.replication_area().x);
+  std::size_t largest_tile = 0;
+  for (const tiles::WangTile& tile : set.tiles) largest_tile = std::max(largest_tile, tile.instances.size());
+  const std::uint64_t slots = std::uint64_t(W) * std::uint64_t(mapping.replication_area().y);
+  if (largest_tile > (std::size_t{1} << gpu::NANO_DROP_INSTANCE_BITS) || slots > (std::uint64_t{1} << (32 - gpu::NANO_DROP_INSTANCE_BITS)))
+    throw InputError("", "membrane", "a Wang square of " + std::to_string(largest_tile) + " copies or a replication area of " +
+                                         std::to_string(slots) + " slots is too large for the dropped-copy keys (2^16 each)");
+  std::vector<std::vector<Placed>> per_triangle(triangles);
+  parallel_for(triangles, threads, [&](std::size_t t) {
+    if (!out.whole_surface && near_seams[t].empty()) return;
+    const TriangleMapping& tm = mapping.triangle(t);
+    mapping.for_each_owned_membrane_molecule(
+        t,
+        [&](const OwnedMolecule& m) {
+          const tiles::Instance& in = set.tiles[m.tile].instances[m.instance];
+          if (!out.whole_surface) {
+            const dvec3 surface(gpu::chart_position(tm.chart, m.uv));
+            const double reach = radius[m.type] + std::abs(double(in.position.z)) + reach_other;
+            bool near = false;
+            for (const std::uint32_t s : near_seams[t]) near = near || point_segment_distance(surface, seams[s]) < reach;
+            if (!near) return;
+          }
+          Placed p;
+          p.triangle = static_cast<std::uint32_t>(t);
+          const glm::ivec2 slot = m.cell - tm.origin;
+          p.key = gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + W * static_cast<std::uint32_t>(slot.y), m.instance);
+          p.type = m.type;
+          p.island = island[t];
+          p.flat = dvec3(m.cell.x * S + in.position.x, m.cell.y * S + in.position.y, in.position.z);
+          p.flat_rotation = dmat3(glm::mat3_cast(in.rotation));
+          p.centre = dvec3(m.transform.translation);
+          p.rotation = dmat3(m.transform.linear);
+          per_triangle[t].push_back(p);
+        },
+        SeamRule::ignore);
+  });
+  std::vector<Placed> copies;
+  for (auto& v : per_triangle) copies.insert(copies.end(), v.begin(), v.end());
+  per_triangle = {};
+  out.checked_copies = copies.size();
+  if (copies.empty()) return out;
+
+  // Small copies (lipids and the like) in a hash grid of cells twice their largest radius; the few
+  // large ones (proteins) look through the grid within their own reach and at each other directly.
+  std::vector<double> sorted_radii;
+  for (const Placed& p : copies) sorted_radii.push_back(radius[p.type]);
+  std::nth_element(sorted_radii.begin(), sorted_radii.begin() + sorted_radii.size() / 2, sorted_radii.end());
+  const double small_limit = 1.5 * sorted_radii[sorted_radii.size() / 2];
+  double small_max = 0.0;
+  for (const Placed& p : copies)
+    if (radius[p.type] <= small_limit) small_max = std::max(small_max, radius[p.type]);
+  const double cell = std::max(2.0 * small_max, 1.0);
+  const auto cell_of = [&](const dvec3& c) { return glm::ivec3(glm::floor(c / cell)); };
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
+  std::vector<std::uint32_t> large;
+  for (std::uint32_t i = 0; i < copies.size(); ++i) {
+    if (radius[copies[i].type] <= small_limit) grid[cell_key(cell_of(copies[i].centre))].push_back(i);
+    else large.push_back(i);
+  }
+
+  struct Found {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> clashes;
+    std::uint64_t candidates = 0, atom_tests = 0;
+  };
+  const auto test_pair = [&](std::uint32_t i, std::uint32_t j, Found& f) {
+    const Placed& a = copies[i];
+    const Placed& b = copies[j];
+    const double reach = radius[a.type] + radius[b.type];
+    const dvec3 between = b.centre - a.centre;
+    if (glm::dot(between, between) >= reach * reach) return;
+    ++f.candidates;
+    if (a.island == b.island && settings.flat_clearance > settings.clearance) {
+      const double slack = (double(settings.flat_clearance) - settings.clearance) * (smallest_atom[a.type] + smallest_atom[b.type]);
+      if (relative_displacement(a, b, radius[b.type]) < slack) return;
+    }
+    ++f.atom_tests;
+    if (atoms_clash(shapes[a.type], a, shapes[b.type], b, settings.clearance)) f.clashes.emplace_back(i, j);
+  };
+  constexpr std::size_t kChunk = 2048;
+  const std::size_t chunks = (copies.size() + kChunk - 1) / kChunk;
+  std::vector<Found> found(chunks + 1);
+  parallel_for(chunks, threads, [&](std::size_t chunk) {
+    Found& f = found[chunk];
+    for (std::size_t i = chunk * kChunk; i < std::min(copies.size(), (chunk + 1) * kChunk); ++i) {
+      if (radius[copies[i].type] > small_limit) continue;
+      const glm::ivec3 c = cell_of(copies[i].centre);
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const auto it = grid.find(cell_key(c + glm::ivec3(dx, dy, dz)));
+            if (it == grid.end()) continue;
+            for (const std::uint32_t j : it->second)
+              if (j > i) test_pair(std::uint32_t(i), j, f);
+          }
+    }
+  });
+  {
+    Found& f = found[chunks];
+    for (std::size_t k = 0; k < large.size(); ++k) {
+      const std::uint32_t i = large[k];
+      for (std::size_t l = k + 1; l < large.size(); ++l) test_pair(i, large[l], f);
+      const int span = static_cast<int>(std::ceil((radius[copies[i].type] + small_max) / cell));
+      const glm::ivec3 c = cell_of(copies[i].centre);
+      for (int dz = -span; dz <= span; ++dz)
+        for (int dy = -span; dy <= span; ++dy)
+          for (int dx = -span; dx <= span; ++dx) {
+            const auto it = grid.find(cell_key(c + glm::ivec3(dx, dy, dz)));
+            if (it == grid.end()) continue;
+            for (const std::uint32_t j : it->second) test_pair(i, j, f);
+          }
+    }
+  }
+
+  // Greedy independent set: proteins (larger radius) first, then the copies with fewer clashes.
+  std::vector<std::vector<std::uint32_t>> conflicts(copies.size());
+  for (const Found& f : found) {
+    out.candidate_pairs += f.candidates;
+    out.atom_tests += f.atom_tests;
+    out.clashing_pairs += f.clashes.size();
+    for (const auto& [i, j] : f.clashes) {
+      conflicts[i].push_back(j);
+      conflicts[j].push_back(i);
+    }
+  }
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t i = 0; i < copies.size(); ++i)
+    if (!conflicts[i].empty()) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (radius[copies[a].type] != radius[copies[b].type]) return radius[copies[a].type] > radius[copies[b].type];
+    if (conflicts[a].size() != conflicts[b].size()) return conflicts[a].size() < conflicts[b].size();
+    return a < b;
+  });
+  std::vector<char> kept(copies.size(), 1), decided(copies.size(), 0);
+  for (const std::uint32_t i : order) {
+    decided[i] = 1;
+    for (const std::uint32_t j : conflicts[i])
+      if (decided[j] && kept[j]) {
+        kept[i] = 0;
+        break;
+      }
+  }
+  for (std::uint32_t i = 0; i < copies.size(); ++i)
+    if (!kept[i]) {
+      out.dropped[copies[i].triangle].push_back(copies[i].key);
+      ++out.dropped_by_type[copies[i].type];
+    }
+  for (auto& keys : out.dropped) std::sort(keys.begin(), keys.end());
+  return out;
+}
+
+}  // namespace nano::shell

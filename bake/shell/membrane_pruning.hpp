@@ -1,0 +1,52 @@
+#pragma once
+// The membrane on its real surface: which copies the triangles own that would clash once placed.
+// A Wang set is collision-free in flat tile space; the chart then stretches and shears it, the
+// normals turn and tilt, and across a UV seam two charts lay unrelated parts of the tiling side by
+// side. Rather than pack every tile for the worst a mesh can do anywhere (which empties most of a
+// lipid patch), the baker places the copies where they really go, finds the pairs of copies whose
+// atoms come closer than the clash rule allows, and drops as few copies as it can: a greedy
+// independent set that keeps proteins before lipids. The dropped copies are stored per triangle
+// (package sections triangle_drops / dropped_copies) and skipped by the oracle and the shader.
+#include <cstdint>
+#include <vector>
+
+#include "bake/mesh/proxy_mesh.hpp"
+#include "bake/shell/membrane_mapping.hpp"
+#include "bake/tiles/molecule_type.hpp"
+
+namespace nano::shell {
+
+struct PruningSettings {
+  // Atoms of two kept copies stay at least clearance · (r1 + r2) apart (the bake tests check 0.6;
+  // the baker keeps a hair more so float rounding of the placement can never tip a pair over).
+  float clearance = 0.6012f;
+  // What the Wang set guarantees between any two copies of any valid tiling in flat tile space
+  // (the smallest of its packing clearances): a pair whose placement on the surface moves its atoms
+  // relative to each other by less than the difference needs no atom test.
+  float flat_clearance = 0.6f;
+  // A membrane owning at most this many copies is checked everywhere; a larger one only within
+  // reach of a UV seam, trusting its tile set to survive what its charts do elsewhere.
+  std::uint64_t whole_surface_budget = 600000;
+};
+
+struct PrunedMembrane {
+  std::vector<std::vector<std::uint32_t>> dropped;  // per triangle: ascending membrane_copy_key(slot, instance)
+  std::vector<std::uint64_t> dropped_by_type;       // indexed like the mapping's molecule types
+  std::uint64_t owned_copies = 0;                   // every copy the triangles own, dropped or not
+  bool whole_surface = false;                       // all owned copies checked, not only near seams
+  std::uint64_t checked_copies = 0;                 // copies placed and tested against their neighbours
+  std::uint64_t candidate_pairs = 0;                // pairs whose bounding spheres meet
+  std::uint64_t atom_tests = 0;                     // of those, pairs the flat tiling could not vouch for
+  std::uint64_t clashing_pairs = 0;                 // of those, pairs that clash
+
+  std::uint64_t dropped_count() const;
+};
+
+// `mesh` is the mesh the mapping was built from (its UV islands tell which copies share one flat
+// tiling); `types` the molecule types the set's instances index (their atoms decide clashes).
+// Deterministic for the inputs, whatever `threads`.
+PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh,
+                              const std::vector<tiles::MoleculeType>& types, const PruningSettings& settings,
+                              int threads);
+
+}  // namespace nano::shell

@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""Is the membrane closed? Frontal close-ups from outside, as a structural biologist would look.
+
+For each sample point of a bundled surface (analytic: the virion's sphere, the red blood cell's
+Evans-Fung surface), `nanoview render --ids` looks at it from DISTANCE Å out along the outward
+normal with a FOV-degree field of view; a pixel whose ray meets a membrane copy (hit kind 0) first
+shows the membrane, a pixel that meets a soluble copy (kind 1) first sees the lumen through a hole.
+
+  membrane_coverage.py NANOVIEW PKG virion|rbc [--require F] [--size N] [--json OUT]
+
+Prints one line per sample point (membrane pixels / hit pixels) and exits 1 when --require is given
+and any point's coverage is below it.
+"""
+import argparse
+import json
+import math
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+
+# Evans-Fung red blood cell (bake/mesh/rbc_mesh.cpp, BIOLOGY.md 1.2), Å.
+R0, C0, C1, C2 = 39100.0, 0.2072, 2.0026, -1.1228
+
+
+def rbc_height(rho):
+    return 0.5 * R0 * math.sqrt(max(0.0, 1.0 - rho * rho)) * (C0 + C1 * rho ** 2 + C2 * rho ** 4)
+
+
+def rbc_point(rho, phi, top=True):
+    """Surface point and outward normal at radial fraction rho (< 1) and azimuth phi."""
+    z = rbc_height(rho)
+    h = 1e-6
+    dz = (rbc_height(rho + h) - rbc_height(rho - h)) / (2 * h * R0)  # dz/dr
+    sign = 1.0 if top else -1.0
+    # Outward normal of z = sign·f(r): (−sign·f'(r) r̂, sign) normalised.
+    n_r, n_z = -sign * dz, sign
+    length = math.hypot(n_r, n_z)
+    c, s = math.cos(phi), math.sin(phi)
+    p = (rho * R0 * c, rho * R0 * s, sign * z)
+    n = (n_r / length * c, n_r / length * s, n_z / length)
+    return p, n
+
+
+def unit(v):
+    length = math.sqrt(sum(x * x for x in v))
+    return tuple(x / length for x in v)
+
+
+def sample_points(scene, radius):
+    if scene == "virion":
+        # The cube-sphere's charts: face centre, cube-edge seam, cube corner, and points between.
+        named = {
+            "face centre (+x)": (1, 0, 0),
+            "face centre (-z)": (0, 0, -1),
+            "seam (cube edge +x+y)": (1, 1, 0),
+            "seam (cube edge -y+z)": (0, -1, 1),
+            "corner (+x+y+z)": (1, 1, 1),
+            "corner (-x+y-z)": (-1, 1, -1),
+            "between centre and corner": (1, 0.45, 0.45),
+            "near a seam": (1, 0.9, 0.1),
+        }
+        return [(name, tuple(radius * x for x in unit(d)), unit(d)) for name, d in named.items()]
+    points = []
+    for name, rho, phi, top in [("top dimple (centre)", 0.0, 0.0, True), ("bottom dimple", 0.05, 1.0, False),
+                                ("dimple wall", 0.45, 0.3, True), ("crest", 0.72, 2.0, True),
+                                ("towards the rim", 0.9, 4.0, False), ("near the rim (seam)", 0.985, 0.7, True),
+                                ("bottom near the rim", 0.985, 3.9, False)]:
+        p, n = rbc_point(rho, phi, top)
+        points.append((name, p, n))
+    # The rim itself: the equator, normal along the radius.
+    points.append(("rim (seam)", (R0, 0.0, 0.0), (1.0, 0.0, 0.0)))
+    return points
+
+
+def read_ids(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:8] != b"NUIDS001":
+        raise SystemExit(f"{path}: not an ids file")
+    width, height = struct.unpack_from("<II", data, 8)
+    kinds = []
+    for i in range(width * height):
+        depth, _inst, _elem, kind = struct.unpack_from("<fIII", data, 16 + 48 * i)
+        kinds.append(None if not math.isfinite(depth) else kind)
+    return kinds
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("nanoview")
+    ap.add_argument("package")
+    ap.add_argument("scene", choices=["virion", "rbc"])
+    ap.add_argument("--radius", type=float, default=500.0, help="virion membrane radius (Å)")
+    ap.add_argument("--distance", type=float, default=2000.0)
+    ap.add_argument("--fov", type=float, default=4.0)
+    ap.add_argument("--size", type=int, default=96)
+    ap.add_argument("--require", type=float, default=None, help="smallest coverage accepted at every point")
+    ap.add_argument("--json", default=None)
+    args = ap.parse_args()
+
+    results = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, p, n in sample_points(args.scene, args.radius):
+            eye = tuple(p[i] + args.distance * n[i] for i in range(3))
+            up = (0.0, 0.0, 1.0) if abs(n[2]) < 0.9 else (0.0, 1.0, 0.0)
+            camera = "pos={:.3f},{:.3f},{:.3f};at={:.3f},{:.3f},{:.3f};up={},{},{};fov={}".format(*eye, *p, *up, args.fov)
+            ids = os.path.join(tmp, "ids.bin")
+            subprocess.run([args.nanoview, "render", args.package, "-o", os.path.join(tmp, "f.png"), "--ids", ids,
+                            "--size", f"{args.size}x{args.size}", "--camera", camera],
+                           check=True, stdout=subprocess.DEVNULL)
+            kinds = read_ids(ids)
+            hit = sum(1 for k in kinds if k is not None)
+            membrane = sum(1 for k in kinds if k == 0)
+            coverage = membrane / hit if hit else 0.0
+            results.append({"point": name, "surface_point": p, "normal": n, "hit_pixels": hit,
+                            "membrane_pixels": membrane, "coverage": coverage})
+            print(f"{name:28s} {membrane:6d} / {hit:6d} hit pixels show membrane: {100 * coverage:6.2f} %")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"package": os.path.basename(args.package), "scene": args.scene, "points": results}, f, indent=1)
+    worst = min(r["coverage"] for r in results)
+    print(f"smallest coverage {100 * worst:.2f} %")
+    if args.require is not None and worst < args.require:
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()

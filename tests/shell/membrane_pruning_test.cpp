@@ -1,0 +1,186 @@
+// Clash pruning on the real surface (bake/shell/membrane_pruning.hpp), against a brute-force double
+// check of every pair of kept copies that shares no code with the pruner (its own spatial hash, its
+// own atom distances from the placed transforms):
+//  * without pruning, charts meeting at UV seams overlap; after it no two kept copies clash, on the
+//    sphere (pruned everywhere) and on the red blood cell (pruned along its seam only);
+//  * it drops few copies: each dropped copy clashed with a kept one, and far fewer go than the
+//    seam rule's empty bands cost;
+//  * the keys name exactly the dropped (slot, instance) of each triangle, ascending;
+//  * the result does not depend on the number of threads.
+#include <cmath>
+#include <set>
+#include <unordered_map>
+
+#include <gtest/gtest.h>
+
+#include "bake/shell/membrane_pruning.hpp"
+#include "shell_test_support.hpp"
+#include "shared/render_membrane_filter.h"
+
+using namespace shell_test;
+using nano::shell::MembraneMapping;
+using nano::shell::OwnedMolecule;
+using nano::shell::PrunedMembrane;
+using nano::shell::PruningSettings;
+using nano::shell::SeamRule;
+
+namespace {
+
+struct Copy {
+  std::uint32_t triangle, key, type;
+  dvec3 centre;
+  glm::dmat3 rotation;
+};
+
+// Every owned copy with its key (slot relative to the triangle's replication origin, W of the mapping).
+std::vector<Copy> owned_copies(const MembraneMapping& map) {
+  std::vector<Copy> out;
+  const std::uint32_t W = std::uint32_t(map.replication_area().x);
+  for (std::size_t t = 0; t < map.triangle_count(); ++t) {
+    const glm::ivec2 origin = map.triangle(t).origin;
+    map.for_each_owned_membrane_molecule(
+        t,
+        [&](const OwnedMolecule& m) {
+          const glm::ivec2 slot = m.cell - origin;
+          out.push_back({std::uint32_t(t), (std::uint32_t(slot.x + int(W) * slot.y) << 16) | m.instance, m.type,
+                         dvec3(m.transform.translation), glm::dmat3(m.transform.linear)});
+        },
+        SeamRule::ignore);
+  }
+  return out;
+}
+
+bool dropped(const PrunedMembrane& p, const Copy& c) {
+  const auto& keys = p.dropped[c.triangle];
+  return std::binary_search(keys.begin(), keys.end(), c.key);
+}
+
+// Pairs of copies (index pairs) with atoms closer than clearance · (r1 + r2), in double.
+std::vector<std::pair<std::size_t, std::size_t>> clashes(const std::vector<Copy>& copies,
+                                                         const std::vector<nano::tiles::MoleculeType>& types,
+                                                         double clearance) {
+  double reach = 0.0;
+  std::vector<double> radius;
+  for (const auto& t : types) {
+    double r = 0.0;
+    for (const auto& a : t.atoms) r = std::max(r, glm::length(dvec3(a.centre)) + a.radius);
+    radius.push_back(r);
+    reach = std::max(reach, r);
+  }
+  const double cell = 2.0 * reach;
+  std::unordered_map<long long, std::vector<std::size_t>> grid;
+  auto key = [&](glm::ivec3 c) { return (long long)(c.x + 4096) * 8192 * 8192 + (long long)(c.y + 4096) * 8192 + (c.z + 4096); };
+  for (std::size_t i = 0; i < copies.size(); ++i) grid[key(glm::ivec3(glm::floor(copies[i].centre / cell)))].push_back(i);
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t i = 0; i < copies.size(); ++i) {
+    const glm::ivec3 c(glm::floor(copies[i].centre / cell));
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          auto it = grid.find(key(c + glm::ivec3(dx, dy, dz)));
+          if (it == grid.end()) continue;
+          for (std::size_t j : it->second) {
+            if (j <= i) continue;
+            const Copy& a = copies[i];
+            const Copy& b = copies[j];
+            if (glm::length(a.centre - b.centre) >= radius[a.type] + radius[b.type]) continue;
+            bool hit = false;
+            for (const auto& x : types[a.type].atoms)
+              for (const auto& y : types[b.type].atoms) {
+                const dvec3 pa = a.centre + a.rotation * dvec3(x.centre), pb = b.centre + b.rotation * dvec3(y.centre);
+                hit = hit || glm::length(pa - pb) < clearance * (x.radius + y.radius);
+              }
+            if (hit) out.emplace_back(i, j);
+          }
+        }
+  }
+  return out;
+}
+
+void expect_clash_free_after_pruning(Scene& sc, const PruningSettings& settings, bool expect_whole) {
+  const MembraneMapping map(sc.mesh, sc.set, sc.recipe, sc.k, sc.types, "test", SeamRule::ignore);
+  const std::vector<Copy> all = owned_copies(map);
+  const auto before = clashes(all, sc.types, 0.6);
+  ASSERT_GT(before.size(), 0u) << "the charts must overlap at their seams, or the test proves nothing";
+
+  const PrunedMembrane p = nano::shell::prune_membrane(map, sc.mesh, sc.types, settings, 2);
+  EXPECT_EQ(p.whole_surface, expect_whole);
+  EXPECT_EQ(p.owned_copies, all.size());
+  std::vector<Copy> kept;
+  std::set<std::size_t> dropped_index;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (dropped(p, all[i])) dropped_index.insert(i);
+    else kept.push_back(all[i]);
+  }
+  EXPECT_EQ(dropped_index.size(), p.dropped_count()) << "every key names an owned copy";
+  EXPECT_GT(p.dropped_count(), 0u);
+  const auto after = clashes(kept, sc.types, 0.6);
+  EXPECT_EQ(after.size(), 0u) << "kept copies still clash";
+  // Few drops: each dropped copy clashed with one that was kept.
+  std::set<std::size_t> kept_index;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (!dropped_index.count(i)) kept_index.insert(i);
+  std::set<std::size_t> justified;
+  for (const auto& [i, j] : before) {
+    if (dropped_index.count(i) && kept_index.count(j)) justified.insert(i);
+    if (dropped_index.count(j) && kept_index.count(i)) justified.insert(j);
+  }
+  EXPECT_EQ(justified.size(), dropped_index.size()) << "a copy was dropped that clashed with no kept copy";
+  for (const auto& keys : p.dropped) EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
+  // The seam rule empties a band on both sides of every seam; pruning drops fewer copies.
+  const MembraneMapping banded(sc.mesh, sc.set, sc.recipe, sc.k, sc.types, "test", SeamRule::apply);
+  EXPECT_LT(p.dropped_count(), banded.seam_dropped_count());
+}
+
+// The test scenes' membrane with lipids packed as densely as a real bilayer's (65 Å² per lipid per
+// leaflet): the sparse default never meets across a seam of the sphere.
+std::unique_ptr<Scene> dense(std::unique_ptr<Scene> sc) {
+  nano::tiles::MembraneTileRequest r;
+  r.types = sc->types;
+  r.edge = 200.f;
+  r.colours = 2;
+  r.molecules = {{1, 1.0 / (200.0 * 200.0 * 1e-8), 22.f}};
+  r.lipids = nano::tiles::LipidFill{0, 65.f, 16.f};
+  r.seed = 5;
+  sc->set = nano::tiles::make_membrane_tiles(r);
+  return sc;
+}
+
+TEST(MembranePruning, SphereIsClashFreeEverywhere) {
+  auto sc = dense(sphere_scene());
+  expect_clash_free_after_pruning(*sc, PruningSettings{}, true);
+}
+
+TEST(MembranePruning, RedBloodCellIsClashFreeAlongItsSeam) {
+  auto sc = rbc_scene();
+  PruningSettings seams_only;
+  seams_only.whole_surface_budget = 0;  // as a full-size cell is: only copies within reach of a seam
+  expect_clash_free_after_pruning(*sc, seams_only, false);
+}
+
+TEST(MembranePruning, SameResultOnOneAndTwoThreads) {
+  auto sc = dense(sphere_scene());
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  const PrunedMembrane one = nano::shell::prune_membrane(map, sc->mesh, sc->types, {}, 1);
+  const PrunedMembrane two = nano::shell::prune_membrane(map, sc->mesh, sc->types, {}, 2);
+  EXPECT_EQ(one.dropped, two.dropped);
+  EXPECT_EQ(one.dropped_by_type, two.dropped_by_type);
+}
+
+// The flat tiling vouches for pairs it can: with a flat clearance far above the test's, most pairs
+// of one chart need no atom test, and the result is still clash-free.
+TEST(MembranePruning, FlatTilingSparesAtomTests) {
+  auto sc = dense(sphere_scene());
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  PruningSettings strict;  // flat clearance = test clearance: every meeting pair is atom-tested
+  strict.flat_clearance = strict.clearance;
+  const PrunedMembrane all_tested = nano::shell::prune_membrane(map, sc->mesh, sc->types, strict, 2);
+  EXPECT_EQ(all_tested.atom_tests, all_tested.candidate_pairs);
+  PruningSettings vouched;  // the test set is packed at clearance 1.0
+  vouched.flat_clearance = 1.0f;
+  const PrunedMembrane spared = nano::shell::prune_membrane(map, sc->mesh, sc->types, vouched, 2);
+  EXPECT_LT(spared.atom_tests, all_tested.atom_tests);
+  EXPECT_EQ(spared.dropped, all_tested.dropped);
+}
+
+}  // namespace
