@@ -72,6 +72,10 @@ struct LipidPatchDescription {
   std::filesystem::path file;        // resolved against the scene file's folder
   std::optional<glm::dvec3> colour;  // sRGB; absent: the baker picks one
   double clearance = 0.6;            // between two patch lipids: atoms stay >= clearance·(r1 + r2) apart
+  // In "lipid_mix" only: the mole fractions of the outer leaflet (the side the mesh normals point
+  // to) and of the inner one whose places take a conformer of this species instead of the base
+  // patch's. Per leaflet the mix's fractions add up to at most 1; the base species keeps the rest.
+  double outer = 0.0, inner = 0.0;
   bool operator==(const LipidPatchDescription&) const = default;
 };
 
@@ -83,6 +87,7 @@ struct MembraneDescription {
   std::vector<MembraneProtein> proteins;
   std::optional<LipidFill> lipids;
   std::optional<LipidPatchDescription> lipid_patch;  // instead of `lipids`, never with it
+  std::vector<LipidPatchDescription> lipid_mix;      // other species laid in the patch's places
   bool operator==(const MembraneDescription&) const = default;
 };
 

@@ -110,9 +110,21 @@ std::pair<bool, double> parse_one_amount(const JsonCursor& c, const char* first,
   return {has_first, c.required(has_first ? first : second).number_at_least(0.0)};
 }
 
+LipidPatchDescription parse_lipid_patch(const JsonCursor& patch, const std::filesystem::path& folder) {
+  LipidPatchDescription p;
+  p.file = resolve_path(patch.required("file"), folder);
+  if (const auto n = patch.optional("name")) {
+    p.name = n->string();
+    check_name(*n, p.name);
+  }
+  if (const auto colour = patch.optional("colour")) p.colour = parse_colour(*colour);
+  if (const auto clearance = patch.optional("clearance")) p.clearance = clearance->number_between(0.1, 2.0);
+  return p;
+}
+
 MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
                                    const std::vector<MoleculeDescription>& molecules, const std::filesystem::path& folder) {
-  c.only_keys({"tile_size", "edge_colours", "tiles", "proteins", "lipids", "lipid_patch"});
+  c.only_keys({"tile_size", "edge_colours", "tiles", "proteins", "lipids", "lipid_patch", "lipid_mix"});
   MembraneDescription m;
   m.name = name;
   m.tile_size = c.required("tile_size").number_greater_than(0.0);
@@ -140,15 +152,22 @@ MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
   if (const auto patch = c.optional("lipid_patch")) {
     if (m.lipids) patch->fail("give either \"lipids\" (one pose, a surface density) or \"lipid_patch\", not both");
     patch->only_keys({"file", "name", "colour", "clearance"});
-    LipidPatchDescription p;
-    p.file = resolve_path(patch->required("file"), folder);
-    if (const auto n = patch->optional("name")) {
-      p.name = n->string();
-      check_name(*n, p.name);
+    m.lipid_patch = parse_lipid_patch(*patch, folder);
+  }
+  if (const auto mix = c.optional("lipid_mix")) {
+    if (!m.lipid_patch) mix->fail("a \"lipid_mix\" needs the \"lipid_patch\" whose places it takes");
+    double outer = 0.0, inner = 0.0;
+    for (const JsonCursor& e : mix->elements()) {
+      e.only_keys({"file", "name", "colour", "clearance", "outer", "inner"});
+      LipidPatchDescription species = parse_lipid_patch(e, folder);
+      species.outer = e.required("outer").number_between(0.0, 1.0);
+      species.inner = e.required("inner").number_between(0.0, 1.0);
+      outer += species.outer;
+      inner += species.inner;
+      if (outer > 1.0 + 1e-9 || inner > 1.0 + 1e-9) e.fail("the mix's fractions add up to more than 1 in a leaflet");
+      if (species.name == m.lipid_patch->name) e.required("name").fail("a mixed species needs a name of its own");
+      m.lipid_mix.push_back(species);
     }
-    if (const auto colour = patch->optional("colour")) p.colour = parse_colour(*colour);
-    if (const auto clearance = patch->optional("clearance")) p.clearance = clearance->number_between(0.1, 2.0);
-    m.lipid_patch = p;
   }
   if (m.proteins.empty() && !m.lipids && !m.lipid_patch)
     c.fail("a membrane needs \"proteins\", \"lipids\" or \"lipid_patch\"");

@@ -40,6 +40,8 @@ struct BakedLipidPatch {
   std::vector<glm::dvec3> positions;     // of each lipid's centroid
   double period_x = 0.0, period_y = 0.0; // CRYST1 a, b (Å)
   double clearance = 0.6;
+  double outer = 0.0, inner = 0.0;     // as a mixed species: the leaflets' fractions it takes
+  std::vector<BakedLipidPatch> mix;    // other species laid in this patch's places
 };
 
 // Reads the patch (PDB with CRYST1 and alpha = beta = gamma = 90°; residues by chain, number and

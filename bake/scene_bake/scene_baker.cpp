@@ -97,8 +97,11 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
   MembraneSummary s;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) s.area_um2 += mesh::world_area(mesh, t) * 1e-8;
   std::vector<bool> lipid(library.size(), false);
-  if (patch)
+  if (patch) {
     for (const std::uint32_t i : patch->molecules) lipid[i] = true;
+    for (const BakedLipidPatch& species : patch->mix)
+      for (const std::uint32_t i : species.molecules) lipid[i] = true;
+  }
   if (membrane.lipids) lipid[membrane.lipids->molecule.index] = true;
   for (std::size_t i = 0; i < library.size(); ++i) {
     if (lipid[i] && m.copies_by_molecule[i] > 0) add_named(s.lipids, library[i].name, m.copies_by_molecule[i]);
@@ -221,7 +224,15 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
   const std::vector<BakedMolecule> library = clock.run("molecules", [&] {
     std::vector<BakedMolecule> molecules = load_molecule_library(scene);
     for (std::size_t i = 0; i < scene.membranes.size(); ++i)
-      if (const auto& patch = scene.membranes[i].lipid_patch) patches[i] = load_lipid_patch(*patch, molecules.size(), molecules);
+      if (const auto& patch = scene.membranes[i].lipid_patch) {
+        patches[i] = load_lipid_patch(*patch, molecules.size(), molecules);
+        for (const scene::LipidPatchDescription& species : scene.membranes[i].lipid_mix) {
+          BakedLipidPatch mixed = load_lipid_patch(species, molecules.size(), molecules);
+          mixed.outer = species.outer;
+          mixed.inner = species.inner;
+          patches[i]->mix.push_back(std::move(mixed));
+        }
+      }
     return molecules;
   });
 

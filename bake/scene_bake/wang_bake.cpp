@@ -98,6 +98,15 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
     for (std::size_t i = 0; i < patch->molecules.size(); ++i)
       lipids.lipids.push_back({local_type(baked, request.types, library, patch->molecules[i]),
                                glm::vec3(patch->positions[i]), glm::quat(1.f, 0.f, 0.f, 0.f)});
+    for (const BakedLipidPatch& species : patch->mix) {
+      tiles::LipidSpecies mixed;
+      mixed.outer = static_cast<float>(species.outer);
+      mixed.inner = static_cast<float>(species.inner);
+      for (std::size_t i = 0; i < species.molecules.size(); ++i)
+        mixed.conformers.push_back({local_type(baked, request.types, library, species.molecules[i]),
+                                    glm::vec3(species.positions[i]), glm::quat(1.f, 0.f, 0.f, 0.f)});
+      lipids.mix.push_back(std::move(mixed));
+    }
     request.lipid_patch = std::move(lipids);
   }
   baked.flat_clearance = request.budget.clearance;

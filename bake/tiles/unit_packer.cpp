@@ -230,14 +230,32 @@ public:
     // keep the first that fits.
     std::vector<const Instance*> upper, lower;
     for (const Instance& c : layer.copies) (c.position.z >= 0.f ? upper : lower).push_back(&c);
+    float layer_reach = 0.f;
+    for (const Instance& c : layer.copies) layer_reach = std::max(layer_reach, shapes_[c.type].radius());
     for (const auto& [a, hole] : refused) {
       const std::vector<const Instance*>& pool = hole.position.z >= 0.f ? upper : lower;
-      if (pool.empty()) continue;
+      if (pool.empty() || D_ != 2) continue;
+      // The copy that pushed the lipid out is the one reaching deepest into its place: candidates
+      // go from the hole away from it, into the rim a protein leaves between itself and the layer.
+      glm::vec2 away(0.f);
+      float deepest = INFINITY;
+      any_near(a, hole.position, layer_reach, kNone, [&](uint32_t type, const Pose& other) {
+        const glm::vec2 d = glm::vec2(hole.position) - glm::vec2(other.position);
+        const float gap = glm::length(d) - shapes_[type].radius();
+        if (shapes_[type].radius() > layer_reach && gap < deepest && glm::dot(d, d) > 0.f) {
+          deepest = gap;
+          away = glm::normalize(d);
+        }
+        return false;
+      });
+      const glm::vec2 across(-away.y, away.x);
       for (int attempt = 0; attempt < layer.refill_attempts; ++attempt) {
         const Instance& conformer = *pool[rng.below(static_cast<uint32_t>(pool.size()))];
         Instance candidate = conformer;
-        for (int k = 0; k < D_; ++k)
-          candidate.position[k] = hole.position[k] + static_cast<float>(attempt == 0 ? 0.0 : rng.uniform(-6.0, 6.0));
+        const glm::vec2 shift = attempt == 0 ? glm::vec2(0.f)
+                                             : away * static_cast<float>(rng.uniform(0.0, 8.0)) +
+                                                   across * static_cast<float>(rng.uniform(-3.0, 3.0));
+        for (int k = 0; k < 2; ++k) candidate.position[k] = hole.position[k] + shift[k];
         candidate.rotation = glm::normalize(spin_about_z(static_cast<float>(rng.uniform(0.0, 2.0 * M_PI))) * conformer.rotation);
         if (!in_zone(candidate.position, units_[a].mask, layer.band, D_, S_) || !fits(a, candidate, kNone, rule)) continue;
         units_[a].copies.push_back(candidate);

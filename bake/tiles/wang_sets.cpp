@@ -2,6 +2,7 @@
 
 #include "bake/tiles/copy_neighbourhood.hpp"
 #include "bake/tiles/rotation_sampling.hpp"
+#include "bake/tiles/tile_random.hpp"
 #include "bake/tiles/unit_packer.hpp"
 #include "common/error.hpp"
 
@@ -15,6 +16,9 @@ namespace {
 
 constexpr double kAvogadro = 6.02214076e23;
 constexpr double kA2PerUm2 = 1e8, kA3PerUm3 = 1e12;
+constexpr int kMixAttempts = 400;  // best-ranked conformer turns tried in a place given to a mixed species
+constexpr int kSpins = 12;        // turns about the normal ranked per conformer
+constexpr uint32_t kNoType = ~0u;
 
 struct Wanted {
   PlacementSpec spec;
@@ -80,7 +84,7 @@ WangSet pack(const char* what, int dims, float edge, const WangColouring& colour
     it->achieved += packed.achieved_per_volume[i] * scale;
   }
   for (uint32_t type = 0; type < packed.layer_per_volume.size(); ++type)
-    if (layer_requested[type] > 0.0)
+    if (layer_requested[type] > 0.0 || packed.layer_per_volume[type] > 0.0)
       set.densities.push_back(
           {types[type].name, type, layer_requested[type], packed.layer_per_volume[type] * scale, 0});
   for (const WangTile& tile : set.tiles)
@@ -108,7 +112,8 @@ std::vector<CollisionShape> shapes_of(const std::vector<MoleculeType>& types) {
 // The patch repeated over one tile with centres rescaled to the tile edge, minus the lipids that
 // clash with kept ones (in patch order) or with their images one edge away.
 FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, const std::vector<MoleculeType>& types,
-                     const std::vector<CollisionShape>& shapes, SurfaceDistortion surface, std::vector<double>& requested) {
+                     const std::vector<CollisionShape>& shapes, SurfaceDistortion surface, uint64_t seed,
+                     std::vector<double>& requested) {
   const float period[2] = {patch.period_x, patch.period_y};
   for (float p : period)
     if (!(p > 0.f) || !std::isfinite(p)) throw InputError(what, "lipid patch", "the patch period must be positive");
@@ -116,6 +121,17 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   if (!(patch.clearance > 0.f) || patch.clearance > 2.f)
     throw InputError(what, "lipid patch", "the patch clearance must be in (0, 2]");
   requested.assign(types.size(), 0.0);
+  double outer_taken = 0.0, inner_taken = 0.0;
+  for (const LipidSpecies& species : patch.mix) {
+    if (!(species.outer >= 0.f) || !(species.inner >= 0.f) || species.conformers.empty())
+      throw InputError(what, "lipid mix", "a mixed species needs conformers and fractions >= 0");
+    outer_taken += species.outer;
+    inner_taken += species.inner;
+    for (const Instance& c : species.conformers) check_type(what, types, c.type, 1.0);
+  }
+  if (outer_taken > 1.0 + 1e-6 || inner_taken > 1.0 + 1e-6)
+    throw InputError(what, "lipid mix", "the mixed species take more than all of a leaflet's places");
+  SplitMix64 rng(mix64(seed ^ 0x11D1DC0FFEEull));
   FixedLayer layer;
   layer.clearance = patch.clearance;
   float largest = 0.f;
@@ -123,19 +139,41 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
     check_type(what, types, l.type, 1.0);
     if (!std::isfinite(l.position.x) || !std::isfinite(l.position.y) || !std::isfinite(l.position.z))
       throw InputError(what, types[l.type].name, "patch lipid positions must be finite");
-    requested[l.type] += kA2PerUm2 / (static_cast<double>(period[0]) * period[1]);
+    // Each place asks for the base species by what the mix leaves it, and for each mixed species
+    // by its fraction of the place's leaflet.
+    const double place = kA2PerUm2 / (static_cast<double>(period[0]) * period[1]);
+    const bool outer = l.position.z >= 0.f;
+    requested[l.type] += place * (1.0 - (outer ? outer_taken : inner_taken));
+    for (const LipidSpecies& species : patch.mix)
+      requested[species.conformers.front().type] += place * (outer ? species.outer : species.inner);
     const glm::quat q = glm::normalize(l.rotation);
     const glm::vec3 up = glm::conjugate(q) * glm::vec3(0.f, 0.f, 1.f);  // the normal in the lipid's frame
     layer.band = std::max(layer.band, shapes[l.type].radius_about_axis(up) * 1.0001f);
     largest = std::max(largest, shapes[l.type].radius());
     check_fits(what, types[l.type], layer.band, edge);
   }
+  for (const LipidSpecies& species : patch.mix)
+    for (const Instance& c : species.conformers) {
+      layer.band = std::max(layer.band, shapes[c.type].radius_about_axis(glm::vec3(0.f, 0.f, 1.f)) * 1.0001f);
+      largest = std::max(largest, shapes[c.type].radius());
+      check_fits(what, types[c.type], layer.band, edge);
+    }
   int repeats[2];
   float scale[2];
   for (int a = 0; a < 2; ++a) {
     repeats[a] = std::max(1, static_cast<int>(std::lround(edge / period[a])));
     scale[a] = edge / (static_cast<float>(repeats[a]) * period[a]);
   }
+  const ClashRule rule{patch.clearance, surface};
+  const auto add_with_images = [&](CopyNeighbourhood& n, const Instance& c) {
+    const glm::mat3 rotation = glm::mat3_cast(c.rotation);
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) n.add(c.type, {c.position + edge * glm::vec3(dx, dy, 0), rotation});
+  };
+  const auto collides = [&](const CopyNeighbourhood& n, const Instance& c) {
+    return n.collides(c.type, {c.position, glm::mat3_cast(c.rotation)}, rule);
+  };
+  // The base patch, repeated and rescaled, minus the lipids that then clash (in patch order).
   CopyNeighbourhood kept(shapes, 2.f * largest);
   for (int j = 0; j < repeats[1]; ++j)
     for (int i = 0; i < repeats[0]; ++i)
@@ -149,13 +187,88 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
           copy.position[a] = static_cast<float>((p + cell[a] * static_cast<double>(period[a])) * scale[a]);
           if (!(copy.position[a] < edge)) copy.position[a] = 0.f;  // rounded onto the edge: its periodic twin
         }
-        const glm::mat3 rotation = glm::mat3_cast(copy.rotation);
-        if (kept.collides(copy.type, {copy.position, rotation}, {patch.clearance, surface})) continue;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            kept.add(copy.type, {copy.position + edge * glm::vec3(dx, dy, 0), rotation});
+        if (collides(kept, copy)) continue;
+        add_with_images(kept, copy);
         layer.copies.push_back(copy);
       }
+  if (patch.mix.empty()) return layer;
+  // The mix: each place draws its species from its leaflet's fractions. A place given to another
+  // species takes one of its conformers (same leaflet, turned about the normal) that fits among all
+  // the others, laid or still to come; where none fits it keeps the base lipid, so mixing never
+  // opens a hole in the packed patch.
+  std::vector<const LipidSpecies*> species_of(layer.copies.size(), nullptr);
+  for (std::size_t i = 0; i < layer.copies.size(); ++i) {
+    double u = rng.uniform();
+    for (const LipidSpecies& species : patch.mix) {
+      const double f = layer.copies[i].position.z >= 0.f ? species.outer : species.inner;
+      if (u < f) {
+        species_of[i] = &species;
+        break;
+      }
+      u -= f;
+    }
+  }
+  // Two passes: a place that found no fitting conformer tries again once its neighbours have
+  // become what they will be (a compact conformer next door may leave the room it needed).
+  CopyNeighbourhood mixed(shapes, 2.f * largest);
+  std::vector<char> done(layer.copies.size(), 0);
+  for (std::size_t i = 0; i < layer.copies.size(); ++i)
+    if (species_of[i] == nullptr) add_with_images(mixed, layer.copies[i]);
+  // Candidates for a place, best first: conformers of the species from the same leaflet at kSpins
+  // turns, scored by how far their atoms stand from the base lipid's (the room that lipid proved
+  // free): the closest shape is the likeliest to fit.
+  struct Candidate {
+    double score;
+    Instance copy;
+  };
+  const auto ranked = [&](const Instance& place, const LipidSpecies& species) {
+    const glm::mat3 base_rotation = glm::mat3_cast(place.rotation);
+    std::vector<glm::vec3> base;
+    for (const AtomSphere& a : shapes[place.type].atoms()) base.push_back(place.position + base_rotation * a.centre);
+    std::vector<Candidate> out;
+    for (const Instance& conformer : species.conformers) {
+      if ((conformer.position.z >= 0.f) != (place.position.z >= 0.f)) continue;
+      for (int k = 0; k < kSpins; ++k) {
+        Instance c = conformer;
+        c.position = glm::vec3(place.position.x, place.position.y, conformer.position.z);
+        c.rotation = glm::normalize(spin_about_z(static_cast<float>(2.0 * M_PI * k / kSpins)) * conformer.rotation);
+        const glm::mat3 r = glm::mat3_cast(c.rotation);
+        double score = 0.0;
+        for (const AtomSphere& a : shapes[c.type].atoms()) {
+          const glm::vec3 p = c.position + r * a.centre;
+          float nearest = INFINITY;
+          for (const glm::vec3& b : base) nearest = std::min(nearest, glm::dot(p - b, p - b));
+          score += std::sqrt(static_cast<double>(nearest));
+        }
+        out.push_back({score / static_cast<double>(shapes[c.type].atoms().size()), c});
+      }
+    }
+    std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
+    if (out.size() > static_cast<std::size_t>(kMixAttempts)) out.resize(kMixAttempts);
+    return out;
+  };
+  const auto try_species = [&](std::size_t i) {
+    Instance& place = layer.copies[i];
+    for (const Candidate& c : ranked(place, *species_of[i])) {
+      if (collides(mixed, c.copy)) continue;
+      place = c.copy;
+      add_with_images(mixed, place);
+      done[i] = 1;
+      return;
+    }
+  };
+  for (std::size_t i = 0; i < layer.copies.size(); ++i)
+    if (species_of[i] != nullptr) try_species(i);
+  for (std::size_t i = 0; i < layer.copies.size(); ++i)
+    if (species_of[i] != nullptr && !done[i]) try_species(i);
+  // A place where no conformer fitted keeps its base lipid if that still fits among the new ones.
+  for (std::size_t i = 0; i < layer.copies.size(); ++i) {
+    if (species_of[i] == nullptr || done[i]) continue;
+    if (collides(mixed, layer.copies[i])) layer.copies[i].type = kNoType;
+    else add_with_images(mixed, layer.copies[i]);
+  }
+  layer.copies.erase(std::remove_if(layer.copies.begin(), layer.copies.end(), [](const Instance& c) { return c.type == kNoType; }),
+                     layer.copies.end());
   return layer;
 }
 
@@ -210,7 +323,7 @@ WangSet make_membrane_tiles(const MembraneTileRequest& r) {
   std::vector<double> layer_requested;
   if (r.lipid_patch) {
     if (r.lipids) throw InputError(what, "lipids", "give either a lipid fill or a lipid patch, not both");
-    layer = lay_patch(what, *r.lipid_patch, r.edge, r.types, shapes, surface, layer_requested);
+    layer = lay_patch(what, *r.lipid_patch, r.edge, r.types, shapes, surface, r.seed, layer_requested);
   }
   return pack(what, 2, r.edge, make_complete_colouring(2, r.colours), r.types, shapes, wanted, r.seed, r.budget,
               surface, layer, layer_requested);

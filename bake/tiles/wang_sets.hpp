@@ -47,13 +47,24 @@ struct LipidFill {
 // membrane molecule are dropped by the unit holding them, so neighbouring tiles agree. Each type's
 // achieved density is in `densities` (requested = its density in the patch); never throws for
 // density.
+// Another lipid species laid in a patch's places: a fraction of each leaflet's places (outer: z > 0)
+// takes one of its conformers (centroid at the place's x, y, its own height from its own patch's
+// mid-plane, turned about the normal), chosen so that it fits among the lipids laid before it; a
+// place where none fits keeps the base patch's lipid.
+struct LipidSpecies {
+  std::vector<Instance> conformers;  // x, y ignored; z from the species' own mid-plane (Å)
+  float outer = 0.f, inner = 0.f;    // mole fractions of the leaflets' places
+};
+
 struct LipidPatch {
   std::vector<Instance> lipids;  // x, y anywhere (taken modulo the period); z from the mid-plane (Å)
   float period_x = 0.f, period_y = 0.f;  // Å, the patch's periodic box (CRYST1 a, b)
-  // Between two patch lipids only (everything else keeps the budget's clearance): an equilibrated
+  // Between two patch lipids and between a patch lipid and a protein (proteins among themselves
+  // keep the budget's clearance): an equilibrated
   // patch has heavy-atom contacts closer than 1.0 x (1.7 + 1.7) Å, so at 1.0 most of popc.pdb is
   // dropped as clashing (40% of its density kept around a spike per two 200 Å tiles, 85% at 0.8).
   float clearance = 0.8f;
+  std::vector<LipidSpecies> mix;  // per leaflet, fractions add up to at most 1
 };
 
 struct MembraneTileRequest {

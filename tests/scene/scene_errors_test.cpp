@@ -192,6 +192,26 @@ TEST(SceneErrors, StructuralRules) {
                      }),
                      "membranes.envelope.lipid_patch.file", "missing required key");
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["membranes"]["envelope"]["lipid_mix"] = Json::array({Json{{"file", "e.pdb"}, {"outer", 0.2}, {"inner", 0.2}}});
+                     }),
+                     "membranes.envelope.lipid_mix", "needs the \"lipid_patch\"");
+  const auto with_mix = [](Json mix) {
+    return parse_modified([mix](Json& d) {
+      d["membranes"]["envelope"].erase("lipids");
+      d["membranes"]["envelope"]["lipid_patch"] = Json{{"file", "b.pdb"}, {"name", "POPC"}};
+      d["membranes"]["envelope"]["lipid_mix"] = mix;
+    });
+  };
+  EXPECT_INPUT_ERROR(with_mix(Json::array({Json{{"file", "e.pdb"}, {"name", "POPE"}, {"outer", 0.7}, {"inner", 0.2}},
+                                           Json{{"file", "f.pdb"}, {"name", "DOPC"}, {"outer", 0.4}, {"inner", 0.2}}})),
+                     "membranes.envelope.lipid_mix[1]", "more than 1 in a leaflet");
+  EXPECT_INPUT_ERROR(with_mix(Json::array({Json{{"file", "e.pdb"}, {"name", "POPE"}, {"outer", 1.5}, {"inner", 0.2}}})),
+                     "membranes.envelope.lipid_mix[0].outer", "");
+  EXPECT_INPUT_ERROR(with_mix(Json::array({Json{{"file", "e.pdb"}, {"name", "POPE"}, {"inner", 0.2}}})),
+                     "membranes.envelope.lipid_mix[0].outer", "missing required key");
+  EXPECT_INPUT_ERROR(with_mix(Json::array({Json{{"file", "e.pdb"}, {"name", "POPC"}, {"outer", 0.2}, {"inner", 0.2}}})),
+                     "membranes.envelope.lipid_mix[0].name", "a name of its own");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
                        d["compartments"]["virion"].erase("membrane");
                        d["compartments"]["virion"].erase("soluble");
                      }),

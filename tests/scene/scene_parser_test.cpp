@@ -32,7 +32,9 @@ constexpr const char* complete_scene = R"({
       "lipids": {"molecule": "popc", "area_per_lipid": 65, "leaflet_offset": 12}
     },
     "rbc_membrane": {"tile_size": 300.5, "edge_colours": 3, "tiles": 81,
-                     "lipid_patch": {"file": "pdb/bilayer.pdb.gz", "name": "POPC", "colour": "#808080", "clearance": 0.7}}
+                     "lipid_patch": {"file": "pdb/bilayer.pdb.gz", "name": "POPC", "colour": "#808080", "clearance": 0.7},
+                     "lipid_mix": [{"file": "pdb/pope.pdb", "name": "POPE", "outer": 0.1, "inner": 0.75},
+                                   {"file": "pdb/dopc.pdb", "name": "DOPC", "colour": "#000000", "outer": 0.5, "inner": 0.25}]}
   },
   "solubles": {
     "cytoplasm": {"cube_size": 250, "molecules": [{"molecule": "hb", "concentration_mM": 5.1}], "clearance": 15},
@@ -81,7 +83,9 @@ SceneDescription expected_scene() {
        {{spike, {SU::per_um2, 1200.0}, 45.5}, {hb, {SU::per_tile, 0.5}, 0.0}},
        LipidFill{popc, 65.0, 12.0}},
       {"rbc_membrane", 300.5, 3, 81, {}, std::nullopt,
-       LipidPatchDescription{"POPC", "/scenes/demo/pdb/bilayer.pdb.gz", glm::dvec3(128.0 / 255.0), 0.7}},
+       LipidPatchDescription{"POPC", "/scenes/demo/pdb/bilayer.pdb.gz", glm::dvec3(128.0 / 255.0), 0.7},
+       {LipidPatchDescription{"POPE", "/scenes/demo/pdb/pope.pdb", std::nullopt, 0.6, 0.1, 0.75},
+        LipidPatchDescription{"DOPC", "/scenes/demo/pdb/dopc.pdb", glm::dvec3(0.0), 0.6, 0.5, 0.25}}},
   };
   using VU = VolumeAbundance::Unit;
   s.solubles = {

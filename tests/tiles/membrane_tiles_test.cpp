@@ -278,6 +278,54 @@ TEST(MembraneTiles, LipidPatchIsCollisionFreeAndDense) {
   EXPECT_EQ(test::set_bytes(make_membrane_tiles(req)), test::set_bytes(set));
 }
 
+// A second species mixed into the patch's places (LipidSpecies): a thinner stick lipid (type 2)
+// taking 40 % of the outer leaflet's places and 80 % of the inner one's. Random tilings stay
+// clash-free at the patch clearance, the species sits only in its leaflets and never above its
+// share, mixing opens no hole (as many lipids as the unmixed patch), and the set reports it.
+TEST(MembraneTiles, LipidMixTakesPlacesWithoutOpeningHoles) {
+  MembraneTileRequest req = membrane_request(11);
+  req.lipids.reset();
+  req.lipid_patch = stick_patch();
+  req.lipid_patch->clearance = 0.85f;
+  const WangSet unmixed = make_membrane_tiles(req);
+  tiles::MoleculeType thin = test::make_lipid();
+  thin.name = "thin";
+  for (auto& a : thin.atoms) a.radius *= 0.8f;
+  req.types.push_back(thin);
+  LipidSpecies species;
+  species.outer = 0.4f;
+  species.inner = 0.8f;
+  const glm::quat flip(0.f, 1.f, 0.f, 0.f);
+  species.conformers = {{2, glm::vec3(0, 0, 16.f), glm::quat(1, 0, 0, 0)}, {2, glm::vec3(0, 0, -16.f), flip}};
+  req.lipid_patch->mix = {species};
+  const WangSet set = make_membrane_tiles(req);
+  for (uint64_t recipe_seed : {11u, 12u}) {
+    const TilingRecipe recipe = make_tiling_recipe(set.colouring, {6, 6, 1}, recipe_seed, false);
+    test::ExplicitTiling tiling = test::instantiate(set, recipe, req.types);
+    const test::ClosePair all = test::find_close_pair(tiling.atoms, 0.849f);
+    EXPECT_FALSE(all.found) << "atoms " << all.distance << " Å apart, limit " << all.limit;
+  }
+  std::size_t outer[3] = {}, inner[3] = {};
+  for (const WangTile& t : set.tiles)
+    for (const Instance& in : t.instances) ++(in.position.z >= 0.f ? outer : inner)[in.type];
+  EXPECT_GT(outer[2], 0u);
+  EXPECT_GT(inner[2], outer[2]);
+  EXPECT_LE(double(outer[2]), 0.45 * double(outer[1] + outer[2]));
+  EXPECT_LE(double(inner[2]), 0.85 * double(inner[1] + inner[2]));
+  std::size_t lipids_mixed = 0, lipids_unmixed = 0;
+  for (const WangTile& t : set.tiles)
+    for (const Instance& in : t.instances) lipids_mixed += in.type != 0;
+  for (const WangTile& t : unmixed.tiles)
+    for (const Instance& in : t.instances) lipids_unmixed += in.type != 0;
+  EXPECT_GE(double(lipids_mixed), 0.97 * double(lipids_unmixed));
+  const auto reported = std::find_if(set.densities.begin(), set.densities.end(), [](const MoleculeDensity& d) { return d.name == "thin"; });
+  ASSERT_NE(reported, set.densities.end());
+  EXPECT_GT(reported->achieved, 0.0);
+  EXPECT_GT(reported->requested, reported->achieved * 0.9);
+  req.lipid_patch->mix[0].inner = 1.1f;  // more than the whole inner leaflet
+  EXPECT_THROW(make_membrane_tiles(req), InputError);
+}
+
 TEST(MembraneTiles, ImpossibleRequestsThrowInputError) {
   MembraneTileRequest dense = membrane_request(1);
   dense.lipids.reset();
