@@ -54,6 +54,9 @@ struct MembraneProtein {
   NameRef molecule;
   SurfaceAbundance abundance;
   double depth = 0.0;  // molecule centre along the outward membrane normal, Å
+  // Copies each compartment wearing the membrane keeps (spread over its surface), the rest of
+  // what the tiles place dropped; absent: every copy the tiles place.
+  std::optional<std::uint64_t> per_compartment;
   bool operator==(const MembraneProtein&) const = default;
 };
 

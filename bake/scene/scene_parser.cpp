@@ -132,12 +132,13 @@ MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
   m.tiles = parse_tile_count(c, "tiles", "edge_colours", m.edge_colours, m.tiles, 2, 4);
   if (const auto proteins = c.optional("proteins")) {
     for (const JsonCursor& p : proteins->elements()) {
-      p.only_keys({"molecule", "density_per_um2", "copies_per_tile", "depth"});
+      p.only_keys({"molecule", "density_per_um2", "copies_per_tile", "depth", "per_compartment"});
       MembraneProtein protein;
       protein.molecule = resolve(p.required("molecule"), molecules, "molecule");
       const auto [per_area, value] = parse_one_amount(p, "density_per_um2", "copies_per_tile");
       protein.abundance = {per_area ? SurfaceAbundance::Unit::per_um2 : SurfaceAbundance::Unit::per_tile, value};
       if (const auto depth = p.optional("depth")) protein.depth = depth->number();
+      if (const auto n = p.optional("per_compartment")) protein.per_compartment = static_cast<std::uint64_t>(n->integer_between(0, 1'000'000'000));
       m.proteins.push_back(protein);
     }
   }

@@ -26,7 +26,7 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"lipids_per_um2_total", lipids},
           {"real_bilayer_lipids_per_um2", kRealBilayerLipidsPerUm2},
           {"fraction_of_real_bilayer", lipids / kRealBilayerLipidsPerUm2},
-          {"dropped_as_clashing", dropped},
+          {"dropped", dropped},
           {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams"},
           {"pruning_checked_copies", m.checked_copies},
           {"pruning_atom_tests", m.atom_tests}};
@@ -99,7 +99,7 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
         std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), n / m.area_um2);
         out << line;
       }
-      std::snprintf(line, sizeof line, "; %.3g copies dropped as clashing (checked %s)\n", static_cast<double>(total(m.dropped)),
+      std::snprintf(line, sizeof line, "; %.3g copies dropped (clashing, checked %s, or beyond a count)\n", static_cast<double>(total(m.dropped)),
                     m.pruned_everywhere ? "everywhere" : "along UV seams");
       out << line;
     }

@@ -29,7 +29,8 @@ float stored_uv_scale(float tile_size, float tile_uv_size) {
 }
 
 BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
-                            std::uint64_t seed, int threads) {
+                            std::uint64_t seed, int threads,
+                            const std::vector<std::pair<std::uint32_t, std::uint64_t>>& per_compartment) {
   BakedMembrane baked;
   // The chart must never compress a tile: molecules are rigid, so where the map shrinks tile space
   // (cube-sphere corners, σ_min ≈ 0.76 of the mean) copies packed collision-free would overlap.
@@ -61,6 +62,13 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   shell::PruningSettings pruning;
   pruning.flat_clearance = tiles.flat_clearance;
   baked.pruning = shell::prune_membrane(mapping, mesh, types, pruning, threads);
+  for (const auto& [molecule, count] : per_compartment) {
+    if (!baked.pruning.whole_surface)
+      throw InputError("", "membrane", library[molecule].name + ": a per-compartment count needs a membrane checked "
+                                       "everywhere (at most " + std::to_string(pruning.whole_surface_budget) + " copies)");
+    for (std::uint32_t i = 0; i < tiles.molecule_of_type.size(); ++i)
+      if (tiles.molecule_of_type[i] == molecule) shell::limit_copies(mapping, baked.pruning, i, count);
+  }
   baked.dropped = std::move(baked.pruning.dropped);
   baked.copies_by_molecule.assign(library.size(), 0);
   baked.dropped_by_molecule.assign(library.size(), 0);

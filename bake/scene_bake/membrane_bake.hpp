@@ -29,8 +29,11 @@ struct BakedMembrane {
 float stored_uv_scale(float tile_size, float tile_uv_size);
 
 // Snaps the mesh's UVs in place (the ownership contract) and computes everything above.
+// `per_compartment`: (library molecule, copies) the compartment keeps of a protein at most
+// (scene `per_compartment`); needs a membrane pruned everywhere (InputError otherwise).
 BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
-                            std::uint64_t seed, int threads);
+                            std::uint64_t seed, int threads,
+                            const std::vector<std::pair<std::uint32_t, std::uint64_t>>& per_compartment = {});
 
 // Shells of a compartment without a membrane: flat prisms of zero height, so the core renderer
 // still has the mesh's front/back intervals and no membrane copy is ever looked for.

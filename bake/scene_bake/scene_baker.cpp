@@ -286,8 +286,11 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
     CompartmentBake& bake = compartments[c];
     if (description.membrane) {
       bake.membrane = clock.run("shells", [&] {
+        std::vector<std::pair<std::uint32_t, std::uint64_t>> per_compartment;
+        for (const scene::MembraneProtein& p : scene.membranes[description.membrane->index].proteins)
+          if (p.per_compartment) per_compartment.emplace_back(static_cast<std::uint32_t>(p.molecule.index), *p.per_compartment);
         return bake_membrane(bake.mesh.mesh, membrane_sets[description.membrane->index], library,
-                             derive_seed(seed, SeedTag::membrane_recipe, c), threads);
+                             derive_seed(seed, SeedTag::membrane_recipe, c), threads, per_compartment);
       });
       for (const gpu::TriangleShell& s : bake.membrane->shells)
         bake.shell_margin = std::max({bake.shell_margin, double(s.h_plus), double(s.side_offset)});

@@ -27,7 +27,7 @@ inline constexpr double kRealBilayerLipidsPerUm2 = 2.0 / 0.66e-6;
 struct MembraneSummary {
   double area_um2 = 0.0;                                               // the mesh's surface
   std::vector<std::pair<std::string, std::uint64_t>> lipids;           // species -> kept copies
-  std::vector<std::pair<std::string, std::uint64_t>> dropped;          // molecule -> copies dropped as clashing
+  std::vector<std::pair<std::string, std::uint64_t>> dropped;          // molecule -> copies dropped (clashing, or beyond a count)
   bool pruned_everywhere = false;                                      // else along UV seams only
   std::uint64_t checked_copies = 0, atom_tests = 0;
 };

@@ -304,4 +304,52 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   return out;
 }
 
+std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& pruned, std::uint32_t type, std::uint64_t count) {
+  struct Copy {
+    std::uint32_t triangle, key;
+    dvec3 centre;
+  };
+  std::vector<Copy> copies;
+  const std::uint32_t W = static_cast<std::uint32_t>(mapping.replication_area().x);
+  for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
+    const glm::ivec2 origin = mapping.triangle(t).origin;
+    const std::vector<std::uint32_t>& dropped = pruned.dropped[t];
+    mapping.for_each_owned_membrane_molecule(
+        t,
+        [&](const OwnedMolecule& m) {
+          if (m.type != type) return;
+          const glm::ivec2 slot = m.cell - origin;
+          const std::uint32_t key =
+              gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + W * static_cast<std::uint32_t>(slot.y), m.instance);
+          if (std::binary_search(dropped.begin(), dropped.end(), key)) return;
+          copies.push_back({static_cast<std::uint32_t>(t), key, dvec3(m.transform.translation)});
+        },
+        SeamRule::ignore);
+  }
+  if (copies.size() <= count) return copies.size();
+  std::vector<double> nearest(copies.size(), INFINITY);
+  std::vector<char> kept(copies.size(), 0);
+  std::size_t next = 0;
+  for (std::uint64_t k = 0; k < count; ++k) {
+    kept[next] = 1;
+    std::size_t farthest = 0;
+    double best = -1.0;
+    for (std::size_t i = 0; i < copies.size(); ++i) {
+      nearest[i] = std::min(nearest[i], glm::length(copies[i].centre - copies[next].centre));
+      if (!kept[i] && nearest[i] > best) {
+        best = nearest[i];
+        farthest = i;
+      }
+    }
+    next = farthest;
+  }
+  for (std::size_t i = 0; i < copies.size(); ++i)
+    if (!kept[i]) {
+      std::vector<std::uint32_t>& keys = pruned.dropped[copies[i].triangle];
+      keys.insert(std::upper_bound(keys.begin(), keys.end(), copies[i].key), copies[i].key);
+      ++pruned.dropped_by_type[type];
+    }
+  return count;
+}
+
 }  // namespace nano::shell

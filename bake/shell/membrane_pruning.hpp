@@ -49,4 +49,11 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
                               const std::vector<tiles::MoleculeType>& types, const PruningSettings& settings,
                               int threads);
 
+// Keeps at most `count` of the copies of molecule type `type` that the triangles own and `pruned`
+// keeps, spread over the surface (farthest-point sampling from the first in enumeration order: each
+// next copy is the one farthest from those already kept), and adds the others to `pruned.dropped`.
+// Returns how many it keeps. For copies that displace nothing when dropped (a spike above the
+// bilayer); a dropped copy leaves what its tile holds around it.
+std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& pruned, std::uint32_t type, std::uint64_t count);
+
 }  // namespace nano::shell

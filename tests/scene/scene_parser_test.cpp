@@ -26,7 +26,7 @@ constexpr const char* complete_scene = R"({
     "envelope": {
       "tile_size": 200,
       "proteins": [
-        {"molecule": "spike", "density_per_um2": 1200, "depth": 45.5},
+        {"molecule": "spike", "density_per_um2": 1200, "depth": 45.5, "per_compartment": 25},
         {"molecule": "hb", "copies_per_tile": 0.5}
       ],
       "lipids": {"molecule": "popc", "area_per_lipid": 65, "leaflet_offset": 12}
@@ -80,7 +80,7 @@ SceneDescription expected_scene() {
   using SU = SurfaceAbundance::Unit;
   s.membranes = {
       {"envelope", 200.0, 2, 16,
-       {{spike, {SU::per_um2, 1200.0}, 45.5}, {hb, {SU::per_tile, 0.5}, 0.0}},
+       {{spike, {SU::per_um2, 1200.0}, 45.5, 25}, {hb, {SU::per_tile, 0.5}, 0.0}},
        LipidFill{popc, 65.0, 12.0}},
       {"rbc_membrane", 300.5, 3, 81, {}, std::nullopt,
        LipidPatchDescription{"POPC", "/scenes/demo/pdb/bilayer.pdb.gz", glm::dvec3(128.0 / 255.0), 0.7},

@@ -183,4 +183,42 @@ TEST(MembranePruning, FlatTilingSparesAtomTests) {
   EXPECT_EQ(spared.dropped, all_tested.dropped);
 }
 
+// limit_copies keeps exactly N of a type, a subset of what pruning kept, spread out: farthest-point
+// sampling keeps every other copy nearer to a kept one than any two kept copies are to each other.
+TEST(MembranePruning, LimitCopiesKeepsASpreadSubset) {
+  auto sc = dense(sphere_scene());
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  PrunedMembrane p = nano::shell::prune_membrane(map, sc->mesh, sc->types, {}, 2);
+  const std::vector<Copy> all = owned_copies(map);
+  std::vector<Copy> before;
+  for (const Copy& c : all)
+    if (c.type == 1 && !dropped(p, c)) before.push_back(c);
+  ASSERT_GT(before.size(), 12u);
+  const std::uint64_t dropped_before = p.dropped_count();
+  std::vector<bool> lipid_dropped_before;
+  for (const Copy& c : all)
+    if (c.type == 0) lipid_dropped_before.push_back(dropped(p, c));
+  EXPECT_EQ(nano::shell::limit_copies(map, p, 1, 12), 12u);
+  std::vector<bool> lipid_dropped_after;
+  for (const Copy& c : all)
+    if (c.type == 0) lipid_dropped_after.push_back(dropped(p, c));
+  EXPECT_EQ(lipid_dropped_after, lipid_dropped_before) << "limiting the proteins dropped a lipid";
+  std::vector<Copy> kept;
+  for (const Copy& c : before)
+    if (!dropped(p, c)) kept.push_back(c);
+  ASSERT_EQ(kept.size(), 12u);
+  EXPECT_EQ(p.dropped_count(), dropped_before + before.size() - 12);
+  for (const auto& keys : p.dropped) EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
+  double closest_kept = INFINITY, farthest_covered = 0.0;
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    for (std::size_t j = i + 1; j < kept.size(); ++j) closest_kept = std::min(closest_kept, glm::length(kept[i].centre - kept[j].centre));
+  for (const Copy& c : before) {
+    double nearest = INFINITY;
+    for (const Copy& k : kept) nearest = std::min(nearest, glm::length(c.centre - k.centre));
+    farthest_covered = std::max(farthest_covered, nearest);
+  }
+  EXPECT_LE(farthest_covered, closest_kept + 1e-3);
+  EXPECT_EQ(nano::shell::limit_copies(map, p, 1, 100), 12u);  // fewer than asked: all kept
+}
+
 }  // namespace
