@@ -19,6 +19,8 @@ struct BakedWangSet {
   // Atoms of any two copies of any valid tiling stay >= this x (r1 + r2) apart in flat tile space:
   // the smallest clearance the set was packed with (its budget's, its lipid patch's).
   float flat_clearance = 1.f;
+  // Packed for no surface distortion at all: only a check of every copy on the surface keeps it clash-free.
+  bool packed_rigid = true;
 };
 
 // A 2D recipe axis never needs more cells than this: beyond it the periodic recipe repeats.

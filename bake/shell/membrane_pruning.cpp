@@ -132,7 +132,7 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
     mapping.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++owned[t]; }, SeamRule::ignore);
   });
   out.owned_copies = std::accumulate(owned.begin(), owned.end(), std::uint64_t{0});
-  out.whole_surface = out.owned_copies <= settings.whole_surface_budget;
+  out.whole_surface = settings.whole_surface || out.owned_copies <= settings.whole_surface_budget;
 
   // Which triangles, and within them which copies, to check. Two copies on the two sides of a seam
   // that clash have surface points X, X' with |X − X'| < r + r' + |z| + |z'|, and the seam passes

@@ -27,6 +27,9 @@ struct PruningSettings {
   // A membrane owning at most this many copies is checked everywhere; a larger one only within
   // reach of a UV seam, trusting its tile set to survive what its charts do elsewhere.
   std::uint64_t whole_surface_budget = 600000;
+  // Set by a caller whose tiles were packed rigid (they survive nothing a chart does): check
+  // everywhere whatever the count.
+  bool whole_surface = false;
 };
 
 struct PrunedMembrane {
