@@ -35,8 +35,8 @@ def scene_for(cells):
     for mol in s["molecules"].values():
         mol["file"] = os.path.join(data, mol["file"])
     for m in s.get("membranes", {}).values():
-        if "lipid_patch" in m:
-            m["lipid_patch"]["file"] = os.path.join(data, m["lipid_patch"]["file"])
+        for patch in ([m["lipid_patch"]] if "lipid_patch" in m else []) + m.get("lipid_mix", []):
+            patch["file"] = os.path.join(data, patch["file"])
     k = (2 * cells / base_cells) ** 0.5  # twice blood.json's area per cell, same thickness
     box = [[base_box[0][0] * k, base_box[0][1] * k, base_box[0][2]], [base_box[1][0] * k, base_box[1][1] * k, base_box[1][2]]]
     s["instances"][0]["count"] = cells

@@ -21,8 +21,8 @@ base = os.path.dirname(os.path.abspath(a.src))
 for mol in scene["molecules"].values():
     mol["file"] = os.path.join(base, mol["file"])
 for membrane in scene.get("membranes", {}).values():
-    if "lipid_patch" in membrane:
-        membrane["lipid_patch"]["file"] = os.path.join(base, membrane["lipid_patch"]["file"])
+    for patch in ([membrane["lipid_patch"]] if "lipid_patch" in membrane else []) + membrane.get("lipid_mix", []):
+        patch["file"] = os.path.join(base, patch["file"])
 if a.effects:
     scene["effects"] = json.loads(a.effects)
 if a.transform:
