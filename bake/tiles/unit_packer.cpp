@@ -226,8 +226,8 @@ public:
     }
     // Where a packed copy (a protein) pushed a layer lipid out, the hole would show what lies
     // beneath the membrane. Membrane builders pack lipids right against the protein: try other
-    // conformers of the same leaflet at the same place, turned about the normal and nudged, and
-    // keep the first that fits.
+    // conformers of the same leaflet there, turned about the normal and moved away from the
+    // protein, and keep the first that fits.
     std::vector<const Instance*> upper, lower;
     for (const Instance& c : layer.copies) (c.position.z >= 0.f ? upper : lower).push_back(&c);
     float layer_reach = 0.f;
