@@ -1,6 +1,7 @@
 #include "bake/scene_bake/package_content.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -127,6 +128,9 @@ std::uint32_t PackageContent::add_mesh(const PackedMesh& mesh, const std::vector
                                       const std::vector<std::vector<std::uint32_t>>& dropped) {
   if (shells.size() != mesh.triangles.size()) throw std::invalid_argument("one shell per triangle");
   if (!dropped.empty() && dropped.size() != mesh.triangles.size()) throw std::invalid_argument("one drop list per triangle");
+  for (const std::vector<std::uint32_t>& keys : dropped)
+    if (std::adjacent_find(keys.begin(), keys.end(), std::greater_equal<>()) != keys.end())
+      throw std::invalid_argument("dropped-copy keys must ascend strictly");
   gpu::Mesh record{};
   record.aabb_min = glm::vec4(mesh.aabb_min, 0.f);
   record.aabb_max = glm::vec4(mesh.aabb_max, 0.f);
@@ -141,12 +145,7 @@ std::uint32_t PackageContent::add_mesh(const PackedMesh& mesh, const std::vector
   triangle_shells.insert(triangle_shells.end(), shells.begin(), shells.end());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const std::uint32_t first = checked_index(dropped_copies);
-    if (!dropped.empty()) {
-      if (!std::is_sorted(dropped[t].begin(), dropped[t].end()) ||
-          std::adjacent_find(dropped[t].begin(), dropped[t].end()) != dropped[t].end())
-        throw std::invalid_argument("dropped-copy keys must ascend strictly");
-      dropped_copies.insert(dropped_copies.end(), dropped[t].begin(), dropped[t].end());
-    }
+    if (!dropped.empty()) dropped_copies.insert(dropped_copies.end(), dropped[t].begin(), dropped[t].end());
     triangle_drops.push_back({first, static_cast<std::uint32_t>(dropped_copies.size() - first)});
   }
   const std::uint32_t index = checked_index(meshes);

@@ -123,6 +123,47 @@ TEST(PackageContent, MoleculesTilesAndMeshPassTheValidatorWithTheirValues) {
   EXPECT_EQ(package.records<format::SectionKind::triangles>().size(), sphere.triangles.size());
 }
 
+// Dropped membrane copies: one range per triangle of every mesh added, the keys in order, the
+// sections written (required: a 2.1 reader must refuse them) only when a copy is dropped at all,
+// and out-of-order keys refused.
+TEST(PackageContent, DroppedCopiesArePerTriangleRangesWrittenOnlyWhenAny) {
+  const bake::PackedMesh packed = bake::pack_mesh(mesh::make_sphere_mesh(48, 50.0));
+  const std::vector<gpu::TriangleShell> shells(packed.triangles.size());
+  bake::PackageContent none;
+  none.add_mesh(packed, shells);
+  EXPECT_EQ(none.triangle_drops.size(), packed.triangles.size());
+  EXPECT_TRUE(none.dropped_copies.empty());
+  for (const auto& s : none.sections())
+    EXPECT_NE(s.kind, std::uint32_t(format::SectionKind::triangle_drops)) << "no drop sections without a drop";
+
+  std::vector<std::vector<std::uint32_t>> dropped(packed.triangles.size());
+  dropped[1] = {3, (2u << 16) | 5u};
+  dropped[7] = {1};
+  bake::PackageContent content;
+  content.add_mesh(packed, shells);  // a first mesh without drops shifts nothing
+  content.add_mesh(packed, shells, dropped);
+  const std::size_t second = packed.triangles.size();
+  EXPECT_EQ(content.dropped_copies, (std::vector<std::uint32_t>{3, (2u << 16) | 5u, 1}));
+  EXPECT_EQ(content.triangle_drops[second + 1].first, 0u);
+  EXPECT_EQ(content.triangle_drops[second + 1].count, 2u);
+  EXPECT_EQ(content.triangle_drops[second + 7].first, 2u);
+  EXPECT_EQ(content.triangle_drops[second + 7].count, 1u);
+  EXPECT_EQ(content.triangle_drops[second + 8].first, 3u);
+  EXPECT_EQ(content.triangle_drops[second + 8].count, 0u);
+  int required = 0;
+  for (const auto& s : content.sections())
+    if (s.kind == std::uint32_t(format::SectionKind::triangle_drops) || s.kind == std::uint32_t(format::SectionKind::dropped_copies))
+      required += (s.flags & format::kSectionRequired) != 0;
+  EXPECT_EQ(required, 2);
+  dropped[1] = {5, 3};
+  const std::size_t meshes = content.meshes.size();
+  EXPECT_THROW(content.add_mesh(packed, shells, dropped), std::invalid_argument);
+  EXPECT_EQ(content.meshes.size(), meshes);
+  EXPECT_EQ(content.triangle_drops.size(), 2 * packed.triangles.size()) << "a refused mesh adds nothing";
+  dropped[1] = {3, 3};
+  EXPECT_THROW(content.add_mesh(packed, shells, dropped), std::invalid_argument);
+}
+
 TEST(PackageContent, RecipesStoreAbsoluteTileIndices) {
   bake::PackageContent content;
   tiles::TilingRecipe recipe;
