@@ -62,6 +62,7 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   shell::PruningSettings pruning;
   pruning.flat_clearance = tiles.flat_clearance;
   pruning.whole_surface = tiles.packed_rigid;
+  pruning.owned_copies = shells.stats.owned_molecules;  // the same mapping, the same ownership
   baked.pruning = shell::prune_membrane(mapping, mesh, types, pruning, threads);
   for (const auto& [molecule, count] : per_compartment) {
     if (!baked.pruning.whole_surface)

@@ -127,11 +127,15 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
       widest = std::max(widest, radius[in.type]);
     }
 
-  std::vector<std::uint64_t> owned(triangles, 0);
-  parallel_for(triangles, threads, [&](std::size_t t) {
-    mapping.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++owned[t]; }, SeamRule::ignore);
-  });
-  out.owned_copies = std::accumulate(owned.begin(), owned.end(), std::uint64_t{0});
+  if (settings.owned_copies) {
+    out.owned_copies = *settings.owned_copies;
+  } else {
+    std::vector<std::uint64_t> owned(triangles, 0);
+    parallel_for(triangles, threads, [&](std::size_t t) {
+      mapping.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++owned[t]; }, SeamRule::ignore);
+    });
+    out.owned_copies = std::accumulate(owned.begin(), owned.end(), std::uint64_t{0});
+  }
   out.whole_surface = settings.whole_surface || out.owned_copies <= settings.whole_surface_budget;
 
   // Which triangles, and within them which copies, to check. Two copies on the two sides of a seam

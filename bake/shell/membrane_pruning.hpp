@@ -8,6 +8,7 @@
 // independent set that keeps proteins before lipids. The dropped copies are stored per triangle
 // (package sections triangle_drops / dropped_copies) and skipped by the oracle and the shader.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "bake/mesh/proxy_mesh.hpp"
@@ -30,6 +31,9 @@ struct PruningSettings {
   // Set by a caller whose tiles were packed rigid (they survive nothing a chart does): check
   // everywhere whatever the count.
   bool whole_surface = false;
+  // The copies the triangles own, when the caller has counted them already (the shell offsets
+  // enumerate every one): spares a pass over 10^8 copies of a cell. Absent: counted here.
+  std::optional<std::uint64_t> owned_copies;
 };
 
 struct PrunedMembrane {

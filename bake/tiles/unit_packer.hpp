@@ -59,7 +59,8 @@ struct PackerSettings {
 // centre, and each instance of that unit keeps it unless it touches a packed copy the unit can meet
 // in some tiling: one decision per unit instance, so neighbouring tiles always agree.
 // Where a packed copy refuses a layer copy, up to refill_attempts other layer copies of the same
-// side of z = 0 (the same leaflet), turned about z and nudged by up to 4 Å, are tried in its place.
+// side of z = 0 (the same leaflet), turned about z and moved up to 8 Å away from the refusing copy
+// (and 3 Å across), are tried in its place.
 struct FixedLayer {
   std::vector<Instance> copies;  // x, y (and z for cubes) in [0, edge)
   float band = 0.f;              // extent radius of any copy along the lattice axes, <= edge / 2

@@ -244,11 +244,17 @@ LipidPatch stick_patch() {
 // patch clearance, no protein atom closer to anything than the generator's clearance (a lipid kept
 // on one side of an edge against the other side's protein, or laid twice, would show), and the
 // lipid density counted over a large tiling is the reported one and most of the patch's.
-TEST(MembraneTiles, LipidPatchIsCollisionFreeAndDense) {
+// The membrane request with the stick patch (clearance 0.85) in place of the lipid fill.
+MembraneTileRequest patch_request() {
   MembraneTileRequest req = membrane_request(11);
   req.lipids.reset();
   req.lipid_patch = stick_patch();
   req.lipid_patch->clearance = 0.85f;
+  return req;
+}
+
+TEST(MembraneTiles, LipidPatchIsCollisionFreeAndDense) {
+  MembraneTileRequest req = patch_request();
   const WangSet set = make_membrane_tiles(req);
   for (uint64_t recipe_seed : {11u, 12u}) {
     const TilingRecipe recipe = make_tiling_recipe(set.colouring, {6, 6, 1}, recipe_seed, false);
@@ -283,10 +289,7 @@ TEST(MembraneTiles, LipidPatchIsCollisionFreeAndDense) {
 // clash-free at the patch clearance, the species sits only in its leaflets and never above its
 // share, mixing opens no hole (as many lipids as the unmixed patch), and the set reports it.
 TEST(MembraneTiles, LipidMixTakesPlacesWithoutOpeningHoles) {
-  MembraneTileRequest req = membrane_request(11);
-  req.lipids.reset();
-  req.lipid_patch = stick_patch();
-  req.lipid_patch->clearance = 0.85f;
+  MembraneTileRequest req = patch_request();
   const WangSet unmixed = make_membrane_tiles(req);
   tiles::MoleculeType thin = test::make_lipid();
   thin.name = "thin";
