@@ -32,15 +32,19 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
                             std::uint64_t seed, int threads,
                             const std::vector<std::pair<std::uint32_t, std::uint64_t>>& per_compartment) {
   BakedMembrane baked;
-  // The chart must never compress a tile: molecules are rigid, so where the map shrinks tile space
-  // (cube-sphere corners, σ_min ≈ 0.76 of the mean) copies packed collision-free would overlap.
-  // Scaling by the smallest singular value only spreads them, which costs density where σ is large.
-  const double smallest = mesh::smallest_stretch(mesh);
-  if (!(smallest > 0)) throw InputError("", "membrane", "the mesh has no triangle with a usable UV chart");
-  // A float k (rounded down: never compress) makes s = S / k reproducible by the shader's float
-  // division; some float s have no float k at all.
-  float k_float = static_cast<float>(smallest);
-  if (double(k_float) > smallest) k_float = std::nextafter(k_float, 0.f);
+  // Tile space per Å of surface. Tiles packed for what the meshes do to them (a cell's) must never be
+  // compressed: molecules are rigid, so where the map shrinks tile space (cube-sphere corners, σ_min
+  // ≈ 0.76 of the mean) copies packed collision-free would overlap; scaling by the smallest singular
+  // value only spreads them, which costs density wherever σ is larger (a sphere: 1/1.26 on average).
+  // Tiles packed rigid are checked copy by copy on the real surface anyway: they take the mean scale,
+  // so that the surface holds the patch's density on average; what compression pushes together is
+  // pruned.
+  const double target = tiles.packed_rigid ? mesh::uv_scale(mesh) : mesh::smallest_stretch(mesh);
+  if (!(target > 0)) throw InputError("", "membrane", "the mesh has no triangle with a usable UV chart");
+  // A float k (rounded down) makes s = S / k reproducible by the shader's float division; some float s
+  // have no float k at all.
+  float k_float = static_cast<float>(target);
+  if (double(k_float) > target) k_float = std::nextafter(k_float, 0.f);
   const double k = k_float;
   baked.tile_size = tiles.set.edge;
   baked.recipe = membrane_recipe(tiles.set, tiles.set.edge / k, seed);
@@ -63,14 +67,25 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   pruning.flat_clearance = tiles.flat_clearance;
   pruning.whole_surface = tiles.packed_rigid;
   pruning.owned_copies = shells.stats.owned_molecules;  // the same mapping, the same ownership
-  baked.pruning = shell::prune_membrane(mapping, mesh, types, pruning, threads);
-  for (const auto& [molecule, count] : per_compartment) {
-    if (!baked.pruning.whole_surface)
-      throw InputError("", "membrane", library[molecule].name + ": a per-compartment count needs a membrane checked "
-                                       "everywhere (at most " + std::to_string(pruning.whole_surface_budget) + " copies)");
-    for (std::uint32_t i = 0; i < tiles.molecule_of_type.size(); ++i)
-      if (tiles.molecule_of_type[i] == molecule) shell::limit_copies(mapping, baked.pruning, i, count);
+  pruning.always_tested = tiles.laid_through;
+  // Per-compartment counts are settled first, on the whole surface: the copies dropped then take no
+  // lipid with them (the patch was laid through them), and the pruning below removes the lipids that
+  // the kept ones displace.
+  shell::PrunedMembrane limited;
+  limited.dropped.assign(mapping.triangle_count(), {});
+  limited.dropped_by_type.assign(types.size(), 0);
+  if (!per_compartment.empty()) {
+    if (!tiles.packed_rigid && shells.stats.owned_molecules > pruning.whole_surface_budget)
+      throw InputError("", "membrane", library[per_compartment.front().first].name +
+                                           ": a per-compartment count needs a membrane checked everywhere (at most " +
+                                           std::to_string(pruning.whole_surface_budget) + " copies)");
+    for (const auto& [molecule, count] : per_compartment)
+      for (std::uint32_t i = 0; i < tiles.molecule_of_type.size(); ++i)
+        if (tiles.molecule_of_type[i] == molecule) shell::limit_copies(mapping, limited, i, count);
+    pruning.dropped_before = limited.dropped;
   }
+  baked.pruning = shell::prune_membrane(mapping, mesh, types, pruning, threads);
+  for (std::size_t i = 0; i < types.size(); ++i) baked.pruning.dropped_by_type[i] += limited.dropped_by_type[i];
   baked.dropped = std::move(baked.pruning.dropped);
   baked.copies_by_molecule.assign(library.size(), 0);
   baked.dropped_by_molecule.assign(library.size(), 0);

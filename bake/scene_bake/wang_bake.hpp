@@ -21,6 +21,9 @@ struct BakedWangSet {
   float flat_clearance = 1.f;
   // Packed for no surface distortion at all: only a check of every copy on the surface keeps it clash-free.
   bool packed_rigid = true;
+  // Set types the lipid patch was laid through (proteins kept per compartment): flat_clearance does
+  // not hold between them and the lipids, so the pruning tests their pairs atom by atom.
+  std::vector<std::uint32_t> laid_through;
 };
 
 // A 2D recipe axis never needs more cells than this: beyond it the periodic recipe repeats.

@@ -173,6 +173,12 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
         t,
         [&](const OwnedMolecule& m) {
           const tiles::Instance& in = set.tiles[m.tile].instances[m.instance];
+          const glm::ivec2 slot = m.cell - tm.origin;
+          const std::uint32_t key =
+              gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + W * static_cast<std::uint32_t>(slot.y), m.instance);
+          if (!settings.dropped_before.empty() &&
+              std::binary_search(settings.dropped_before[t].begin(), settings.dropped_before[t].end(), key))
+            return;
           if (!out.whole_surface) {
             const dvec3 surface(gpu::chart_position(tm.chart, m.uv));
             const double reach = radius[m.type] + std::abs(double(in.position.z)) + reach_other;
@@ -182,8 +188,7 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
           }
           Placed p;
           p.triangle = static_cast<std::uint32_t>(t);
-          const glm::ivec2 slot = m.cell - tm.origin;
-          p.key = gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + W * static_cast<std::uint32_t>(slot.y), m.instance);
+          p.key = key;
           p.type = m.type;
           p.island = island[t];
           p.flat = dvec3(m.cell.x * S + in.position.x, m.cell.y * S + in.position.y, in.position.z);
@@ -198,7 +203,11 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   for (auto& v : per_triangle) copies.insert(copies.end(), v.begin(), v.end());
   per_triangle = {};
   out.checked_copies = copies.size();
+  if (!settings.dropped_before.empty()) out.dropped = settings.dropped_before;
   if (copies.empty()) return out;
+  std::vector<char> always_tested(types.size(), 0);
+  for (const std::uint32_t type : settings.always_tested)
+    if (type < types.size()) always_tested[type] = 1;
 
   // Small copies (lipids and the like) in a hash grid of cells twice their largest radius; the few
   // large ones (proteins) look through the grid within their own reach and at each other directly.
@@ -229,7 +238,8 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
     const dvec3 between = b.centre - a.centre;
     if (glm::dot(between, between) >= reach * reach) return;
     ++f.candidates;
-    if (a.island == b.island && settings.flat_clearance > settings.clearance) {
+    if (a.island == b.island && settings.flat_clearance > settings.clearance && !always_tested[a.type] &&
+        !always_tested[b.type]) {
       const double slack = (double(settings.flat_clearance) - settings.clearance) * (smallest_atom[a.type] + smallest_atom[b.type]);
       if (relative_displacement(a, b, radius[b.type]) < slack) return;
     }

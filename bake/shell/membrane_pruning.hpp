@@ -34,6 +34,12 @@ struct PruningSettings {
   // The copies the triangles own, when the caller has counted them already (the shell offsets
   // enumerate every one): spares a pass over 10^8 copies of a cell. Absent: counted here.
   std::optional<std::uint64_t> owned_copies;
+  // Molecule types whose pairs with the others the flat tiling never vouches for (a protein the
+  // lipid patch was laid through): every such pair within reach is tested atom by atom.
+  std::vector<std::uint32_t> always_tested;
+  // Copies dropped before the pruning (per triangle, ascending keys: limit_copies): not placed, so
+  // they take nothing from their neighbours; they are dropped in the result as well.
+  std::vector<std::vector<std::uint32_t>> dropped_before;
 };
 
 struct PrunedMembrane {
@@ -59,8 +65,8 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
 // Keeps at most `count` of the copies of molecule type `type` that the triangles own and `pruned`
 // keeps, spread over the surface (farthest-point sampling from the first in enumeration order: each
 // next copy is the one farthest from those already kept), and adds the others to `pruned.dropped`.
-// Returns how many it keeps. For copies that displace nothing when dropped (a spike above the
-// bilayer); a dropped copy leaves what its tile holds around it.
+// Returns how many it keeps. Run before prune_membrane (PruningSettings::dropped_before) on tiles
+// whose lipids were laid through the type, so that a dropped copy leaves bilayer, not a hole.
 std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& pruned, std::uint32_t type, std::uint64_t count);
 
 }  // namespace nano::shell

@@ -199,6 +199,9 @@ public:
     if (layer.clearance > 0.f) rule.clearance = layer.clearance;
     std::vector<double> per_tile(shapes_.size(), 0.0);
     constexpr size_t kNone = ~size_t(0);
+    std::vector<char> laid_through(shapes_.size(), 0);
+    for (const uint32_t type : layer.laid_through)
+      if (type < laid_through.size()) laid_through[type] = 1;
     for (const Instance& copy : layer.copies) {
       unsigned mask = 0;
       Instance local = copy;  // relative to the anchor of the unit holding it
@@ -211,7 +214,7 @@ public:
       }
       for (size_t a = 0; a < units_.size(); ++a) {
         if (units_[a].mask != mask) continue;
-        if (!fits(a, local, kNone, rule)) {
+        if (!fits(a, local, kNone, rule, laid_through)) {
           refused.emplace_back(a, local);
           continue;
         }
@@ -242,7 +245,7 @@ public:
       any_near(a, hole.position, layer_reach, kNone, [&](uint32_t type, const Pose& other) {
         const glm::vec2 d = glm::vec2(hole.position) - glm::vec2(other.position);
         const float gap = glm::length(d) - shapes_[type].radius();
-        if (shapes_[type].radius() > layer_reach && gap < deepest && glm::dot(d, d) > 0.f) {
+        if (!laid_through[type] && shapes_[type].radius() > layer_reach && gap < deepest && glm::dot(d, d) > 0.f) {
           deepest = gap;
           away = glm::normalize(d);
         }
@@ -257,7 +260,9 @@ public:
                                                    across * static_cast<float>(rng.uniform(-3.0, 3.0));
         for (int k = 0; k < 2; ++k) candidate.position[k] = hole.position[k] + shift[k];
         candidate.rotation = glm::normalize(spin_about_z(static_cast<float>(rng.uniform(0.0, 2.0 * M_PI))) * conformer.rotation);
-        if (!in_zone(candidate.position, units_[a].mask, layer.band, D_, S_) || !fits(a, candidate, kNone, rule)) continue;
+        if (!in_zone(candidate.position, units_[a].mask, layer.band, D_, S_) ||
+            !fits(a, candidate, kNone, rule, laid_through))
+          continue;
         units_[a].copies.push_back(candidate);
         units_[a].spec_of.push_back(kLayerSpec);
         track(a, candidate);
@@ -311,12 +316,15 @@ private:
   }
 
   bool fits(size_t a, const Instance& copy, size_t skip) const { return fits(a, copy, skip, rule_); }
-  bool fits(size_t a, const Instance& copy, size_t skip, const ClashRule& rule) const {
+  // `ignored`: types (indexed by type) this copy may overlap.
+  bool fits(size_t a, const Instance& copy, size_t skip, const ClashRule& rule,
+            const std::vector<char>& ignored = {}) const {
     Offset owner;
     if (!owner_shift(copy, units_[a].mask, D_, S_, owner)) return false;
     const CollisionShape& shape = shapes_[copy.type];
     const Pose pose = pose_of(copy, {0, 0, 0}, D_, S_);
     return !any_near(a, pose.position, shape.radius(), skip, [&](uint32_t type, const Pose& other) {
+      if (type < ignored.size() && ignored[type]) return false;
       return copies_collide(shape, pose, shapes_[type], other, rule);
     });
   }

@@ -68,6 +68,9 @@ struct FixedLayer {
   // packer's clearance). A lipid packs closer against a protein than two proteins against each other.
   float clearance = 0.f;
   int refill_attempts = 64;
+  // Packed types the layer is laid through (neither refuses a layer copy nor is refilled around):
+  // their clashes with the layer are settled later, on the real surface.
+  std::vector<uint32_t> laid_through;
 };
 
 struct PackedUnits {

@@ -324,6 +324,8 @@ WangSet make_membrane_tiles(const MembraneTileRequest& r) {
   if (r.lipid_patch) {
     if (r.lipids) throw InputError(what, "lipids", "give either a lipid fill or a lipid patch, not both");
     layer = lay_patch(what, *r.lipid_patch, r.edge, r.types, shapes, surface, r.seed, layer_requested);
+    for (const MembraneMolecule& m : r.molecules)
+      if (m.lipids_displaced_on_surface) layer.laid_through.push_back(m.type);
   }
   return pack(what, 2, r.edge, make_complete_colouring(2, r.colours), r.types, shapes, wanted, r.seed, r.budget,
               surface, layer, layer_requested);

@@ -29,6 +29,10 @@ struct MembraneMolecule {
   uint32_t type = 0;           // index into the request's types
   double copies_per_um2 = 0.0;
   float depth = 0.f;           // tile-space z of the centre (Å along the membrane normal)
+  // Copies the baker may drop on the surface (a per-compartment count): the lipid patch is laid as
+  // if they were absent, so a dropped copy leaves bilayer, not a hole; where a copy is kept, the
+  // baker's pruning on the real surface removes the lipids it displaces (proteins first).
+  bool lipids_displaced_on_surface = false;
 };
 
 // Two leaflets at z = ±leaflet_offset; upper copies stand along +z, lower ones are flipped.
