@@ -26,6 +26,9 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"lipids_per_um2_total", lipids},
           {"real_bilayer_lipids_per_um2", kRealBilayerLipidsPerUm2},
           {"fraction_of_real_bilayer", lipids / kRealBilayerLipidsPerUm2},
+          {"lipids_by_leaflet", {{"outer", m.outer_lipids}, {"inner", m.inner_lipids}}},
+          {"protein_area_um2", {{"outer", m.outer_protein_um2}, {"inner", m.inner_protein_um2}}},
+          {"fraction_of_real_bilayer_beside_proteins", m.fraction_of_real_bilayer_beside_proteins()},
           {"dropped", dropped},
           {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams"},
           {"pruning_checked_copies", m.checked_copies},
@@ -92,8 +95,12 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
     if (c.membrane) {
       const MembraneSummary& m = *c.membrane;
       const double lipids = total(m.lipids) / m.area_um2;
-      std::snprintf(line, sizeof line, "  %s membrane: %.4g µm², %.3g lipids/µm² (%.0f%% of a real bilayer's %.3g)", c.name.c_str(),
-                    m.area_um2, lipids, 100.0 * lipids / kRealBilayerLipidsPerUm2, kRealBilayerLipidsPerUm2);
+      std::snprintf(line, sizeof line,
+                    "  %s membrane: %.4g µm², %.3g lipids/µm² (%.0f%% of a real bilayer's %.3g; %.0f%% beside the proteins, "
+                    "which take %.0f%% / %.0f%% of the outer / inner leaflet)",
+                    c.name.c_str(), m.area_um2, lipids, 100.0 * lipids / kRealBilayerLipidsPerUm2, kRealBilayerLipidsPerUm2,
+                    100.0 * m.fraction_of_real_bilayer_beside_proteins(), 100.0 * m.outer_protein_um2 / m.area_um2,
+                    100.0 * m.inner_protein_um2 / m.area_um2);
       out << line;
       for (const auto& [name, n] : m.lipids) {
         std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), n / m.area_um2);

@@ -14,6 +14,7 @@
 #include "bake/scene_bake/core_bake.hpp"
 #include "bake/scene_bake/membrane_bake.hpp"
 #include "bake/scene_bake/provenance.hpp"
+#include "bake/tiles/bilayer_footprint.hpp"
 #include "bake/tiles/tile_random.hpp"
 #include "common/parallel_for.hpp"
 
@@ -92,21 +93,46 @@ void add_named(std::vector<std::pair<std::string, std::uint64_t>>& list, const s
   else it->second += n;
 }
 
-MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembrane& m, const std::vector<BakedMolecule>& library,
-                                 const std::optional<BakedLipidPatch>& patch, const scene::MembraneDescription& membrane) {
+MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembrane& m, const BakedWangSet& tiles,
+                                 const std::vector<BakedMolecule>& library, const std::optional<BakedLipidPatch>& patch,
+                                 const scene::MembraneDescription& membrane) {
   MembraneSummary s;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) s.area_um2 += mesh::world_area(mesh, t) * 1e-8;
-  std::vector<bool> lipid(library.size(), false);
+  // Per library molecule: 0 not a lipid, +1 an outer-leaflet lipid, -1 an inner one (a patch
+  // conformer's leaflet is the side of the mid-plane its centroid stands on).
+  std::vector<int> lipid(library.size(), 0);
+  const auto mark = [&](const BakedLipidPatch& p) {
+    for (std::size_t i = 0; i < p.molecules.size(); ++i) lipid[p.molecules[i]] = p.positions[i].z >= 0.0 ? 1 : -1;
+  };
   if (patch) {
-    for (const std::uint32_t i : patch->molecules) lipid[i] = true;
-    for (const BakedLipidPatch& species : patch->mix)
-      for (const std::uint32_t i : species.molecules) lipid[i] = true;
+    mark(*patch);
+    for (const BakedLipidPatch& species : patch->mix) mark(species);
   }
-  if (membrane.lipids) lipid[membrane.lipids->molecule.index] = true;
+  if (membrane.lipids) lipid[membrane.lipids->molecule.index] = 1;  // both leaflets: counted as outer
   for (std::size_t i = 0; i < library.size(); ++i) {
-    if (lipid[i] && m.copies_by_molecule[i] > 0) add_named(s.lipids, library[i].name, m.copies_by_molecule[i]);
+    if (lipid[i] != 0 && m.copies_by_molecule[i] > 0) {
+      add_named(s.lipids, library[i].name, m.copies_by_molecule[i]);
+      (lipid[i] > 0 ? s.outer_lipids : s.inner_lipids) += m.copies_by_molecule[i];
+    }
     if (m.dropped_by_molecule[i] > 0) add_named(s.dropped, library[i].name, m.dropped_by_molecule[i]);
   }
+  if (membrane.lipids) {  // one pose in both leaflets: split evenly
+    s.inner_lipids += s.outer_lipids / 2;
+    s.outer_lipids -= s.outer_lipids / 2;
+  }
+  // Each protein stands at its depth, turned only about the normal: one tile copy gives its footprint.
+  std::vector<tiles::MoleculeType> types;
+  for (const std::uint32_t lib : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[lib]));
+  std::vector<char> measured(types.size(), 0);
+  for (const tiles::WangTile& tile : tiles.set.tiles)
+    for (const tiles::Instance& in : tile.instances) {
+      const std::uint32_t lib = tiles.molecule_of_type[in.type];
+      if (measured[in.type] || lipid[lib] != 0) continue;
+      measured[in.type] = 1;
+      const double copies = static_cast<double>(m.copies_by_molecule[lib]) * 1e-8;  // Å² -> µm²
+      s.outer_protein_um2 += copies * tiles::leaflet_footprint(types[in.type], in, tiles::outer_leaflet(kLeafletHalfThickness));
+      s.inner_protein_um2 += copies * tiles::leaflet_footprint(types[in.type], in, tiles::inner_leaflet(kLeafletHalfThickness));
+    }
   s.pruned_everywhere = m.pruning.whole_surface;
   s.checked_copies = m.pruning.checked_copies;
   s.atom_tests = m.pruning.atom_tests;
@@ -342,7 +368,8 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
         record.scales.x = static_cast<float>(m.uv_scale);
         record.scales.y = static_cast<float>(m.tile_size);
         for (std::size_t i = 0; i < copies.size(); ++i) copies[i] += m.copies_by_molecule[i];
-        summary.membrane = membrane_summary(bake.mesh.mesh, m, library, patches[description.membrane->index],
+        summary.membrane = membrane_summary(bake.mesh.mesh, m, membrane_sets[description.membrane->index], library,
+                                            patches[description.membrane->index],
                                             scene.membranes[description.membrane->index]);
         summary.replication_width = m.replication_width;
         summary.replication_height = m.replication_height;
@@ -402,6 +429,11 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
     return 0;
   });
   return baked;
+}
+
+double MembraneSummary::fraction_of_real_bilayer_beside_proteins() const {
+  const double room = std::max(0.0, 2.0 * area_um2 - outer_protein_um2 - inner_protein_um2);  // both leaflets
+  return room > 0.0 ? static_cast<double>(outer_lipids + inner_lipids) / (0.5 * kRealBilayerLipidsPerUm2 * room) : 0.0;
 }
 
 }  // namespace nano::bake

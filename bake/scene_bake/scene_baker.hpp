@@ -30,7 +30,17 @@ struct MembraneSummary {
   std::vector<std::pair<std::string, std::uint64_t>> dropped;          // molecule -> copies dropped (clashing, or beyond a count)
   bool pruned_everywhere = false;                                      // else along UV seams only
   std::uint64_t checked_copies = 0, atom_tests = 0;
+  std::uint64_t outer_lipids = 0, inner_lipids = 0;  // by leaflet (the outer one faces the mesh normals)
+  // Leaflet area the kept proteins take (tiles::leaflet_footprint within kLeafletHalfThickness of
+  // the mid-plane), µm²: a real bilayer holds its lipids in the rest.
+  double outer_protein_um2 = 0.0, inner_protein_um2 = 0.0;
+
+  // Lipids against a real bilayer's count in the area the proteins leave.
+  double fraction_of_real_bilayer_beside_proteins() const;
 };
+
+// Phosphate to mid-plane of a POPC leaflet (~19.5 Å): where a protein's atoms take lipid room.
+inline constexpr float kLeafletHalfThickness = 20.f;
 
 struct CompartmentSummary {
   std::optional<MembraneSummary> membrane;

@@ -221,4 +221,59 @@ TEST(MembranePruning, LimitCopiesKeepsASpreadSubset) {
   EXPECT_EQ(nano::shell::limit_copies(map, p, 1, 100), 12u);  // fewer than asked: all kept
 }
 
+// Counts settled before the pruning (limit_copies on an empty result, then dropped_before): the
+// copies dropped then are dropped in the result too, are never placed, so no copy is dropped for
+// clashing with one of them, and what is kept is clash-free.
+TEST(MembranePruning, CopiesDroppedBeforeTakeNothingWithThem) {
+  auto sc = dense(sphere_scene());
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  PrunedMembrane limited;
+  limited.dropped.assign(map.triangle_count(), {});
+  limited.dropped_by_type.assign(sc->types.size(), 0);
+  ASSERT_EQ(nano::shell::limit_copies(map, limited, 1, 4), 4u);
+  PruningSettings settings;
+  settings.dropped_before = limited.dropped;
+  const PrunedMembrane p = nano::shell::prune_membrane(map, sc->mesh, sc->types, settings, 2);
+  const std::vector<Copy> all = owned_copies(map);
+  std::vector<Copy> kept;
+  std::set<std::size_t> dropped_now, kept_index;
+  std::size_t proteins_kept = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const bool before = dropped(limited, all[i]);
+    if (before) EXPECT_TRUE(dropped(p, all[i])) << "a copy dropped before came back";
+    if (dropped(p, all[i])) {
+      if (!before) dropped_now.insert(i);
+    } else {
+      kept.push_back(all[i]);
+      kept_index.insert(i);
+      proteins_kept += all[i].type == 1;
+    }
+  }
+  EXPECT_LE(proteins_kept, 4u);
+  EXPECT_EQ(p.checked_copies, all.size() - limited.dropped_count());
+  EXPECT_EQ(clashes(kept, sc->types, 0.6).size(), 0u);
+  std::set<std::size_t> justified;
+  for (const auto& [i, j] : clashes(all, sc->types, 0.6)) {
+    if (dropped_now.count(i) && kept_index.count(j)) justified.insert(i);
+    if (dropped_now.count(j) && kept_index.count(i)) justified.insert(j);
+  }
+  EXPECT_EQ(justified.size(), dropped_now.size()) << "a copy was dropped for a neighbour that was dropped before";
+}
+
+// A type the flat tiling must not vouch for (a protein the lipids were laid through) has every
+// pair within reach tested atom by atom; the drops stay the same.
+TEST(MembranePruning, AlwaysTestedTypesAreNeverVouchedFor) {
+  auto sc = dense(sphere_scene());
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  PruningSettings vouched;
+  vouched.flat_clearance = 1.0f;
+  const PrunedMembrane spared = nano::shell::prune_membrane(map, sc->mesh, sc->types, vouched, 2);
+  PruningSettings lipids_tested = vouched;
+  lipids_tested.always_tested = {0};  // every meeting pair has a lipid in this scene
+  const PrunedMembrane all_tested = nano::shell::prune_membrane(map, sc->mesh, sc->types, lipids_tested, 2);
+  EXPECT_LT(spared.atom_tests, all_tested.atom_tests);
+  EXPECT_EQ(all_tested.atom_tests, all_tested.candidate_pairs);
+  EXPECT_EQ(spared.dropped, all_tested.dropped);
+}
+
 }  // namespace

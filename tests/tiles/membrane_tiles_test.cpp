@@ -284,6 +284,34 @@ TEST(MembraneTiles, LipidPatchIsCollisionFreeAndDense) {
   EXPECT_EQ(test::set_bytes(make_membrane_tiles(req)), test::set_bytes(set));
 }
 
+// A protein whose lipids are displaced on the surface (kept per compartment, so copies may be
+// dropped later) is laid through: lipids stay where they overlap it, and the lipid count is the
+// patch's as if the protein were absent; without the flag no lipid touches a protein.
+TEST(MembraneTiles, LipidsAreLaidThroughProteinsDisplacedOnTheSurface) {
+  MembraneTileRequest req = patch_request();
+  const WangSet refused = make_membrane_tiles(req);
+  req.molecules[0].lipids_displaced_on_surface = true;
+  const WangSet through = make_membrane_tiles(req);
+  MembraneTileRequest no_protein = patch_request();
+  no_protein.molecules.clear();
+  const WangSet bare = make_membrane_tiles(no_protein);
+  const auto lipid_protein_contact = [&](const WangSet& set) {
+    const TilingRecipe recipe = make_tiling_recipe(set.colouring, {6, 6, 1}, 21, false);
+    const test::ExplicitTiling tiling = test::instantiate(set, recipe, req.types);
+    return test::find_close_pair(tiling.atoms, 0.849f).found;  // only lipid-protein pairs can come closer
+  };
+  EXPECT_FALSE(lipid_protein_contact(refused));
+  EXPECT_TRUE(lipid_protein_contact(through)) << "no lipid was laid over a protein";
+  const auto lipids = [](const WangSet& set) {
+    for (const MoleculeDensity& d : set.densities)
+      if (d.type == 1) return d.achieved;
+    return 0.0;
+  };
+  EXPECT_DOUBLE_EQ(lipids(through), lipids(bare));
+  EXPECT_LT(lipids(refused), lipids(through));
+  EXPECT_EQ(through.densities[0].achieved, refused.densities[0].achieved) << "the proteins are packed alike";
+}
+
 // A second species mixed into the patch's places (LipidSpecies): a thinner stick lipid (type 2)
 // taking 40 % of the outer leaflet's places and 80 % of the inner one's. Random tilings stay
 // clash-free at the patch clearance, the species sits only in its leaflets and never above its
