@@ -65,12 +65,17 @@ def sample_points(scene, radius):
     points = []
     for name, rho, phi, top in [("top dimple (centre)", 0.0, 0.0, True), ("bottom dimple", 0.05, 1.0, False),
                                 ("dimple wall", 0.45, 0.3, True), ("crest", 0.72, 2.0, True),
-                                ("towards the rim", 0.9, 4.0, False), ("near the rim (seam)", 0.985, 0.7, True),
-                                ("bottom near the rim", 0.985, 3.9, False)]:
+                                ("towards the rim", 0.9, 4.0, False), ("near the rim", 0.985, 0.7, True),
+                                ("bottom near the rim", 0.985, 3.9, False),
+                                # Seams of the band charts (bake/mesh/rbc_mesh.hpp) at the default
+                                # 3,000 triangles: cap | cone, cone | cone, cone | rim cylinder, and
+                                # the radial cut of a cone at azimuth 0.
+                                ("seam (cap edge)", 0.157, 1.0, True), ("seam (between cones)", 0.886, 2.5, True),
+                                ("seam (rim cylinder edge)", 0.992, 5.0, False), ("seam (radial cut)", 0.5, 0.005, True)]:
         p, n = rbc_point(rho, phi, top)
         points.append((name, p, n))
     # The rim itself: the equator, normal along the radius.
-    points.append(("rim (seam)", (R0, 0.0, 0.0), (1.0, 0.0, 0.0)))
+    points.append(("rim", (R0, 0.0, 0.0), (1.0, 0.0, 0.0)))
     return points
 
 

@@ -1,9 +1,11 @@
 // Generated proxy meshes against analytic geometry: the Evans–Fung numbers of BIOLOGY.md §1.2
 // and the sphere's 4πR² and 4/3·πR³.
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include <gtest/gtest.h>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "bake/mesh/mesh_check.hpp"
@@ -11,6 +13,7 @@
 #include "bake/mesh/obj_writer.hpp"
 #include "bake/mesh/rbc_mesh.hpp"
 #include "bake/mesh/sphere_mesh.hpp"
+#include "bake/mesh/uv_distortion.hpp"
 #include "bake/mesh/vertex_normals.hpp"
 #include "common/error.hpp"
 #include "tests/mesh/test_obj.hpp"
@@ -33,6 +36,34 @@ double enclosed_volume(const ProxyMesh& m) {
   for (const Triangle& t : m.triangles)
     v += glm::dot(m.positions[t[0]], glm::cross(m.positions[t[1]], m.positions[t[2]])) / 6.0;
   return v;
+}
+
+// Total length of the edges whose two triangles do not share both endpoint UV indices.
+double rbc_seam_length(const ProxyMesh& m) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::uint32_t, std::uint32_t>>> uv_at;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      const std::uint32_t ua = m.uv_triangles[t][k], ub = m.uv_triangles[t][(k + 1) % 3];
+      uv_at[{std::min(a, b), std::max(a, b)}].push_back(a < b ? std::pair(ua, ub) : std::pair(ub, ua));
+    }
+  double length = 0;
+  for (const auto& [edge, uvs] : uv_at)
+    if (uvs.size() == 2 && uvs[0] != uvs[1]) length += glm::distance(m.positions[edge.first], m.positions[edge.second]);
+  return length;
+}
+
+// Area-weighted mean of σ1·σ2 / σmin² (σmin: the smallest stretch over the mesh, the tile scale):
+// how much sparser than in its tiles the membrane ends up on the surface.
+double mean_area_stretch(const ProxyMesh& m) {
+  const double tile_scale = smallest_stretch(m);
+  double weighted = 0, area = 0;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const SingularValues s = singular_values(*uv_jacobian(m, t));
+    weighted += world_area(m, t) * s.major * s.minor / (tile_scale * tile_scale);
+    area += world_area(m, t);
+  }
+  return weighted / area;
 }
 
 // Measured values of Evans & Fung 1972 as listed in shared/data/BIOLOGY.md §1.1.
@@ -171,14 +202,76 @@ TEST(NormalTilt, SphereFacetsTiltAndSagAsTheirSizeSays) {
   }
 }
 
-TEST(RbcMesh, PassesCheckMeshWithTwoDisksSeamAlongTheRim) {
+TEST(RbcMesh, PassesCheckMeshWithBandChartsAndLowDistortion) {
   const ProxyMesh mesh = make_rbc_mesh(3000);
-  expect_usable_after_round_trip(mesh, "rbc.obj", 1.4);  // measured σ ∈ [0.846, 1.058]
+  expect_usable_after_round_trip(mesh, "rbc.obj", 1.04);  // measured σ ∈ [0.992, 1.020]
   testing::TempDir dir;
   write_obj(dir.path() / "r.obj", mesh);
   const MeshReport r = check_mesh(read_proxy_mesh(dir.path() / "r.obj"), CheckOptions{});
-  EXPECT_EQ(r.uv_charts, 2u);
-  EXPECT_NEAR(r.seam_length, 2 * pi * 3.91e4, 0.01 * 2 * pi * 3.91e4);  // the rim circle
+  // Two polar caps, a cylinder around the rim and the cone bands between them (two per half).
+  EXPECT_EQ(r.uv_charts, 7u);
+  EXPECT_NEAR(r.seam_length, rbc_seam_length(mesh), 1e-6 * r.seam_length);
+}
+
+// The UV→surface map of every chart stretches by nearly the same amount in every direction, so
+// with the tile scale at the smallest stretch little of the membrane is spread thin.
+TEST(RbcMesh, ChartsAreNearlyIsotropic) {
+  for (const int target : {1000, 3000, 10000}) {
+    const ProxyMesh mesh = make_rbc_mesh(target);
+    EXPECT_LE(chart_anisotropy(mesh), 1.04) << target;
+    EXPECT_LE(mean_area_stretch(mesh), 1.03) << target;
+  }
+}
+
+// Overlapping UV triangles, of one chart or two: pairs whose boxes meet and that no edge line of
+// either separates (exactly for a shared corner, whose orientation is 0).
+std::size_t overlapping_uv_triangles(const ProxyMesh& mesh) {
+  const auto box = [&](std::size_t t) {
+    const glm::dvec2 a = mesh.corner_uv(t, 0), b = mesh.corner_uv(t, 1), c = mesh.corner_uv(t, 2);
+    return std::pair(glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)));
+  };
+  const auto outside_an_edge = [&](std::size_t t, std::size_t other) {
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec2 a = mesh.corner_uv(t, k), e = mesh.corner_uv(t, (k + 1) % 3) - a;
+      bool all_outside = true;
+      for (int c = 0; c < 3; ++c) {
+        const glm::dvec2 p = mesh.corner_uv(other, c) - a;
+        all_outside = all_outside && e.x * p.y - e.y * p.x <= 0.0;
+      }
+      if (all_outside) return true;
+    }
+    return false;
+  };
+  std::size_t overlapping = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto [lo, hi] = box(t);
+    for (std::size_t u = t + 1; u < mesh.triangles.size(); ++u) {
+      const auto [lo2, hi2] = box(u);
+      if (hi.x < lo2.x || hi2.x < lo.x || hi.y < lo2.y || hi2.y < lo.y) continue;
+      overlapping += !outside_an_edge(t, u) && !outside_an_edge(u, t);
+    }
+  }
+  return overlapping;
+}
+
+// 1,000 triangles keep the rim as a seam, 2,000 split a cone into two sectors.
+TEST(RbcMesh, UvTrianglesAreCounterClockwiseInsideTheSquareAndDoNotOverlap) {
+  for (const int target : {1000, 2000, 3000, 10000}) {
+    const ProxyMesh mesh = make_rbc_mesh(target);
+    for (const glm::dvec2& uv : mesh.uvs) {
+      EXPECT_GT(std::min(uv.x, uv.y), 0.0) << target;
+      EXPECT_LT(std::max(uv.x, uv.y), 1.0) << target;
+    }
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) ASSERT_GT(uv_signed_area(mesh, t), 0.0) << target << " " << t;
+    EXPECT_EQ(overlapping_uv_triangles(mesh), 0u) << target;
+  }
+}
+
+// Seams cut the membrane's tiling: the band charts trade the rim circle for the circles between
+// bands and one meridional cut per cone band.
+TEST(RbcMesh, SeamsStayShort) {
+  const double rim = 2 * pi * EvansFungShape{}.r0;
+  EXPECT_LE(rbc_seam_length(make_rbc_mesh(3000)), 6 * rim);  // measured 4.46× the rim circumference
 }
 
 }  // namespace
