@@ -67,7 +67,7 @@ struct FixedLayer {
   // Atoms of a layer copy and of a packed copy stay >= clearance · (r1 + r2) apart (0: the
   // packer's clearance). A lipid packs closer against a protein than two proteins against each other.
   float clearance = 0.f;
-  int refill_attempts = 64;
+  int refill_attempts = 256;
   // Packed types the layer is laid through (neither refuses a layer copy nor is refilled around):
   // their clashes with the layer are settled later, on the real surface.
   std::vector<uint32_t> laid_through;
