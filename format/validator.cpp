@@ -326,9 +326,11 @@ private:
           fail(c, 76, Rule::bad_value, "replication area is empty");
         if (!(k.scales.x > 0) || !(k.scales.y > 0)) fail(c, 32, Rule::bad_value, "UV scale and tile size must be positive");
       }
-      // scales.w is reserved (format 1.x stored the one-sided seam rule's radius there; the
-      // two-sided rule of shared/seam.h needs none), so a reader can give it a meaning later.
-      if (k.scales.w != 0) fail(c, 44, Rule::bad_value, "scales.w is reserved and must be 0");
+      // scales.w: the shape factor of the smooth surface membrane copies stand on (format 2.3;
+      // chart_smooth_position), 0 = flat facets (2.0-2.2, which reserved it as 0).
+      if (!(k.scales.w >= 0 && k.scales.w <= 1)) fail(c, 44, Rule::bad_value, "scales.w (surface smoothness) must lie in [0, 1]");
+      if (k.scales.w != 0 && p_.header().version_minor < 3)
+        fail(c, 44, Rule::bad_value, "scales.w is reserved and must be 0 before format 2.3");
       if (k.soluble_recipe != gpu::NANO_NO_INDEX) {
         if (!(k.grid_min.w > 0)) fail(c, 12, Rule::bad_value, "box size is not positive");
         if (!(k.scales.z > 0)) fail(c, 40, Rule::bad_value, "cube size is not positive");

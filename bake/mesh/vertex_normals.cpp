@@ -97,4 +97,40 @@ double largest_normal_tilt(const ProxyMesh& mesh) {
   return std::sqrt(std::max(0.0, 1.0 - smallest_cos * smallest_cos)) / smallest_cos;
 }
 
+double largest_smooth_normal_tilt(const ProxyMesh& mesh, double smooth) {
+  constexpr int kSteps = 8;  // barycentric grid: corners, edge points and inner points
+  constexpr double kStep = 1e-5;
+  double smallest_cos = 1.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const glm::dvec3 P[3] = {mesh.corner_position(t, 0), mesh.corner_position(t, 1), mesh.corner_position(t, 2)};
+    const glm::dvec3 face = glm::cross(P[1] - P[0], P[2] - P[0]);
+    if (!(glm::length(face) > 0.0)) continue;
+    glm::dvec3 m[3];
+    for (int c = 0; c < 3; ++c) m[c] = glm::normalize(mesh.corner_normal(t, c));
+    // Phong tessellation at barycentrics (1 − a − b, a, b), as the shaders place copies.
+    const auto surface = [&](double a, double b) {
+      const double l[3] = {1.0 - a - b, a, b};
+      const glm::dvec3 p = l[0] * P[0] + l[1] * P[1] + l[2] * P[2];
+      glm::dvec3 lift(0.0);
+      for (int c = 0; c < 3; ++c) lift += l[c] * glm::dot(p - P[c], m[c]) * m[c];
+      return p - smooth * lift;
+    };
+    for (int i = 0; i <= kSteps; ++i)
+      for (int j = 0; i + j <= kSteps; ++j) {
+        const double a = double(i) / kSteps, b = double(j) / kSteps;
+        // One-sided differences that stay inside the triangle (the overhang is not sampled).
+        const double da = i + j < kSteps ? kStep : -kStep, db = i + j < kSteps ? kStep : -kStep;
+        const glm::dvec3 x = surface(a, b);
+        glm::dvec3 normal = glm::cross((surface(a + da, b) - x) / da, (surface(a, b + db) - x) / db);
+        if (!(glm::length(normal) > 0.0)) continue;
+        if (glm::dot(normal, face) < 0.0) normal = -normal;
+        const double l[3] = {1.0 - a - b, a, b};
+        const glm::dvec3 interpolated = glm::normalize(l[0] * m[0] + l[1] * m[1] + l[2] * m[2]);
+        smallest_cos = std::min(smallest_cos, glm::dot(glm::normalize(normal), interpolated));
+      }
+  }
+  if (!(smallest_cos > 0.0)) return INFINITY;
+  return std::sqrt(std::max(0.0, 1.0 - smallest_cos * smallest_cos)) / smallest_cos;
+}
+
 }  // namespace nano::mesh

@@ -28,6 +28,12 @@ double normal_turn_rate(const ProxyMesh& mesh);
 // from a copy a neighbour p Å away sits up to tan·p Å above or below it.
 double largest_normal_tilt(const ProxyMesh& mesh);
 
+// The same for copies placed on the smooth surface of shape factor `smooth` (chart_smooth_position,
+// Phong tessellation of the corner normals) instead of the flat triangle: tan of the largest angle
+// between the interpolated normal and that surface's own normal, sampled on a barycentric grid of
+// every triangle with a usable shape (corners, edges and inside). smooth = 0 gives the flat tilt.
+double largest_smooth_normal_tilt(const ProxyMesh& mesh, double smooth);
+
 // How far a flat triangle strays from the smooth surface its corner normals describe, largest over
 // triangles: ρ²·rate/2 with ρ the largest corner distance from the centroid and rate the
 // triangle's normal turn rate (a sphere's facet sags ρ²/(2R) below it). Two copies' rises from the

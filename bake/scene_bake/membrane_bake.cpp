@@ -52,7 +52,9 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   for (const std::uint32_t m : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[m]));
   // Copies that clash across seams (and wherever the surface distorts the tiles) are found and
   // dropped by the pruning below, so no seam band is emptied.
-  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, types, "membrane", shell::SeamRule::ignore);
+  baked.smooth = kMembraneSurfaceSmoothness;
+  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, types, "membrane", shell::SeamRule::ignore,
+                                       baked.smooth);
   baked.uv_scale = stored_uv_scale(tiles.set.edge, mapping.tile_uv_size());
   // The package stores the UVs ownership was decided on.
   const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();

@@ -12,9 +12,17 @@
 
 namespace nano::bake {
 
+// Shape factor of the smooth surface membrane copies stand on (chart_smooth_position; stored as
+// Compartment.scales.w). Flat facets tilt copies against each other by up to half the dihedral angle
+// (a red blood cell's rim: 3.7°), which its tiles must be packed for. With 1/2, a sphere's facets are
+// lifted onto the sphere to second order and their normals match the interpolated ones (0.0004 rad
+// off where flat facets of 0.08 rad are 0.08 off); Phong's usual 3/4 overshoots by half the sag.
+inline constexpr float kMembraneSurfaceSmoothness = 0.5f;
+
 struct BakedMembrane {
   tiles::TilingRecipe recipe;
   double uv_scale = 0.0;   // k, Å of surface per UV unit
+  float smooth = 0.f;      // shape factor of the surface copies stand on (Compartment.scales.w)
   double tile_size = 0.0;  // S, Å
   std::uint32_t replication_width = 0, replication_height = 0;
   std::vector<gpu::TriangleShell> shells;         // one per mesh triangle

@@ -282,7 +282,7 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       tiles::SurfaceDistortion& s = membrane_surface[membrane->index];
       s.lateral_stretch = std::max(s.lateral_stretch, static_cast<float>(mesh::chart_anisotropy(m) - 1.0));
       s.curvature = std::max(s.curvature, static_cast<float>(1.05 * mesh::normal_turn_rate(m)));
-      s.tilt = std::max(s.tilt, static_cast<float>(mesh::largest_normal_tilt(m)));
+      s.tilt = std::max(s.tilt, static_cast<float>(mesh::largest_smooth_normal_tilt(m, kMembraneSurfaceSmoothness)));
       s.max_rise = std::max(s.max_rise, static_cast<float>(mesh::largest_facet_sag(m)));
     }
 
@@ -367,6 +367,7 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
         record.replication_height = m.replication_height;
         record.scales.x = static_cast<float>(m.uv_scale);
         record.scales.y = static_cast<float>(m.tile_size);
+        record.scales.w = m.smooth;
         for (std::size_t i = 0; i < copies.size(); ++i) copies[i] += m.copies_by_molecule[i];
         summary.membrane = membrane_summary(bake.mesh.mesh, m, membrane_sets[description.membrane->index], library,
                                             patches[description.membrane->index],

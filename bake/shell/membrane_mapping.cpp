@@ -30,8 +30,9 @@ glm::vec2 snap_uv(const glm::dvec2& uv) { return {snap_uv(uv.x), snap_uv(uv.y)};
 MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangSet& set,
                                  const tiles::TilingRecipe& recipe, double k,
                                  const std::vector<tiles::MoleculeType>& types, std::string context,
-                                 SeamRule seam_rule)
-    : set_(&set), recipe_(&recipe), seam_rule_(seam_rule) {
+                                 SeamRule seam_rule, float smooth)
+    : set_(&set), recipe_(&recipe), seam_rule_(seam_rule), smooth_(smooth) {
+  if (!(smooth >= 0.f && smooth <= 1.f)) fail(context, "smooth", "the surface's shape factor must lie in [0, 1]");
   if (!mesh.has_uvs() || mesh.uv_triangles.size() != mesh.triangles.size())
     fail(context, "mesh", "the membrane mapping needs per-corner UVs on every triangle");
   if (!mesh.has_normals() || mesh.normal_triangles.size() != mesh.triangles.size())

@@ -74,9 +74,11 @@ public:
   // `seam_rule`: whether the package this mapping bakes applies the seam rule (format 2.0-2.1
   // packages did); ignore when the copies that really clash across seams are dropped instead
   // (membrane_pruning.hpp). The seams themselves are found either way (TriangleMapping.seam_edges).
+  // `smooth`: the shape factor of the surface copies stand on (chart_smooth_position; 0 = flat facets),
+  // in [0, 1]; the package stores it as Compartment.scales.w.
   MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangSet& set, const tiles::TilingRecipe& recipe,
                   double k, const std::vector<tiles::MoleculeType>& types, std::string context = "membrane",
-                  SeamRule seam_rule = SeamRule::apply);
+                  SeamRule seam_rule = SeamRule::apply, float smooth = 0.f);
 
   std::size_t triangle_count() const { return triangles_.size(); }
   const TriangleMapping& triangle(std::size_t t) const { return triangles_[t]; }
@@ -86,6 +88,7 @@ public:
   float tile_edge() const { return set_->edge; }  // S, Å
   float tile_uv_size() const { return s_; }       // s = S/k rounded to float: the value to store
   float s_over_S() const { return s_over_S_; }    // s/S in float, as the shader forms it
+  float smooth() const { return smooth_; }        // shape factor of the surface (chart_smooth_position)
   // W×H: the maximum of replication_extent_bound over the valid triangles.
   glm::ivec2 replication_area() const { return area_; }
 
@@ -126,7 +129,7 @@ public:
           m.instance = static_cast<std::uint32_t>(k);
           m.type = in.type;
           const glm::vec4 q(in.rotation.x, in.rotation.y, in.rotation.z, in.rotation.w);  // glm quat is (w,x,y,z)
-          m.transform = gpu::chart_membrane_molecule(tm.chart, g, s_over_S_, in.position, q, m.uv);
+          m.transform = gpu::chart_membrane_molecule(tm.chart, g, s_over_S_, smooth_, in.position, q, m.uv);
           if (rule == SeamRule::apply && seam_rule_ == SeamRule::apply &&
               gpu::seam_drops(tm.seam_edges, tm.position[0], tm.position[1], tm.position[2],
                               gpu::chart_position(tm.chart, m.uv), type_radius_[in.type]))
@@ -142,6 +145,7 @@ private:
   SeamRule seam_rule_ = SeamRule::apply;
   float s_ = 0.f;
   float s_over_S_ = 0.f;
+  float smooth_ = 0.f;
   glm::ivec2 area_{0};
   std::vector<float> type_radius_;
   std::vector<glm::vec2> snapped_uvs_;

@@ -70,6 +70,7 @@ struct CompartmentPlan {
   bool membrane = false;
   bool core = false;
   float s = 0, s_over_S = 0;        // tile UV size and UV units per Å (docs/placement.md)
+  float smooth = 0;                  // shape factor of the membrane's surface (Compartment.scales.w)
   std::uint32_t membrane_slots = 0;  // W·H
   std::uint32_t square_instances = 0, cube_instances = 0;  // I₂, I₃: the largest tile / cube
   std::uint64_t membrane_span = 0, core_span = 0;          // copy numbers of one instance
@@ -131,6 +132,7 @@ struct ExplicitScene::Impl : format::PackageView {
       const float S = c.scales.y;
       plan.s = S / c.scales.x;
       plan.s_over_S = plan.s / S;
+      plan.smooth = c.scales.w;
       for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
         const gpu::Tile2D& tile = squares[t];
         if (tile.size.x != S || tile.size.y != S)
@@ -146,7 +148,12 @@ struct ExplicitScene::Impl : format::PackageView {
       for (std::uint32_t v = 0; v < mesh.vertex_count; ++v) mesh_box.add(dvec3(vertex(mesh.first_vertex, v)));
       if (mesh.vertex_count > 0) {
         magnitude = std::max({magnitude, glm::length(mesh_box.lo), glm::length(mesh_box.hi)});
-        plan.bound.add(mesh_box.grown(plan.membrane_reach));
+        double bulge = 0;  // how far the smooth surface leaves the facets (chart_smooth_bulge)
+        for (std::uint32_t tl = 0; plan.smooth > 0 && tl < mesh.triangle_count; ++tl) {
+          const double b = gpu::chart_smooth_bulge(make_chart(mesh, triangles[mesh.first_triangle + tl]), plan.smooth);
+          if (std::isfinite(b)) bulge = std::max(bulge, b);
+        }
+        plan.bound.add(mesh_box.grown(plan.membrane_reach + bulge));
       }
       const auto slots = format::checked_mul(c.replication_width, c.replication_height);
       if (*slots > 0xFFFFFFFFu) fail(where, "replication area exceeds 2^32 tiles");
@@ -287,15 +294,19 @@ struct ExplicitScene::Impl : format::PackageView {
       const std::uint32_t t = mesh.first_triangle + tl;
       const gpu::Triangle& tri = triangles[t];
       const std::uint32_t f = mesh.first_vertex;
-      // A copy the triangle owns sits over the triangle (its uv_m lies in the UV triangle), at most
-      // |z| along the unit normal, its atoms within the type radius: the triangle's AABB grown by that.
+      // A copy the triangle owns sits over the triangle (its uv_m lies in the UV triangle), lifted off
+      // it by the smooth surface's bulge and at most |z| along the unit normal, its atoms within the
+      // type radius: the triangle's AABB grown by that.
+      const gpu::TriangleChart chart = make_chart(mesh, tri);
+      double lift = plan.smooth > 0 ? double(gpu::chart_smooth_bulge(chart, plan.smooth)) : 0.0;
+      if (!std::isfinite(lift)) lift = 0.0;  // a degenerate triangle: owns nothing
       Aabb reach;
       for (std::uint32_t v : {tri.v0, tri.v1, tri.v2}) reach.add(dvec3(vertex(f, v)));
-      if (!reach.grown(plan.membrane_reach + plan.tolerance).meets(query)) continue;
-      if (reach.grown(plan.membrane_reach + plan.tolerance).clipped_by_any(emit.local_clip)) continue;
+      const double grow = plan.membrane_reach + lift + plan.tolerance;
+      if (!reach.grown(grow).meets(query)) continue;
+      if (reach.grown(grow).clipped_by_any(emit.local_clip)) continue;
       const vec2 t0 = uvs[f + tri.v0], t1 = uvs[f + tri.v1], t2 = uvs[f + tri.v2];
       if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) continue;
-      const gpu::TriangleChart chart = make_chart(mesh, tri);
       const vec2 uv_min = glm::min(t0, glm::min(t1, t2)), uv_max = glm::max(t0, glm::max(t1, t2));
       const ivec2 origin = gpu::replication_origin(uv_min, plan.s);
       const ivec2 extent = gpu::replication_extent(uv_min, uv_max, plan.s);
@@ -317,7 +328,7 @@ struct ExplicitScene::Impl : format::PackageView {
             const gpu::MoleculeInstance& inst = instances[tile.first_instance + m];
             vec2 uv_m;
             const gpu::Affine3 placement =
-                gpu::chart_membrane_molecule(chart, g, plan.s_over_S, vec3(inst.position), inst.rotation, uv_m);
+                gpu::chart_membrane_molecule(chart, g, plan.s_over_S, plan.smooth, vec3(inst.position), inst.rotation, uv_m);
             if (!gpu::own_triangle_owns(t0, t1, t2, uv_m)) continue;
             if (gpu::seam_drops(seam_edges, p0, p1, p2, gpu::chart_position(chart, uv_m),
                                 molecules[inst.molecule_type].aabb_min.w))

@@ -320,11 +320,12 @@ struct GpuScene::Impl : format::PackageView {
   // n(uv_m), not the face normal of M1) can stray from its tile-space bounds, per compartment:
   // M1⁻¹ maps the true centre X(uv_m) + z·n to (x, y, z) + z·L(n − N) and a world sphere of radius r
   // into one of radius ≤ σ·r, with L the inverse linear part of M1 and σ its largest singular value.
-  // So the box (x, y, z) ± σ·(r + |z|·δ), δ = max |n_i − N| over the corners (n(uv_m) of an owned
-  // copy is a positive combination of them), contains the copy in tile space. Returns (σ, δ).
-  std::pair<double, double> membrane_distortion(const gpu::Compartment& c, float s_over_S) const {
+  // So the box (x, y, z) ± σ·(r + |z|·δ + b), δ = max |n_i − N| over the corners (n(uv_m) of an owned
+  // copy is a positive combination of them) and b the smooth surface's largest lift off its facet
+  // (chart_smooth_bulge), contains the copy in tile space. Returns (σ, δ, b).
+  std::tuple<double, double, double> membrane_distortion(const gpu::Compartment& c, float s_over_S) const {
     const gpu::Mesh& mesh = meshes[c.mesh];
-    double sigma = 0, delta = 0;
+    double sigma = 0, delta = 0, bulge = 0;
     for (std::uint32_t t = mesh.first_triangle; t < mesh.first_triangle + mesh.triangle_count; ++t) {
       const gpu::Triangle& tri = triangles[t];
       const std::uint32_t f = mesh.first_vertex;
@@ -338,21 +339,23 @@ struct GpuScene::Impl : format::PackageView {
       sigma = std::max(sigma, largest_singular_value(glm::inverse(m1)));
       for (const vec3& n : {n0, n1, n2})
         delta = std::max(delta, glm::length(glm::normalize(dvec3(n)) - dvec3(chart.face_normal)));
+      bulge = std::max(bulge, double(gpu::chart_smooth_bulge(chart, c.scales.w)));
     }
-    return {sigma, delta};
+    return {sigma, delta, bulge};
   }
 
   // mLAS: per Wang square, molecule boxes in tile space inflated by the distortion of every
   // compartment that uses the square; per Wang cube, bounding spheres' boxes in cube space.
   void build_tile_levels() {
-    std::vector<double> square_sigma(squares.size(), -1), square_delta(squares.size(), 0);
+    std::vector<double> square_sigma(squares.size(), -1), square_delta(squares.size(), 0), square_bulge(squares.size(), 0);
     for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
       const gpu::Compartment& c = compartments[ci];
       if (c.membrane_recipe == gpu::NANO_NO_INDEX) continue;
-      const auto [sigma, delta] = membrane_distortion(c, render_compartments[ci].membrane.y);
+      const auto [sigma, delta, bulge] = membrane_distortion(c, render_compartments[ci].membrane.y);
       for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
         square_sigma[t] = std::max(square_sigma[t], sigma);
         square_delta[t] = std::max(square_delta[t], delta);
+        square_bulge[t] = std::max(square_bulge[t], bulge);
       }
     }
     square_reach.assign(squares.size(), {dvec3(INFINITY), dvec3(-INFINITY)});
@@ -364,7 +367,8 @@ struct GpuScene::Impl : format::PackageView {
       const double sigma = square_sigma[t] * (1 + 1e-4), delta = square_delta[t] + 1e-3, pad = 0.1;
       for (std::uint32_t m = squares[t].first_instance; m < squares[t].first_instance + squares[t].instance_count; ++m) {
         const dvec3 pos(instances[m].position);
-        const double e = sigma * (type_radius[instances[m].molecule_type] + std::abs(pos.z) * delta) + pad;
+        const double e =
+            sigma * (type_radius[instances[m].molecule_type] + std::abs(pos.z) * delta + square_bulge[t] * (1 + 1e-4)) + pad;
         boxes.push_back(box_of(pos - e, pos + e));
         square_reach[t].first = glm::min(square_reach[t].first, pos - e);
         square_reach[t].second = glm::max(square_reach[t].second, pos + e);

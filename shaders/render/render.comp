@@ -268,7 +268,7 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
     uint m = orders[level.order_first + p];
     MoleculeInstance mi = instances[first + m];
     vec2 uv_m;
-    Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, mi.position.xyz, mi.rotation, uv_m);
+    Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, c.scales.w, mi.position.xyz, mi.rotation, uv_m);
     if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
     uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
     if (membrane_copy_dropped(mt, membrane_copy_key(slot, m))) continue;

@@ -15,7 +15,9 @@ NANO_BEGIN
 
 // Everything the mapper needs about one triangle, derived once by chart_make.
 struct TriangleChart {
-  vec3 p0;           // world corner P0 (Å)
+  vec3 p0;           // world corners (Å)
+  vec3 p1;
+  vec3 p2;
   vec3 ju;           // J column ∂X/∂u (Å per UV unit)
   vec3 jv;           // J column ∂X/∂v
   vec2 t0;           // UV of P0
@@ -42,6 +44,8 @@ NANO_FN TriangleChart chart_make(NANO_IN(vec3) P0, NANO_IN(vec3) P1, NANO_IN(vec
   float det = a.x * b.y - a.y * b.x;
   float inv = 1.0f / det;
   c.p0 = P0;
+  c.p1 = P1;
+  c.p2 = P2;
   c.t0 = t0;
   c.det_e = det;
   c.einv_row0 = vec2(b.y, -b.x) * inv;
@@ -76,6 +80,35 @@ NANO_FN vec3 chart_barycentric(NANO_IN(TriangleChart) c, NANO_IN(vec2) uv) {
 NANO_FN vec3 chart_position(NANO_IN(TriangleChart) c, NANO_IN(vec2) uv) {
   vec2 w = uv - c.t0;
   return c.p0 + c.ju * w.x + c.jv * w.y;
+}
+
+// The smooth surface membrane copies stand on: Phong tessellation (Boubekeur & Alexa 2008) of the
+// corner normals, X = p − α·Σ λ_i ((p − P_i)·n̂_i) n̂_i with p = X(uv) the flat point, λ its
+// barycentrics and α the shape factor (0: the flat facet, format ≤ 2.2; the baker uses 1/2, which
+// lifts a sphere's facets onto the sphere to second order). On an edge only that edge's two corners
+// weigh, so neighbouring triangles agree along it; at a corner the surface passes through it. Copies placed on it stand along interpolated normals
+// that nearly follow its own, which flat facets (tilted by up to half the dihedral angle) do not.
+NANO_FN vec3 chart_smooth_position(NANO_IN(TriangleChart) c, NANO_IN(vec2) uv, float alpha) {
+  vec3 p = chart_position(c, uv);
+  if (alpha == 0.0f) return p;
+  vec3 l = chart_barycentric(c, uv);
+  vec3 m0 = normalize(c.n0);
+  vec3 m1 = normalize(c.n1);
+  vec3 m2 = normalize(c.n2);
+  vec3 lift = (l.x * dot(p - c.p0, m0)) * m0 + (l.y * dot(p - c.p1, m1)) * m1 + (l.z * dot(p - c.p2, m2)) * m2;
+  return p - alpha * lift;
+}
+
+// Bound on |chart_smooth_position − chart_position| over the triangle (barycentrics in [0, 1]):
+// α·max over corners i, j of |(P_j − P_i)·n̂_i| (each lift term is linear in p, largest at a corner).
+NANO_FN float chart_smooth_bulge(NANO_IN(TriangleChart) c, float alpha) {
+  vec3 m0 = normalize(c.n0);
+  vec3 m1 = normalize(c.n1);
+  vec3 m2 = normalize(c.n2);
+  float b = max(max(abs(dot(c.p1 - c.p0, m0)), abs(dot(c.p2 - c.p0, m0))),
+                max(max(abs(dot(c.p0 - c.p1, m1)), abs(dot(c.p2 - c.p1, m1))),
+                    max(abs(dot(c.p0 - c.p2, m2)), abs(dot(c.p1 - c.p2, m2)))));
+  return alpha * b;
 }
 
 // Interpolated vertex normal at uv, normalised (barycentric weights may be negative outside).
@@ -150,15 +183,16 @@ NANO_FN mat3 chart_frame(NANO_IN(vec3) n, NANO_IN(vec3) tangent) {
 }
 
 // World transform (M1·M2 composed) of a membrane molecule at tile-space position pos_tile (Å) with
-// rotation q (unit quaternion, tile space) in the tile at UV g:
-//   uv_m = g + (s/S)(x, y); position = X(uv_m) + z·n(uv_m); rotation = frame(n(uv_m), Ju)·R(q).
+// rotation q (unit quaternion, tile space) in the tile at UV g, on the surface of shape factor
+// `smoothness` (Compartment.scales.w, see chart_smooth_position):
+//   uv_m = g + (s/S)(x, y); position = X_smooth(uv_m) + z·n(uv_m); rotation = frame(n(uv_m), Ju)·R(q).
 // The rotation is proper (det +1) in every chart, mirrored or not. Returns uv_m for ownership.
-NANO_FN Affine3 chart_membrane_molecule(NANO_IN(TriangleChart) c, NANO_IN(vec2) g, float s_over_S,
+NANO_FN Affine3 chart_membrane_molecule(NANO_IN(TriangleChart) c, NANO_IN(vec2) g, float s_over_S, float smoothness,
                                 NANO_IN(vec3) pos_tile, NANO_IN(vec4) q, NANO_OUT(vec2) uv_m) {
   uv_m = chart_molecule_uv(g, s_over_S, pos_tile);
   vec3 n = chart_normal(c, uv_m);
   Affine3 m;
-  m.translation = chart_position(c, uv_m) + pos_tile.z * n;
+  m.translation = chart_smooth_position(c, uv_m, smoothness) + pos_tile.z * n;
   mat3 f = chart_frame(n, c.ju);
   // Turn the frame by the rotation part of the chart's in-plane map G = [x y]ᵀ·J (polar
   // decomposition G = R·P): copies then see only the symmetric stretch P of their tile-space

@@ -302,6 +302,22 @@ TEST(SemanticOptional, NoDroppedCopies) {
   EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
 }
 
+// Format 2.3 stores the smooth surface's shape factor in scales.w; an older package must hold 0 there.
+TEST(SemanticSmoothSurface, ShapeFactorInRangeFromFormat23On) {
+  SampleScene s = make_sample_scene();
+  s.compartments[0].scales.w = 0.75f;
+  std::vector<std::byte> bytes = build(s);
+  EXPECT_EQ(broken_rule(bytes), std::nullopt);
+  put_le(bytes, 10, 2, 2);  // version 2.2
+  seal_header(bytes);
+  EXPECT_EQ(broken_rule(bytes), Rule::bad_value);
+  s.compartments[0].scales.w = 0.f;
+  bytes = build(s);
+  put_le(bytes, 10, 2, 2);
+  seal_header(bytes);
+  EXPECT_EQ(broken_rule(bytes), std::nullopt);
+}
+
 // The valid counterpart of the seam cases: all six bits (edges 0-2, corners 3-5).
 TEST(SemanticSeams, AllSixBitsAreValid) {
   SampleScene s = make_sample_scene();

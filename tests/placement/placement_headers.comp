@@ -35,7 +35,8 @@ void main() {
   vec3 ot; vec3 dt;
   chart_tile_inverse_ray(c, vec2(0.25f), 0.01f, o, d, ot, dt);
   vec2 uvm;
-  Affine3 m2 = chart_membrane_molecule(c, vec2(0.25f), 0.01f, vec3(1, 2, 3), q, uvm);
+  Affine3 m2 = chart_membrane_molecule(c, vec2(0.25f), 0.01f, 0.75f, vec3(1, 2, 3), q, uvm);
+  acc.xyz += chart_smooth_position(c, o.xy, 0.75f) + vec3(chart_smooth_bulge(c, 0.75f));
   molecule_inverse_ray(m2, o, d, ot, dt);
   Affine3 m3 = core_soluble_molecule(core_box_min(vec3(0), vec3(100), ivec3(1, 2, 3)), vec3(5), q);
   affine_inverse_ray(m3, o, d, ot, dt);

@@ -38,6 +38,17 @@ struct Oracle {
     dvec3 l = bary(p);
     return glm::normalize(l.x * n[0] + l.y * n[1] + l.z * n[2]);
   }
+  // Phong tessellation as Boubekeur & Alexa define it: the flat point projected onto each corner's
+  // tangent plane, those projections blended by the barycentrics, then by α with the flat point.
+  dvec3 X_smooth(dvec2 p, double alpha) const {
+    const dvec3 l = bary(p), flat = X(p);
+    dvec3 blended(0.0);
+    for (int i = 0; i < 3; ++i) {
+      const dvec3 m = glm::normalize(n[i]);
+      blended += l[i] * (flat - glm::dot(flat - P[i], m) * m);
+    }
+    return (1 - alpha) * flat + alpha * blended;
+  }
   dvec3 face() const { return glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0])); }
   // ∂X/∂u by central difference of the exactly affine X (exact up to rounding).
   dvec3 ju() const { return X(dvec2(1, 0)) - X(dvec2(0, 0)); }
@@ -140,6 +151,59 @@ TEST(TileMapper, TileFrameMapsTileSquareOntoUvSquareAndInvertsAnalytically) {
   std::printf("tile frame: max rel fwd %.3g, inverse point %.3g, inverse dir %.3g\n", worst_fwd, worst_inv, worst_dir);
 }
 
+// The smooth surface copies stand on (chart_smooth_position): Phong tessellation as the oracle
+// defines it, with its overhang; the corners stay put; two triangles sharing an edge agree on it
+// (no crack between neighbouring triangles' copies); chart_smooth_bulge bounds its lift off the facet;
+// on a sphere with exact normals and shape factor 1/2 it lies on the sphere (to second order).
+TEST(TileMapper, SmoothSurfaceIsPhongTessellationContinuousAcrossEdges) {
+  Rng rng(35);
+  double worst = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Case c = random_case(rng, glm::vec3(0), i % 2 == 1);
+    Oracle o(c);
+    g::TriangleChart ch = make(c);
+    const float alpha = float(rng.uniform(0.0, 1.0));
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LT(glm::length(D(g::chart_smooth_position(ch, c.t[k], alpha)) - o.P[k]), 1e-4 * o.diameter());
+    const double bulge = g::chart_smooth_bulge(ch, alpha);
+    for (int k = 0; k < 5; ++k) {
+      glm::vec2 uv(float(rng.uniform(-0.05, 1.05)), float(rng.uniform(-0.05, 1.05)));
+      dvec3 lb = o.bary(D(uv));
+      double lmax = std::max({1.0, std::abs(lb.x), std::abs(lb.y), std::abs(lb.z)});
+      worst = std::max(worst, glm::length(D(g::chart_smooth_position(ch, uv, alpha)) - o.X_smooth(D(uv), alpha)) /
+                                  (o.diameter() * lmax * lmax));
+      if (lb.x >= 0 && lb.y >= 0 && lb.z >= 0)
+        EXPECT_LE(glm::length(D(g::chart_smooth_position(ch, uv, alpha)) - o.X(D(uv))), bulge * (1 + 1e-4) + 1e-3);
+    }
+    // The same edge P0–P1 in a second triangle with another third corner, UVs and its own order.
+    Case other = c;
+    other.P[2] = c.P[2] + rng.in_box(-50, 50);
+    other.n[2] = rng.unit_vector();
+    std::swap(other.P[0], other.P[1]);
+    std::swap(other.n[0], other.n[1]);
+    other.t[0] = glm::vec2(0.1f, 0.2f), other.t[1] = glm::vec2(0.8f, 0.3f), other.t[2] = glm::vec2(0.4f, 0.9f);
+    g::TriangleChart ch2 = make(other);
+    const float f = float(rng.uniform(0.0, 1.0));
+    const glm::vec2 on_edge = (1 - f) * c.t[0] + f * c.t[1], on_edge2 = (1 - f) * other.t[1] + f * other.t[0];
+    EXPECT_LT(glm::length(D(g::chart_smooth_position(ch, on_edge, alpha)) - D(g::chart_smooth_position(ch2, on_edge2, alpha))),
+              1e-4 * o.diameter());
+  }
+  EXPECT_LT(worst, 2e-5);
+  // A triangle of a sphere of radius 100 with its exact normals.
+  const glm::vec3 a = glm::normalize(glm::vec3(1, 0.1f, 0.2f)), b = glm::normalize(glm::vec3(0.9f, 0.5f, 0.1f)),
+                  cc = glm::normalize(glm::vec3(0.95f, 0.2f, 0.55f));
+  const g::TriangleChart sphere = g::chart_make(100.f * a, 100.f * b, 100.f * cc, glm::vec2(0), glm::vec2(1, 0),
+                                                glm::vec2(0, 1), a, b, cc);
+  const glm::vec2 centre(1.f / 3.f, 1.f / 3.f);
+  const double flat_gap = 100.0 - glm::length(D(g::chart_position(sphere, centre)));
+  // Half of Phong's lift puts the centre back on the sphere to second order (Phong's usual 3/4
+  // overshoots it by half the facet's sag).
+  const double smooth_gap = std::abs(100.0 - glm::length(D(g::chart_smooth_position(sphere, centre, 0.5f))));
+  EXPECT_GT(flat_gap, 1.0);
+  EXPECT_LT(smooth_gap, 0.05 * flat_gap);
+  EXPECT_EQ(D(g::chart_smooth_position(sphere, centre, 0.f)), D(g::chart_position(sphere, centre)));
+}
+
 TEST(TileMapper, MembraneMoleculeTransformAndRayMatchOracle) {
   Rng rng(33);
   double worst_p = 0, worst_r = 0, worst_ray = 0;
@@ -154,12 +218,17 @@ TEST(TileMapper, MembraneMoleculeTransformAndRayMatchOracle) {
     float ang = float(rng.uniform(-3.14, 3.14));
     glm::vec4 q = g::quat_from_axis_angle(axis, ang);
     glm::vec2 uvm;
-    g::Affine3 m = g::chart_membrane_molecule(ch, gg, r, pos, q, uvm);
+    const float smooth = i % 2 == 0 ? 0.f : float(rng.uniform(0.0, 1.0));
+    g::Affine3 m = g::chart_membrane_molecule(ch, gg, r, smooth, pos, q, uvm);
     dvec2 uv_o = D(gg) + double(r) * dvec2(pos.x, pos.y);
     ASSERT_LT(glm::length(D(uvm) - uv_o), 1e-6);
     dvec3 n = o.normal(D(uvm));
-    dvec3 want_p = o.X(D(uvm)) + double(pos.z) * n;
-    worst_p = std::max(worst_p, glm::length(D(m.translation) - want_p) / (o.diameter() + 50));
+    dvec3 want_p = o.X_smooth(D(uvm), smooth) + double(pos.z) * n;
+    // The smooth surface is quadratic in the barycentrics: its float error grows with their square
+    // far outside the triangle (owned copies lie inside it).
+    const dvec3 lb = o.bary(D(uvm));
+    const double lmax = smooth > 0 ? std::max({1.0, std::abs(lb.x), std::abs(lb.y), std::abs(lb.z)}) : 1.0;
+    worst_p = std::max(worst_p, glm::length(D(m.translation) - want_p) / ((o.diameter() + 50) * lmax * lmax));
     dvec3 ju = o.ju();
     dvec3 fx = glm::normalize(ju - glm::dot(ju, n) * n);
     dvec3 fy = glm::cross(n, fx);

@@ -195,5 +195,7 @@ TEST(MembraneMapping, RejectsBadInput) {
   unused.push_back({"unused", {{{0.f, 0.f, 9.f}, 1.f}}, 0.f, {0, 0, 1}});  // not in the set: not checked
   EXPECT_NO_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, unused));
   EXPECT_NO_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, h.types));
+  EXPECT_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, h.types, "test", nano::shell::SeamRule::ignore, 1.5f), nano::InputError);
+  EXPECT_THROW(MembraneMapping(good, h.set, h.recipe, 2000.0, h.types, "test", nano::shell::SeamRule::ignore, NAN), nano::InputError);
   EXPECT_EQ(MembraneMapping(good, h.set, h.recipe, 2000.0, unused).type_radius(1), 5.f);
 }
