@@ -202,6 +202,25 @@ TEST(NormalTilt, SphereFacetsTiltAndSagAsTheirSizeSays) {
   }
 }
 
+// Copies on the smooth surface (Phong, shape factor 1/2) stand along interpolated normals that
+// follow that surface: on a sphere they are off by a small fraction of the flat facets' tilt, and
+// shape factor 0 is the flat facet (its sampled tilt is the corner-normal one).
+TEST(NormalTilt, SmoothSurfaceFollowsTheInterpolatedNormals) {
+  const ProxyMesh sphere = make_sphere_mesh(1452, 450.0);
+  const double flat = largest_normal_tilt(sphere);
+  EXPECT_NEAR(largest_smooth_normal_tilt(sphere, 0.0), flat, 0.02 * flat);
+  EXPECT_LT(largest_smooth_normal_tilt(sphere, 0.5), 0.1 * flat);
+  EXPECT_GT(largest_smooth_normal_tilt(sphere, 1.0), largest_smooth_normal_tilt(sphere, 0.5)) << "Phong's full lift overshoots";
+  const ProxyMesh rbc = make_rbc_mesh(3000);
+  EXPECT_LT(largest_smooth_normal_tilt(rbc, 0.5), 0.25 * largest_normal_tilt(rbc));
+  ProxyMesh plane;
+  plane.positions = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}};
+  plane.triangles = {{0, 1, 2}};
+  plane.normals = {{0, 0, 1}};
+  plane.normal_triangles = {{0, 0, 0}};
+  EXPECT_EQ(largest_smooth_normal_tilt(plane, 0.5), 0.0);
+}
+
 TEST(RbcMesh, PassesCheckMeshWithBandChartsAndLowDistortion) {
   const ProxyMesh mesh = make_rbc_mesh(3000);
   expect_usable_after_round_trip(mesh, "rbc.obj", 1.04);  // measured σ ∈ [0.992, 1.020]
