@@ -13,12 +13,17 @@ uint64_t CopyNeighbourhood::key(const glm::ivec3& c) const {
   return u(c.x) | (u(c.y) << 21) | (u(c.z) << 42);
 }
 
-void CopyNeighbourhood::add(uint32_t type, const Pose& pose) {
+size_t CopyNeighbourhood::add(uint32_t type, const Pose& pose) {
   const glm::ivec3 c(glm::floor(pose.position / cell_));
   buckets_[key(c)].push_back(static_cast<uint32_t>(copies_.size()));
   copies_.push_back({type, pose});
   max_radius_ = std::max(max_radius_, shapes_[type].radius());
   max_height_ = std::max(max_height_, std::abs(pose.position.z) + shapes_[type].radius());
+  return copies_.size() - 1;
+}
+
+void CopyNeighbourhood::retire(size_t index) {
+  if (index < copies_.size()) copies_[index].retired = true;
 }
 
 bool CopyNeighbourhood::collides(uint32_t type, const Pose& pose, const ClashRule& rule) const {
@@ -34,6 +39,7 @@ bool CopyNeighbourhood::collides(uint32_t type, const Pose& pose, const ClashRul
         if (it == buckets_.end()) continue;
         for (uint32_t i : it->second) {
           const Copy& other = copies_[i];
+          if (other.retired) continue;
           if (copies_collide(shape, pose, shapes_[other.type], other.pose, rule)) return true;
         }
       }

@@ -14,7 +14,10 @@ public:
   // `shapes` must outlive this object; `cell` is the hash cell edge (Å), > 0.
   CopyNeighbourhood(const std::vector<CollisionShape>& shapes, float cell);
 
-  void add(uint32_t type, const Pose& pose);
+  // Returns the copy's index, for retire.
+  size_t add(uint32_t type, const Pose& pose);
+  // The copy no longer counts (a place being given to another molecule); its index stays taken.
+  void retire(size_t index);
   bool collides(uint32_t type, const Pose& pose, const ClashRule& rule) const;
   size_t size() const { return copies_.size(); }
 
@@ -22,6 +25,7 @@ private:
   struct Copy {
     uint32_t type;
     Pose pose;
+    bool retired = false;
   };
   uint64_t key(const glm::ivec3& c) const;
   const std::vector<CollisionShape>& shapes_;

@@ -7,6 +7,7 @@
 #include "common/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -18,7 +19,8 @@ constexpr double kAvogadro = 6.02214076e23;
 constexpr double kA2PerUm2 = 1e8, kA3PerUm3 = 1e12;
 constexpr int kMixAttempts = 400;  // best-ranked conformer turns tried in a place given to a mixed species
 constexpr int kSpins = 12;        // turns about the normal ranked per conformer
-constexpr uint32_t kNoType = ~0u;
+constexpr std::size_t kNudgedCandidates = 100;  // best-ranked turns also tried moved by kNudge along x and y
+constexpr float kNudge = 0.8f;                  // Å
 
 struct Wanted {
   PlacementSpec spec;
@@ -192,28 +194,25 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
         layer.copies.push_back(copy);
       }
   if (patch.mix.empty()) return layer;
-  // The mix: each place draws its species from its leaflet's fractions. A place given to another
-  // species takes one of its conformers (same leaflet, turned about the normal) that fits among all
-  // the others, laid or still to come; where none fits it keeps the base lipid, so mixing never
-  // opens a hole in the packed patch.
-  std::vector<const LipidSpecies*> species_of(layer.copies.size(), nullptr);
-  for (std::size_t i = 0; i < layer.copies.size(); ++i) {
-    double u = rng.uniform();
-    for (const LipidSpecies& species : patch.mix) {
-      const double f = layer.copies[i].position.z >= 0.f ? species.outer : species.inner;
-      if (u < f) {
-        species_of[i] = &species;
-        break;
-      }
-      u -= f;
-    }
-  }
-  // Two passes: a place that found no fitting conformer tries again once its neighbours have
-  // become what they will be (a compact conformer next door may leave the room it needed).
+  // The mix: each species takes its fraction of each leaflet's places, tried in a random order, each
+  // place taking the first of its conformers (same leaflet, turned about the normal) that fits among
+  // all the others: places where the species fits are found until the leaflet holds its share.
+  // Every place starts with its base lipid, and a place is given to a species only when a conformer
+  // fits among everything standing then, its own base lipid set aside: a conformer never takes room
+  // a neighbour's base lipid still needs, so a place where none fits keeps its base lipid, and mixing
+  // opens no hole.
   CopyNeighbourhood mixed(shapes, 2.f * largest);
-  std::vector<char> done(layer.copies.size(), 0);
-  for (std::size_t i = 0; i < layer.copies.size(); ++i)
-    if (species_of[i] == nullptr) add_with_images(mixed, layer.copies[i]);
+  const auto add_with_images_ids = [&](const Instance& c) {
+    std::array<std::size_t, 9> ids{};
+    const glm::mat3 rotation = glm::mat3_cast(c.rotation);
+    int k = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) ids[k++] = mixed.add(c.type, {c.position + edge * glm::vec3(dx, dy, 0), rotation});
+    return ids;
+  };
+  std::vector<std::array<std::size_t, 9>> standing(layer.copies.size());
+  for (std::size_t i = 0; i < layer.copies.size(); ++i) standing[i] = add_with_images_ids(layer.copies[i]);
+  std::vector<char> taken(layer.copies.size(), 0);  // given to a mixed species
   // Candidates for a place, best first: conformers of the species from the same leaflet at kSpins
   // turns, scored by how far their atoms stand from the base lipid's (the room that lipid proved
   // free): the closest shape is the likeliest to fit.
@@ -247,28 +246,42 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
     if (out.size() > static_cast<std::size_t>(kMixAttempts)) out.resize(kMixAttempts);
     return out;
   };
-  const auto try_species = [&](std::size_t i) {
+  const auto try_species = [&](std::size_t i, const LipidSpecies& species) {
     Instance& place = layer.copies[i];
-    for (const Candidate& c : ranked(place, *species_of[i])) {
-      if (collides(mixed, c.copy)) continue;
-      place = c.copy;
-      add_with_images(mixed, place);
-      done[i] = 1;
-      return;
+    for (const std::size_t id : standing[i]) mixed.retire(id);
+    bool fitted = false;
+    const std::vector<Candidate> candidates = ranked(place, species);
+    for (std::size_t k = 0; k < candidates.size() && !fitted; ++k) {
+      // The best-ranked shapes also nudged a little: equilibrated neighbours leave no room to spare.
+      const int nudges = k < kNudgedCandidates ? 5 : 1;
+      for (int n = 0; n < nudges && !fitted; ++n) {
+        Instance c = candidates[k].copy;
+        if (n > 0) c.position += kNudge * glm::vec3(n == 1 ? 1.f : n == 2 ? -1.f : 0.f, n == 3 ? 1.f : n == 4 ? -1.f : 0.f, 0.f);
+        if (collides(mixed, c)) continue;
+        place = c;
+        fitted = true;
+      }
     }
+    standing[i] = add_with_images_ids(place);  // the conformer, or the base lipid back
+    return fitted;
   };
-  for (std::size_t i = 0; i < layer.copies.size(); ++i)
-    if (species_of[i] != nullptr) try_species(i);
-  for (std::size_t i = 0; i < layer.copies.size(); ++i)
-    if (species_of[i] != nullptr && !done[i]) try_species(i);
-  // A place where no conformer fitted keeps its base lipid if that still fits among the new ones.
-  for (std::size_t i = 0; i < layer.copies.size(); ++i) {
-    if (species_of[i] == nullptr || done[i]) continue;
-    if (collides(mixed, layer.copies[i])) layer.copies[i].type = kNoType;
-    else add_with_images(mixed, layer.copies[i]);
-  }
-  layer.copies.erase(std::remove_if(layer.copies.begin(), layer.copies.end(), [](const Instance& c) { return c.type == kNoType; }),
-                     layer.copies.end());
+  std::vector<std::size_t> order(layer.copies.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(static_cast<uint32_t>(i))]);
+  for (const LipidSpecies& species : patch.mix)
+    for (const bool outer : {true, false}) {
+      std::size_t places = 0;
+      for (const Instance& c : layer.copies) places += (c.position.z >= 0.f) == outer;
+      std::size_t wanted = static_cast<std::size_t>(std::lround((outer ? species.outer : species.inner) * double(places)));
+      for (const std::size_t i : order) {
+        if (wanted == 0) break;
+        if (taken[i] || (layer.copies[i].position.z >= 0.f) != outer) continue;
+        if (try_species(i, species)) {
+          taken[i] = 1;
+          --wanted;
+        }
+      }
+    }
   return layer;
 }
 
