@@ -124,29 +124,39 @@ TEST(CollisionShape, RejectsEmptyOrBadAtoms) {
   EXPECT_THROW(CollisionShape(MoleculeType{"nan", {{{NAN, 0, 0}, 1.f}}, 0.f, {0, 0, 1}}), InputError);
 }
 
+// Every third placed copy is retired again: the neighbourhood then finds exactly the collisions with
+// the copies still standing.
 TEST(CopyNeighbourhood, FindsExactlyTheCollidingPlacedCopies) {
   const std::vector<MoleculeType> types{test::make_protein(), test::make_lipid()};
   const std::vector<CollisionShape> shapes{CollisionShape(types[0]), CollisionShape(types[1])};
   CopyNeighbourhood hood(shapes, 40.f);
-  std::vector<Instance> placed;
+  std::vector<Instance> placed, standing;
   SplitMix64 rng(8);
   for (int i = 0; i < 30; ++i) {
     const Instance in{uint32_t(i % 2), {float(rng.uniform(-150, 150)), float(rng.uniform(-150, 150)), float(rng.uniform(-20, 20))},
                       uniform_rotation(rng)};
     placed.push_back(in);
-    hood.add(in.type, pose(in));
+    EXPECT_EQ(hood.add(in.type, pose(in)), std::size_t(i));
   }
   EXPECT_EQ(hood.size(), 30u);
-  int hits = 0;
+  CopyNeighbourhood thinned = hood;
+  for (std::size_t i = 0; i < placed.size(); ++i)
+    if (i % 3 == 0) thinned.retire(i);
+    else standing.push_back(placed[i]);
+  int hits = 0, hits_thinned = 0;
   for (int i = 0; i < 120; ++i) {
     const Instance c{uint32_t(i % 2), {float(rng.uniform(-150, 150)), float(rng.uniform(-150, 150)), float(rng.uniform(-20, 20))},
                      uniform_rotation(rng)};
-    bool expect = false;
+    bool expect = false, expect_thinned = false;
     for (const Instance& p : placed) expect = expect || brute_force_collide(types[c.type], c, types[p.type], p, 0.9f);
+    for (const Instance& p : standing) expect_thinned = expect_thinned || brute_force_collide(types[c.type], c, types[p.type], p, 0.9f);
     ASSERT_EQ(hood.collides(c.type, pose(c), ClashRule{0.9f}), expect) << i;
+    ASSERT_EQ(thinned.collides(c.type, pose(c), ClashRule{0.9f}), expect_thinned) << i;
     hits += expect;
+    hits_thinned += expect_thinned;
   }
-  EXPECT_GT(hits, 5);
+  EXPECT_GT(hits_thinned, 3);
+  EXPECT_LT(hits_thinned, hits) << "retiring copies must free some room";
 }
 
 }  // namespace
