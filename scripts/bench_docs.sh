@@ -5,13 +5,18 @@
 # Markdown and SVG.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=${NANO_BUILD_DIR:-$here/build}
+build=$(cd "${NANO_BUILD_DIR:-$here/build}" && pwd)
 out=${1:-$here/docs/bench}
 export LP_NUM_THREADS=${LP_NUM_THREADS:-4}
 nanobake=$build/bake/nanobake
 nanoview=$build/runtime/nanoview
-pkgs=$out/packages
-mkdir -p "$out" "$pkgs"
+mkdir -p "$out/packages"
+# The reports name the packages they measured as given: relative to the output folder, so that
+# nothing written names where the repository was checked out.
+cd "$out"
+out_abs=$(pwd)
+out=.
+pkgs=packages
 
 for scene in virion rbc blood blood-large; do
   "$nanobake" "$here/data/$scene.json" -o "$pkgs/$scene.nup" --report "$out/bake-$scene.json" --jobs 2 > /dev/null
@@ -30,8 +35,9 @@ python3 "$here/scripts/bench_scale.py" "$build" "$out" --cells 1,4,20,100,1000 -
 rm -rf "$pkgs" "$out/scale-work"
 # CPU micro-benchmarks (Google Benchmark), medians of 5.
 for b in structure_bench tiles_bench shell_bench package_bench; do
-  "$build/benchmarks/$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
-    --benchmark_format=json --benchmark_out="$out/micro-$b.json" > /dev/null
+  # Run from the build folder: Google Benchmark records the executable as it was called.
+  (cd "$build" && "benchmarks/$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+    --benchmark_format=json --benchmark_out="$out_abs/micro-$b.json" > /dev/null)
 done
 python3 "$here/scripts/bench_summary.py" "$out"
-echo "docs/bench regenerated in $out"
+echo "docs/bench regenerated in $out_abs"

@@ -1,6 +1,6 @@
 // Offsets, ownership and timing of the membrane mapping for realistic membranes from the real PDB files
 // (not a test; prints one block per scene):
-//   shell_measure [pdb dir] [rbc triangles] [rbc R0 in Å]
+//   shell_measure PDB_DIR [rbc triangles] [rbc R0 in Å]
 // Virion: cube-sphere r = 500 Å, spike 6vxx at 0.4 per tile, lipid_306 at 65 Å² per leaflet (±18 Å).
 // RBC: Evans–Fung, lipid_306 at 65 Å² plus aquaporin 1j4n (stand-in for band 3) at 10⁶ per cell.
 #include <chrono>
@@ -83,7 +83,12 @@ void measure(const char* name, const mesh::ProxyMesh& mesh, const tiles::Membran
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string dir = argc > 1 ? argv[1] : "/work/shared/data/pdb";
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: shell_measure PDB_DIR [rbc triangles] [rbc R0 in Å]\n"
+                         "  PDB_DIR holds lipid_306.pdb, 6vxx.pdb and 1j4n.pdb (the shared data folder's pdb/)\n");
+    return 2;
+  }
+  const std::string dir = argv[1];
   const int rbc_triangles = argc > 2 ? std::stoi(argv[2]) : 3000;
   mesh::EvansFungShape shape;
   if (argc > 3) shape.r0 = std::stod(argv[3]);

@@ -1,5 +1,5 @@
 // Generation time and achieved densities of realistic sets built from the real PDB files:
-//   tiles_measure /work/shared/data/pdb [clearance] [misses] [relaxation rounds] [membrane 0/1] [cube seed]
+//   tiles_measure PDB_DIR [clearance] [misses] [relaxation rounds] [membrane 0/1] [cube seed]
 // (not a test; prints one line per set).
 #include "bake/tiles/wang_sets.hpp"
 #include "common/error.hpp"
@@ -98,7 +98,12 @@ static void print(const char* what, const WangSet& set, double s) {
 }
 
 int main(int argc, char** argv) {
-  const std::string dir = argc > 1 ? argv[1] : "/work/shared/data/pdb";
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: tiles_measure PDB_DIR [clearance] [misses] [relaxation rounds] [membrane 0/1] [cube seed]\n"
+                         "  PDB_DIR holds lipid_306.pdb, 6vxx.pdb and 4hhb.pdb (the shared data folder's pdb/)\n");
+    return 2;
+  }
+  const std::string dir = argv[1];
   const float clearance = argc > 2 ? std::stof(argv[2]) : 1.f;
   const int misses = argc > 3 ? std::stoi(argv[3]) : GenerationBudget{}.max_consecutive_failures;
   const int rounds = argc > 4 ? std::stoi(argv[4]) : GenerationBudget{}.relaxation_rounds;
