@@ -2,21 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include "bake/grid/surface_band.hpp"
 #include "common/error.hpp"
+#include "common/parallel_for.hpp"
 
 namespace nano::grid {
 
 namespace {
 
-// Classifies the rows (j, k) with row number ≡ first (mod stride); rows are independent.
-void classify_rows(const CoreGrid& grid, const MeshSurface& surface, const std::vector<BandLevel>& band,
-                   std::vector<BoxClass>& classes, std::size_t first, std::size_t stride) {
+// Classifies the boxes of row `row` (j, k) along x; rows are independent.
+void classify_row(const CoreGrid& grid, const MeshSurface& surface, const std::vector<BandLevel>& band,
+                  std::vector<BoxClass>& classes, std::size_t row) {
   const int nx = grid.dims.x;
-  const std::size_t rows = static_cast<std::size_t>(grid.dims.y) * static_cast<std::size_t>(grid.dims.z);
-  for (std::size_t row = first; row < rows; row += stride) {
+  {
     const int j = static_cast<int>(row % grid.dims.y), k = static_cast<int>(row / grid.dims.y);
     const std::size_t base = grid.linear_index({0, j, k});
     int i = 0;
@@ -52,12 +51,8 @@ BoxOccupancy classify_boxes(const MeshSurface& surface, const CoreGrid& grid, do
   const std::vector<BandLevel> band = mark_surface_band(surface.mesh(), grid, clearance);
   result.classes.assign(band.size(), BoxClass::outside);
 
-  const std::size_t workers = static_cast<std::size_t>(std::max(1, threads));
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < workers; ++t)
-    pool.emplace_back(classify_rows, std::cref(grid), std::cref(surface), std::cref(band), std::ref(result.classes), t, workers);
-  classify_rows(grid, surface, band, result.classes, 0, workers);
-  for (std::thread& t : pool) t.join();
+  const std::size_t rows = static_cast<std::size_t>(grid.dims.y) * static_cast<std::size_t>(grid.dims.z);
+  parallel_for(rows, threads, [&](std::size_t row) { classify_row(grid, surface, band, result.classes, row); });
 
   for (BoxClass c : result.classes) {
     if (c == BoxClass::outside) ++result.outside;

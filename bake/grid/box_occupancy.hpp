@@ -33,7 +33,7 @@ struct BoxOccupancy {
 // How: triangles are rasterised into the grid (surface_band.hpp); boxes the surface cannot
 // cross keep one side along each run in x between crossable boxes, so one CGAL inside query
 // per run decides a whole run (none for runs touching the grid's faces, which reach outside
-// the mesh AABB). threads ≥ 1 splits rows between std::threads; the result does not depend on it.
+// the mesh AABB). threads ≥ 1 spreads the rows over parallel_for; the result does not depend on it.
 // Throws nano::InputError when clearance is negative or not finite, or the grid is empty.
 BoxOccupancy classify_boxes(const MeshSurface& surface, const CoreGrid& grid, double clearance, int threads = 1);
 

@@ -1,16 +1,15 @@
 #include "bake/grid/soluble_masks.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
-#include <thread>
 
 #include <glm/geometric.hpp>
 
 #include "bake/grid/triangle_distance.hpp"
 #include "common/error.hpp"
+#include "common/parallel_for.hpp"
 
 namespace nano::grid {
 
@@ -124,24 +123,21 @@ KeepMasks compute_keep_masks(const MeshSurface& surface, const BoxOccupancy& occ
   masks.word_offsets.push_back(static_cast<std::uint32_t>(total_words));
   masks.words.assign(total_words, 0u);
 
-  // Boxes are dealt round-robin to threads; each writes only its own boxes' words.
-  const std::size_t workers = static_cast<std::size_t>(std::max(1, threads));
-  std::vector<std::uint64_t> kept(workers, 0), total(workers, 0);
-  auto work = [&](std::size_t first) {
-    for (std::size_t n = first; n < masks.boundary_boxes.size(); n += workers) {
+  // Boxes go to the threads in chunks; each chunk writes only its own boxes' words.
+  constexpr std::size_t kChunk = 64;
+  const std::size_t chunks = (masks.boundary_boxes.size() + kChunk - 1) / kChunk;
+  std::vector<std::uint64_t> kept(chunks, 0), total(chunks, 0);
+  parallel_for(chunks, threads, [&](std::size_t chunk) {
+    for (std::size_t n = chunk * kChunk; n < std::min(masks.boundary_boxes.size(), (chunk + 1) * kChunk); ++n) {
       const CubeContents& cube = cubes[box_cube[n]];
-      kept[first] += decide_box(surface, grid, grid.box_at(masks.boundary_boxes[n]), cube, shell_clearance,
+      kept[chunk] += decide_box(surface, grid, grid.box_at(masks.boundary_boxes[n]), cube, shell_clearance,
                                 masks.words.data() + masks.word_offsets[n]);
-      total[first] += cube.size();
+      total[chunk] += cube.size();
     }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (std::thread& t : pool) t.join();
-  for (std::size_t t = 0; t < workers; ++t) {
-    masks.kept += kept[t];
-    masks.dropped += total[t] - kept[t];
+  });
+  for (std::size_t c = 0; c < chunks; ++c) {
+    masks.kept += kept[c];
+    masks.dropped += total[c] - kept[c];
   }
   return masks;
 }

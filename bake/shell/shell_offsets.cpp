@@ -5,9 +5,9 @@
 #include <cmath>
 #include <exception>
 #include <string>
-#include <thread>
 
 #include "common/error.hpp"
+#include "common/parallel_for.hpp"
 
 namespace nano::shell {
 
@@ -99,7 +99,6 @@ namespace {
 struct BlockTotals {
   ShellStats stats;
   std::vector<std::size_t> owned_by_type;
-  std::exception_ptr error;  // the first failing triangle of the block; the block stops there
 };
 
 void merge(ShellStats& into, const ShellStats& s) {
@@ -114,7 +113,7 @@ void merge(ShellStats& into, const ShellStats& s) {
 
 // Triangles [begin, end): their offsets into `offsets`, the rest into `totals`.
 void shell_block(const MembraneMapping& mapping, const std::vector<double>& radius, std::size_t begin,
-                 std::size_t end, std::vector<gpu::ShellOffsets>& offsets, BlockTotals& totals) try {
+                 std::size_t end, std::vector<gpu::ShellOffsets>& offsets, BlockTotals& totals) {
   const std::size_t type_count = radius.size();
   ShellStats& stats = totals.stats;
   totals.owned_by_type.assign(type_count, 0);
@@ -183,8 +182,6 @@ void shell_block(const MembraneMapping& mapping, const std::vector<double>& radi
     if (!(glm::dot(nb, face) > 0.0) || !(glm::dot(nt, face) > 0.0)) stats.inverted_caps += 1;
     offsets[t] = off;
   }
-} catch (...) {
-  totals.error = std::current_exception();
 }
 
 }  // namespace
@@ -200,16 +197,12 @@ ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vec
   const std::size_t blocks =
       std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), 1, std::max<std::size_t>(n, 1));
   std::vector<BlockTotals> totals(blocks);
-  {
-    std::vector<std::jthread> pool;
-    for (std::size_t b = 1; b < blocks; ++b)
-      pool.emplace_back(
-          [&, b] { shell_block(mapping, radius, n * b / blocks, n * (b + 1) / blocks, out.offsets, totals[b]); });
-    shell_block(mapping, radius, 0, n / blocks, out.offsets, totals[0]);
-  }
+  // A block stops at its first failing triangle; parallel_for rethrows the lowest block's error.
+  parallel_for(blocks, threads, [&](std::size_t b) {
+    shell_block(mapping, radius, n * b / blocks, n * (b + 1) / blocks, out.offsets, totals[b]);
+  });
   out.owned_by_type.assign(types.size(), 0);
   for (const BlockTotals& block : totals) {
-    if (block.error) std::rethrow_exception(block.error);
     merge(out.stats, block.stats);
     for (std::size_t i = 0; i < types.size(); ++i) out.owned_by_type[i] += block.owned_by_type[i];
   }

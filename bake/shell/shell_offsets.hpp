@@ -61,7 +61,7 @@ gpu::Prism triangle_prism(const MembraneMapping& mapping, std::size_t t, const g
 // the offending offset(s) by the deficit / c_min and retries (at most 64 times).
 // Throws InputError("shell", ...) when an instance's type is not in `types` (with several threads:
 // the error of the lowest such triangle, as with one).
-// threads ≥ 1 splits the triangles into contiguous blocks run on std::threads; every triangle is
+// threads ≥ 1 splits the triangles into contiguous blocks run by parallel_for; every triangle is
 // computed alone and the statistics are order-free sums, minima and maxima, so the result does not
 // depend on `threads`.
 ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vector<tiles::MoleculeType>& types,

@@ -1,14 +1,13 @@
 #include "runtime/explicit/oracle_render.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <thread>
 
 #include "common/error.hpp"
+#include "common/parallel_for.hpp"
 #include "format/package_view.hpp"
 
 namespace nano::oracle {
@@ -403,21 +402,15 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
 
     const AtomBvh bvh(atoms);
     std::vector<std::uint8_t> resolved(pending.size(), 0);
-    std::atomic<std::size_t> next{0};
-    const auto work = [&] {
-      constexpr std::size_t kChunk = 64;
-      for (std::size_t begin = next.fetch_add(kChunk); begin < pending.size(); begin = next.fetch_add(kChunk))
-        for (std::size_t i = begin; i < std::min(pending.size(), begin + kChunk); ++i) {
-          const auto [hit, t] = bvh.trace(rays[pending[i]], depth_bound, copies);
-          if (hit < 0) continue;
-          image[pending[i]] = make_hit(t, atoms[hit], copies[atoms[hit].copy]);
-          resolved[i] = 1;
-        }
-    };
-    std::vector<std::thread> helpers;
-    for (unsigned k = 1; k < std::max(1u, options.threads); ++k) helpers.emplace_back(work);
-    work();
-    for (std::thread& t : helpers) t.join();
+    constexpr std::size_t kChunk = 64;
+    parallel_for((pending.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
+      for (std::size_t i = chunk * kChunk; i < std::min(pending.size(), (chunk + 1) * kChunk); ++i) {
+        const auto [hit, t] = bvh.trace(rays[pending[i]], depth_bound, copies);
+        if (hit < 0) continue;
+        image[pending[i]] = make_hit(t, atoms[hit], copies[atoms[hit].copy]);
+        resolved[i] = 1;
+      }
+    });
 
     std::size_t kept = 0;
     for (std::size_t i = 0; i < pending.size(); ++i)

@@ -240,7 +240,9 @@ TEST(MembranePruning, CopiesDroppedBeforeTakeNothingWithThem) {
   std::size_t proteins_kept = 0;
   for (std::size_t i = 0; i < all.size(); ++i) {
     const bool before = dropped(limited, all[i]);
-    if (before) EXPECT_TRUE(dropped(p, all[i])) << "a copy dropped before came back";
+    if (before) {
+      EXPECT_TRUE(dropped(p, all[i])) << "a copy dropped before came back";
+    }
     if (dropped(p, all[i])) {
       if (!before) dropped_now.insert(i);
     } else {
