@@ -7,6 +7,8 @@
 
 #include "runtime/vk/buffer.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
+#include "shared/bindings.h"
+#include "shared/instanced_records.h"
 
 extern const std::uint32_t nano_spv_instanced_comp[];
 extern const std::size_t nano_spv_instanced_comp_words;
@@ -14,23 +16,14 @@ extern const std::size_t nano_spv_instanced_comp_words;
 namespace nano::instanced {
 namespace {
 
-constexpr std::uint32_t kWorkgroup = 8;  // local_size_x = local_size_y of instanced.comp
-constexpr std::uint32_t b_frame = kSceneBindingCount, b_hits = b_frame + 1, b_colours = b_frame + 2;
-
-// The Frame block of instanced.comp (std430).
-struct FrameRecord {
-  gpu::Camera camera;
-  glm::vec4 origin;  // xyz: eye in the TLAS's space
-  glm::vec4 light;   // xyz: unit direction towards the light
-};
-static_assert(sizeof(gpu::Camera) == 80 && sizeof(FrameRecord) == 112);
-static_assert(sizeof(gpu::PixelHit) == 48);
+using FrameRecord = gpu::InstancedFrameRecord;
 
 vk::ComputePipelineDesc pipeline_desc() {
   vk::ComputePipelineDesc desc;
   desc.code = {nano_spv_instanced_comp, nano_spv_instanced_comp_words};
-  std::vector<vk::DescriptorBinding> set{{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
-  for (std::uint32_t b = 1; b <= b_colours; ++b) set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  std::vector<vk::DescriptorBinding> set{{gpu::NANO_IB_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
+  for (std::uint32_t b = gpu::NANO_IB_TLAS + 1; b < gpu::NANO_INSTANCED_BINDING_COUNT; ++b)
+    set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   desc.sets = {set};
   return desc;
 }
@@ -69,10 +62,10 @@ struct InstancedRenderer::Impl {
     }
     // Rewritten every frame: prepare() may have replaced the TLAS.
     scene.write_descriptors(set);
-    vk::write_storage_buffer(device.handle(), set, b_frame, frame_buffer);
-    vk::write_storage_buffer(device.handle(), set, b_hits, hit_buffer);
-    vk::write_storage_buffer(device.handle(), set, b_colours, colour_buffer);
-    vk::dispatch_pixels_and_wait(device, pipeline, set, w, h, kWorkgroup);
+    vk::write_storage_buffer(device.handle(), set, gpu::NANO_IB_FRAME, frame_buffer);
+    vk::write_storage_buffer(device.handle(), set, gpu::NANO_IB_HITS, hit_buffer);
+    vk::write_storage_buffer(device.handle(), set, gpu::NANO_IB_COLOURS, colour_buffer);
+    vk::dispatch_pixels_and_wait(device, pipeline, set, w, h, gpu::NANO_WORKGROUP_SIZE);
     InstancedFrame out;
     out.width = w, out.height = h;
     out.hits.resize(pixels);

@@ -18,6 +18,8 @@
 #include "runtime/vk/acceleration_structure.hpp"
 #include "runtime/vk/buffer.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
+#include "shared/bindings.h"
+#include "shared/instanced_records.h"
 
 namespace nano::instanced {
 namespace {
@@ -28,19 +30,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The records of shaders/instanced/instanced.comp (std430; the shader reads them as uvec4 / vec4).
-struct CopyRecord {
-  std::uint32_t number_lo, number_hi, molecule_type, reserved;
-};
-struct TypeRecord {
-  glm::uvec4 range;  // x: first entry in the orders buffer, y: primitives of the type's BLAS
-  glm::vec4 colour;  // linear RGB of the molecule type
-};
-static_assert(sizeof(CopyRecord) == 16 && sizeof(TypeRecord) == 32);
+using CopyRecord = gpu::InstancedCopy;
+using TypeRecord = gpu::InstancedType;
 static_assert(sizeof(VkAccelerationStructureInstanceKHR) == 64);
-
-enum Binding : std::uint32_t { b_tlas = 0, b_copies, b_types, b_atoms, b_orders };
-static_assert(b_orders + 1 == kSceneBindingCount);
 
 // The instance custom index (24 bits) names the copy.
 constexpr std::uint64_t kCopyLimit = std::uint64_t{1} << 24;
@@ -243,11 +235,11 @@ struct InstancedScene::Impl : format::PackageView {
 
   void write_descriptors(VkDescriptorSet set) const {
     const VkDevice d = device.handle();
-    vk::write_acceleration_structure(d, set, b_tlas, tlas);
-    vk::write_storage_buffer(d, set, b_copies, copy_buffer);
-    vk::write_storage_buffer(d, set, b_types, type_buffer);
-    vk::write_storage_buffer(d, set, b_atoms, atom_buffer);
-    vk::write_storage_buffer(d, set, b_orders, order_buffer);
+    vk::write_acceleration_structure(d, set, gpu::NANO_IB_TLAS, tlas);
+    vk::write_storage_buffer(d, set, gpu::NANO_IB_COPIES, copy_buffer);
+    vk::write_storage_buffer(d, set, gpu::NANO_IB_TYPES, type_buffer);
+    vk::write_storage_buffer(d, set, gpu::NANO_IB_ATOMS, atom_buffer);
+    vk::write_storage_buffer(d, set, gpu::NANO_IB_ORDERS, order_buffer);
   }
 };
 

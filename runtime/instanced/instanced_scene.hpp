@@ -55,8 +55,6 @@ struct InstancedReport {
 };
 nlohmann::json to_json(const InstancedReport& report);
 
-// Binding numbers of shaders/instanced/instanced.comp that the scene fills (0 .. kSceneBindingCount−1).
-inline constexpr std::uint32_t kSceneBindingCount = 5;
 
 class InstancedScene {
 public:
@@ -71,7 +69,7 @@ public:
   // returns the ray origin in the TLAS's space: eye − anchor, subtracted in double.
   glm::vec3 prepare(const glm::dvec3& eye);
 
-  // Writes bindings 0 .. kSceneBindingCount−1 of the instanced pipeline's set.
+  // Writes the scene's bindings (0 .. NANO_INSTANCED_SCENE_BINDING_COUNT − 1, shaders/shared/bindings.h) of the instanced pipeline's set.
   void write_descriptors(VkDescriptorSet set) const;
 
   const format::Package& package() const;

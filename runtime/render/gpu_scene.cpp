@@ -15,6 +15,7 @@
 #include "runtime/render/morton.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
 #include "runtime/vk/error.hpp"
+#include "shared/bindings.h"
 #include "shared/ownership.h"
 #include "shared/quaternion.h"
 #include "shared/render_scene.h"
@@ -44,12 +45,6 @@ VkAabbPositionsKHR outward_box(const vec3& lo, const vec3& hi) {
 }
 
 // The binding list of render.comp, in order; scene bindings first.
-enum Binding : std::uint32_t {
-  b_ulas = 0, b_molecules, b_atoms, b_squares, b_cubes, b_instances, b_recipes, b_recipe_indices, b_meshes,
-  b_positions, b_normals, b_uvs, b_triangles, b_shells, b_compartments, b_occupancy, b_boundary_boxes,
-  b_mask_words, b_render_compartments, b_render_instances, b_levels, b_orders, b_triangle_drops, b_dropped_copies,
-};
-static_assert(b_dropped_copies + 1 == kSceneBindingCount);
 
 }  // namespace
 
@@ -148,18 +143,18 @@ struct GpuScene::Impl : format::PackageView {
   }
 
   void upload_sections() {
-    const std::pair<Binding, SectionKind> kinds[] = {
-        {b_molecules, SectionKind::molecules},       {b_atoms, SectionKind::atoms},
-        {b_squares, SectionKind::tiles2d},           {b_cubes, SectionKind::tiles3d},
-        {b_instances, SectionKind::instances},       {b_recipes, SectionKind::recipes},
-        {b_recipe_indices, SectionKind::recipe_indices}, {b_meshes, SectionKind::meshes},
-        {b_positions, SectionKind::vertex_positions}, {b_normals, SectionKind::vertex_normals},
-        {b_uvs, SectionKind::vertex_uvs},            {b_triangles, SectionKind::triangles},
-        {b_compartments, SectionKind::compartments}, {b_occupancy, SectionKind::occupancy},
-        {b_boundary_boxes, SectionKind::boundary_boxes}, {b_mask_words, SectionKind::mask_words},
-        {b_triangle_drops, SectionKind::triangle_drops}, {b_dropped_copies, SectionKind::dropped_copies},
+    const std::pair<std::uint32_t, SectionKind> kinds[] = {
+        {gpu::NANO_B_MOLECULES, SectionKind::molecules},       {gpu::NANO_B_ATOMS, SectionKind::atoms},
+        {gpu::NANO_B_SQUARES, SectionKind::tiles2d},           {gpu::NANO_B_CUBES, SectionKind::tiles3d},
+        {gpu::NANO_B_INSTANCES, SectionKind::instances},       {gpu::NANO_B_RECIPES, SectionKind::recipes},
+        {gpu::NANO_B_RECIPE_INDICES, SectionKind::recipe_indices}, {gpu::NANO_B_MESHES, SectionKind::meshes},
+        {gpu::NANO_B_POSITIONS, SectionKind::vertex_positions}, {gpu::NANO_B_NORMALS, SectionKind::vertex_normals},
+        {gpu::NANO_B_UVS, SectionKind::vertex_uvs},            {gpu::NANO_B_TRIANGLES, SectionKind::triangles},
+        {gpu::NANO_B_COMPARTMENTS, SectionKind::compartments}, {gpu::NANO_B_OCCUPANCY, SectionKind::occupancy},
+        {gpu::NANO_B_BOUNDARY_BOXES, SectionKind::boundary_boxes}, {gpu::NANO_B_MASK_WORDS, SectionKind::mask_words},
+        {gpu::NANO_B_TRIANGLE_DROPS, SectionKind::triangle_drops}, {gpu::NANO_B_DROPPED_COPIES, SectionKind::dropped_copies},
     };
-    section_buffers.resize(kSceneBindingCount);
+    section_buffers.resize(gpu::NANO_SCENE_BINDING_COUNT);
     for (const auto& [binding, kind] : kinds) {
       std::span<const std::byte> bytes = p.raw_bytes(kind);
       if (kind == SectionKind::triangle_drops && triangle_drops.empty()) {
@@ -581,17 +576,17 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
   const Impl& s = *impl_;
   if (!s.has_ulas) throw std::logic_error("GpuScene::write_descriptors before set_eye");
   const VkDevice d = s.device.handle();
-  vk::write_acceleration_structure(d, set, b_ulas, s.ulas);
-  for (std::uint32_t b = b_molecules; b <= b_mask_words; ++b) {
-    if (b == b_shells) continue;
+  vk::write_acceleration_structure(d, set, gpu::NANO_B_ULAS, s.ulas);
+  for (std::uint32_t b = gpu::NANO_B_MOLECULES; b <= gpu::NANO_B_MASK_WORDS; ++b) {
+    if (b == gpu::NANO_B_SHELLS) continue;
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   }
-  for (std::uint32_t b : {b_triangle_drops, b_dropped_copies}) vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
-  vk::write_storage_buffer(d, set, b_shells, s.shell_buffer);
-  vk::write_storage_buffer(d, set, b_render_compartments, s.render_compartment_buffer);
-  vk::write_storage_buffer(d, set, b_render_instances, s.render_instance_buffer);
-  vk::write_storage_buffer(d, set, b_levels, s.level_buffer);
-  vk::write_storage_buffer(d, set, b_orders, s.order_buffer);
+  for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES}) vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_SHELLS, s.shell_buffer);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_COMPARTMENTS, s.render_compartment_buffer);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_INSTANCES, s.render_instance_buffer);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_LEVELS, s.level_buffer);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_ORDERS, s.order_buffer);
 }
 
 std::uint32_t GpuScene::first_square_level() const { return impl_->first_square; }

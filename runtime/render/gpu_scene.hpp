@@ -57,8 +57,6 @@ struct LoadReport {
 };
 nlohmann::json to_json(const LoadReport& report);
 
-// Binding numbers of shaders/render/render.comp that the scene fills (0 .. kSceneBindingCount−1).
-inline constexpr std::uint32_t kSceneBindingCount = 24;
 
 class GpuScene {
 public:
@@ -79,7 +77,7 @@ public:
 
   const format::Package& package() const;
 
-  // Writes bindings 0 .. kSceneBindingCount−1 of the render pipeline's set. Call after set_eye.
+  // Writes the scene's bindings (0 .. NANO_SCENE_BINDING_COUNT − 1, shaders/shared/bindings.h) of the render pipeline's set. Call after set_eye.
   void write_descriptors(VkDescriptorSet set) const;
 
   // Render-frame level table offsets (RenderFrame.levels).

@@ -8,6 +8,7 @@
 
 #include "runtime/render/animation.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
+#include "shared/bindings.h"
 #include "shared/render_scene.h"
 
 extern const std::uint32_t nano_spv_render_comp[];
@@ -18,8 +19,6 @@ extern const std::size_t nano_spv_render_nano_no_effects_comp_words;
 namespace nano::render {
 namespace {
 
-constexpr std::uint32_t kWorkgroup = 8;  // local_size_x = local_size_y of render.comp
-constexpr std::uint32_t b_frame = kSceneBindingCount, b_hits = b_frame + 1, b_colours = b_frame + 2;
 
 // What selects a pipeline: the shader build and its specialization constants.
 struct Variant {
@@ -45,19 +44,20 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   vk::ComputePipelineDesc desc;
   if (v.no_effect_code) desc.code = {nano_spv_render_nano_no_effects_comp, nano_spv_render_nano_no_effects_comp_words};
   else desc.code = {nano_spv_render_comp, nano_spv_render_comp_words};
-  std::vector<vk::DescriptorBinding> set{{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
-  for (std::uint32_t b = 1; b <= b_colours; ++b) set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  std::vector<vk::DescriptorBinding> set{{gpu::NANO_B_ULAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
+  for (std::uint32_t b = gpu::NANO_B_ULAS + 1; b < gpu::NANO_RENDER_BINDING_COUNT; ++b)
+    set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   desc.sets = {set};
-  desc.specialization.set_bool(0, v.exact_prism);
-  desc.specialization.set_bool(1, v.replication_las);
-  desc.specialization.set_bool(2, v.two_level);
-  desc.specialization.set_bool(7, v.eye_from_host);
-  desc.specialization.set_bool(8, v.world_space_ulas);
+  desc.specialization.set_bool(gpu::NANO_SPEC_EXACT_PRISM, v.exact_prism);
+  desc.specialization.set_bool(gpu::NANO_SPEC_REPLICATION_LAS, v.replication_las);
+  desc.specialization.set_bool(gpu::NANO_SPEC_TWO_LEVEL, v.two_level);
+  desc.specialization.set_bool(gpu::NANO_SPEC_EYE_FROM_HOST, v.eye_from_host);
+  desc.specialization.set_bool(gpu::NANO_SPEC_WORLD_SPACE_ULAS, v.world_space_ulas);
   if (!v.no_effect_code) {
-    desc.specialization.set_bool(3, v.clipping);
-    desc.specialization.set_bool(4, v.jitter);
-    desc.specialization.set_bool(5, v.ambient_occlusion);
-    desc.specialization.set_bool(6, v.shadows);
+    desc.specialization.set_bool(gpu::NANO_SPEC_CLIPPING, v.clipping);
+    desc.specialization.set_bool(gpu::NANO_SPEC_JITTER, v.jitter);
+    desc.specialization.set_bool(gpu::NANO_SPEC_AMBIENT_OCCLUSION, v.ambient_occlusion);
+    desc.specialization.set_bool(gpu::NANO_SPEC_SHADOWS, v.shadows);
   }
   return desc;
 }
@@ -149,10 +149,10 @@ struct Renderer::Impl {
     }
     Pipeline& p = *pipelines.at(variant_of(settings));
     scene.write_descriptors(p.set);
-    vk::write_storage_buffer(device.handle(), p.set, b_frame, frame_buffer);
-    vk::write_storage_buffer(device.handle(), p.set, b_hits, hit_buffer);
-    vk::write_storage_buffer(device.handle(), p.set, b_colours, colour_buffer);
-    vk::dispatch_pixels_and_wait(device, p.pipeline, p.set, w, h, kWorkgroup);
+    vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_FRAME, frame_buffer);
+    vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_HITS, hit_buffer);
+    vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_COLOURS, colour_buffer);
+    vk::dispatch_pixels_and_wait(device, p.pipeline, p.set, w, h, gpu::NANO_WORKGROUP_SIZE);
     Frame out;
     out.width = w, out.height = h;
     out.hits.resize(pixels);

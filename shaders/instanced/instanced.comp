@@ -10,31 +10,22 @@
 // something outside it is skipped, never read.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
+#include "shared/bindings.h"
 #include "shared/camera.h"
+#include "shared/instanced_records.h"
 #include "shared/ray_sphere.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = NANO_WORKGROUP_SIZE, local_size_y = NANO_WORKGROUP_SIZE) in;
 
-// Layouts mirror runtime/instanced/instanced_scene.cpp (static_asserts there).
-// Per TLAS instance (its custom index): x, y: copy number low / high word (oracle::Copy::number);
-// z: molecule type; w: reserved.
-layout(set = 0, binding = 0) uniform accelerationStructureEXT tlas;
-layout(set = 0, binding = 1, std430) readonly buffer Copies { uvec4 copies[]; };
-// Per molecule type: range.x: first entry in `orders`, range.y: primitives of its BLAS; colour: linear RGB.
-struct TypeRecord {
-  uvec4 range;
-  vec4 colour;
-};
-layout(set = 0, binding = 2, std430) readonly buffer Types { TypeRecord types[]; };
-layout(set = 0, binding = 3, std430) readonly buffer Atoms { vec4 atoms[]; };   // section atoms: centre, radius
-layout(set = 0, binding = 4, std430) readonly buffer Orders { uint orders[]; }; // BLAS primitive → atom index
-layout(set = 0, binding = 5, std430) readonly buffer Frame {
-  Camera camera;
-  vec4 origin;  // xyz: the eye in the TLAS's space (eye − anchor, rounded once from double)
-  vec4 light;   // xyz: unit direction towards the light (world)
-} frame;
-layout(set = 0, binding = 6, std430) writeonly buffer Hits { PixelHit hits[]; };
-layout(set = 0, binding = 7, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+// Records: shaders/shared/instanced_records.h; bindings: shaders/shared/bindings.h.
+layout(set = 0, binding = NANO_IB_TLAS) uniform accelerationStructureEXT tlas;
+layout(set = 0, binding = NANO_IB_COPIES, std430) readonly buffer Copies { InstancedCopy copies[]; };
+layout(set = 0, binding = NANO_IB_TYPES, std430) readonly buffer Types { InstancedType types[]; };
+layout(set = 0, binding = NANO_IB_ATOMS, std430) readonly buffer Atoms { vec4 atoms[]; };   // section atoms: centre, radius
+layout(set = 0, binding = NANO_IB_ORDERS, std430) readonly buffer Orders { uint orders[]; }; // BLAS primitive → atom index
+layout(set = 0, binding = NANO_IB_FRAME, std430) readonly buffer Frame { InstancedFrameRecord frame; };
+layout(set = 0, binding = NANO_IB_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
+layout(set = 0, binding = NANO_IB_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
 
 vec3 srgb_from_linear(vec3 c) {
   c = clamp(c, 0.0, 1.0);
@@ -70,9 +61,9 @@ void main() {
     if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
     uint c = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
     if (c >= uint(copies.length())) continue;
-    uvec4 copy = copies[c];
-    if (copy.z >= uint(types.length())) continue;
-    uvec4 range = types[copy.z].range;
+    InstancedCopy copy = copies[c];
+    if (copy.molecule_type >= uint(types.length())) continue;
+    uvec4 range = types[copy.molecule_type].range;
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     if (p >= range.y || range.x + p >= uint(orders.length())) continue;
     uint a = orders[range.x + p];
@@ -87,9 +78,9 @@ void main() {
     if (!(t >= 0.0) || !(t < best_t)) continue;
     best_t = t;
     best.atom = a;
-    best.copy_number_lo = copy.x;
-    best.copy_number_hi = copy.y;
-    best_type = copy.z;
+    best.copy_number_lo = copy.number_lo;
+    best.copy_number_hi = copy.number_hi;
+    best_type = copy.molecule_type;
     best_normal_o = om + t * dm - cr.xyz;
     best_world_to_object = mat3(rayQueryGetIntersectionWorldToObjectEXT(q, false));
     rayQueryGenerateIntersectionEXT(q, t);  // later candidates beyond t are culled by the traversal

@@ -17,6 +17,7 @@
 // rayQueryGenerateIntersectionEXT. Hit rule (as the oracle): the smallest root t ≥ 0.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
+#include "shared/bindings.h"
 #include "shared/package_records.h"
 #include "shared/render_scene.h"
 #include "shared/tile_mapper.h"
@@ -27,20 +28,20 @@
 #include "shared/copy_number.h"
 #include "shared/effects.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = NANO_WORKGROUP_SIZE, local_size_y = NANO_WORKGROUP_SIZE) in;
 
 // 0: the prism's AABB is the only test (no exact ray–prism): cheaper test, more candidates.
-layout(constant_id = 0) const bool kExactPrism = true;
+layout(constant_id = NANO_SPEC_EXACT_PRISM) const bool kExactPrism = true;
 // 1: the replication area is one query over a repLAS of its tile boxes; 0: every slot is queried.
-layout(constant_id = 1) const bool kReplicationLas = true;
+layout(constant_id = NANO_SPEC_REPLICATION_LAS) const bool kReplicationLas = true;
 // 1: the paper's two-level membrane: every atom of a Wang square in one BLAS, placed in tile space by
 // the affine M1 (an approximation of the true placement that verify measures); 0: mLAS → nLAS.
-layout(constant_id = 2) const bool kTwoLevel = false;
+layout(constant_id = NANO_SPEC_TWO_LEVEL) const bool kTwoLevel = false;
 // Precision knob (bench): 7: the primary ray's compartment-space eye from the host's double
 // computation as a two-float sum (RenderInstance) — false: the hardware's float transform of the ray
 // origin; 8: the µLAS in world coordinates with the ray from the world eye — false: camera-relative.
-layout(constant_id = 7) const bool kEyeFromHost = true;
-layout(constant_id = 8) const bool kWorldSpaceUlas = false;
+layout(constant_id = NANO_SPEC_EYE_FROM_HOST) const bool kEyeFromHost = true;
+layout(constant_id = NANO_SPEC_WORLD_SPACE_ULAS) const bool kWorldSpaceUlas = false;
 // Scene effects (runtime/render/effects.hpp), each compiled in only when on: a specialization
 // constant that is false removes the effect's code before the driver compiles the pipeline. The
 // NANO_NO_EFFECTS build of this file (render_no_effects) has no effect code at all, to measure that
@@ -51,39 +52,39 @@ const bool kJitter = false;
 const bool kAmbientOcclusion = false;
 const bool kShadows = false;
 #else
-layout(constant_id = 3) const bool kClipping = false;         // frame.clip half-spaces, per atom centre
-layout(constant_id = 4) const bool kJitter = false;           // protein jitter (frame.effect_parameters)
-layout(constant_id = 5) const bool kAmbientOcclusion = false; // frame.effects.y short rays per pixel
-layout(constant_id = 6) const bool kShadows = false;          // one shadow ray towards frame.light
+layout(constant_id = NANO_SPEC_CLIPPING) const bool kClipping = false;         // frame.clip half-spaces, per atom centre
+layout(constant_id = NANO_SPEC_JITTER) const bool kJitter = false;           // protein jitter (frame.effect_parameters)
+layout(constant_id = NANO_SPEC_AMBIENT_OCCLUSION) const bool kAmbientOcclusion = false; // frame.effects.y short rays per pixel
+layout(constant_id = NANO_SPEC_SHADOWS) const bool kShadows = false;          // one shadow ray towards frame.light
 #endif
 
-layout(set = 0, binding = 0) uniform accelerationStructureEXT ulas;
-layout(set = 0, binding = 1, std430) readonly buffer Molecules { MoleculeType molecules[]; };
-layout(set = 0, binding = 2, std430) readonly buffer Atoms { Atom atoms[]; };
-layout(set = 0, binding = 3, std430) readonly buffer Squares { Tile2D squares[]; };
-layout(set = 0, binding = 4, std430) readonly buffer Cubes { Tile3D cubes[]; };
-layout(set = 0, binding = 5, std430) readonly buffer Instances { MoleculeInstance instances[]; };
-layout(set = 0, binding = 6, std430) readonly buffer Recipes { Recipe recipes[]; };
-layout(set = 0, binding = 7, std430) readonly buffer RecipeIndices { uint recipe_indices[]; };
-layout(set = 0, binding = 8, std430) readonly buffer Meshes { Mesh meshes[]; };
-layout(set = 0, binding = 9, std430) readonly buffer Positions { vec4 positions[]; };
-layout(set = 0, binding = 10, std430) readonly buffer Normals { vec4 normals[]; };
-layout(set = 0, binding = 11, std430) readonly buffer Uvs { vec2 uvs[]; };
-layout(set = 0, binding = 12, std430) readonly buffer Triangles { Triangle triangles[]; };
-layout(set = 0, binding = 13, std430) readonly buffer Shells { TriangleShell shells[]; };  // offsets of the shell mode
-layout(set = 0, binding = 14, std430) readonly buffer Compartments { Compartment compartments[]; };
-layout(set = 0, binding = 15, std430) readonly buffer Occupancy { uint occupancy_words[]; };  // bytes, 4 a word
-layout(set = 0, binding = 16, std430) readonly buffer BoundaryBoxes { BoundaryBox boundary_boxes[]; };
-layout(set = 0, binding = 17, std430) readonly buffer MaskWords { uint mask_words[]; };
-layout(set = 0, binding = 18, std430) readonly buffer RenderCompartments { RenderCompartment render_compartments[]; };
-layout(set = 0, binding = 19, std430) readonly buffer RenderInstances { RenderInstance render_instances[]; };
-layout(set = 0, binding = 20, std430) readonly buffer Levels { RenderLevel levels[]; };
-layout(set = 0, binding = 21, std430) readonly buffer Orders { uint orders[]; };
-layout(set = 0, binding = 22, std430) readonly buffer TriangleDropRanges { TriangleDrops triangle_drops[]; };
-layout(set = 0, binding = 23, std430) readonly buffer DroppedCopies { uint dropped_copies[]; };
-layout(set = 0, binding = 24, std430) readonly buffer Frame { RenderFrame frame; };
-layout(set = 0, binding = 25, std430) writeonly buffer Hits { PixelHit hits[]; };
-layout(set = 0, binding = 26, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+layout(set = 0, binding = NANO_B_ULAS) uniform accelerationStructureEXT ulas;
+layout(set = 0, binding = NANO_B_MOLECULES, std430) readonly buffer Molecules { MoleculeType molecules[]; };
+layout(set = 0, binding = NANO_B_ATOMS, std430) readonly buffer Atoms { Atom atoms[]; };
+layout(set = 0, binding = NANO_B_SQUARES, std430) readonly buffer Squares { Tile2D squares[]; };
+layout(set = 0, binding = NANO_B_CUBES, std430) readonly buffer Cubes { Tile3D cubes[]; };
+layout(set = 0, binding = NANO_B_INSTANCES, std430) readonly buffer Instances { MoleculeInstance instances[]; };
+layout(set = 0, binding = NANO_B_RECIPES, std430) readonly buffer Recipes { Recipe recipes[]; };
+layout(set = 0, binding = NANO_B_RECIPE_INDICES, std430) readonly buffer RecipeIndices { uint recipe_indices[]; };
+layout(set = 0, binding = NANO_B_MESHES, std430) readonly buffer Meshes { Mesh meshes[]; };
+layout(set = 0, binding = NANO_B_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
+layout(set = 0, binding = NANO_B_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
+layout(set = 0, binding = NANO_B_UVS, std430) readonly buffer Uvs { vec2 uvs[]; };
+layout(set = 0, binding = NANO_B_TRIANGLES, std430) readonly buffer Triangles { Triangle triangles[]; };
+layout(set = 0, binding = NANO_B_SHELLS, std430) readonly buffer Shells { TriangleShell shells[]; };  // offsets of the shell mode
+layout(set = 0, binding = NANO_B_COMPARTMENTS, std430) readonly buffer Compartments { Compartment compartments[]; };
+layout(set = 0, binding = NANO_B_OCCUPANCY, std430) readonly buffer Occupancy { uint occupancy_words[]; };  // bytes, 4 a word
+layout(set = 0, binding = NANO_B_BOUNDARY_BOXES, std430) readonly buffer BoundaryBoxes { BoundaryBox boundary_boxes[]; };
+layout(set = 0, binding = NANO_B_MASK_WORDS, std430) readonly buffer MaskWords { uint mask_words[]; };
+layout(set = 0, binding = NANO_B_RENDER_COMPARTMENTS, std430) readonly buffer RenderCompartments { RenderCompartment render_compartments[]; };
+layout(set = 0, binding = NANO_B_RENDER_INSTANCES, std430) readonly buffer RenderInstances { RenderInstance render_instances[]; };
+layout(set = 0, binding = NANO_B_LEVELS, std430) readonly buffer Levels { RenderLevel levels[]; };
+layout(set = 0, binding = NANO_B_ORDERS, std430) readonly buffer Orders { uint orders[]; };
+layout(set = 0, binding = NANO_B_TRIANGLE_DROPS, std430) readonly buffer TriangleDropRanges { TriangleDrops triangle_drops[]; };
+layout(set = 0, binding = NANO_B_DROPPED_COPIES, std430) readonly buffer DroppedCopies { uint dropped_copies[]; };
+layout(set = 0, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
+layout(set = 0, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
+layout(set = 0, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
 
 // The best hit so far. Ids follow PixelHit (shared/camera.h).
 float best_t;

@@ -1,7 +1,9 @@
-// Compiles shaders/shared/package_records.h as GLSL: every record type in an std430 buffer.
+// Compiles shaders/shared/package_records.h and instanced_records.h as GLSL: every record type in an
+// std430 buffer.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "shared/package_records.h"
+#include "shared/instanced_records.h"
 
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) readonly buffer Molecules { MoleculeType molecules[]; };
@@ -18,11 +20,16 @@ layout(std430, binding = 10) readonly buffer Scene { SceneSettings scene[]; };
 layout(std430, binding = 11) readonly buffer CInstances { CompartmentInstance compartment_instances[]; };
 layout(std430, binding = 12) readonly buffer BoundaryBoxes { BoundaryBox boundary_boxes[]; };
 layout(std430, binding = 13) writeonly buffer Out { uint sink[]; };
+layout(std430, binding = 14) readonly buffer ICopies { InstancedCopy instanced_copies[]; };
+layout(std430, binding = 15) readonly buffer ITypes { InstancedType instanced_types[]; };
+layout(std430, binding = 16) readonly buffer IFrames { InstancedFrameRecord instanced_frames[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   sink[i] = molecules[i].reserved1 + floatBitsToUint(atoms[i].centre_radius.w) + tiles2d[i].reserved1 +
             tiles3d[i].reserved1 + instances[i].reserved2 + recipes[i].reserved1 + meshes[i].triangle_count +
             triangles[i].v2 + shells[i].seam_edges + compartments[i].reserved0 + compartments[i].core_masks.w +
-            scene[i].reserved2 + compartment_instances[i].reserved2 + boundary_boxes[i].first_word + NANO_NO_INDEX;
+            scene[i].reserved2 + compartment_instances[i].reserved2 + boundary_boxes[i].first_word + NANO_NO_INDEX +
+            instanced_copies[i].reserved + floatBitsToUint(instanced_types[i].colour.w) +
+            floatBitsToUint(instanced_frames[i].light.w);
 }

@@ -1,0 +1,76 @@
+// Every descriptor binding, specialization-constant id and workgroup size of the compute pipelines,
+// declared once for the shaders (layout qualifiers take constant expressions) and for the C++ that
+// builds the descriptor sets and pipelines, so the two cannot drift apart.
+#ifndef NANO_BINDINGS_H
+#define NANO_BINDINGS_H
+
+#include "glsl_cpp.h"
+
+NANO_BEGIN
+
+// Both pipelines dispatch square workgroups of this many invocations a side, one per pixel.
+NANO_CONST uint NANO_WORKGROUP_SIZE = 8u;
+
+// shaders/render/render.comp, set 0. Bindings below NANO_SCENE_BINDING_COUNT hold the scene (one
+// package section or derived buffer each: runtime/render/gpu_scene.cpp); the last three the frame.
+NANO_CONST uint NANO_B_ULAS = 0u;  // the µLAS; every other binding is a storage buffer
+NANO_CONST uint NANO_B_MOLECULES = 1u;
+NANO_CONST uint NANO_B_ATOMS = 2u;
+NANO_CONST uint NANO_B_SQUARES = 3u;
+NANO_CONST uint NANO_B_CUBES = 4u;
+NANO_CONST uint NANO_B_INSTANCES = 5u;
+NANO_CONST uint NANO_B_RECIPES = 6u;
+NANO_CONST uint NANO_B_RECIPE_INDICES = 7u;
+NANO_CONST uint NANO_B_MESHES = 8u;
+NANO_CONST uint NANO_B_POSITIONS = 9u;
+NANO_CONST uint NANO_B_NORMALS = 10u;
+NANO_CONST uint NANO_B_UVS = 11u;
+NANO_CONST uint NANO_B_TRIANGLES = 12u;
+NANO_CONST uint NANO_B_SHELLS = 13u;
+NANO_CONST uint NANO_B_COMPARTMENTS = 14u;
+NANO_CONST uint NANO_B_OCCUPANCY = 15u;
+NANO_CONST uint NANO_B_BOUNDARY_BOXES = 16u;
+NANO_CONST uint NANO_B_MASK_WORDS = 17u;
+NANO_CONST uint NANO_B_RENDER_COMPARTMENTS = 18u;
+NANO_CONST uint NANO_B_RENDER_INSTANCES = 19u;
+NANO_CONST uint NANO_B_LEVELS = 20u;
+NANO_CONST uint NANO_B_ORDERS = 21u;
+NANO_CONST uint NANO_B_TRIANGLE_DROPS = 22u;
+NANO_CONST uint NANO_B_DROPPED_COPIES = 23u;
+NANO_CONST uint NANO_SCENE_BINDING_COUNT = 24u;
+NANO_CONST uint NANO_B_FRAME = 24u;
+NANO_CONST uint NANO_B_HITS = 25u;
+NANO_CONST uint NANO_B_COLOURS = 26u;
+NANO_CONST uint NANO_RENDER_BINDING_COUNT = 27u;
+
+// render.comp's specialization constants (runtime/render/renderer.cpp sets them per variant).
+NANO_CONST int NANO_SPEC_EXACT_PRISM = 0;
+NANO_CONST int NANO_SPEC_REPLICATION_LAS = 1;
+NANO_CONST int NANO_SPEC_TWO_LEVEL = 2;
+NANO_CONST int NANO_SPEC_CLIPPING = 3;
+NANO_CONST int NANO_SPEC_JITTER = 4;
+NANO_CONST int NANO_SPEC_AMBIENT_OCCLUSION = 5;
+NANO_CONST int NANO_SPEC_SHADOWS = 6;
+NANO_CONST int NANO_SPEC_EYE_FROM_HOST = 7;
+NANO_CONST int NANO_SPEC_WORLD_SPACE_ULAS = 8;
+
+// shaders/instanced/instanced.comp, set 0 (explicit instancing: runtime/instanced/).
+NANO_CONST uint NANO_IB_TLAS = 0u;  // one instance per copy; every other binding is a storage buffer
+NANO_CONST uint NANO_IB_COPIES = 1u;
+NANO_CONST uint NANO_IB_TYPES = 2u;
+NANO_CONST uint NANO_IB_ATOMS = 3u;
+NANO_CONST uint NANO_IB_ORDERS = 4u;
+NANO_CONST uint NANO_INSTANCED_SCENE_BINDING_COUNT = 5u;
+NANO_CONST uint NANO_IB_FRAME = 5u;
+NANO_CONST uint NANO_IB_HITS = 6u;
+NANO_CONST uint NANO_IB_COLOURS = 7u;
+NANO_CONST uint NANO_INSTANCED_BINDING_COUNT = 8u;
+
+NANO_STATIC_ASSERT(NANO_B_DROPPED_COPIES + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
+NANO_STATIC_ASSERT(NANO_B_COLOURS + 1u == NANO_RENDER_BINDING_COUNT, "frame bindings follow the scene's");
+NANO_STATIC_ASSERT(NANO_IB_ORDERS + 1u == NANO_INSTANCED_SCENE_BINDING_COUNT, "instanced scene bindings are 0 .. count - 1");
+NANO_STATIC_ASSERT(NANO_IB_COLOURS + 1u == NANO_INSTANCED_BINDING_COUNT, "instanced frame bindings follow the scene's");
+
+NANO_END
+
+#endif
