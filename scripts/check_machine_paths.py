@@ -14,8 +14,9 @@ import re
 import subprocess
 import sys
 
-# A path component right after a slash that no variable, word or relative path precedes:
-# "${CMAKE_BINARY_DIR}/work" and "build/tmp/x" are relative, "/work/x" and "'/home/me" are not.
+# One of those folders right after a slash that no variable, word or relative path precedes, then a
+# name: a CMake "${CMAKE_BINARY_DIR}" followed by the work folder, or "build" followed by the
+# temporary one, are relative paths; the same folder names at the start of a path are not.
 ABSOLUTE = re.compile(r"(?<![\w}$.\-/~])/(home|root|work|Users|tmp|mnt)/[\w.\-]")
 
 
