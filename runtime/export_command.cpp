@@ -9,7 +9,7 @@
 #include "common/error.hpp"
 #include "format/validator.hpp"
 #include "runtime/commands.hpp"
-#include "runtime/explicit/atom_export.hpp"
+#include "runtime/oracle/atom_export.hpp"
 
 namespace nano::view {
 namespace {

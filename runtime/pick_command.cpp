@@ -10,7 +10,7 @@
 #include "common/error.hpp"
 #include "format/validator.hpp"
 #include "runtime/commands.hpp"
-#include "runtime/explicit/oracle_render.hpp"
+#include "runtime/oracle/oracle_render.hpp"
 #include "runtime/render/animation.hpp"
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/effects.hpp"

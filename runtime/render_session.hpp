@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "format/package.hpp"
-#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/effects.hpp"
 #include "runtime/render/gpu_scene.hpp"

@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "runtime/bench/frame_stats.hpp"
-#include "runtime/explicit/oracle_render.hpp"
-#include "runtime/explicit/render_compare.hpp"
+#include "runtime/oracle/oracle_render.hpp"
+#include "runtime/oracle/render_compare.hpp"
 #include "runtime/render_session.hpp"
 
 namespace nano::bench {

@@ -1,11 +1,11 @@
-#include "runtime/instanced/explicit_vs_virtual.hpp"
+#include "runtime/explicit_instancing/explicit_vs_virtual.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "runtime/bench/frame_stats.hpp"
-#include "runtime/instanced/instanced_renderer.hpp"
+#include "runtime/explicit_instancing/instanced_renderer.hpp"
 #include "runtime/render/renderer.hpp"
 
 namespace nano::instanced {

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "format/package.hpp"
-#include "runtime/explicit/render_compare.hpp"
-#include "runtime/instanced/instanced_scene.hpp"
+#include "runtime/oracle/render_compare.hpp"
+#include "runtime/explicit_instancing/instanced_scene.hpp"
 #include "runtime/render/gpu_scene.hpp"
 #include "runtime/vk/device.hpp"
 #include "shared/camera.h"

@@ -1,4 +1,4 @@
-#include "runtime/instanced/instanced_renderer.hpp"
+#include "runtime/explicit_instancing/instanced_renderer.hpp"
 
 #include <chrono>
 #include <stdexcept>

@@ -1,5 +1,5 @@
 #pragma once
-// One frame of explicit instancing (shaders/instanced/instanced.comp): a pinhole camera in, per pixel
+// One frame of explicit instancing (shaders/explicit_instancing/instanced.comp): a pinhole camera in, per pixel
 // the hit atom, copy number, depth and a shaded colour out — the fields render::Renderer's frames
 // carry that explicit instancing knows; the copy's placement ids (compartment instance, element,
 // kind, cell, instance) stay kNoHit / −1.
@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "runtime/instanced/instanced_scene.hpp"
+#include "runtime/explicit_instancing/instanced_scene.hpp"
 #include "runtime/vk/device.hpp"
 #include "shared/camera.h"
 

@@ -1,4 +1,4 @@
-#include "runtime/instanced/instanced_scene.hpp"
+#include "runtime/explicit_instancing/instanced_scene.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 
 #include "common/error.hpp"
 #include "format/package_view.hpp"
-#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
 #include "runtime/render/morton.hpp"
 #include "runtime/vk/acceleration_structure.hpp"
 #include "runtime/vk/buffer.hpp"

@@ -4,7 +4,7 @@
 // one instance of one TLAS, referencing its molecule type's BLAS of atom boxes. Memory therefore
 // grows with the copy count — 64 bytes of VkAccelerationStructureInstanceKHR, 16 bytes of copy
 // record and the TLAS's own nodes per copy — where the virtual scene (render::GpuScene) grows with
-// the number of distinct tiles. Traced by shaders/instanced/instanced.comp (InstancedRenderer).
+// the number of distinct tiles. Traced by shaders/explicit_instancing/instanced.comp (InstancedRenderer).
 //
 // Precision: TLAS transforms are float. They are taken relative to an anchor — the centre of the
 // copies' bounds, fixed at load (the conventional build-once TLAS), or the camera's eye when

@@ -1,4 +1,4 @@
-#include "runtime/explicit/atom_export.hpp"
+#include "runtime/oracle/atom_export.hpp"
 
 #include <algorithm>
 #include <array>

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
 
 namespace nano::oracle {
 

@@ -1,4 +1,4 @@
-#include "runtime/explicit/atom_radii_judge.hpp"
+#include "runtime/oracle/atom_radii_judge.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "runtime/explicit/render_compare.hpp"
+#include "runtime/oracle/render_compare.hpp"
 
 namespace nano::oracle {
 namespace {

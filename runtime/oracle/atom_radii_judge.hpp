@@ -10,7 +10,7 @@
 // behind it at 3e-5 Å).
 #include <glm/vec3.hpp>
 
-#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
 #include "shared/camera.h"
 
 namespace nano::oracle {

@@ -1,4 +1,4 @@
-#include "runtime/explicit/clash_check.hpp"
+#include "runtime/oracle/clash_check.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
 
 #include <algorithm>
 #include <cmath>

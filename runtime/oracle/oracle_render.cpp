@@ -1,4 +1,4 @@
-#include "runtime/explicit/oracle_render.hpp"
+#include "runtime/oracle/oracle_render.hpp"
 
 #include <algorithm>
 #include <chrono>

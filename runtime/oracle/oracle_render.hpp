@@ -15,7 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include "format/package.hpp"
-#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
 #include "shared/camera.h"
 
 namespace nano::oracle {

@@ -1,4 +1,4 @@
-#include "runtime/explicit/render_compare.hpp"
+#include "runtime/oracle/render_compare.hpp"
 
 #include <algorithm>
 #include <cmath>

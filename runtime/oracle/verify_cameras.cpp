@@ -1,4 +1,4 @@
-#include "runtime/explicit/verify_cameras.hpp"
+#include "runtime/oracle/verify_cameras.hpp"
 
 #include <algorithm>
 #include <cmath>

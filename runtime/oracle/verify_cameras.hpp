@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "format/package.hpp"
-#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
 
 namespace nano::oracle {
 

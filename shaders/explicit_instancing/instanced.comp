@@ -1,6 +1,6 @@
 #version 460
 // Explicit instancing, the conventional design the virtual renderer (shaders/render/render.comp) is
-// measured against (runtime/instanced/): one TLAS with one instance per molecule copy, each
+// measured against (runtime/explicit_instancing/): one TLAS with one instance per molecule copy, each
 // referencing its molecule type's BLAS of atom boxes. One ray query per pixel; every candidate box
 // is an atom, tested as a sphere in the copy's object (molecule) space with the ray the hardware
 // transformed. Hit rule (as render.comp and the oracle): the smallest root t ≥ 0; t along an affine

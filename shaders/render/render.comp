@@ -1,7 +1,7 @@
 #version 460
 // The Nanouniverse renderer: one invocation per pixel, nested ray queries over three levels of
 // acceleration structures (µLAS → mLAS → nLAS), every molecule placed on the fly by the placement
-// math of shaders/shared/ — the very functions the CPU oracle (runtime/explicit/) runs.
+// math of shaders/shared/ — the very functions the CPU oracle (runtime/oracle/) runs.
 //
 //  µLAS: one TLAS over compartment instances (camera-relative transforms); per compartment a BLAS of
 //        prism AABBs (one per triangle that owns molecules, Morton-sorted) plus one AABB around the

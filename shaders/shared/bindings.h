@@ -54,7 +54,7 @@ NANO_CONST int NANO_SPEC_SHADOWS = 6;
 NANO_CONST int NANO_SPEC_EYE_FROM_HOST = 7;
 NANO_CONST int NANO_SPEC_WORLD_SPACE_ULAS = 8;
 
-// shaders/instanced/instanced.comp, set 0 (explicit instancing: runtime/instanced/).
+// shaders/explicit_instancing/instanced.comp, set 0 (explicit instancing: runtime/explicit_instancing/).
 NANO_CONST uint NANO_IB_TLAS = 0u;  // one instance per copy; every other binding is a storage buffer
 NANO_CONST uint NANO_IB_COPIES = 1u;
 NANO_CONST uint NANO_IB_TYPES = 2u;

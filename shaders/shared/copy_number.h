@@ -1,4 +1,4 @@
-// The copy number of runtime/explicit/explicit_scene.hpp (Copy::number), shared by the CPU oracle
+// The copy number of runtime/oracle/explicit_scene.hpp (Copy::number), shared by the CPU oracle
 // and the renderer's shader so both name a copy by the same 64-bit integer. GLSL 460 and C++20/GLM.
 // 64-bit values travel as uvec2 (x: low word, y: high word) because shaderInt64 is optional in
 // Vulkan; all arithmetic is modulo 2^64 (the oracle refuses packages whose numbers would wrap).

@@ -1,5 +1,5 @@
 // The per-molecule and per-ray math of the scene effects (runtime/render/effects.hpp), shared by the
-// renderer (shaders/render/render.comp) and the CPU oracle (runtime/explicit/), so a jittered or
+// renderer (shaders/render/render.comp) and the CPU oracle (runtime/oracle/), so a jittered or
 // clipped frame can be checked against explicit instancing with the very same functions.
 #ifndef NANO_EFFECTS_H
 #define NANO_EFFECTS_H

@@ -1,4 +1,4 @@
-// The records of explicit instancing (shaders/instanced/instanced.comp, runtime/instanced/), std430,
+// The records of explicit instancing (shaders/explicit_instancing/instanced.comp, runtime/explicit_instancing/), std430,
 // declared once for GLSL and C++.
 #ifndef NANO_INSTANCED_RECORDS_H
 #define NANO_INSTANCED_RECORDS_H

@@ -3,7 +3,7 @@
 // Wang tiling, so molecules of both sides can overlap in space. BOTH sides of a seam keep their
 // molecules clear of it: each drops the copies whose bounding sphere reaches the seam.
 // GLSL 460 and C++20/GLM (glsl_cpp.h); the baker's enumerator (bake/shell/membrane_mapping.hpp), the
-// explicit-instancing oracle (runtime/explicit) and the shader call this same function on the same
+// explicit-instancing oracle (runtime/oracle) and the shader call this same function on the same
 // floats, so all three drop exactly the same copies.
 //
 // Bits of TriangleShell.seam_edges (all others zero; the validator checks it):

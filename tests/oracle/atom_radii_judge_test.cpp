@@ -3,10 +3,10 @@
 // outside its radius.
 #include <gtest/gtest.h>
 
-#include "runtime/explicit/atom_radii_judge.hpp"
-#include "runtime/explicit/oracle_render.hpp"
-#include "tests/explicit/hand_scene.hpp"
-#include "tests/explicit/test_package.hpp"
+#include "runtime/oracle/atom_radii_judge.hpp"
+#include "runtime/oracle/oracle_render.hpp"
+#include "tests/oracle/hand_scene.hpp"
+#include "tests/oracle/test_package.hpp"
 
 namespace nano::explicit_test {
 namespace {

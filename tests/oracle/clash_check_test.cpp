@@ -4,10 +4,10 @@
 #include <random>
 #include <set>
 
-#include "runtime/explicit/clash_check.hpp"
-#include "runtime/explicit/explicit_scene.hpp"
-#include "tests/explicit/hand_scene.hpp"
-#include "tests/explicit/test_package.hpp"
+#include "runtime/oracle/clash_check.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
+#include "tests/oracle/hand_scene.hpp"
+#include "tests/oracle/test_package.hpp"
 
 namespace nano::explicit_test {
 namespace {

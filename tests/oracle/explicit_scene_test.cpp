@@ -8,9 +8,9 @@
 
 #include "common/error.hpp"
 #include "format/validator.hpp"
-#include "runtime/explicit/explicit_scene.hpp"
-#include "tests/explicit/hand_scene.hpp"
-#include "tests/explicit/test_package.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
+#include "tests/oracle/hand_scene.hpp"
+#include "tests/oracle/test_package.hpp"
 
 namespace nano::explicit_test {
 namespace {

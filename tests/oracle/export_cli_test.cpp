@@ -13,7 +13,7 @@
 #include <string>
 
 #include "format/writer.hpp"
-#include "tests/explicit/hand_scene.hpp"
+#include "tests/oracle/hand_scene.hpp"
 
 namespace nano::explicit_test {
 namespace {

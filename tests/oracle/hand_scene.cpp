@@ -1,4 +1,4 @@
-#include "tests/explicit/hand_scene.hpp"
+#include "tests/oracle/hand_scene.hpp"
 
 #include <cmath>
 #include <cstring>

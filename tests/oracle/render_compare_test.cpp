@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/explicit/oracle_render.hpp"
-#include "runtime/explicit/render_compare.hpp"
+#include "runtime/oracle/oracle_render.hpp"
+#include "runtime/oracle/render_compare.hpp"
 
 namespace nano::oracle {
 namespace {

@@ -13,9 +13,9 @@
 #include <gtest/gtest.h>
 
 #include "bake/shell/membrane_mapping.hpp"
-#include "runtime/explicit/explicit_scene.hpp"
-#include "tests/explicit/hand_scene.hpp"
-#include "tests/explicit/test_package.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
+#include "tests/oracle/hand_scene.hpp"
+#include "tests/oracle/test_package.hpp"
 
 namespace nano::explicit_test {
 namespace {

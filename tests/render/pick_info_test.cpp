@@ -1,4 +1,4 @@
-// describe_hit on the hand-built package of tests/explicit (every record known), against the
+// describe_hit on the hand-built package of tests/oracle (every record known), against the
 // records it was built from; hostile hits give an error, never a crash. The bundled virion is
 // checked against gemmi by pick_gemmi.py.
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "runtime/render/pick_info.hpp"
-#include "tests/explicit/hand_scene.hpp"
-#include "tests/explicit/test_package.hpp"
+#include "tests/oracle/hand_scene.hpp"
+#include "tests/oracle/test_package.hpp"
 
 namespace {
 

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "format/validator.hpp"
-#include "runtime/explicit/clash_check.hpp"
-#include "runtime/explicit/explicit_scene.hpp"
+#include "runtime/oracle/clash_check.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
 
 namespace {
 
