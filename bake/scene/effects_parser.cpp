@@ -131,13 +131,14 @@ Effects parse_effects(const JsonCursor& c, std::size_t instance_count) {
 Camera parse_camera(const JsonCursor& c) {
   c.only_keys({"position", "look_at", "up", "fov_degrees"});
   Camera cam;
-  cam.position = c.required("position").vec3();
+  cam.fov_degrees = 45.0;  // scene.json's default (docs/scene.md)
+  cam.eye = c.required("position").vec3();
   const JsonCursor look_at = c.required("look_at");
-  cam.look_at = look_at.vec3();
-  if (cam.look_at == cam.position) look_at.fail("look_at must differ from position");
+  cam.at = look_at.vec3();
+  if (cam.at == cam.eye) look_at.fail("look_at must differ from position");
   const auto up = c.optional("up");
   if (up) cam.up = up->unit_vec3();
-  const glm::dvec3 view = glm::normalize(cam.look_at - cam.position);
+  const glm::dvec3 view = glm::normalize(cam.at - cam.eye);
   // Nearly parallel up and view directions leave the camera's roll undefined.
   if (glm::length(glm::cross(view, cam.up)) < 1e-6) {
     if (up) up->fail("up must not be parallel to the view direction");

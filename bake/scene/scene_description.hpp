@@ -14,6 +14,7 @@
 #include <glm/vec4.hpp>
 
 #include "bake/scene/transform.hpp"
+#include "common/camera.hpp"
 
 namespace nano::scene {
 
@@ -210,14 +211,6 @@ struct Effects {
   std::optional<AmbientOcclusion> ambient_occlusion;
   std::optional<Shadows> shadows;
   bool operator==(const Effects&) const = default;
-};
-
-struct Camera {
-  glm::dvec3 position{0.0};
-  glm::dvec3 look_at{0.0};
-  glm::dvec3 up{0.0, 1.0, 0.0};  // unit
-  double fov_degrees = 45.0;     // vertical
-  bool operator==(const Camera&) const = default;
 };
 
 struct SceneDescription {

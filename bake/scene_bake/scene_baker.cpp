@@ -214,7 +214,7 @@ std::vector<gpu::InstanceKeyframe> scene_keyframes(const scene::Effects& effects
 gpu::SceneSettings scene_settings(const scene::SceneDescription& scene, const std::vector<InstanceSummary>& instances) {
   gpu::SceneSettings settings{};
   settings.effect_flags = effect_flags(scene.effects);
-  scene::Camera camera;
+  Camera camera;
   if (scene.camera) {
     camera = *scene.camera;
   } else {
@@ -228,13 +228,11 @@ gpu::SceneSettings scene_settings(const scene::SceneDescription& scene, const st
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * glm::length(hi - lo), 1.0);
     camera.fov_degrees = 45.0;
-    camera.look_at = centre;
-    camera.position = centre + glm::dvec3(0.0, 0.0, 1.1 * radius / std::tan(glm::radians(camera.fov_degrees) / 2));
+    camera.at = centre;
+    camera.eye = centre + glm::dvec3(0.0, 0.0, 1.1 * radius / std::tan(glm::radians(camera.fov_degrees) / 2));
     camera.up = {0.0, 1.0, 0.0};
   }
-  settings.camera_eye = glm::vec4(glm::vec3(camera.position), static_cast<float>(glm::radians(camera.fov_degrees)));
-  settings.camera_target = glm::vec4(glm::vec3(camera.look_at), 0.f);
-  settings.camera_up = glm::vec4(glm::vec3(camera.up), 0.f);
+  store_camera(settings, camera);
   return settings;
 }
 

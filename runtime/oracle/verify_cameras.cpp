@@ -71,14 +71,14 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
     const dvec3 C = f.point(centroid_local), N = f.normal(n_out);
     const dvec3 T = glm::normalize(f.point(P[1]) - f.point(P[0]));
     const double h = shells[t].h_plus;
-    cams.push_back({"membrane-front", C + N * (h + 250.0), C, perpendicular(N), 30});
+    cams.push_back({"membrane-front", {C + N * (h + 250.0), C, perpendicular(N), 30}});
     // Grazing: the centre ray runs 14° below the tangent plane, the top rows just below it.
-    cams.push_back({"grazing-membrane", C + N * (0.5 * h) - T * 300.0, C + N * (0.5 * h - 75.0), N, 25});
+    cams.push_back({"grazing-membrane", {C + N * (0.5 * h) - T * 300.0, C + N * (0.5 * h - 75.0), N, 25}});
     dvec3 NV = glm::normalize(dvec3(normals[v[0]]));
     if (glm::dot(NV, n_out) < 0) NV = -NV;
     const dvec3 V = f.point(P[0]);
     NV = f.normal(NV);
-    cams.push_back({"mesh-vertex", V + NV * (h + 200.0), V, perpendicular(NV), 30, true});
+    cams.push_back({"mesh-vertex", {V + NV * (h + 200.0), V, perpendicular(NV), 30}, true});
     // A Wang tile corner inside the triangle: the lattice point nearest the UV centroid.
     const float s = c.scales.y / c.scales.x;
     const glm::vec2 uvc = (uvs[v[0]] + uvs[v[1]] + uvs[v[2]]) / 3.0f;
@@ -87,8 +87,8 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
                                                      uvs[v[2]], glm::vec3(normals[v[0]]), glm::vec3(normals[v[1]]),
                                                      glm::vec3(normals[v[2]]));
     const dvec3 G = f.point(dvec3(gpu::chart_position(chart, g)));
-    cams.push_back({"tile-corner", G + N * (h + 200.0), G, perpendicular(N), 25, true});
-    cams.push_back({"inside-prism", C + N * (0.3 * h), C - N * 150.0 + T * 150.0, N, 70});
+    cams.push_back({"tile-corner", {G + N * (h + 200.0), G, perpendicular(N), 25}, true});
+    cams.push_back({"inside-prism", {C + N * (0.3 * h), C - N * 150.0 + T * 150.0, N, 70}});
     break;
   }
 
@@ -119,10 +119,10 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
     const InstanceFrame f = frame_of(insts[i]);
     const dvec3 centre_local = dvec3(c.grid_min) + double(c.grid_min.w) * (dvec3(ijk) + 0.5);
     const dvec3 E = f.point(centre_local);
-    cams.push_back({"inside-core", E, E + dvec3(1.0, 0.37, 0.21), dvec3(0, 0, 1), 60});
+    cams.push_back({"inside-core", {E, E + dvec3(1.0, 0.37, 0.21), dvec3(0, 0, 1), 60}});
     // Exactly axis-aligned through the grid: eye on a box corner plane, rays along +z.
     const dvec3 corner = f.point(dvec3(c.grid_min) + double(c.grid_min.w) * dvec3(ijk));
-    cams.push_back({"axis-aligned-core", corner, corner + dvec3(0, 0, 1), dvec3(0, 1, 0), 40, true});
+    cams.push_back({"axis-aligned-core", {corner, corner + dvec3(0, 0, 1), dvec3(0, 1, 0), 40}, true});
     // Inside an atom: the first atom of a copy near the box centre.
     dvec3 atom_centre(NAN);
     const double half = 0.5 * c.grid_min.w;
@@ -130,7 +130,7 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
       if (std::isnan(atom_centre.x)) atom_centre = a.position;
     });
     if (!std::isnan(atom_centre.x))
-      cams.push_back({"inside-atom", atom_centre, atom_centre + dvec3(-0.3, 1.0, 0.45), dvec3(0, 0, 1), 60});
+      cams.push_back({"inside-atom", {atom_centre, atom_centre + dvec3(-0.3, 1.0, 0.45), dvec3(0, 0, 1), 60}});
     core_found = true;
     break;
   }
@@ -139,12 +139,12 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
   for (std::size_t k = 0; cams.size() < count && hard > 0 && k < 8 * hard; ++k) {
     VerifyCamera extra = cams[k % hard];
     const double angle = (k % 2 == 0 ? 1.0 : -1.0) * 0.35 * double(1 + (k / hard) % 2);
-    const glm::dvec3 off = extra.eye - extra.at;
-    const dvec3 axis = glm::normalize(extra.up);
-    extra.eye = extra.at + off * std::cos(angle) + glm::cross(axis, off) * std::sin(angle) +
+    const glm::dvec3 off = extra.view.eye - extra.view.at;
+    const dvec3 axis = glm::normalize(extra.view.up);
+    extra.view.eye = extra.view.at + off * std::cos(angle) + glm::cross(axis, off) * std::sin(angle) +
                 axis * glm::dot(axis, off) * (1 - std::cos(angle));
     extra.name += "-turned-" + std::to_string(k + 1);
-    if (glm::length(glm::cross(glm::normalize(extra.at - extra.eye), extra.up)) < 1e-3) continue;
+    if (glm::length(glm::cross(glm::normalize(extra.view.at - extra.view.eye), extra.view.up)) < 1e-3) continue;
     cams.push_back(extra);
   }
   if (cams.size() > count) cams.resize(count);

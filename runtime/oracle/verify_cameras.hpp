@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "common/camera.hpp"
 #include "format/package.hpp"
 #include "runtime/oracle/explicit_scene.hpp"
 
@@ -17,8 +18,7 @@ namespace nano::oracle {
 
 struct VerifyCamera {
   std::string name;
-  glm::dvec3 eye, at, up;
-  double fov_degrees = 30;
+  Camera view;
   bool odd_size = false;  // render at an odd width and height so the centre pixel's ray is exactly `at − eye`
 };
 

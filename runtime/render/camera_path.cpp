@@ -32,7 +32,7 @@ glm::dvec3 vector3(const nlohmann::json& j, const std::string& file, const std::
 
 // Hermite tangent of eye or target at key i, per second: Catmull–Rom's central difference over
 // the neighbours' time span (so unequal key spacing keeps the speed continuous), one-sided at the ends.
-glm::dvec3 tangent(const std::vector<CameraKeyframe>& keys, std::size_t i, glm::dvec3 CameraSpec::*member) {
+glm::dvec3 tangent(const std::vector<CameraKeyframe>& keys, std::size_t i, glm::dvec3 Camera::*member) {
   const std::size_t lo = i == 0 ? 0 : i - 1, hi = std::min(i + 1, keys.size() - 1);
   if (lo == hi) return glm::dvec3(0.0);
   return (keys[hi].camera.*member - keys[lo].camera.*member) / (keys[hi].time - keys[lo].time);
@@ -45,7 +45,7 @@ std::uint64_t CameraPath::frame_count() const {
   return std::uint64_t(std::floor(duration() * fps + 1e-9)) + 1;
 }
 
-CameraSpec camera_at(const CameraPath& path, double time) {
+Camera camera_at(const CameraPath& path, double time) {
   const auto& keys = path.keyframes;
   if (keys.empty()) throw std::invalid_argument("camera path: no keyframes");
   if (!(time > keys.front().time)) return keys.front().camera;  // NaN clamps to the start too
@@ -58,13 +58,13 @@ CameraSpec camera_at(const CameraPath& path, double time) {
   const double dt = b.time - a.time, s = (time - a.time) / dt;
   const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s), h01 = s * s * (3 - 2 * s),
                h11 = s * s * (s - 1);
-  const auto hermite = [&](glm::dvec3 CameraSpec::*member) {
+  const auto hermite = [&](glm::dvec3 Camera::*member) {
     return h00 * a.camera.*member + h10 * dt * tangent(keys, i, member) + h01 * b.camera.*member +
            h11 * dt * tangent(keys, i + 1, member);
   };
-  CameraSpec c;
-  c.eye = hermite(&CameraSpec::eye);
-  c.at = hermite(&CameraSpec::at);
+  Camera c;
+  c.eye = hermite(&Camera::eye);
+  c.at = hermite(&Camera::at);
   c.up = glm::normalize((1 - s) * glm::normalize(a.camera.up) + s * glm::normalize(b.camera.up));
   c.fov_degrees = (1 - s) * a.camera.fov_degrees + s * b.camera.fov_degrees;
   c.check();
@@ -85,7 +85,7 @@ CameraPath parse_camera_path(const nlohmann::json& json, const std::string& file
   if (!json.contains("keyframes") || !json["keyframes"].is_array() || json["keyframes"].empty())
     throw InputError(file, "keyframes", "expected a non-empty array of keyframes");
 
-  CameraSpec previous;
+  Camera previous;
   for (std::size_t i = 0; i < json["keyframes"].size(); ++i) {
     const nlohmann::json& k = json["keyframes"][i];
     const std::string where = "keyframes[" + std::to_string(i) + "]";

@@ -6,7 +6,7 @@
 //                  {"time": 2.5, "position": [x, y, z], "look_at": [x, y, z], "up": [x, y, z], "fov_degrees": 40}]}
 //
 // Times are seconds ≥ 0, strictly increasing. Keys a keyframe leaves out keep the previous
-// keyframe's values (CameraSpec's defaults for the first). Frame k is at time k / fps, so a movie
+// keyframe's values (Camera's defaults for the first). Frame k is at time k / fps, so a movie
 // starts at time 0 and ends at the last keyframe; before the first keyframe the camera holds still.
 // Eye and target follow a C¹ cubic Hermite spline in time with Catmull–Rom tangents (one-sided at
 // the ends), up is a normalised lerp and the field of view a lerp between neighbouring keys; each
@@ -25,7 +25,7 @@ namespace nano::render {
 
 struct CameraKeyframe {
   double time = 0;  // s
-  CameraSpec camera;
+  Camera camera;
 };
 
 struct CameraPath {
@@ -52,7 +52,7 @@ void write_camera_path(const std::filesystem::path& path, const CameraPath& came
 
 // The camera at `time` seconds, clamped to the keyframes' range. Throws std::invalid_argument if
 // the interpolated camera is degenerate (parse_camera_path rules this out at every frame time).
-CameraSpec camera_at(const CameraPath& path, double time);
+Camera camera_at(const CameraPath& path, double time);
 
 // Movie frame file names ("frames/%05d.png"): `pattern` holds exactly one printf-style integer
 // conversion, %d with an optional 0 flag and width (%d, %5d, %05d), and no other % but %%.

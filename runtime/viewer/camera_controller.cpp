@@ -45,12 +45,12 @@ Bounds scene_bounds(const format::Package& package) {
   return b;
 }
 
-CameraController::CameraController(const render::CameraSpec& start, double scene_radius)
+CameraController::CameraController(const Camera& start, double scene_radius)
     : camera_(start), scene_radius_(std::max(scene_radius, 1.0)) {
   camera_.check();
 }
 
-void CameraController::set_camera(const render::CameraSpec& camera) {
+void CameraController::set_camera(const Camera& camera) {
   camera.check();
   camera_ = camera;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The viewer's two cameras over one render::CameraSpec, free of any window system so they can be
+// The viewer's two cameras over one Camera, free of any window system so they can be
 // tested: orbit (rotate about the target, pan, dolly) and fly (move along the view, mouse look).
 // Every step is relative to the distance it acts at — dolly is a factor per wheel step, pan moves
 // the target by what the cursor covers at the target's depth, fly speed follows the distance to
@@ -28,10 +28,10 @@ class CameraController {
 public:
   enum class Mode { orbit, fly };
 
-  CameraController(const render::CameraSpec& start, double scene_radius);
+  CameraController(const Camera& start, double scene_radius);
 
-  const render::CameraSpec& camera() const { return camera_; }
-  void set_camera(const render::CameraSpec& camera);  // checked (throws std::invalid_argument)
+  const Camera& camera() const { return camera_; }
+  void set_camera(const Camera& camera);  // checked (throws std::invalid_argument)
   Mode mode() const { return mode_; }
   // Switching to orbit keeps the eye and orbits about what the view centre showed, when known.
   void set_mode(Mode mode);
@@ -56,7 +56,7 @@ public:
   double fly_speed() const;  // Å per second
 
 private:
-  render::CameraSpec camera_;
+  Camera camera_;
   double scene_radius_;
   Mode mode_ = Mode::orbit;
   std::optional<double> focus_depth_;

@@ -46,7 +46,7 @@ void camera_section(ViewerState& s, const PanelContext& c) {
   int mode = s.camera.mode() == CameraController::Mode::orbit ? 0 : 1;
   if (ImGui::RadioButton("orbit", &mode, 0) | (ImGui::SameLine(), ImGui::RadioButton("fly (Tab)", &mode, 1)))
     s.camera.set_mode(mode == 0 ? CameraController::Mode::orbit : CameraController::Mode::fly);
-  render::CameraSpec camera = s.camera.camera();
+  Camera camera = s.camera.camera();
   bool changed = false;
   changed |= ImGui::InputScalarN("position", ImGuiDataType_Double, &camera.eye, 3, nullptr, nullptr, "%.1f",
                                  ImGuiInputTextFlags_EnterReturnsTrue);

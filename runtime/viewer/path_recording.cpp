@@ -28,7 +28,7 @@ double next_keyframe_time(const render::CameraPath& path, double step) {
   return path.keyframes.empty() ? 0.0 : path.keyframes.back().time + step;
 }
 
-void add_keyframe(render::CameraPath& path, const render::CameraSpec& camera, double time) {
+void add_keyframe(render::CameraPath& path, const Camera& camera, double time) {
   if (!std::isfinite(time) || time < 0) throw std::invalid_argument("a keyframe time is seconds ≥ 0, got " + seconds_text(time));
   if (!path.keyframes.empty() && !(time > path.keyframes.back().time))
     throw std::invalid_argument("keyframe times must increase: " + seconds_text(time) + " does not come after the last keyframe's " +

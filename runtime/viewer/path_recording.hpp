@@ -28,7 +28,7 @@ double next_keyframe_time(const render::CameraPath& path, double step);
 // the time does not come after the last keyframe or the path would no longer save (the up vector
 // turns by 180°, the spline passes the eye through the target, too many frames): a recording is
 // always one that `render --path` accepts.
-void add_keyframe(render::CameraPath& path, const render::CameraSpec& camera, double time);
+void add_keyframe(render::CameraPath& path, const Camera& camera, double time);
 
 // Time of frame `frame` (k / fps). Throws std::invalid_argument when there is no path or the
 // frame lies past its last.

@@ -59,8 +59,8 @@ void expect_no_more(std::string_view rest, std::string_view command) {
 // against either is well formed; one that fails against both is wrong whatever camera it meets
 // (bad syntax, pos = at, fov out of range).
 void check_camera_syntax(const std::string& spec) {
-  const render::CameraSpec a{};
-  render::CameraSpec b;
+  const Camera a{};
+  Camera b;
   b.eye = {-311.0, 517.0, 1931.0};
   b.at = {7.0, -11.0, 13.0};
   b.up = {0.3, 0.5, 0.8};

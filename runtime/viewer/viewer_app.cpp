@@ -43,10 +43,6 @@ std::optional<double> centre_depth(const render::Frame& frame) {
   return double(hit.depth);
 }
 
-bool same_camera(const render::CameraSpec& a, const render::CameraSpec& b) {
-  return a.eye == b.eye && a.at == b.at && a.up == b.up && a.fov_degrees == b.fov_degrees;
-}
-
 std::string timestamped_name() {
   const std::time_t now = std::time(nullptr);
   char name[64];
@@ -323,9 +319,9 @@ private:
         state_.touch();
       }
       const std::uint64_t before_panel = state_.version;
-      const render::CameraSpec camera_before_panel = state_.camera.camera();
+      const Camera camera_before_panel = state_.camera.camera();
       draw_panel(state_, panel_context());
-      if (state_.path.play_time && !same_camera(camera_before_panel, state_.camera.camera())) {
+      if (state_.path.play_time && camera_before_panel != state_.camera.camera()) {
         stop_playback(state_);  // an edit in the camera section is camera input too
         state_.status = "path playback stopped by a camera edit";
       }

@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "runtime/render_session.hpp"
+#include "runtime/session/session.hpp"
 
 namespace nano::viewer {
 

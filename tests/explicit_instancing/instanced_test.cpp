@@ -48,10 +48,8 @@ std::vector<gpu::Camera> views(std::uint32_t size, std::size_t close_views) {
   Session& s = session();
   std::vector<gpu::Camera> cameras{render::package_camera(s.package).to_gpu(size, size)};
   const oracle::ExplicitScene oracle_scene(s.package);
-  for (const oracle::VerifyCamera& v : oracle::verify_cameras(s.package, oracle_scene, close_views)) {
-    render::CameraSpec spec{v.eye, v.at, v.up, v.fov_degrees};
-    cameras.push_back(spec.to_gpu(size, size));
-  }
+  for (const oracle::VerifyCamera& v : oracle::verify_cameras(s.package, oracle_scene, close_views))
+    cameras.push_back(v.view.to_gpu(size, size));
   return cameras;
 }
 

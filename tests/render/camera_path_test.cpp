@@ -27,7 +27,7 @@ json sample_json() {
 
 CameraPath sample() { return parse_camera_path(sample_json(), "path.json"); }
 
-double distance(const CameraSpec& a, const CameraSpec& b) {
+double distance(const Camera& a, const Camera& b) {
   return glm::length(a.eye - b.eye) + glm::length(a.at - b.at) + glm::length(glm::normalize(a.up) - glm::normalize(b.up)) +
          std::abs(a.fov_degrees - b.fov_degrees);
 }
@@ -57,7 +57,7 @@ TEST(CameraPath, FrameCountSurvivesRounding) {
 TEST(CameraPath, ExactAtKeyframes) {
   const CameraPath p = sample();
   for (const CameraKeyframe& k : p.keyframes) {
-    const CameraSpec c = camera_at(p, k.time);
+    const Camera c = camera_at(p, k.time);
     EXPECT_EQ(c.eye, k.camera.eye);
     EXPECT_EQ(c.at, k.camera.at);
     EXPECT_EQ(c.up, k.camera.up);
@@ -92,7 +92,7 @@ TEST(CameraPath, SmoothEyeAndTarget) {
   const double h = 1e-6;
   for (std::size_t i = 1; i + 1 < p.keyframes.size(); ++i) {
     const double t = p.keyframes[i].time;
-    const CameraSpec c = camera_at(p, t), before = camera_at(p, t - h), after = camera_at(p, t + h);
+    const Camera c = camera_at(p, t), before = camera_at(p, t - h), after = camera_at(p, t + h);
     const glm::dvec3 eye_left = (c.eye - before.eye) / h, eye_right = (after.eye - c.eye) / h;
     const glm::dvec3 at_left = (c.at - before.at) / h, at_right = (after.at - c.at) / h;
     const double speed = glm::length(eye_left) + glm::length(at_left);
@@ -111,7 +111,7 @@ TEST(CameraPath, SmoothEyeAndTarget) {
 TEST(CameraPath, UpIsUnitAndFovBetweenKeys) {
   const CameraPath p = sample();
   for (double t = 0.013; t <= p.duration(); t += 0.05) {  // between keys: keys keep their own up
-    const CameraSpec c = camera_at(p, t);
+    const Camera c = camera_at(p, t);
     EXPECT_NEAR(glm::length(c.up), 1.0, 1e-12);
     EXPECT_GE(c.fov_degrees, 30 - 1e-12);
     EXPECT_LE(c.fov_degrees, 60 + 1e-12);
@@ -123,7 +123,7 @@ TEST(CameraPath, TwoKeyframesMoveLinearly) {
     {"time": 0, "position": [0, 0, 100], "look_at": [0, 0, 0]}, {"time": 4, "position": [40, 0, 100], "look_at": [40, 0, 0]}]})"),
                                          "p.json");
   EXPECT_EQ(p.fps, 30);  // the default
-  const CameraSpec c = camera_at(p, 1);
+  const Camera c = camera_at(p, 1);
   EXPECT_NEAR(c.eye.x, 10, 1e-12);
   EXPECT_NEAR(c.at.x, 10, 1e-12);
 }

@@ -17,6 +17,7 @@
 namespace {
 
 using namespace nano::render;
+using nano::Camera;
 
 TEST(MortonOrder, IsAPermutationThatKeepsNeighboursTogether) {
   // Boxes on a 16×16×16 lattice, shuffled: after sorting, consecutive boxes are mostly lattice
@@ -46,20 +47,20 @@ TEST(MortonOrder, IsAPermutationThatKeepsNeighboursTogether) {
   EXPECT_TRUE(morton_order({}).empty());
 }
 
-TEST(CameraSpec, ParsesKeysInAnyOrderAndKeepsTheRest) {
-  CameraSpec base;
-  const CameraSpec c = parse_camera("fov=30;pos=1,2,3;at=4,5,6", base);
+TEST(Camera, ParsesKeysInAnyOrderAndKeepsTheRest) {
+  Camera base;
+  const Camera c = parse_camera("fov=30;pos=1,2,3;at=4,5,6", base);
   EXPECT_EQ(c.eye, glm::dvec3(1, 2, 3));
   EXPECT_EQ(c.at, glm::dvec3(4, 5, 6));
   EXPECT_EQ(c.up, base.up);
   EXPECT_EQ(c.fov_degrees, 30);
-  const CameraSpec again = parse_camera(c.to_string());
+  const Camera again = parse_camera(c.to_string());
   EXPECT_EQ(again.eye, c.eye);
   EXPECT_EQ(again.at, c.at);
   EXPECT_DOUBLE_EQ(again.fov_degrees, c.fov_degrees);
 }
 
-TEST(CameraSpec, RejectsWhatCannotBeACamera) {
+TEST(Camera, RejectsWhatCannotBeACamera) {
   EXPECT_THROW(parse_camera("pos=1,2"), std::invalid_argument);
   EXPECT_THROW(parse_camera("pos=1,2,3,4"), std::invalid_argument);
   EXPECT_THROW(parse_camera("zoom=2"), std::invalid_argument);
@@ -69,9 +70,9 @@ TEST(CameraSpec, RejectsWhatCannotBeACamera) {
   EXPECT_THROW(parse_camera("pos=nan,0,0"), std::invalid_argument);
 }
 
-TEST(CameraSpec, PixelRaysFollowTheDocumentedConvention) {
+TEST(Camera, PixelRaysFollowTheDocumentedConvention) {
   // fov 90°, 2×2 pixels: pixel (0, 0) is top-left, so its ray goes left (−right) and up.
-  CameraSpec c;
+  Camera c;
   c.eye = {0, 0, 0}, c.at = {0, 0, -1}, c.up = {0, 1, 0}, c.fov_degrees = 90;
   const nano::gpu::Camera cam = c.to_gpu(2, 2);
   const glm::vec3 d = nano::gpu::camera_ray_direction(cam, 0, 0);

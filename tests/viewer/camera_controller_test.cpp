@@ -10,8 +10,8 @@
 namespace nano::viewer {
 namespace {
 
-render::CameraSpec spec(glm::dvec3 eye, glm::dvec3 at) {
-  render::CameraSpec c;
+Camera spec(glm::dvec3 eye, glm::dvec3 at) {
+  Camera c;
   c.eye = eye;
   c.at = at;
   c.up = {0, 1, 0};

@@ -12,13 +12,13 @@
 namespace nano::viewer {
 namespace {
 
-render::CameraSpec camera_at_eye(const glm::dvec3& eye) {
-  render::CameraSpec c;
+Camera camera_at_eye(const glm::dvec3& eye) {
+  Camera c;
   c.eye = eye;
   return c;
 }
 
-ViewerState make_state() { return ViewerState(CameraController(render::CameraSpec{}, 1000), render::RenderSettings{}); }
+ViewerState make_state() { return ViewerState(CameraController(Camera{}, 1000), render::RenderSettings{}); }
 
 TEST(PathRecording, KeyframeTimesFollowTheStep) {
   render::CameraPath path;
@@ -36,7 +36,7 @@ TEST(PathRecording, RejectedKeyframesLeaveThePathAlone) {
   EXPECT_THROW(add_keyframe(path, camera_at_eye({0, 0, 800}), 1), std::invalid_argument);
   EXPECT_THROW(add_keyframe(path, camera_at_eye({0, 0, 800}), -1), std::invalid_argument);
   EXPECT_THROW(add_keyframe(path, camera_at_eye({0, 0, 800}), std::nan("")), std::invalid_argument);
-  render::CameraSpec flipped = camera_at_eye({0, 0, 800});
+  Camera flipped = camera_at_eye({0, 0, 800});
   flipped.up = {0, -1, 0};
   EXPECT_THROW(add_keyframe(path, flipped, 2), std::invalid_argument);
   EXPECT_EQ(path.keyframes.size(), 1u);

@@ -16,7 +16,7 @@ namespace {
 
 class FakeHost : public ScriptHost {
 public:
-  FakeHost() : state_(CameraController(render::CameraSpec{}, 1000), render::RenderSettings{}) {}
+  FakeHost() : state_(CameraController(Camera{}, 1000), render::RenderSettings{}) {}
   ViewerState& state() override { return state_; }
   void render_frames(std::uint32_t count) override {
     frames += count;
@@ -137,7 +137,7 @@ TEST(ScriptRunner, RecordsSavesLoadsAndShowsPathFrames) {
   run("path load " + file + "\npath frame 1\n", host, out);
   ASSERT_EQ(s.path.path.keyframes.size(), 3u);
   // Frame 1 is at 1/30 s: the camera and the effect time render --path --frames 1:1 uses.
-  const render::CameraSpec expected = render::camera_at(saved, 1.0 / 30);
+  const Camera expected = render::camera_at(saved, 1.0 / 30);
   EXPECT_EQ(s.camera.camera().eye, expected.eye);
   EXPECT_EQ(s.camera.camera().at, expected.at);
   EXPECT_EQ(s.camera.camera().fov_degrees, expected.fov_degrees);

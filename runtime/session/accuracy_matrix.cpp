@@ -1,4 +1,4 @@
-#include "runtime/bench/accuracy_matrix.hpp"
+#include "runtime/session/accuracy_matrix.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include "runtime/bench/frame_stats.hpp"
 #include "runtime/oracle/oracle_render.hpp"
 #include "runtime/oracle/render_compare.hpp"
-#include "runtime/render_session.hpp"
+#include "runtime/session/session.hpp"
 
 namespace nano::bench {
 namespace {

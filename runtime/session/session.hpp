@@ -1,6 +1,8 @@
 #pragma once
-// What `render`, `verify` and `bench` share: a package opened and validated BEFORE any GPU work
-// (a package that fails validation never reaches the device), the Vulkan device, the scene on it.
+// The runtime session: what the commands (`render`, `verify`, `pick`, `bench`) and the viewer share —
+// a package opened and validated BEFORE any GPU work (a package that fails validation never reaches
+// the device), the Vulkan device, the scene on it, and the settings the options describe. No
+// command-line parsing here: runtime/cli/cli_options.hpp registers these options with CLI11.
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -17,14 +19,11 @@
 #include "runtime/vk/device.hpp"
 #include "runtime/vk/instance.hpp"
 
-namespace CLI { class App; }
-
 namespace nano::view {
 
 // The variant options `render`, `verify` and `bench` share: --shell, --prism, --levels.
 struct VariantOptions {
   std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep", precision = "two-float-eye";
-  void add_to(CLI::App& command);
   // Throw InputError naming the option whose value is not one of its choices.
   render::SceneOptions scene_options() const;
   render::RenderSettings render_settings() const;
@@ -47,14 +46,13 @@ struct EffectOptions {
   bool no_scene_effects = false;
   std::uint32_t ao_rays = 0;  // 0: the scene's (or 8)
   double ao_radius = 0;       // 0: the scene's (or 40 Å)
-  void add_to(CLI::App& command);
   // Throws InputError naming the option that does not parse.
   render::EffectSettings settings(const format::Package& package) const;
 };
 
 // The camera a command's --camera option names: keys it leaves out (or all, when empty) keep the
 // package's camera. Throws InputError naming --camera when the text does not parse.
-render::CameraSpec camera_option(const format::Package& package, const std::string& text);
+Camera camera_option(const format::Package& package, const std::string& text);
 
 // What the effects change for the CPU oracle, as the renderer applies them: moved instances and
 // jittered copies (the scene) and clipped atoms (the render options). AO and shadows change colours

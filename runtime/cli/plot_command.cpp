@@ -11,7 +11,7 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "runtime/bench/svg_plot.hpp"
-#include "runtime/commands.hpp"
+#include "runtime/cli/commands.hpp"
 
 namespace nano::view {
 

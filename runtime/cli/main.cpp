@@ -1,6 +1,6 @@
 // nanoview: maps a .nup package into Vulkan and renders it with nested ray queries.
 #include "common/run_cli.hpp"
-#include "runtime/commands.hpp"
+#include "runtime/cli/commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"nanoview: renders, validates and benchmarks Nanouniverse packages (.nup)", "nanoview"};

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "runtime/commands.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/vk/device_report.hpp"
 #include "runtime/vk/device_selection.hpp"
 #include "runtime/vk/error.hpp"

@@ -18,19 +18,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "runtime/cli/cli_options.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
-#include "runtime/bench/accuracy_matrix.hpp"
+#include "runtime/session/accuracy_matrix.hpp"
 #include "runtime/bench/frame_stats.hpp"
 #include "runtime/bench/svg_plot.hpp"
-#include "runtime/commands.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/oracle/explicit_scene.hpp"
 #include "runtime/oracle/verify_cameras.hpp"
 #include "runtime/explicit_instancing/explicit_vs_virtual.hpp"
 #include "runtime/render/camera_path.hpp"
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/renderer.hpp"
-#include "runtime/render_session.hpp"
+#include "runtime/session/session.hpp"
 
 namespace nano::view {
 namespace {
@@ -49,8 +50,8 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 // The cameras of the timed frames: the path's frames, or one turn about the target's up axis.
-std::vector<render::CameraSpec> frame_cameras(const Options& o, const render::CameraSpec& start, unsigned count) {
-  std::vector<render::CameraSpec> cameras;
+std::vector<Camera> frame_cameras(const Options& o, const Camera& start, unsigned count) {
+  std::vector<Camera> cameras;
   if (!o.path.empty()) {
     const render::CameraPath path = render::read_camera_path(o.path);
     const std::uint64_t n = std::min<std::uint64_t>(path.frame_count(), count);
@@ -63,7 +64,7 @@ std::vector<render::CameraSpec> frame_cameras(const Options& o, const render::Ca
     const glm::dvec3 r = start.eye - start.at;
     // Rodrigues: r turned by `angle` about `axis`.
     const glm::dvec3 turned = r * std::cos(angle) + glm::cross(axis, r) * std::sin(angle) + axis * glm::dot(axis, r) * (1 - std::cos(angle));
-    render::CameraSpec c = start;
+    Camera c = start;
     c.eye = start.at + turned;
     cameras.push_back(c);
   }
@@ -92,16 +93,16 @@ nlohmann::ordered_json memory_json(const render::MemoryReport& m) {
 
 void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
-  const render::CameraSpec start = camera_option(session.package, o.camera);
+  const Camera start = camera_option(session.package, o.camera);
   render::RenderSettings settings = o.variant.render_settings();
   settings.effects = o.effect_options.settings(session.package);
   settings.depth_cue = render::depth_cue_for(start);
   render::Renderer renderer(session.device, *session.scene, settings);
-  const std::vector<render::CameraSpec> cameras = frame_cameras(o, start, o.frames ? o.frames : 24);
+  const std::vector<Camera> cameras = frame_cameras(o, start, o.frames ? o.frames : 24);
   renderer.render(cameras.front().to_gpu(w, h));  // warm-up: the first dispatch compiles the pipeline
   std::vector<double> seconds;
   std::uint64_t molecules = 0, atoms = 0;
-  for (const render::CameraSpec& c : cameras) {
+  for (const Camera& c : cameras) {
     const render::Frame f = renderer.render(c.to_gpu(w, h));
     seconds.push_back(f.seconds);
     const auto [m, a] = on_screen(session.package, f.hits);
@@ -145,7 +146,7 @@ struct EffectVariant {
 // Every effect on its own, with the scene's parameters or EffectSettings' defaults (8 AO rays of
 // 40 Å, 5° jitter at 1 Hz), and a cut-away plane through the target when the scene clips nothing.
 std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, const render::EffectSettings& scene,
-                                           const render::CameraSpec& camera) {
+                                           const Camera& camera) {
   render::EffectSettings off;
   off.time = 1.0;
   render::EffectSettings with = scene;
@@ -183,7 +184,7 @@ std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, c
 void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
   const unsigned rounds = o.frames ? o.frames : 5;
-  const render::CameraSpec camera = camera_option(session.package, o.camera);
+  const Camera camera = camera_option(session.package, o.camera);
   render::RenderSettings base = o.variant.render_settings();
   base.depth_cue = render::depth_cue_for(camera);
   const std::vector<EffectVariant> variants = effect_variants(base, render::package_effects(session.package), camera);
@@ -221,11 +222,8 @@ void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json
   // The verify views: chosen so the oracle can resolve them, the hard cases first.
   const oracle::ExplicitScene scene(session.package);
   std::vector<gpu::Camera> cameras;
-  for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o.matrix_cameras)) {
-    render::CameraSpec spec;
-    spec.eye = vc.eye, spec.at = vc.at, spec.up = vc.up, spec.fov_degrees = vc.fov_degrees;
-    cameras.push_back(spec.to_gpu(w, h));
-  }
+  for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o.matrix_cameras))
+    cameras.push_back(vc.view.to_gpu(w, h));
   if (o.variant.shell != "adaptive-overlap" || o.variant.levels != "3+rep" || o.variant.prism != "exact")
     throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
   const std::vector<bench::MatrixVariant> variants = bench::matrix_variants(o.variant.render_settings(), session.package);
@@ -250,7 +248,7 @@ void run_explicit(const Options& o, RenderSession& session, nlohmann::ordered_js
   const auto [w, h] = parse_size(o.size.empty() ? "128x128" : o.size);
   const unsigned rounds = o.frames ? o.frames : 3;
   std::vector<gpu::Camera> cameras;
-  for (const render::CameraSpec& c : frame_cameras(o, camera_option(session.package, o.camera), 4)) cameras.push_back(c.to_gpu(w, h));
+  for (const Camera& c : frame_cameras(o, camera_option(session.package, o.camera), 4)) cameras.push_back(c.to_gpu(w, h));
   const instanced::ExplicitVsVirtual r =
       instanced::compare_explicit_and_virtual(session.device, session.package, *session.scene, cameras, rounds);
   out["size"] = {w, h};
@@ -281,8 +279,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--matrix-cameras", o->matrix_cameras, "verify views of the matrix")->capture_default_str()->check(CLI::Range(1u, 16u));
   cmd->add_option("--markdown", o->markdown, "with --matrix: write the table as Markdown");
   cmd->add_option("--plot", o->plot, "with --matrix: write error against time as SVG");
-  o->variant.add_to(*cmd);
-  o->effect_options.add_to(*cmd);
+  add_variant_options(*cmd, o->variant);
+  add_effect_options(*cmd, o->effect_options);
   cmd->callback([o] {
     if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) > 1)
       throw InputError("--effects/--matrix/--explicit", "", "choose one mode");

@@ -7,16 +7,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "runtime/cli/cli_options.hpp"
 #include "common/error.hpp"
 #include "format/validator.hpp"
-#include "runtime/commands.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/oracle/oracle_render.hpp"
 #include "runtime/render/animation.hpp"
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/effects.hpp"
 #include "runtime/render/pick_info.hpp"
 #include "runtime/render/renderer.hpp"
-#include "runtime/render_session.hpp"
+#include "runtime/session/session.hpp"
 
 namespace nano::view {
 
@@ -39,8 +40,8 @@ void add_pick_command(CLI::App& app) {
   cmd->add_flag("--oracle", o->oracle,
                 "trace the pixel with the CPU oracle (explicit instancing, no device needed) instead of the GPU; "
                 "the variant options then do not apply, the effect options do");
-  o->variant.add_to(*cmd);
-  o->effects.add_to(*cmd);
+  add_variant_options(*cmd, o->variant);
+  add_effect_options(*cmd, o->effects);
   cmd->callback([o] {
     const auto [w, h] = parse_size(o->size);
     if (o->x >= w || o->y >= h)

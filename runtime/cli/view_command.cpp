@@ -3,8 +3,9 @@
 #include <memory>
 #include <string>
 
+#include "runtime/cli/cli_options.hpp"
 #include "common/error.hpp"
-#include "runtime/commands.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/viewer/script.hpp"
 #include "runtime/viewer/viewer_app.hpp"
 
@@ -33,8 +34,8 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--ao-samples", o->viewer.ao_samples, "ambient-occlusion frames averaged while the camera rests")
       ->check(CLI::Range(1u, 4096u))
       ->capture_default_str();
-  o->viewer.variant.add_to(*cmd);
-  o->viewer.effects.add_to(*cmd);
+  add_variant_options(*cmd, o->viewer.variant);
+  add_effect_options(*cmd, o->viewer.effects);
   cmd->callback([o] {
     if (!o->size.empty()) o->viewer.size = parse_size(o->size);
     const int status = viewer::run_viewer(o->viewer);

@@ -1,28 +1,13 @@
-#include "runtime/render_session.hpp"
+#include "runtime/session/session.hpp"
 
 #include <cmath>
 #include <cstdio>
-
-#include <CLI/CLI.hpp>
 
 #include "common/error.hpp"
 #include "format/validator.hpp"
 #include "runtime/render/animation.hpp"
 
 namespace nano::view {
-
-void VariantOptions::add_to(CLI::App& command) {
-  command.add_option("--shell", shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
-  command.add_option("--prism", prism, "exact (ray-prism with bilinear walls) | aabb (the prism's box only)")
-      ->capture_default_str();
-  command.add_option("--levels", levels, "3+rep (µLAS, repLAS, mLAS, nLAS) | 3 (every replication slot queried) | 2 (membrane atoms directly in "
-                  "the tile BLASes, placed in tile space: the paper's two-level design)")
-      ->capture_default_str();
-  command.add_option("--precision", precision,
-                     "two-float-eye (the eye enters compartment space as a double-computed float pair) | camera-relative "
-                     "(float transform of the eye) | world (world-space µLAS, plain float)")
-      ->capture_default_str();
-}
 
 render::SceneOptions VariantOptions::scene_options() const {
   render::SceneOptions o;
@@ -49,17 +34,6 @@ render::RenderSettings VariantOptions::render_settings() const {
   s.replication_las = levels == "3+rep";
   s.two_level = levels == "2";
   return s;
-}
-
-void EffectOptions::add_to(CLI::App& command) {
-  command.add_option("--clip-plane", clip_planes, "keep points with n·p + d ≥ 0: \"nx,ny,nz,d\" (world Å; repeatable, ≤ 8)");
-  command.add_option("--clip-box", clip_box, "keep points inside \"x0,y0,z0,x1,y1,z1\" (world Å)");
-  command.add_option("--time", time, "seconds: proxy animation and jitter are evaluated at this time")->capture_default_str();
-  command.add_option("--effect", on, "turn an effect on: clipping, animation, jitter, ao, shadows (repeatable)");
-  command.add_option("--no-effect", off, "turn an effect off (repeatable)");
-  command.add_flag("--no-scene-effects", no_scene_effects, "start with every effect off instead of the scene's");
-  command.add_option("--ao-rays", ao_rays, "ambient-occlusion rays per pixel (default: the scene's, or 8)");
-  command.add_option("--ao-radius", ao_radius, "ambient-occlusion ray length, Å (default: the scene's, or 40)");
 }
 
 render::EffectSettings EffectOptions::settings(const format::Package& package) const {
@@ -91,8 +65,8 @@ render::EffectSettings EffectOptions::settings(const format::Package& package) c
   return e;
 }
 
-render::CameraSpec camera_option(const format::Package& package, const std::string& text) {
-  const render::CameraSpec base = render::package_camera(package);
+Camera camera_option(const format::Package& package, const std::string& text) {
+  const Camera base = render::package_camera(package);
   if (text.empty()) return base;
   try {
     return render::parse_camera(text, base);

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "format/validator.hpp"
-#include "runtime/commands.hpp"
+#include "runtime/cli/commands.hpp"
 
 namespace nano::view {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "common/error.hpp"
 #include "format/validator.hpp"
-#include "runtime/commands.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/oracle/atom_export.hpp"
 
 namespace nano::view {

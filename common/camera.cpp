@@ -1,0 +1,51 @@
+#include "common/camera.hpp"
+
+#include <charconv>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace nano {
+
+void Camera::check() const {
+  const glm::dvec3 f = at - eye;
+  if (!(glm::length(f) > 0)) throw std::invalid_argument("camera: pos and at are the same point");
+  if (!(glm::length(glm::cross(f / glm::length(f), up)) > 1e-9 * glm::length(up)))
+    throw std::invalid_argument("camera: up is zero or parallel to the viewing direction");
+  if (!(fov_degrees > 0 && fov_degrees < 180)) throw std::invalid_argument("camera: fov must lie in (0, 180) degrees");
+}
+
+gpu::Camera Camera::to_gpu(std::uint32_t width, std::uint32_t height) const {
+  check();
+  if (width == 0 || height == 0) throw std::invalid_argument("camera: image size must be positive");
+  return gpu::camera_look_at(glm::vec3(eye), glm::vec3(at), glm::vec3(up), float(fov_degrees), width, height);
+}
+
+std::string Camera::to_string() const {
+  // Shortest text that reads back to the same doubles: a printed camera renders the same frame.
+  const auto number = [](double v) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+    return std::string(buffer, end);
+  };
+  const auto triple = [&](const glm::dvec3& v) { return number(v.x) + "," + number(v.y) + "," + number(v.z); };
+  return "pos=" + triple(eye) + ";at=" + triple(at) + ";up=" + triple(up) + ";fov=" + number(fov_degrees);
+}
+
+Camera camera_from_scene(const gpu::SceneSettings& scene) {
+  Camera c;
+  c.eye = glm::dvec3(glm::vec3(scene.camera_eye));
+  c.at = glm::dvec3(glm::vec3(scene.camera_target));
+  c.up = glm::dvec3(glm::vec3(scene.camera_up));
+  c.fov_degrees = glm::degrees(double(scene.camera_eye.w));
+  return c;
+}
+
+void store_camera(gpu::SceneSettings& scene, const Camera& camera) {
+  scene.camera_eye = glm::vec4(glm::vec3(camera.eye), static_cast<float>(glm::radians(camera.fov_degrees)));
+  scene.camera_target = glm::vec4(glm::vec3(camera.at), 0.f);
+  scene.camera_up = glm::vec4(glm::vec3(camera.up), 0.f);
+}
+
+}  // namespace nano

@@ -1,0 +1,36 @@
+#pragma once
+// The one camera of Nanouniverse, from the scene file to the shader: eye, target, up hint and
+// vertical field of view in degrees. The baker reads it from scene.json and stores it in the
+// package's scene record, render/verify/bench/the viewer take it from there or from --camera, and
+// to_gpu makes the shader's record (shaders/shared/camera.h). The scene record keeps the field of
+// view in radians: store_camera and camera_from_scene are the only conversions.
+#include <cstdint>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "shared/camera.h"
+#include "shared/package_records.h"
+
+namespace nano {
+
+struct Camera {
+  glm::dvec3 eye{0.0, 0.0, 1000.0};
+  glm::dvec3 at{0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fov_degrees = 40;  // vertical
+
+  // Throws std::invalid_argument unless eye ≠ at, up is not parallel to at − eye and 0 < fov < 180.
+  void check() const;
+  // The shader's camera for an image of width × height pixels (checks first).
+  gpu::Camera to_gpu(std::uint32_t width, std::uint32_t height) const;
+  // "pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG" with the shortest numbers that read back to the same doubles.
+  std::string to_string() const;
+  bool operator==(const Camera&) const = default;
+};
+
+// The package's scene record and the camera (field of view: radians there, degrees here).
+Camera camera_from_scene(const gpu::SceneSettings& scene);
+void store_camera(gpu::SceneSettings& scene, const Camera& camera);
+
+}  // namespace nano

@@ -1,0 +1,33 @@
+#include "runtime/cli/cli_options.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "runtime/session/session.hpp"
+
+namespace nano::view {
+
+void add_variant_options(CLI::App& command, VariantOptions& o) {
+  command.add_option("--shell", o.shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
+  command.add_option("--prism", o.prism, "exact (ray-prism with bilinear walls) | aabb (the prism's box only)")
+      ->capture_default_str();
+  command.add_option("--levels", o.levels, "3+rep (µLAS, repLAS, mLAS, nLAS) | 3 (every replication slot queried) | 2 (membrane atoms directly in "
+                  "the tile BLASes, placed in tile space: the paper's two-level design)")
+      ->capture_default_str();
+  command.add_option("--precision", o.precision,
+                     "two-float-eye (the eye enters compartment space as a double-computed float pair) | camera-relative "
+                     "(float transform of the eye) | world (world-space µLAS, plain float)")
+      ->capture_default_str();
+}
+
+void add_effect_options(CLI::App& command, EffectOptions& o) {
+  command.add_option("--clip-plane", o.clip_planes, "keep points with n·p + d ≥ 0: \"nx,ny,nz,d\" (world Å; repeatable, ≤ 8)");
+  command.add_option("--clip-box", o.clip_box, "keep points inside \"x0,y0,z0,x1,y1,z1\" (world Å)");
+  command.add_option("--time", o.time, "seconds: proxy animation and jitter are evaluated at this time")->capture_default_str();
+  command.add_option("--effect", o.on, "turn an effect on: clipping, animation, jitter, ao, shadows (repeatable)");
+  command.add_option("--no-effect", o.off, "turn an effect off (repeatable)");
+  command.add_flag("--no-scene-effects", o.no_scene_effects, "start with every effect off instead of the scene's");
+  command.add_option("--ao-rays", o.ao_rays, "ambient-occlusion rays per pixel (default: the scene's, or 8)");
+  command.add_option("--ao-radius", o.ao_radius, "ambient-occlusion ray length, Å (default: the scene's, or 40)");
+}
+
+}  // namespace nano::view

@@ -1,0 +1,16 @@
+#pragma once
+// The session's options (runtime/session/session.hpp) as command-line options of nanoview's
+// commands: registration only; what the values mean is the session's.
+namespace CLI { class App; }
+
+namespace nano::view {
+
+struct VariantOptions;
+struct EffectOptions;
+
+// --shell, --prism, --levels, --precision.
+void add_variant_options(CLI::App& command, VariantOptions& options);
+// --clip-plane, --clip-box, --time, --effect, --no-effect, --no-scene-effects, --ao-rays, --ao-radius.
+void add_effect_options(CLI::App& command, EffectOptions& options);
+
+}  // namespace nano::view

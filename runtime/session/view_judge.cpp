@@ -1,0 +1,67 @@
+#include "runtime/session/view_judge.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "runtime/oracle/atom_radii_judge.hpp"
+
+namespace nano::view {
+
+ViewJudge::ViewJudge(const format::Package& package, const oracle::ExplicitScene& scene, std::vector<glm::dvec4> clip)
+    : package_(package), scene_(scene), clip_(std::move(clip)), bounds_(oracle::scene_world_bounds(package, &scene)) {
+  for (const gpu::Atom& a : package.records<format::SectionKind::atoms>())
+    largest_atom_ = std::max(largest_atom_, double(a.centre_radius.w));
+  grazing_slack_ = largest_atom_ * std::sqrt(2 * kRadiusEpsilon);
+}
+
+ViewVerdict ViewJudge::judge(const std::string& view_name, const gpu::Camera& camera, const std::vector<gpu::PixelHit>& hits,
+                             std::uint32_t width, std::uint32_t height) const {
+  oracle::OracleRenderOptions options;
+  options.camera_name = view_name;
+  options.clip = clip_;
+  ViewVerdict v;
+  const std::vector<gpu::PixelHit> reference = oracle::oracle_render(scene_, package_, camera, options, &v.oracle);
+  v.comparison = oracle::compare_images(reference, hits, width, height);
+  if (v.comparison.agree != v.comparison.pixels) v.unexplained = unexplained_pixels(options, camera, reference, hits, width);
+  for (const gpu::PixelHit& p : reference) v.reference_hits += p.atom != gpu::kNoHit;
+  return v;
+}
+
+std::uint64_t ViewJudge::unexplained_pixels(const oracle::OracleRenderOptions& options, const gpu::Camera& camera,
+                                            const std::vector<gpu::PixelHit>& reference,
+                                            const std::vector<gpu::PixelHit>& hits, std::uint32_t width) const {
+  // Which differences a relative change of every radius by ±ε flips: grazing touches and ties.
+  oracle::OracleRenderOptions shrink = options, grow = options;
+  shrink.radius_scale = 1 - kRadiusEpsilon;
+  grow.radius_scale = 1 + kRadiusEpsilon;
+  const auto shrunk = oracle::oracle_render(scene_, package_, camera, shrink);
+  const auto grown = oracle::oracle_render(scene_, package_, camera, grow);
+  // Clip ties: an atom centre within ε of a plane is kept or removed by float rounding; the oracle
+  // with every half-space moved by ±ε says which pixels such ties decide.
+  std::vector<gpu::PixelHit> clipped_more, clipped_less;
+  if (!clip_.empty()) {
+    oracle::OracleRenderOptions more = options, less = options;
+    for (glm::dvec4& h : more.clip) h.w -= kClipEpsilon;
+    for (glm::dvec4& h : less.clip) h.w += kClipEpsilon;
+    clipped_more = oracle::oracle_render(scene_, package_, camera, more);
+    clipped_less = oracle::oracle_render(scene_, package_, camera, less);
+  }
+  std::uint64_t unexplained = 0;
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    if (oracle::classify(reference[i], hits[i]) == oracle::PixelDifference::none ||
+        oracle::explained_by_radius_change(hits[i], reference[i], shrunk[i], grown[i], grazing_slack_))
+      continue;
+    if (!clip_.empty() && (oracle::classify(clipped_more[i], hits[i]) == oracle::PixelDifference::none ||
+                           oracle::classify(clipped_less[i], hits[i]) == oracle::PixelDifference::none))
+      continue;
+    // Per-atom radii: two grazing touches on one ray, one shrunk and one grown.
+    const std::uint32_t x = std::uint32_t(i % width), y = std::uint32_t(i / width);
+    if (!oracle::explained_by_atom_radii(scene_, bounds_, glm::dvec3(glm::vec3(camera.position)),
+                                         glm::dvec3(gpu::camera_ray_direction(camera, x, y)), hits[i], kRadiusEpsilon,
+                                         largest_atom_, clip_))
+      ++unexplained;
+  }
+  return unexplained;
+}
+
+}  // namespace nano::view
