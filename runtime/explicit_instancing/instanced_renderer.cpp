@@ -24,7 +24,7 @@ vk::ComputePipelineDesc pipeline_desc() {
   std::vector<vk::DescriptorBinding> set{{gpu::NANO_IB_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
   for (std::uint32_t b = gpu::NANO_IB_TLAS + 1; b < gpu::NANO_INSTANCED_BINDING_COUNT; ++b)
     set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  desc.sets = {set};
+  desc.sets = {set};  // set NANO_DESCRIPTOR_SET, the only one
   return desc;
 }
 

@@ -47,7 +47,7 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   std::vector<vk::DescriptorBinding> set{{gpu::NANO_B_ULAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
   for (std::uint32_t b = gpu::NANO_B_ULAS + 1; b < gpu::NANO_RENDER_BINDING_COUNT; ++b)
     set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  desc.sets = {set};
+  desc.sets = {set};  // set NANO_DESCRIPTOR_SET, the only one
   desc.specialization.set_bool(gpu::NANO_SPEC_EXACT_PRISM, v.exact_prism);
   desc.specialization.set_bool(gpu::NANO_SPEC_REPLICATION_LAS, v.replication_las);
   desc.specialization.set_bool(gpu::NANO_SPEC_TWO_LEVEL, v.two_level);

@@ -18,14 +18,14 @@
 layout(local_size_x = NANO_WORKGROUP_SIZE, local_size_y = NANO_WORKGROUP_SIZE) in;
 
 // Records: shaders/shared/instanced_records.h; bindings: shaders/shared/bindings.h.
-layout(set = 0, binding = NANO_IB_TLAS) uniform accelerationStructureEXT tlas;
-layout(set = 0, binding = NANO_IB_COPIES, std430) readonly buffer Copies { InstancedCopy copies[]; };
-layout(set = 0, binding = NANO_IB_TYPES, std430) readonly buffer Types { InstancedType types[]; };
-layout(set = 0, binding = NANO_IB_ATOMS, std430) readonly buffer Atoms { vec4 atoms[]; };   // section atoms: centre, radius
-layout(set = 0, binding = NANO_IB_ORDERS, std430) readonly buffer Orders { uint orders[]; }; // BLAS primitive → atom index
-layout(set = 0, binding = NANO_IB_FRAME, std430) readonly buffer Frame { InstancedFrameRecord frame; };
-layout(set = 0, binding = NANO_IB_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
-layout(set = 0, binding = NANO_IB_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_TLAS) uniform accelerationStructureEXT tlas;
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_COPIES, std430) readonly buffer Copies { InstancedCopy copies[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_TYPES, std430) readonly buffer Types { InstancedType types[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_ATOMS, std430) readonly buffer Atoms { vec4 atoms[]; };   // section atoms: centre, radius
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_ORDERS, std430) readonly buffer Orders { uint orders[]; }; // BLAS primitive → atom index
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_FRAME, std430) readonly buffer Frame { InstancedFrameRecord frame; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
 
 vec3 srgb_from_linear(vec3 c) {
   c = clamp(c, 0.0, 1.0);

@@ -58,33 +58,33 @@ layout(constant_id = NANO_SPEC_AMBIENT_OCCLUSION) const bool kAmbientOcclusion =
 layout(constant_id = NANO_SPEC_SHADOWS) const bool kShadows = false;          // one shadow ray towards frame.light
 #endif
 
-layout(set = 0, binding = NANO_B_ULAS) uniform accelerationStructureEXT ulas;
-layout(set = 0, binding = NANO_B_MOLECULES, std430) readonly buffer Molecules { MoleculeType molecules[]; };
-layout(set = 0, binding = NANO_B_ATOMS, std430) readonly buffer Atoms { Atom atoms[]; };
-layout(set = 0, binding = NANO_B_SQUARES, std430) readonly buffer Squares { Tile2D squares[]; };
-layout(set = 0, binding = NANO_B_CUBES, std430) readonly buffer Cubes { Tile3D cubes[]; };
-layout(set = 0, binding = NANO_B_INSTANCES, std430) readonly buffer Instances { MoleculeInstance instances[]; };
-layout(set = 0, binding = NANO_B_RECIPES, std430) readonly buffer Recipes { Recipe recipes[]; };
-layout(set = 0, binding = NANO_B_RECIPE_INDICES, std430) readonly buffer RecipeIndices { uint recipe_indices[]; };
-layout(set = 0, binding = NANO_B_MESHES, std430) readonly buffer Meshes { Mesh meshes[]; };
-layout(set = 0, binding = NANO_B_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
-layout(set = 0, binding = NANO_B_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
-layout(set = 0, binding = NANO_B_UVS, std430) readonly buffer Uvs { vec2 uvs[]; };
-layout(set = 0, binding = NANO_B_TRIANGLES, std430) readonly buffer Triangles { Triangle triangles[]; };
-layout(set = 0, binding = NANO_B_SHELLS, std430) readonly buffer Shells { TriangleShell shells[]; };  // offsets of the shell mode
-layout(set = 0, binding = NANO_B_COMPARTMENTS, std430) readonly buffer Compartments { Compartment compartments[]; };
-layout(set = 0, binding = NANO_B_OCCUPANCY, std430) readonly buffer Occupancy { uint occupancy_words[]; };  // bytes, 4 a word
-layout(set = 0, binding = NANO_B_BOUNDARY_BOXES, std430) readonly buffer BoundaryBoxes { BoundaryBox boundary_boxes[]; };
-layout(set = 0, binding = NANO_B_MASK_WORDS, std430) readonly buffer MaskWords { uint mask_words[]; };
-layout(set = 0, binding = NANO_B_RENDER_COMPARTMENTS, std430) readonly buffer RenderCompartments { RenderCompartment render_compartments[]; };
-layout(set = 0, binding = NANO_B_RENDER_INSTANCES, std430) readonly buffer RenderInstances { RenderInstance render_instances[]; };
-layout(set = 0, binding = NANO_B_LEVELS, std430) readonly buffer Levels { RenderLevel levels[]; };
-layout(set = 0, binding = NANO_B_ORDERS, std430) readonly buffer Orders { uint orders[]; };
-layout(set = 0, binding = NANO_B_TRIANGLE_DROPS, std430) readonly buffer TriangleDropRanges { TriangleDrops triangle_drops[]; };
-layout(set = 0, binding = NANO_B_DROPPED_COPIES, std430) readonly buffer DroppedCopies { uint dropped_copies[]; };
-layout(set = 0, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
-layout(set = 0, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
-layout(set = 0, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ULAS) uniform accelerationStructureEXT ulas;
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_MOLECULES, std430) readonly buffer Molecules { MoleculeType molecules[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ATOMS, std430) readonly buffer Atoms { Atom atoms[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_SQUARES, std430) readonly buffer Squares { Tile2D squares[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_CUBES, std430) readonly buffer Cubes { Tile3D cubes[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_INSTANCES, std430) readonly buffer Instances { MoleculeInstance instances[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_RECIPES, std430) readonly buffer Recipes { Recipe recipes[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_RECIPE_INDICES, std430) readonly buffer RecipeIndices { uint recipe_indices[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_MESHES, std430) readonly buffer Meshes { Mesh meshes[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_UVS, std430) readonly buffer Uvs { vec2 uvs[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_TRIANGLES, std430) readonly buffer Triangles { Triangle triangles[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_SHELLS, std430) readonly buffer Shells { TriangleShell shells[]; };  // offsets of the shell mode
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COMPARTMENTS, std430) readonly buffer Compartments { Compartment compartments[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_OCCUPANCY, std430) readonly buffer Occupancy { uint occupancy_words[]; };  // bytes, 4 a word
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_BOUNDARY_BOXES, std430) readonly buffer BoundaryBoxes { BoundaryBox boundary_boxes[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_MASK_WORDS, std430) readonly buffer MaskWords { uint mask_words[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_RENDER_COMPARTMENTS, std430) readonly buffer RenderCompartments { RenderCompartment render_compartments[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_RENDER_INSTANCES, std430) readonly buffer RenderInstances { RenderInstance render_instances[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_LEVELS, std430) readonly buffer Levels { RenderLevel levels[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ORDERS, std430) readonly buffer Orders { uint orders[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_TRIANGLE_DROPS, std430) readonly buffer TriangleDropRanges { TriangleDrops triangle_drops[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_DROPPED_COPIES, std430) readonly buffer DroppedCopies { uint dropped_copies[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
 
 // The best hit so far. Ids follow PixelHit (shared/camera.h).
 float best_t;

@@ -11,6 +11,9 @@ NANO_BEGIN
 // Both pipelines dispatch square workgroups of this many invocations a side, one per pixel.
 NANO_CONST uint NANO_WORKGROUP_SIZE = 8u;
 
+// Each pipeline has one descriptor set (vk::ComputePipelineDesc::sets holds just it).
+NANO_CONST uint NANO_DESCRIPTOR_SET = 0u;
+
 // shaders/render/render.comp, set 0. Bindings below NANO_SCENE_BINDING_COUNT hold the scene (one
 // package section or derived buffer each: runtime/render/gpu_scene.cpp); the last three the frame.
 NANO_CONST uint NANO_B_ULAS = 0u;  // the µLAS; every other binding is a storage buffer
@@ -66,6 +69,7 @@ NANO_CONST uint NANO_IB_HITS = 6u;
 NANO_CONST uint NANO_IB_COLOURS = 7u;
 NANO_CONST uint NANO_INSTANCED_BINDING_COUNT = 8u;
 
+NANO_STATIC_ASSERT(NANO_DESCRIPTOR_SET == 0u, "a pipeline's first and only set is set 0");
 NANO_STATIC_ASSERT(NANO_B_DROPPED_COPIES + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
 NANO_STATIC_ASSERT(NANO_B_COLOURS + 1u == NANO_RENDER_BINDING_COUNT, "frame bindings follow the scene's");
 NANO_STATIC_ASSERT(NANO_IB_ORDERS + 1u == NANO_INSTANCED_SCENE_BINDING_COUNT, "instanced scene bindings are 0 .. count - 1");
