@@ -77,9 +77,10 @@ struct PackageView {
         triangle_drops(p.records<SectionKind::triangle_drops>()),
         dropped_copies(p.records<SectionKind::dropped_copies>()) {}
 
-  // True iff the baker dropped membrane copy `key` (membrane_copy_key) of triangle t: a binary
-  // search over the triangle's ascending keys, as the shader does.
-  bool membrane_copy_dropped(std::uint32_t t, std::uint32_t key) const {
+  // True iff the baker listed membrane copy `key` (membrane_copy_key) of triangle t (dropped, or an
+  // alternate shown: membrane_copy_listed_shows): a binary search over the triangle's ascending keys,
+  // as the shader does.
+  bool membrane_copy_listed(std::uint32_t t, std::uint32_t key) const {
     if (triangle_drops.empty()) return false;
     const auto keys = dropped_copies.subspan(triangle_drops[t].first, triangle_drops[t].count);
     return std::binary_search(keys.begin(), keys.end(), key);

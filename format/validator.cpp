@@ -172,6 +172,12 @@ private:
       zero(c, offsetof(record_t<K>, reserved0), t.reserved0);
       zero(c, offsetof(record_t<K>, reserved1), t.reserved1);
       if constexpr (K == SectionKind::tiles3d) {
+        // The core grid shows every instance of a cube: an alternate there would overlap its original.
+        const auto inst = p_.records<SectionKind::instances>();
+        for (std::uint64_t m = 0; m < t.instance_count; ++m)
+          if (inst[t.first_instance + m].flags & gpu::NANO_INSTANCE_ALTERNATE)
+            fail(c, offsetof(record_t<K>, first_instance), Rule::bad_value,
+                 "instance " + str(m) + " of the cube is an alternate; only membrane squares have alternates");
         zero(c, offsetof(gpu::Tile3D, face_colours_z) + 8, t.face_colours_z.z);
         zero(c, offsetof(gpu::Tile3D, face_colours_z) + 12, t.face_colours_z.w);
       }
@@ -189,7 +195,9 @@ private:
       finite(c, 16, m.position, "position");
       ordered_aabb(c, 32, m.aabb_min, m.aabb_max);
       index(c, 64, m.molecule_type, SectionKind::molecules, "molecule type");
-      zero(c, 68, m.reserved0);
+      if (m.flags != 0 && p_.header().version_minor < 4)
+        fail(c, 68, Rule::nonzero_reserved, "flags is reserved before format 2.4");
+      if (m.flags & ~gpu::NANO_INSTANCE_ALTERNATE) fail(c, 68, Rule::bad_value, "unknown instance flags");
       zero(c, 72, m.reserved1);
       zero(c, 76, m.reserved2);
     }

@@ -92,7 +92,8 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   baked.copies_by_molecule.assign(library.size(), 0);
   baked.dropped_by_molecule.assign(library.size(), 0);
   for (std::size_t i = 0; i < types.size(); ++i) {
-    baked.copies_by_molecule[tiles.molecule_of_type[i]] += shells.owned_by_type[i] - baked.pruning.dropped_by_type[i];
+    baked.copies_by_molecule[tiles.molecule_of_type[i]] +=
+        shells.owned_by_type[i] - baked.pruning.dropped_by_type[i] + baked.pruning.alternates_by_type[i];
     baked.dropped_by_molecule[tiles.molecule_of_type[i]] += baked.pruning.dropped_by_type[i];
   }
   baked.shells.resize(mapping.triangle_count());

@@ -41,6 +41,7 @@ gpu::MoleculeInstance make_instance(const tiles::Instance& instance, std::uint32
   record.aabb_min = glm::vec4(lo, 0.f);
   record.aabb_max = glm::vec4(hi, 0.f);
   record.molecule_type = molecule;
+  record.flags = instance.alternate ? gpu::NANO_INSTANCE_ALTERNATE : 0u;
   return record;
 }
 

@@ -24,6 +24,8 @@ struct Placed {
   std::uint32_t key = 0;     // membrane_copy_key(slot, instance)
   std::uint32_t type = 0;
   std::uint32_t island = 0;  // UV island of the triangle: copies of one island share one flat tiling
+  bool alternate = false;    // tiles::Instance::alternate: shown only if it fits where its original clashes
+  bool has_alternate = false;
   dvec3 flat{0.0};           // tile-space centre in the island's unwrapped tiling: cell·S + position
   dmat3 flat_rotation{1.0};
   dvec3 centre{0.0};         // compartment space
@@ -108,6 +110,7 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   PrunedMembrane out;
   out.dropped.assign(triangles, {});
   out.dropped_by_type.assign(types.size(), 0);
+  out.alternates_by_type.assign(types.size(), 0);
   if (triangles == 0 || types.empty()) return out;
 
   std::vector<tiles::CollisionShape> shapes;
@@ -191,6 +194,8 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
           p.key = key;
           p.type = m.type;
           p.island = island[t];
+          p.alternate = in.alternate;
+          p.has_alternate = in.has_alternate;
           p.flat = dvec3(m.cell.x * S + in.position.x, m.cell.y * S + in.position.y, in.position.z);
           p.flat_rotation = dmat3(glm::mat3_cast(in.rotation));
           p.centre = dvec3(m.transform.translation);
@@ -239,7 +244,7 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
     if (glm::dot(between, between) >= reach * reach) return;
     ++f.candidates;
     if (a.island == b.island && settings.flat_clearance > settings.clearance && !always_tested[a.type] &&
-        !always_tested[b.type]) {
+        !always_tested[b.type] && !a.alternate && !b.alternate) {
       const double slack = (double(settings.flat_clearance) - settings.clearance) * (smallest_atom[a.type] + smallest_atom[b.type]);
       if (relative_displacement(a, b, radius[b.type]) < slack) return;
     }
@@ -281,7 +286,10 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
     }
   }
 
-  // Greedy independent set: proteins (larger radius) first, then the copies with fewer clashes.
+  // Greedy independent set: proteins (larger radius) first, then the copies of the set proper (those
+  // without an alternate before those with one, which lose less when dropped), then the alternates
+  // (each only where what it stands in for was dropped), each group the copies with fewer clashes
+  // first. An alternate without a clash is shown: its original was dropped before.
   std::vector<std::vector<std::uint32_t>> conflicts(copies.size());
   for (const Found& f : found) {
     out.candidate_pairs += f.candidates;
@@ -296,6 +304,10 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   for (std::uint32_t i = 0; i < copies.size(); ++i)
     if (!conflicts[i].empty()) order.push_back(i);
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const bool large_a = radius[copies[a].type] > small_limit, large_b = radius[copies[b].type] > small_limit;
+    if (large_a != large_b) return large_a;
+    if (!large_a && copies[a].alternate != copies[b].alternate) return copies[b].alternate;
+    if (!large_a && copies[a].has_alternate != copies[b].has_alternate) return copies[b].has_alternate;
     if (radius[copies[a].type] != radius[copies[b].type]) return radius[copies[a].type] > radius[copies[b].type];
     if (conflicts[a].size() != conflicts[b].size()) return conflicts[a].size() < conflicts[b].size();
     return a < b;
@@ -310,7 +322,10 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
       }
   }
   for (std::uint32_t i = 0; i < copies.size(); ++i)
-    if (!kept[i]) {
+    if (copies[i].alternate && kept[i]) {
+      out.dropped[copies[i].triangle].push_back(copies[i].key);
+      ++out.alternates_by_type[copies[i].type];
+    } else if (!copies[i].alternate && !kept[i]) {
       out.dropped[copies[i].triangle].push_back(copies[i].key);
       ++out.dropped_by_type[copies[i].type];
     }
@@ -331,7 +346,7 @@ std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& prune
     mapping.for_each_owned_membrane_molecule(
         t,
         [&](const OwnedMolecule& m) {
-          if (m.type != type) return;
+          if (m.type != type || mapping.set().tiles[m.tile].instances[m.instance].alternate) return;
           const glm::ivec2 slot = m.cell - origin;
           const std::uint32_t key =
               gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + W * static_cast<std::uint32_t>(slot.y), m.instance);

@@ -7,6 +7,9 @@
 // atoms come closer than the clash rule allows, and drops as few copies as it can: a greedy
 // independent set that keeps proteins before lipids. The dropped copies are stored per triangle
 // (package sections triangle_drops / dropped_copies) and skipped by the oracle and the shader.
+// A Wang square may also carry alternates (tiles::Instance::alternate): another conformer at the
+// place of a copy the surface may push into a clash. They are tried after every other copy is
+// decided, and those that fit are listed with the drops and shown where their originals are not.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -43,8 +46,11 @@ struct PruningSettings {
 };
 
 struct PrunedMembrane {
-  std::vector<std::vector<std::uint32_t>> dropped;  // per triangle: ascending membrane_copy_key(slot, instance)
-  std::vector<std::uint64_t> dropped_by_type;       // indexed like the mapping's molecule types
+  // Per triangle, ascending membrane_copy_key(slot, instance) of the copies it drops and of the
+  // alternates it shows (gpu::membrane_copy_listed_shows): section dropped_copies.
+  std::vector<std::vector<std::uint32_t>> dropped;
+  std::vector<std::uint64_t> dropped_by_type;       // indexed like the mapping's molecule types; alternates not counted
+  std::vector<std::uint64_t> alternates_by_type;    // alternates shown, indexed likewise
   std::uint64_t owned_copies = 0;                   // every copy the triangles own, dropped or not
   bool whole_surface = false;                       // all owned copies checked, not only near seams
   std::uint64_t checked_copies = 0;                 // copies placed and tested against their neighbours

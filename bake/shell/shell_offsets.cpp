@@ -125,7 +125,7 @@ void shell_block(const MembraneMapping& mapping, const std::vector<double>& radi
         throw InputError("shell", "tile " + std::to_string(m.tile) + " instance " + std::to_string(m.instance),
                          "molecule type " + std::to_string(m.type) + " is not among the " +
                              std::to_string(type_count) + " types given");
-      ++totals.owned_by_type[m.type];
+      if (!mapping.set().tiles[m.tile].instances[m.instance].alternate) ++totals.owned_by_type[m.type];
       spheres.push_back({glm::dvec3(m.transform.translation), radius[m.type],
                          glm::dvec3(gpu::chart_barycentric(mapping.triangle(t).chart, m.uv))});
     });

@@ -22,7 +22,7 @@ float molecule_origin_radius(const tiles::MoleculeType& type);
 inline constexpr double kShellContainmentMargin = 0.01;
 
 struct ShellStats {
-  std::size_t owned_molecules = 0;           // summed over triangles
+  std::size_t owned_molecules = 0;           // summed over triangles, alternates included
   std::size_t triangles_with_molecules = 0;
   std::size_t grown_triangles = 0;           // the estimate failed verification and was grown
   int max_grow_iterations = 0;
@@ -35,8 +35,9 @@ struct ShellResult {
   std::vector<gpu::ShellOffsets> offsets;  // per triangle; zero for triangles owning nothing
   gpu::ShellOffsets fixed{0.f, 0.f, 0.f};  // fixed_offsets(offsets)
   ShellStats stats;
-  // Per molecule type (index into `types`): owned molecules summed over triangles, so a caller
-  // counting copies need not enumerate the membrane a second time.
+  // Per molecule type (index into `types`): owned molecules summed over triangles, alternates not
+  // counted (they show only where the pruning lists them), so a caller counting copies need not
+  // enumerate the membrane a second time.
   std::vector<std::size_t> owned_by_type;
 };
 

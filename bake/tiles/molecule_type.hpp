@@ -30,6 +30,13 @@ struct Instance {
   uint32_t type = 0;  // index into the molecule-type list the set was generated from
   glm::vec3 position{0.f};
   glm::quat rotation{1.f, 0.f, 0.f, 0.f};  // glm order (w, x, y, z)
+  // Stands in for the copy at its place when that one clashes on the real surface (squares only):
+  // it overlaps that copy by design, so the set's flat guarantee does not cover it, and the pruning
+  // shows it only where it fits (gpu::NANO_INSTANCE_ALTERNATE).
+  bool alternate = false;
+  // The layer gave this copy's place an alternate (kept unless a protein refuses it there): the
+  // pruning drops such a copy before one without.
+  bool has_alternate = false;
 };
 
 }  // namespace nano::tiles

@@ -194,7 +194,7 @@ public:
   // Decides every layer copy in every unit instance against the packed copies only (the layer is
   // clash-free with itself), then adds the kept ones. Returns kept copies per tile, per type.
   std::vector<double> lay(const FixedLayer& layer, SplitMix64& rng) {
-    std::vector<std::pair<size_t, Instance>> kept, refused;
+    std::vector<std::pair<size_t, Instance>> kept, refused, alternates;
     ClashRule rule = rule_;
     if (layer.clearance > 0.f) rule.clearance = layer.clearance;
     std::vector<double> per_tile(shapes_.size(), 0.0);
@@ -215,7 +215,11 @@ public:
       for (size_t a = 0; a < units_.size(); ++a) {
         if (units_[a].mask != mask) continue;
         if (!fits(a, local, kNone, rule, laid_through)) {
-          refused.emplace_back(a, local);
+          if (!copy.alternate) refused.emplace_back(a, local);
+          continue;
+        }
+        if (copy.alternate) {  // overlaps its original by design: added last, and no part of the density
+          alternates.emplace_back(a, local);
           continue;
         }
         kept.emplace_back(a, local);
@@ -232,7 +236,8 @@ public:
     // conformers of the same leaflet there, turned about the normal and moved away from the
     // protein, and keep the first that fits.
     std::vector<const Instance*> upper, lower;
-    for (const Instance& c : layer.copies) (c.position.z >= 0.f ? upper : lower).push_back(&c);
+    for (const Instance& c : layer.copies)
+      if (!c.alternate) (c.position.z >= 0.f ? upper : lower).push_back(&c);
     float layer_reach = 0.f;
     for (const Instance& c : layer.copies) layer_reach = std::max(layer_reach, shapes_[c.type].radius());
     for (const auto& [a, hole] : refused) {
@@ -269,6 +274,11 @@ public:
         per_tile[candidate.type] += units_[a].per_tile;
         break;
       }
+    }
+    for (const auto& [a, copy] : alternates) {
+      units_[a].copies.push_back(copy);
+      units_[a].spec_of.push_back(kLayerSpec);
+      track(a, copy);
     }
     const double measure = std::pow(static_cast<double>(S_), D_);
     for (double& v : per_tile) v /= measure;

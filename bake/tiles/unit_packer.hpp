@@ -62,7 +62,9 @@ struct PackerSettings {
 // side of z = 0 (the same leaflet), turned about z and moved up to 8 Å away from the refusing copy
 // (and 3 Å across), are tried in its place.
 struct FixedLayer {
-  std::vector<Instance> copies;  // x, y (and z for cubes) in [0, edge)
+  // x, y (and z for cubes) in [0, edge). Alternates (Instance::alternate) are kept where the packed
+  // copies leave them room, but never refilled, counted in the density or checked against the layer.
+  std::vector<Instance> copies;
   float band = 0.f;              // extent radius of any copy along the lattice axes, <= edge / 2
   // Atoms of a layer copy and of a packed copy stay >= clearance · (r1 + r2) apart (0: the
   // packer's clearance). A lipid packs closer against a protein than two proteins against each other.

@@ -134,6 +134,7 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   if (outer_taken > 1.0 + 1e-6 || inner_taken > 1.0 + 1e-6)
     throw InputError(what, "lipid mix", "the mixed species take more than all of a leaflet's places");
   SplitMix64 rng(mix64(seed ^ 0x11D1DC0FFEEull));
+  const bool rigid = surface.lateral_stretch == 0.f && surface.curvature == 0.f && surface.tilt == 0.f;
   FixedLayer layer;
   layer.clearance = patch.clearance;
   float largest = 0.f;
@@ -213,6 +214,7 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   std::vector<std::array<std::size_t, 9>> standing(layer.copies.size());
   for (std::size_t i = 0; i < layer.copies.size(); ++i) standing[i] = add_with_images_ids(layer.copies[i]);
   std::vector<char> taken(layer.copies.size(), 0);  // given to a mixed species
+  const std::vector<Instance> base_lipids = layer.copies;
   // Candidates for a place, best first: conformers of the species from the same leaflet at kSpins
   // turns, scored by how far their atoms stand from the base lipid's (the room that lipid proved
   // free): the closest shape is the likeliest to fit.
@@ -281,6 +283,18 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
           --wanted;
         }
       }
+    }
+  if (!rigid) return layer;  // only a membrane pruned on its whole surface can pick alternates
+  // A conformer of another species fits its place in the flat patch with no room to spare, and the
+  // surface's compression (the inner leaflet, a chart's corners) can push it into a neighbour: the
+  // place's base lipid, which proved the room free in an equilibrated patch, stays behind as its
+  // alternate, shown by the pruning where the conformer had to go.
+  for (std::size_t i = 0; i < taken.size(); ++i)
+    if (taken[i]) {
+      layer.copies[i].has_alternate = true;
+      Instance alternate = base_lipids[i];
+      alternate.alternate = true;
+      layer.copies.push_back(alternate);
     }
   return layer;
 }

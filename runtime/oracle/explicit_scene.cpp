@@ -333,7 +333,9 @@ struct ExplicitScene::Impl : format::PackageView {
             if (gpu::seam_drops(seam_edges, p0, p1, p2, gpu::chart_position(chart, uv_m),
                                 molecules[inst.molecule_type].aabb_min.w))
               continue;
-            if (membrane_copy_dropped(t, gpu::membrane_copy_key(std::uint32_t(slot), m))) continue;
+            if (!gpu::membrane_copy_listed_shows(membrane_copy_listed(t, gpu::membrane_copy_key(std::uint32_t(slot), m)),
+                                                 inst.flags))
+              continue;
             emit.copy.id.instance = m;
             emit.copy.number = emit.ip.base + (std::uint64_t{tl} * plan.membrane_slots + slot) * plan.square_instances + m;
             emit(placement, inst.molecule_type);

@@ -178,9 +178,10 @@ uint recipe_cell(uint recipe, ivec3 cell) {
   return recipe_indices[r.first_index + uint(w.x) + r.dims.x * (uint(w.y) + r.dims.y * uint(w.z))];
 }
 
-// True iff the baker dropped the copy `key` (membrane_copy_key) of the triangle: binary search over
-// its strictly ascending keys (the validator checks the order and the range).
-bool membrane_copy_dropped(MembraneTriangle mt, uint key) {
+// True iff the baker listed the copy `key` (membrane_copy_key) of the triangle (dropped, or an
+// alternate shown): binary search over its strictly ascending keys (the validator checks the order
+// and the range).
+bool membrane_copy_listed(MembraneTriangle mt, uint key) {
   uint lo = mt.drop_first;
   uint hi = mt.drop_first + mt.drop_count;
   while (lo < hi) {
@@ -223,7 +224,7 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
     if (!(t >= 0.0) || !(t < best_t)) continue;
     vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
     if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
-    if (membrane_copy_dropped(mt, membrane_copy_key(slot, m))) continue;
+    if (!membrane_copy_listed_shows(membrane_copy_listed(mt, membrane_copy_key(slot, m)), mi.flags)) continue;
     best_t = t;
     best.atom = a;
     best_type = mi.molecule_type;
@@ -272,7 +273,7 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
     Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, c.scales.w, mi.position.xyz, mi.rotation, uv_m);
     if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
     uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
-    if (membrane_copy_dropped(mt, membrane_copy_key(slot, m))) continue;
+    if (!membrane_copy_listed_shows(membrane_copy_listed(mt, membrane_copy_key(slot, m)), mi.flags)) continue;
     // mLAS-level trivial reject: the copy's bounding sphere wholly clipped.
     if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
     uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,

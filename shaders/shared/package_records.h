@@ -79,10 +79,16 @@ struct MoleculeInstance {
   vec4 aabb_min;   // xyz: tile-space AABB of the placed molecule; w: reserved
   vec4 aabb_max;
   uint molecule_type;  // index into section "molecules"
-  uint reserved0;
+  uint flags;          // NANO_INSTANCE_* bits; the others zero
   uint reserved1;
   uint reserved2;
 };
+
+// MoleculeInstance.flags: an alternate of a membrane square stands in for a neighbour copy the
+// surface may push into a clash (the base lipid of a place given to another species): it is shown
+// only by the triangles that list its key in "dropped_copies", the others showing the copy it
+// stands in for. Every other instance is shown unless listed.
+NANO_CONST uint NANO_INSTANCE_ALTERNATE = 1u;
 
 // Section "recipes": a 2D or 3D array of tile indices, x fastest, stored in "recipe_indices".
 struct Recipe {
@@ -126,7 +132,8 @@ struct TriangleShell {
 
 // Section "triangle_drops" (format 2.2, optional; parallel to "triangles" when present): the
 // membrane copies a triangle owns that the baker removed because, placed on the real surface, they
-// would clash with a kept copy (or stand where a compartment-level protein replaced them). Keys of
+// would clash with a kept copy (or stand where a compartment-level protein replaced them), and the
+// alternates (NANO_INSTANCE_ALTERNATE) it shows in their place. Keys of
 // section "dropped_copies" [first, +count), strictly ascending:
 // membrane_copy_key(slot, instance) = slot · 2^16 + instance, slot = sx + W·sy in the replication
 // area (W = the compartment's replication_width), instance < 2^16 within the slot's Wang square.
@@ -254,7 +261,7 @@ NANO_AT(Tile3D, reserved1, 60)
 NANO_PIN(MoleculeInstance, 80)
 NANO_AT(MoleculeInstance, rotation, 0) NANO_AT(MoleculeInstance, position, 16)
 NANO_AT(MoleculeInstance, aabb_min, 32) NANO_AT(MoleculeInstance, aabb_max, 48)
-NANO_AT(MoleculeInstance, molecule_type, 64) NANO_AT(MoleculeInstance, reserved0, 68)
+NANO_AT(MoleculeInstance, molecule_type, 64) NANO_AT(MoleculeInstance, flags, 68)
 NANO_AT(MoleculeInstance, reserved1, 72) NANO_AT(MoleculeInstance, reserved2, 76)
 NANO_PIN(Recipe, 32)
 NANO_AT(Recipe, dims, 0) NANO_AT(Recipe, first_index, 16) NANO_AT(Recipe, index_count, 20)

@@ -36,5 +36,11 @@ NANO_FN bool membrane_keeps_copy(NANO_IN(MembraneTriangle) tri, NANO_IN(vec2) uv
   return !seam_drops(tri.seam_edges, tri.p0, tri.p1, tri.p2, surface, radius);
 }
 
+// Whether a copy the triangle owns is shown, given whether its key is among the triangle's listed
+// keys (section dropped_copies): a listed instance is dropped, a listed alternate shown instead.
+NANO_FN bool membrane_copy_listed_shows(bool listed, uint instance_flags) {
+  return listed == ((instance_flags & NANO_INSTANCE_ALTERNATE) != 0u);
+}
+
 NANO_END
 #endif

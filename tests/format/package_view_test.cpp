@@ -34,17 +34,17 @@ TEST(PackageView, DroppedMembraneCopiesAreFoundPerTriangle) {
   int found = 0;
   for (std::uint32_t t = 0; t < 4; ++t)
     for (std::uint32_t slot = 0; slot < 9; ++slot)
-      for (std::uint32_t m = 0; m < 2; ++m) found += v.membrane_copy_dropped(t, key(slot, m));
+      for (std::uint32_t m = 0; m < 2; ++m) found += v.membrane_copy_listed(t, key(slot, m));
   EXPECT_EQ(found, 3);
-  EXPECT_TRUE(v.membrane_copy_dropped(1, key(0, 1)));
-  EXPECT_TRUE(v.membrane_copy_dropped(1, key(4, 0)));
-  EXPECT_TRUE(v.membrane_copy_dropped(3, key(8, 1)));
-  EXPECT_FALSE(v.membrane_copy_dropped(0, key(0, 1)));  // another triangle's key
+  EXPECT_TRUE(v.membrane_copy_listed(1, key(0, 1)));
+  EXPECT_TRUE(v.membrane_copy_listed(1, key(4, 0)));
+  EXPECT_TRUE(v.membrane_copy_listed(3, key(8, 1)));
+  EXPECT_FALSE(v.membrane_copy_listed(0, key(0, 1)));  // another triangle's key
   SampleScene none = make_sample_scene();
   none.triangle_drops.clear();
   none.dropped_copies.clear();
   const Package q = Package::from_bytes(build(none));
-  EXPECT_FALSE(PackageView(q).membrane_copy_dropped(1, key(0, 1)));
+  EXPECT_FALSE(PackageView(q).membrane_copy_listed(1, key(0, 1)));
 }
 
 TEST(PackageView, BoundingRadiusIsTheFarthestAtomSurfaceFromTheOrigin) {

@@ -30,7 +30,7 @@ auto fields(const gpu::Tile3D& t) {
   return std::tie(t.face_colours_xy, t.face_colours_z, t.size, t.first_instance, t.instance_count, t.reserved0, t.reserved1);
 }
 auto fields(const gpu::MoleculeInstance& m) {
-  return std::tie(m.rotation, m.position, m.aabb_min, m.aabb_max, m.molecule_type, m.reserved0, m.reserved1, m.reserved2);
+  return std::tie(m.rotation, m.position, m.aabb_min, m.aabb_max, m.molecule_type, m.flags, m.reserved1, m.reserved2);
 }
 auto fields(const gpu::Recipe& r) { return std::tie(r.dims, r.first_index, r.index_count, r.reserved0, r.reserved1); }
 auto fields(const gpu::Mesh& m) {

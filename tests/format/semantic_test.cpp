@@ -65,6 +65,10 @@ const Case kCases[] = {
      SectionKind::instances, 80 + 16},
     {"reserved instance member", [](SampleScene& s) { s.instances[3].reserved1 = 1; }, Rule::nonzero_reserved,
      SectionKind::instances, 3 * 80 + 72},
+    {"unknown instance flag", [](SampleScene& s) { s.instances[1].flags = 2; }, Rule::bad_value, SectionKind::instances,
+     80 + 68},
+    {"alternate in a Wang cube", [](SampleScene& s) { s.instances[3].flags = gpu::NANO_INSTANCE_ALTERNATE; },
+     Rule::bad_value, SectionKind::tiles3d, 48},
     {"tile instance range", [](SampleScene& s) { s.tiles2d[1].instance_count = 3; }, Rule::index_out_of_range,
      SectionKind::tiles2d, 48 + 32},
     {"negative tile size", [](SampleScene& s) { s.tiles3d[0].size.z = -1; }, Rule::bad_value, SectionKind::tiles3d, 32 + 8},
@@ -319,6 +323,28 @@ TEST(SemanticSmoothSurface, ShapeFactorInRangeFromFormat23On) {
 }
 
 // The valid counterpart of the seam cases: all six bits (edges 0-2, corners 3-5).
+// The valid counterpart of "alternate in a Wang cube": a membrane square may hold alternates.
+TEST(SemanticInstances, AlternatesInASquareAreValid) {
+  SampleScene s = make_sample_scene();
+  s.instances[0].flags = gpu::NANO_INSTANCE_ALTERNATE;
+  EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
+}
+
+// Format 2.4 gave MoleculeInstance.flags its meaning; an older package must hold 0 there.
+TEST(SemanticInstances, FlagsAreReservedBeforeFormat24) {
+  SampleScene s = make_sample_scene();
+  s.instances[0].flags = gpu::NANO_INSTANCE_ALTERNATE;
+  std::vector<std::byte> bytes = build(s);
+  put_le(bytes, 10, 2, 3);  // version 2.3
+  seal_header(bytes);
+  EXPECT_EQ(broken_rule(bytes), Rule::nonzero_reserved);
+  s.instances[0].flags = 0;
+  bytes = build(s);
+  put_le(bytes, 10, 2, 3);
+  seal_header(bytes);
+  EXPECT_EQ(broken_rule(bytes), std::nullopt);
+}
+
 TEST(SemanticSeams, AllSixBitsAreValid) {
   SampleScene s = make_sample_scene();
   for (auto& shell : s.triangle_shells) shell.seam_edges = 63;

@@ -8,6 +8,7 @@
 //  * the keys name exactly the dropped (slot, instance) of each triangle, ascending;
 //  * the result does not depend on the number of threads.
 #include <cmath>
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -279,3 +280,48 @@ TEST(MembranePruning, AlwaysTestedTypesAreNeverVouchedFor) {
 }
 
 }  // namespace
+
+// Alternates (tiles::Instance::alternate): here a thinner lipid at the place of every lipid. Each is
+// listed (shown) only where it fits among everything else shown; its original is dropped there
+// first, and no two shown copies clash (the brute-force check).
+TEST(MembranePruning, AlternatesShowOnlyWhereTheyFit) {
+  auto sc = dense(sphere_scene());
+  nano::tiles::MoleculeType thin = sc->types[0];
+  thin.name = "thin";
+  for (auto& a : thin.atoms) a.radius *= 0.5f;
+  sc->types.push_back(thin);
+  const std::uint32_t thin_type = std::uint32_t(sc->types.size() - 1);
+  for (auto& tile : sc->set.tiles) {
+    const std::size_t n = tile.instances.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (tile.instances[i].type != 0) continue;
+      tile.instances[i].has_alternate = true;
+      nano::tiles::Instance alternate = tile.instances[i];
+      alternate.type = thin_type;
+      alternate.alternate = true;
+      alternate.has_alternate = false;
+      tile.instances.push_back(alternate);
+    }
+  }
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  const PrunedMembrane p = nano::shell::prune_membrane(map, sc->mesh, sc->types, PruningSettings{}, 2);
+  ASSERT_TRUE(p.whole_surface);
+  const std::vector<Copy> all = owned_copies(map);
+  std::vector<Copy> shown;
+  std::size_t alternates_shown = 0, regular_dropped = 0;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> place;  // (triangle, key) -> index
+  for (std::size_t i = 0; i < all.size(); ++i) place[{all[i].triangle, all[i].key}] = i;
+  for (const Copy& c : all) {
+    const bool alternate = c.type == thin_type;
+    const bool listed = dropped(p, c);
+    if (nano::gpu::membrane_copy_listed_shows(listed, alternate ? nano::gpu::NANO_INSTANCE_ALTERNATE : 0u)) shown.push_back(c);
+    alternates_shown += alternate && listed;
+    regular_dropped += !alternate && listed;
+  }
+  EXPECT_GT(alternates_shown, 0u) << "the thin lipid fits where some lipids clash, or the test proves nothing";
+  EXPECT_LT(alternates_shown, regular_dropped + 1) << "an alternate shows only where its lipid was dropped";
+  EXPECT_EQ(p.alternates_by_type[thin_type], alternates_shown);
+  EXPECT_EQ(p.dropped_by_type[0] + p.dropped_by_type[1], regular_dropped);
+  EXPECT_EQ(p.dropped_by_type[thin_type], 0u);
+  EXPECT_EQ(clashes(shown, sc->types, 0.6).size(), 0u) << "shown copies clash";
+}

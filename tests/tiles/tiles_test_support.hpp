@@ -90,6 +90,9 @@ inline ExplicitTiling instantiate(const WangSet& set, const TilingRecipe& recipe
         const WangTile& tile = set.tiles[recipe.at(i, j, k)];
         const glm::vec3 offset = set.edge * glm::vec3(i, j, set.dims == 3 ? k : 0);
         for (const Instance& in : tile.instances) {
+          // Alternates overlap the copies they stand in for by design; the pruning decides them on
+          // the real surface. The flat guarantee is the set proper's.
+          if (in.alternate) continue;
           for (int a = 0; a < set.dims; ++a)
             if (!(in.position[a] >= 0.f && in.position[a] < set.edge)) out.ownership_ok = false;
           const uint32_t copy = static_cast<uint32_t>(out.copies++);
