@@ -7,9 +7,12 @@ normal with a FOV-degree field of view; a pixel whose ray meets a membrane copy 
 shows the membrane, a pixel that meets a soluble copy (kind 1) first sees the lumen through a hole.
 
   membrane_coverage.py NANOVIEW PKG virion|rbc [--require F] [--size N] [--json OUT]
+                      [--density MEMBRANE_DENSITY [--lipids POPC,POPE] [--require-density F]]
 
 Prints one line per sample point (membrane pixels / hit pixels) and exits 1 when --require is given
-and any point's coverage is below it.
+and any point's coverage is below it. With --density (the membrane_density tool of the build), also
+counts the lipid copies whose origins stand within --density-radius Å of the normal through the
+point (explicit instancing) against a real bilayer's 2 leaflets x 1 lipid per 0.66 nm² of that disc.
 """
 import argparse
 import json
@@ -103,7 +106,14 @@ def main():
     ap.add_argument("--size", type=int, default=96)
     ap.add_argument("--require", type=float, default=None, help="smallest coverage accepted at every point")
     ap.add_argument("--json", default=None)
+    ap.add_argument("--density", default=None, help="the membrane_density tool: also count lipids at each point")
+    ap.add_argument("--density-radius", type=float, default=100.0)
+    ap.add_argument("--lipids", default="POPC,POPE", help="molecule names counted as lipids")
+    ap.add_argument("--require-density", type=float, default=None,
+                    help="with --density: smallest share of a real bilayer's lipids accepted at every point")
     args = ap.parse_args()
+    lipid_names = set(args.lipids.split(","))
+    real_per_a2 = 2.0 / 66.0  # two leaflets, one lipid per 0.66 nm²
 
     results = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -119,15 +129,33 @@ def main():
             hit = sum(1 for k in kinds if k is not None)
             membrane = sum(1 for k in kinds if k == 0)
             coverage = membrane / hit if hit else 0.0
-            results.append({"point": name, "surface_point": p, "normal": n, "hit_pixels": hit,
-                            "membrane_pixels": membrane, "coverage": coverage})
-            print(f"{name:28s} {membrane:6d} / {hit:6d} hit pixels show membrane: {100 * coverage:6.2f} %")
+            result = {"point": name, "surface_point": p, "normal": n, "hit_pixels": hit,
+                      "membrane_pixels": membrane, "coverage": coverage}
+            line = f"{name:28s} {membrane:6d} / {hit:6d} hit pixels show membrane: {100 * coverage:6.2f} %"
+            if args.density:
+                out = subprocess.run([args.density, args.package, "0", str(args.density_radius), "40",
+                                      *(f"{x:.6f}" for x in (*p, *n))], check=True, capture_output=True, text=True)
+                copies = json.loads(out.stdout.splitlines()[0])["copies"]
+                lipids = sum(v for k, v in copies.items() if k in lipid_names)
+                proteins = {k: v for k, v in copies.items() if k not in lipid_names}
+                fraction = lipids / (real_per_a2 * math.pi * args.density_radius ** 2)
+                result.update({"lipids_in_disc": lipids, "proteins_in_disc": proteins, "of_real_bilayer": fraction})
+                line += f"; {lipids:5d} lipids in the {args.density_radius:.0f} Å disc = {100 * fraction:5.1f} % of a real bilayer"
+                if proteins:
+                    line += " (" + ", ".join(f"{k} {v}" for k, v in sorted(proteins.items())) + ")"
+            results.append(result)
+            print(line)
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"package": os.path.basename(args.package), "scene": args.scene, "points": results}, f, indent=1)
     worst = min(r["coverage"] for r in results)
     print(f"smallest coverage {100 * worst:.2f} %")
-    if args.require is not None and worst < args.require:
+    failed = args.require is not None and worst < args.require
+    if args.density:
+        thinnest = min(r["of_real_bilayer"] for r in results)
+        print(f"fewest lipids {100 * thinnest:.1f} % of a real bilayer")
+        failed = failed or (args.require_density is not None and thinnest < args.require_density)
+    if failed:
         sys.exit(1)
 
 

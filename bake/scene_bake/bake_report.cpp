@@ -20,6 +20,8 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
   nlohmann::ordered_json per_species = nlohmann::ordered_json::object(), dropped = nlohmann::ordered_json::object();
   for (const auto& [name, n] : m.lipids) per_species[name] = n / m.area_um2;
   for (const auto& [name, n] : m.dropped) dropped[name] = n;
+  nlohmann::ordered_json alternates = nlohmann::ordered_json::object();
+  for (const auto& [name, n] : m.alternates) alternates[name] = n;
   const double lipids = total(m.lipids) / m.area_um2;
   return {{"area_um2", m.area_um2},
           {"lipids_per_um2", per_species},
@@ -30,6 +32,7 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"protein_area_um2", {{"outer", m.outer_protein_um2}, {"inner", m.inner_protein_um2}}},
           {"fraction_of_real_bilayer_beside_proteins", m.fraction_of_real_bilayer_beside_proteins()},
           {"dropped", dropped},
+          {"alternates_shown", alternates},
           {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams"},
           {"pruning_checked_copies", m.checked_copies},
           {"pruning_atom_tests", m.atom_tests}};
@@ -106,8 +109,9 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
         std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), n / m.area_um2);
         out << line;
       }
-      std::snprintf(line, sizeof line, "; %.3g copies dropped (clashing, checked %s, or beyond a count)\n", static_cast<double>(total(m.dropped)),
-                    m.pruned_everywhere ? "everywhere" : "along UV seams");
+      std::snprintf(line, sizeof line, "; %.3g copies dropped (clashing, checked %s, or beyond a count), %.3g alternates shown in their place\n",
+                    static_cast<double>(total(m.dropped)),
+                    m.pruned_everywhere ? "everywhere" : "along UV seams", static_cast<double>(total(m.alternates)));
       out << line;
     }
   }

@@ -91,10 +91,12 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   baked.dropped = std::move(baked.pruning.dropped);
   baked.copies_by_molecule.assign(library.size(), 0);
   baked.dropped_by_molecule.assign(library.size(), 0);
+  baked.alternates_by_molecule.assign(library.size(), 0);
   for (std::size_t i = 0; i < types.size(); ++i) {
     baked.copies_by_molecule[tiles.molecule_of_type[i]] +=
         shells.owned_by_type[i] - baked.pruning.dropped_by_type[i] + baked.pruning.alternates_by_type[i];
     baked.dropped_by_molecule[tiles.molecule_of_type[i]] += baked.pruning.dropped_by_type[i];
+    baked.alternates_by_molecule[tiles.molecule_of_type[i]] += baked.pruning.alternates_by_type[i];
   }
   baked.shells.resize(mapping.triangle_count());
   for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {

@@ -115,6 +115,7 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
       (lipid[i] > 0 ? s.outer_lipids : s.inner_lipids) += m.copies_by_molecule[i];
     }
     if (m.dropped_by_molecule[i] > 0) add_named(s.dropped, library[i].name, m.dropped_by_molecule[i]);
+    if (m.alternates_by_molecule[i] > 0) add_named(s.alternates, library[i].name, m.alternates_by_molecule[i]);
   }
   if (membrane.lipids) {  // one pose in both leaflets: split evenly
     s.inner_lipids += s.outer_lipids / 2;

@@ -28,6 +28,7 @@ struct MembraneSummary {
   double area_um2 = 0.0;                                               // the mesh's surface
   std::vector<std::pair<std::string, std::uint64_t>> lipids;           // species -> kept copies
   std::vector<std::pair<std::string, std::uint64_t>> dropped;          // molecule -> copies dropped (clashing, or beyond a count)
+  std::vector<std::pair<std::string, std::uint64_t>> alternates;       // molecule -> alternates shown where a copy was dropped
   bool pruned_everywhere = false;                                      // else along UV seams only
   std::uint64_t checked_copies = 0, atom_tests = 0;
   std::uint64_t outer_lipids = 0, inner_lipids = 0;  // by leaflet (the outer one faces the mesh normals)

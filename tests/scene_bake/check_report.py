@@ -2,7 +2,9 @@
 
 Checks a nanobake --report against expectations written from the biology (BIOLOGY.md), not from
 the baker: `represented_atoms=1.2e12:0.10` means within 10 % of 1.2e12; `copies.rbc.haemoglobin=2.7e8:0.10`
-reads compartment rbc's copies of haemoglobin. Also checks the report's required keys.
+reads compartment rbc's copies of haemoglobin; `lipids.virion.total` its membrane's lipids in both
+leaflets; `bilayer.virion.beside_proteins` the share of a real bilayer's lipids it holds beside its
+proteins. Also checks the report's required keys.
 """
 import json
 import sys
@@ -17,6 +19,10 @@ def lookup(report, key):
         return entry["copies"][name]
     if kind == "atoms":
         return entry["represented_atoms"]
+    if kind == "lipids" and name == "total":  # both leaflets, every species
+        return sum(entry["membrane"]["lipids_by_leaflet"].values())
+    if kind == "bilayer" and name == "beside_proteins":  # share of a real bilayer's lipids
+        return entry["membrane"]["fraction_of_real_bilayer_beside_proteins"]
     raise KeyError(key)
 
 
