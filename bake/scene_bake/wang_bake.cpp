@@ -112,7 +112,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
     request.lipid_patch = std::move(lipids);
   }
   baked.flat_clearance = request.budget.clearance;
-  baked.packed_rigid = surface.lateral_stretch == 0.f && surface.curvature == 0.f && surface.tilt == 0.f;
+  baked.packed_rigid = surface.rigid();
   if (request.lipid_patch) baked.flat_clearance = std::min(baked.flat_clearance, request.lipid_patch->clearance);
   try {
     baked.set = tiles::make_membrane_tiles(request);

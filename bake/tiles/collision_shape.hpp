@@ -61,6 +61,9 @@ struct SurfaceDistortion {
   float curvature = 0.f;        // κ, rad per Å; heights are tile-space z ± the copy's radius
   float tilt = 0.f;             // tan of the largest angle between an interpolated and a face normal
   float max_rise = 0.f;         // Å: the tilt's rise never exceeds this (the facets' sag); 0 = no rise
+
+  // Nothing to survive: tiles packed rigid, whose copies the baker checks on the real surface.
+  bool rigid() const { return lateral_stretch == 0.f && curvature == 0.f && tilt == 0.f; }
 };
 
 struct ClashRule {

@@ -134,7 +134,6 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   if (outer_taken > 1.0 + 1e-6 || inner_taken > 1.0 + 1e-6)
     throw InputError(what, "lipid mix", "the mixed species take more than all of a leaflet's places");
   SplitMix64 rng(mix64(seed ^ 0x11D1DC0FFEEull));
-  const bool rigid = surface.lateral_stretch == 0.f && surface.curvature == 0.f && surface.tilt == 0.f;
   FixedLayer layer;
   layer.clearance = patch.clearance;
   float largest = 0.f;
@@ -214,7 +213,8 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   std::vector<std::array<std::size_t, 9>> standing(layer.copies.size());
   for (std::size_t i = 0; i < layer.copies.size(); ++i) standing[i] = add_with_images_ids(layer.copies[i]);
   std::vector<char> taken(layer.copies.size(), 0);  // given to a mixed species
-  const std::vector<Instance> base_lipids = layer.copies;
+  // Only a membrane pruned on its whole surface (tiles packed rigid) can pick alternates.
+  const std::vector<Instance> base_lipids = surface.rigid() ? layer.copies : std::vector<Instance>{};
   // Candidates for a place, best first: conformers of the species from the same leaflet at kSpins
   // turns, scored by how far their atoms stand from the base lipid's (the room that lipid proved
   // free): the closest shape is the likeliest to fit.
@@ -284,7 +284,7 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
         }
       }
     }
-  if (!rigid) return layer;  // only a membrane pruned on its whole surface can pick alternates
+  if (base_lipids.empty()) return layer;
   // A conformer of another species fits its place in the flat patch with no room to spare, and the
   // surface's compression (the inner leaflet, a chart's corners) can push it into a neighbour: the
   // place's base lipid, which proved the room free in an equilibrated patch, stays behind as its

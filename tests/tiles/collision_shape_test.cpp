@@ -22,6 +22,16 @@ bool brute_force_collide(const MoleculeType& a, const Instance& ia, const Molecu
 
 Pose pose(const Instance& in) { return {in.position, glm::mat3_cast(in.rotation)}; }
 
+// Rigid means nothing for the tiles to survive; the facets' sag alone bounds a tilt and is no
+// distortion by itself.
+TEST(SurfaceDistortion, RigidOnlyWithoutStretchCurvatureOrTilt) {
+  EXPECT_TRUE(SurfaceDistortion{}.rigid());
+  EXPECT_TRUE((SurfaceDistortion{0.f, 0.f, 0.f, 3.f}).rigid());
+  EXPECT_FALSE((SurfaceDistortion{0.03f, 0.f, 0.f, 0.f}).rigid());
+  EXPECT_FALSE((SurfaceDistortion{0.f, 1e-3f, 0.f, 0.f}).rigid());
+  EXPECT_FALSE((SurfaceDistortion{0.f, 0.f, 0.007f, 0.f}).rigid());
+}
+
 TEST(CollisionShape, RadiiMatchTheAtoms) {
   const MoleculeType lipid = test::make_lipid();
   const CollisionShape s(lipid);
