@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "format/package_view.hpp"
 #include "format/validator.hpp"
 #include "runtime/oracle/clash_check.hpp"
 #include "runtime/oracle/explicit_scene.hpp"
@@ -25,10 +26,8 @@ namespace {
 using nano::format::SectionKind;
 
 glm::dvec3 to_world(const nano::gpu::CompartmentInstance& instance, const glm::dvec3& p) {
-  glm::dvec3 w;
-  for (int row = 0; row < 3; ++row)
-    w[row] = glm::dot(glm::dvec3(instance.transform[row]), p) + double(instance.transform[row].w);
-  return w;
+  const nano::format::InstanceTransform t = nano::format::instance_transform(instance);
+  return t.linear * p + t.translation;
 }
 
 // A compartment-space point of the instance's membrane or core, chosen from the package itself.

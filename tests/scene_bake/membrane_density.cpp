@@ -10,19 +10,13 @@
 #include <map>
 #include <string>
 
+#include "format/package_view.hpp"
 #include "format/validator.hpp"
 #include "runtime/oracle/explicit_scene.hpp"
 
 namespace {
 
 using nano::format::SectionKind;
-
-glm::dvec3 apply(const nano::gpu::CompartmentInstance& instance, const glm::dvec3& p, double w) {
-  glm::dvec3 out;
-  for (int row = 0; row < 3; ++row)
-    out[row] = glm::dot(glm::dvec3(instance.transform[row]), p) + w * double(instance.transform[row].w);
-  return out;
-}
 
 std::string json_escaped(const std::string& text) {
   std::string out;
@@ -46,7 +40,7 @@ int main(int argc, char** argv) {
     const auto instances = package.records<SectionKind::compartment_instances>();
     const unsigned long which = std::strtoul(argv[2], nullptr, 10);
     if (which >= instances.size()) throw std::runtime_error("no compartment instance " + std::to_string(which));
-    const auto& instance = instances[which];
+    const nano::format::InstanceTransform to_world = nano::format::instance_transform(instances[which]);
     const double radius = std::atof(argv[3]), half_height = std::atof(argv[4]);
     const auto molecules = package.records<SectionKind::molecules>();
     const auto strings = package.raw_bytes(SectionKind::strings);
@@ -55,9 +49,10 @@ int main(int argc, char** argv) {
       return std::string(reinterpret_cast<const char*>(strings.data()) + m.name_offset, m.name_length);
     };
     for (int i = 5, point = 0; i < argc; i += 6, ++point) {
-      const glm::dvec3 p = apply(instance, {std::atof(argv[i]), std::atof(argv[i + 1]), std::atof(argv[i + 2])}, 1.0);
+      const glm::dvec3 p =
+          to_world.linear * glm::dvec3(std::atof(argv[i]), std::atof(argv[i + 1]), std::atof(argv[i + 2])) + to_world.translation;
       const glm::dvec3 n =
-          glm::normalize(apply(instance, {std::atof(argv[i + 3]), std::atof(argv[i + 4]), std::atof(argv[i + 5])}, 0.0));
+          glm::normalize(to_world.linear * glm::dvec3(std::atof(argv[i + 3]), std::atof(argv[i + 4]), std::atof(argv[i + 5])));
       const double reach = std::hypot(radius, half_height);
       std::map<std::string, std::size_t> counts;
       scene.for_each_copy({p - reach, p + reach}, [&](const nano::oracle::Copy& copy) {
