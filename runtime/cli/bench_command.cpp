@@ -5,6 +5,9 @@
 //   --effects   each scene effect off vs on, and all off vs the renderer built without effect code
 //   --explicit  explicit instancing (a TLAS of every molecule copy, the conventional design) against
 //               virtual instancing: memory and frame time on the same frames, and pixel agreement
+//   --counters  the work per pixel at every level of the traversal (queries started, candidates met,
+//               tests and rejections; mean and p95), virtual beside explicit instancing on the same
+//               view, with what counting costs
 //   --matrix    every knob of DESIGN.md's accuracy/time table against the default: time ratio and
 //               pixels differing from the CPU oracle (JSON, Markdown table, SVG plot)
 // Variants are always measured alternately in one run, so a noisy shared machine shifts them alike.
@@ -28,10 +31,12 @@
 #include "runtime/oracle/explicit_scene.hpp"
 #include "runtime/oracle/verify_cameras.hpp"
 #include "runtime/explicit_instancing/explicit_vs_virtual.hpp"
+#include "runtime/explicit_instancing/work_counters.hpp"
 #include "runtime/render/camera_path.hpp"
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/renderer.hpp"
 #include "runtime/session/session.hpp"
+#include "runtime/viewer/progressive.hpp"
 
 namespace nano::view {
 namespace {
@@ -40,7 +45,7 @@ struct Options {
   std::string package, size, camera, path, json, markdown, plot;
   unsigned frames = 0;
   unsigned matrix_cameras = 4;
-  bool effects = false, matrix = false, explicit_instancing = false;
+  bool effects = false, matrix = false, explicit_instancing = false, counters = false;
   VariantOptions variant;
   EffectOptions effect_options;
 };
@@ -99,7 +104,11 @@ void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json
   settings.depth_cue = render::depth_cue_for(start);
   render::Renderer renderer(session.device, *session.scene, settings);
   const std::vector<Camera> cameras = frame_cameras(o, start, o.frames ? o.frames : 24);
-  renderer.render(cameras.front().to_gpu(w, h));  // warm-up: the first dispatch compiles the pipeline
+  // Open → first image: what the viewer shows first (a frame at 1/kFirstFrameScale, pipeline
+  // compilation included) after the package is mapped, validated and its structures built.
+  const render::Frame first = renderer.render(start.to_gpu(viewer::reduced_extent(w, viewer::kFirstFrameScale),
+                                                            viewer::reduced_extent(h, viewer::kFirstFrameScale)));
+  renderer.render(cameras.front().to_gpu(w, h));  // warm-up: first touch of the full-size buffers
   std::vector<double> seconds;
   std::uint64_t molecules = 0, atoms = 0;
   for (const Camera& c : cameras) {
@@ -116,6 +125,8 @@ void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json
   out["frames"] = cameras.size();
   out["camera_path"] = o.path.empty() ? "orbit of " + std::to_string(cameras.size()) + " frames about " + start.to_string() : o.path;
   out["load_seconds"] = t.map + t.validate + t.device + t.scene;
+  out["first_image_seconds"] = first.seconds;
+  out["open_to_first_image_seconds"] = t.map + t.validate + t.device + t.scene + first.seconds;
   out["load_stages_seconds"] = {{"map", t.map},           {"validate", t.validate},      {"device", t.device},
                                 {"upload", load.upload_seconds}, {"nlas_builds", load.nlas_seconds},
                                 {"mlas_builds", load.mlas_seconds}, {"ulas_builds", load.ulas_seconds},
@@ -127,6 +138,8 @@ void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json
   out["device_memory_bytes"] = load.memory.total();
   out["device_memory"] = memory_json(load.memory);
   out["acceleration_structures"] = {{"nlas", load.nlas_count}, {"mlas", load.mlas_count}, {"prisms", load.prisms}};
+  std::printf("open -> first image %.3f s (a %ux%u frame in %.3f s after the load)\n", double(out["open_to_first_image_seconds"]),
+              first.width, first.height, first.seconds);
   std::printf("load %.3f s (map %.3f, validate %.3f, device %.3f, upload %.3f, nLAS %.3f, mLAS %.3f, µLAS %.3f)\n",
               double(out["load_seconds"]), t.map, t.validate, t.device, load.upload_seconds, load.nlas_seconds,
               load.mlas_seconds, load.ulas_seconds);
@@ -260,6 +273,23 @@ void run_explicit(const Options& o, RenderSession& session, nlohmann::ordered_js
               r.agreement, (unsigned long long)r.frames);
 }
 
+void run_counters(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+  const auto [w, h] = parse_size(o.size.empty() ? "128x128" : o.size);
+  const unsigned rounds = o.frames ? o.frames : 3;
+  const Camera camera = camera_option(session.package, o.camera);
+  const instanced::WorkCounters r = instanced::count_work(session.device, session.package, *session.scene, {camera.to_gpu(w, h)}, rounds);
+  out["size"] = {w, h};
+  out["camera"] = camera.to_string();
+  out["work"] = r.to_json();
+  const std::pair<std::string, bench::CounterSummary> columns[] = {{"virtual", r.virtual_work}, {"explicit", r.explicit_work}};
+  std::printf("%s", bench::counters_markdown(columns).c_str());
+  std::printf("frame median: virtual %.4f s, explicit %.4f s (virtual / explicit %.2f); counting costs %.2f×; the counters "
+              "constant off against no counter code %.3f×; agreement %.5f; counting changes %s\n",
+              r.virtual_seconds, r.explicit_seconds, r.virtual_seconds / r.explicit_seconds,
+              r.virtual_counting_seconds / r.virtual_seconds, r.virtual_seconds / r.virtual_no_counter_code_seconds, r.agreement,
+              r.counting_changes_no_pixel ? "no pixel" : "PIXELS");
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
@@ -275,6 +305,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--effects", o->effects, "each effect off vs on, and all off vs the renderer without effect code");
   cmd->add_flag("--explicit", o->explicit_instancing,
                 "explicit instancing (one TLAS instance per molecule copy) against virtual instancing on the same frames");
+  cmd->add_flag("--counters", o->counters,
+                "work per pixel at every traversal level, virtual beside explicit instancing (default 128x128, 3 timed rounds)");
   cmd->add_flag("--matrix", o->matrix, "every accuracy knob against the default: time ratio and pixels differing from the oracle");
   cmd->add_option("--matrix-cameras", o->matrix_cameras, "verify views of the matrix")->capture_default_str()->check(CLI::Range(1u, 16u));
   cmd->add_option("--markdown", o->markdown, "with --matrix: write the table as Markdown");
@@ -282,19 +314,20 @@ void add_bench_command(CLI::App& app) {
   add_variant_options(*cmd, o->variant);
   add_effect_options(*cmd, o->effect_options);
   cmd->callback([o] {
-    if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) > 1)
-      throw InputError("--effects/--matrix/--explicit", "", "choose one mode");
+    if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) + int(o->counters) > 1)
+      throw InputError("--effects/--matrix/--explicit/--counters", "", "choose one mode");
     if ((!o->markdown.empty() || !o->plot.empty()) && !o->matrix) throw InputError("--markdown/--plot", "", "need --matrix");
     RenderSession session(o->package, o->variant.scene_options());
     nlohmann::ordered_json out;
     out["package"] = o->package;
     out["package_bytes"] = session.package.file_size();
     out["device"] = session.device.description();
-    out["mode"] = o->effects ? "effects" : o->matrix ? "matrix" : o->explicit_instancing ? "explicit" : "frames";
+    out["mode"] = o->effects ? "effects" : o->matrix ? "matrix" : o->explicit_instancing ? "explicit" : o->counters ? "counters" : "frames";
     std::printf("%s on %s\n", o->package.c_str(), session.device.description().c_str());
     if (o->effects) run_effects(*o, session, out);
     else if (o->matrix) run_matrix(*o, session, out);
     else if (o->explicit_instancing) run_explicit(*o, session, out);
+    else if (o->counters) run_counters(*o, session, out);
     else run_frames(*o, session, out);
     out["validation_errors"] = session.validation_errors();
     if (!o->json.empty()) write_text(o->json, out.dump(2) + "\n");

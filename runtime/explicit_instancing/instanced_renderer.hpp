@@ -19,6 +19,7 @@ struct InstancedFrame {
   std::uint32_t width = 0, height = 0;
   std::vector<gpu::PixelHit> hits;  // row-major, row 0 at the top
   std::vector<std::uint32_t> rgba;  // RGBA8 (sRGB), R in the low byte
+  std::vector<std::uint32_t> counters;  // with counters on: NANO_RAY_COUNTER_COUNT words a pixel
   double seconds = 0;               // TLAS preparation (a rebuild only when eye_relative) + dispatch + read-back
 };
 
@@ -30,6 +31,9 @@ public:
 
   // Throws std::invalid_argument for an empty image.
   InstancedFrame render(const gpu::Camera& camera);
+
+  // Count the work per pixel in the next frames (a second pipeline, built on first use).
+  void set_counters(bool on);
 
   struct Impl;
 

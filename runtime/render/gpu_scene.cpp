@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <unistd.h>
@@ -26,6 +27,7 @@ namespace nano::render {
 namespace {
 
 using format::SectionKind;
+using glm::dmat3;
 using glm::dvec3;
 using glm::vec3;
 
@@ -76,7 +78,7 @@ nlohmann::json to_json(const LoadReport& r) {
             {"mlas", r.memory.mlas},
             {"ulas", r.memory.ulas},
             {"scratch_peak", r.memory.scratch_peak}}},
-          {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}}},
+          {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}, {"core_bricks", r.core_bricks}}},
           {"sections", {{"imported", r.sections_imported}, {"copied_from_pages", r.sections_copied_from_pages}}}};
 }
 
@@ -312,15 +314,23 @@ struct GpuScene::Impl : format::PackageView {
   }
 
   // How far a membrane molecule's true placement (chart_membrane_molecule: the interpolated normal
-  // n(uv_m), not the face normal of M1) can stray from its tile-space bounds, per compartment:
-  // M1⁻¹ maps the true centre X(uv_m) + z·n to (x, y, z) + z·L(n − N) and a world sphere of radius r
-  // into one of radius ≤ σ·r, with L the inverse linear part of M1 and σ its largest singular value.
-  // So the box (x, y, z) ± σ·(r + |z|·δ + b), δ = max |n_i − N| over the corners (n(uv_m) of an owned
-  // copy is a positive combination of them) and b the smooth surface's largest lift off its facet
-  // (chart_smooth_bulge), contains the copy in tile space. Returns (σ, δ, b).
-  std::tuple<double, double, double> membrane_distortion(const gpu::Compartment& c, float s_over_S) const {
-    const gpu::Mesh& mesh = meshes[c.mesh];
+  // n(uv_m) and the frame built on it, not M1's face frame) can stray from where M1 puts it, per
+  // compartment. In tile space (M1⁻¹) an atom offset p of a copy becomes T·p with T = L·F, L the
+  // inverse linear part of M1 and F the copy's frame; its centre (x, y, z) moves by
+  // z·L(n − N) + L(X_smooth − X_flat). So a copy whose M1-placed atoms fill the box c ± h (about its
+  // origin) lies in c ± (h + E·(|c| + h) + σ·(|z|·δ + b)), with E the element-wise largest |T − I|, σ
+  // L's largest singular value, δ = max |n_i − N| over corners (n(uv_m) of an owned copy is a
+  // positive combination of them) and b the smooth surface's largest lift off its facet
+  // (chart_smooth_bulge). E is sampled over each triangle (a barycentric grid, where owned copies
+  // sit) and widened by a fifth plus 0.02 for what lies between samples.
+  struct Distortion {
     double sigma = 0, delta = 0, bulge = 0;
+    dmat3 e{0.0};  // element-wise max |T − I|
+  };
+  Distortion membrane_distortion(const gpu::Compartment& c, float s_over_S) const {
+    const gpu::Mesh& mesh = meshes[c.mesh];
+    Distortion d;
+    constexpr int kSteps = 4;
     for (std::uint32_t t = mesh.first_triangle; t < mesh.first_triangle + mesh.triangle_count; ++t) {
       const gpu::Triangle& tri = triangles[t];
       const std::uint32_t f = mesh.first_vertex;
@@ -330,43 +340,74 @@ struct GpuScene::Impl : format::PackageView {
       const gpu::TriangleChart chart = gpu::chart_make(vec3(positions[f + tri.v0]), vec3(positions[f + tri.v1]),
                                                        vec3(positions[f + tri.v2]), t0, t1, t2, n0, n1, n2);
       if (!gpu::chart_valid(chart)) continue;  // owns nothing the oracle would accept either
-      const glm::dmat3 m1(dvec3(chart.ju) * double(s_over_S), dvec3(chart.jv) * double(s_over_S), dvec3(chart.face_normal));
-      sigma = std::max(sigma, largest_singular_value(glm::inverse(m1)));
+      const dmat3 m1(dvec3(chart.ju) * double(s_over_S), dvec3(chart.jv) * double(s_over_S), dvec3(chart.face_normal));
+      const dmat3 l = glm::inverse(m1);
+      d.sigma = std::max(d.sigma, largest_singular_value(l));
       for (const vec3& n : {n0, n1, n2})
-        delta = std::max(delta, glm::length(glm::normalize(dvec3(n)) - dvec3(chart.face_normal)));
-      bulge = std::max(bulge, double(gpu::chart_smooth_bulge(chart, c.scales.w)));
+        d.delta = std::max(d.delta, glm::length(glm::normalize(dvec3(n)) - dvec3(chart.face_normal)));
+      d.bulge = std::max(d.bulge, double(gpu::chart_smooth_bulge(chart, c.scales.w)));
+      for (int i = 0; i <= kSteps; ++i)
+        for (int j = 0; i + j <= kSteps; ++j) {
+          const glm::vec2 uv = t0 + (t1 - t0) * (float(i) / kSteps) + (t2 - t0) * (float(j) / kSteps);
+          glm::vec2 uv_m;
+          const gpu::Affine3 placed =
+              gpu::chart_membrane_molecule(chart, uv, s_over_S, c.scales.w, vec3(0.f), glm::vec4(0, 0, 0, 1), uv_m);
+          const dmat3 tm = l * dmat3(placed.linear);
+          for (int col = 0; col < 3; ++col)
+            for (int row = 0; row < 3; ++row)
+              d.e[col][row] = std::max(d.e[col][row], std::abs(tm[col][row] - (col == row ? 1.0 : 0.0)));
+        }
     }
-    return {sigma, delta, bulge};
+    for (int col = 0; col < 3; ++col)
+      for (int row = 0; row < 3; ++row) d.e[col][row] = d.e[col][row] * 1.2 + 0.02;
+    return d;
   }
 
-  // mLAS: per Wang square, molecule boxes in tile space inflated by the distortion of every
+  // The M1-placed atoms of copy `m` (spheres included) as a box about its origin, from the atoms
+  // themselves (the instance's stored AABB is not trusted for what the renderer may skip).
+  std::pair<dvec3, dvec3> placed_extent(const gpu::MoleculeInstance& m) const {
+    const gpu::MoleculeType& type = molecules[m.molecule_type];
+    const glm::dquat q(double(m.rotation.w), double(m.rotation.x), double(m.rotation.y), double(m.rotation.z));
+    const dmat3 r = glm::mat3_cast(glm::normalize(q));
+    dvec3 lo(INFINITY), hi(-INFINITY);
+    for (std::uint32_t a = type.first_atom; a < type.first_atom + type.atom_count; ++a) {
+      const dvec3 p = r * dvec3(vec3(atoms[a].centre_radius));
+      const double radius = atoms[a].centre_radius.w;
+      lo = glm::min(lo, p - radius), hi = glm::max(hi, p + radius);
+    }
+    return {lo, hi};
+  }
+
+  // mLAS: per Wang square, molecule boxes in tile space widened by the distortion of every
   // compartment that uses the square; per Wang cube, bounding spheres' boxes in cube space.
   void build_tile_levels() {
-    std::vector<double> square_sigma(squares.size(), -1), square_delta(squares.size(), 0), square_bulge(squares.size(), 0);
+    std::vector<std::optional<Distortion>> square_distortion(squares.size());
     for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
       const gpu::Compartment& c = compartments[ci];
       if (c.membrane_recipe == gpu::NANO_NO_INDEX) continue;
-      const auto [sigma, delta, bulge] = membrane_distortion(c, render_compartments[ci].membrane.y);
+      const Distortion d = membrane_distortion(c, render_compartments[ci].membrane.y);
       for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
-        square_sigma[t] = std::max(square_sigma[t], sigma);
-        square_delta[t] = std::max(square_delta[t], delta);
-        square_bulge[t] = std::max(square_bulge[t], bulge);
+        Distortion& s = square_distortion[t].emplace(square_distortion[t].value_or(Distortion{}));
+        s.sigma = std::max(s.sigma, d.sigma), s.delta = std::max(s.delta, d.delta), s.bulge = std::max(s.bulge, d.bulge);
+        for (int col = 0; col < 3; ++col) s.e[col] = glm::max(s.e[col], d.e[col]);
       }
     }
     square_reach.assign(squares.size(), {dvec3(INFINITY), dvec3(-INFINITY)});
     for (std::uint32_t t = 0; t < squares.size(); ++t) {
-      if (square_sigma[t] < 0 || squares[t].instance_count == 0) continue;  // no compartment renders it
+      if (!square_distortion[t] || squares[t].instance_count == 0) continue;  // no compartment renders it
+      const Distortion& d = *square_distortion[t];
       std::vector<VkAabbPositionsKHR> boxes;
       // δ grows by 1e-3 for the rounding of the normalised interpolation; the pad covers the float
       // tile-space ray (≈ 1e-6 of the distance to the tile) of any camera within 10^5 Å.
-      const double sigma = square_sigma[t] * (1 + 1e-4), delta = square_delta[t] + 1e-3, pad = 0.1;
+      const double sigma = d.sigma * (1 + 1e-4), delta = d.delta + 1e-3, pad = 0.1;
       for (std::uint32_t m = squares[t].first_instance; m < squares[t].first_instance + squares[t].instance_count; ++m) {
         const dvec3 pos(instances[m].position);
-        const double e =
-            sigma * (type_radius[instances[m].molecule_type] + std::abs(pos.z) * delta + square_bulge[t] * (1 + 1e-4)) + pad;
-        boxes.push_back(box_of(pos - e, pos + e));
-        square_reach[t].first = glm::min(square_reach[t].first, pos - e);
-        square_reach[t].second = glm::max(square_reach[t].second, pos + e);
+        const auto [lo, hi] = placed_extent(instances[m]);
+        const dvec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
+        const dvec3 e = h + d.e * (glm::abs(c) + h) + sigma * (std::abs(pos.z) * delta + d.bulge * (1 + 1e-4)) + pad;
+        boxes.push_back(box_of(pos + c - e, pos + c + e));
+        square_reach[t].first = glm::min(square_reach[t].first, pos + c - e);
+        square_reach[t].second = glm::max(square_reach[t].second, pos + c + e);
       }
       add_tile_level(first_square + t, boxes);
     }
@@ -407,6 +448,9 @@ struct GpuScene::Impl : format::PackageView {
         }
       levels[first_area + ci] = build_level(boxes, slots, first_area + ci, report.memory.mlas);
       render_compartments[ci].span.w = first_area + ci;
+      const VkAabbPositionsKHR slot = box_of(lo, hi);
+      render_compartments[ci].slot_lo = glm::vec4(slot.minX, slot.minY, slot.minZ, float(S));
+      render_compartments[ci].slot_hi = glm::vec4(slot.maxX, slot.maxY, slot.maxZ, 0.f);
     }
   }
 
@@ -460,8 +504,45 @@ struct GpuScene::Impl : format::PackageView {
     return out;
   }
 
+  // The core bricks (render_scene.h NANO_CORE_BRICK) that hold a box not outside the compartment,
+  // as x + bx·(y + by·z) over the grid's bricks.
+  std::vector<std::uint32_t> core_bricks(const gpu::Compartment& c) const {
+    const glm::uvec3 dims(c.grid_dims);
+    const glm::uvec3 bdims = (dims + gpu::NANO_CORE_BRICK - 1u) / gpu::NANO_CORE_BRICK;
+    std::vector<char> used(std::size_t(bdims.x) * bdims.y * bdims.z, 0);
+    for (std::uint32_t z = 0; z < dims.z; ++z)
+      for (std::uint32_t y = 0; y < dims.y; ++y)
+        for (std::uint32_t x = 0; x < dims.x; ++x) {
+          const std::uint64_t box = x + std::uint64_t(dims.x) * (y + std::uint64_t(dims.y) * z);
+          if (occupancy[c.grid_dims.w + box] == gpu::NANO_BOX_OUTSIDE) continue;
+          const glm::uvec3 b = glm::uvec3(x, y, z) / gpu::NANO_CORE_BRICK;
+          used[b.x + std::size_t(bdims.x) * (b.y + std::size_t(bdims.y) * b.z)] = 1;
+        }
+    std::vector<std::uint32_t> out;
+    for (std::size_t k = 0; k < used.size(); ++k)
+      if (used[k]) out.push_back(std::uint32_t(k));
+    return out;
+  }
+
+  // Each brick's boxes widened by one box on every side, in compartment space.
+  std::vector<VkAabbPositionsKHR> core_brick_boxes(const gpu::Compartment& c, std::span<const std::uint32_t> bricks) const {
+    const glm::uvec3 dims(c.grid_dims);
+    const glm::uvec3 bdims = (dims + gpu::NANO_CORE_BRICK - 1u) / gpu::NANO_CORE_BRICK;
+    const double B = c.grid_min.w;
+    std::vector<VkAabbPositionsKHR> out;
+    for (std::uint32_t k : bricks) {
+      const glm::uvec3 b(k % bdims.x, (k / bdims.x) % bdims.y, k / (bdims.x * bdims.y));
+      const glm::uvec3 first = b * gpu::NANO_CORE_BRICK;
+      const glm::uvec3 end = glm::min(first + gpu::NANO_CORE_BRICK, dims);
+      const dvec3 lo = dvec3(c.grid_min) + B * (dvec3(first) - 1.0);
+      const dvec3 hi = dvec3(c.grid_min) + B * (dvec3(end) + 1.0);
+      out.push_back(outward_box(vec3(lo), vec3(hi)));
+    }
+    return out;
+  }
+
   // µLAS BLAS per compartment: Morton-sorted prism boxes (triangles that own molecules), then the
-  // core grid widened by one box (the region the core renderer's DDA walks).
+  // Morton-sorted core bricks (the regions the core renderer's DDA walks).
   void build_compartment_blases() {
     const std::vector<gpu::TriangleShell> shell_records = mode_shells();
     shell_buffer = storage(std::as_bytes(std::span(shell_records)));
@@ -498,10 +579,14 @@ struct GpuScene::Impl : format::PackageView {
         orders.push_back(prism_triangles[i]);
       }
       if (rc.span.z != 0) {
-        const dvec3 B(c.grid_min.w);
-        const dvec3 lo = dvec3(c.grid_min) - B;
-        const dvec3 hi = dvec3(c.grid_min) + B * (dvec3(glm::uvec3(c.grid_dims)) + 1.0);
-        boxes.push_back(outward_box(vec3(lo), vec3(hi)));
+        const std::vector<std::uint32_t> bricks = core_bricks(c);
+        const std::vector<VkAabbPositionsKHR> brick_boxes = core_brick_boxes(c, bricks);
+        const std::vector<std::uint32_t> brick_order = morton_order(brick_boxes);
+        for (std::uint32_t i : brick_order) {
+          boxes.push_back(brick_boxes[i]);
+          orders.push_back(bricks[i]);
+        }
+        report.core_bricks += bricks.size();
       }
       report.prisms += prisms.size();
       if (boxes.empty()) continue;

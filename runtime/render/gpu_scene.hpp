@@ -53,6 +53,7 @@ struct LoadReport {
   double upload_seconds = 0, nlas_seconds = 0, mlas_seconds = 0, ulas_seconds = 0;
   MemoryReport memory;
   std::uint64_t nlas_count = 0, mlas_count = 0, prisms = 0;
+  std::uint64_t core_bricks = 0;  // core-grid bricks in the µLAS BLASes (render_scene.h NANO_CORE_BRICK)
   std::uint64_t sections_imported = 0, sections_copied_from_pages = 0;
 };
 nlohmann::json to_json(const LoadReport& report);

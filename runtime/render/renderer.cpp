@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "runtime/render/animation.hpp"
+#include "runtime/render/pixel_outputs.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
 #include "shared/bindings.h"
 #include "shared/render_scene.h"
@@ -23,10 +24,10 @@ namespace {
 // What selects a pipeline: the shader build and its specialization constants.
 struct Variant {
   bool exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows, eye_from_host,
-      world_space_ulas;
+      world_space_ulas, counters;
   auto key() const {
     return std::tuple(exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows,
-                      eye_from_host, world_space_ulas);
+                      eye_from_host, world_space_ulas, counters);
   }
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
@@ -37,17 +38,14 @@ Variant variant_of(const RenderSettings& s) {
   return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
           effects && e.clipping_on && e.clipping.any(), effects && e.jitter_on && e.jitter_degrees > 0,
           effects && e.ambient_occlusion_on && e.ao_rays > 0, effects && e.shadows_on,
-          s.precision == Precision::two_float_eye, s.precision == Precision::world};
+          s.precision == Precision::two_float_eye, s.precision == Precision::world, !s.without_effect_code && s.counters};
 }
 
 vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   vk::ComputePipelineDesc desc;
   if (v.no_effect_code) desc.code = {nano_spv_render_nano_no_effects_comp, nano_spv_render_nano_no_effects_comp_words};
   else desc.code = {nano_spv_render_comp, nano_spv_render_comp_words};
-  std::vector<vk::DescriptorBinding> set{{gpu::NANO_B_ULAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
-  for (std::uint32_t b = gpu::NANO_B_ULAS + 1; b < gpu::NANO_RENDER_BINDING_COUNT; ++b)
-    set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  desc.sets = {set};  // set NANO_DESCRIPTOR_SET, the only one
+  desc.sets = {ray_query_set(gpu::NANO_B_ULAS, gpu::NANO_RENDER_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
   desc.specialization.set_bool(gpu::NANO_SPEC_EXACT_PRISM, v.exact_prism);
   desc.specialization.set_bool(gpu::NANO_SPEC_REPLICATION_LAS, v.replication_las);
   desc.specialization.set_bool(gpu::NANO_SPEC_TWO_LEVEL, v.two_level);
@@ -58,6 +56,7 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
     desc.specialization.set_bool(gpu::NANO_SPEC_JITTER, v.jitter);
     desc.specialization.set_bool(gpu::NANO_SPEC_AMBIENT_OCCLUSION, v.ambient_occlusion);
     desc.specialization.set_bool(gpu::NANO_SPEC_SHADOWS, v.shadows);
+    desc.specialization.set_bool(gpu::NANO_SPEC_COUNTERS, v.counters);
   }
   return desc;
 }
@@ -71,6 +70,7 @@ void check(const RenderSettings& s) {
   if (e.ambient_occlusion_on && !(e.ao_rays >= 1 && e.ao_rays <= 1024 && e.ao_radius > 0))
     throw std::invalid_argument("ambient occlusion needs 1 to 1024 rays and a positive radius");
   if (e.shadows_on && !(glm::length(e.light_direction) > 0)) throw std::invalid_argument("shadows need a light direction");
+  if (s.counters && s.without_effect_code) throw std::invalid_argument("the build without effect code has no counters");
 }
 
 struct Pipeline {
@@ -87,7 +87,8 @@ struct Renderer::Impl {
   GpuScene& scene;
   RenderSettings settings;
   std::map<Variant, std::unique_ptr<Pipeline>> pipelines;  // built on first use, kept for toggling back
-  vk::Buffer frame_buffer, hit_buffer, colour_buffer;
+  vk::Buffer frame_buffer;
+  PixelOutputs outputs;
 
   Impl(const vk::Device& d, GpuScene& s, const RenderSettings& r) : device(d), scene(s) {
     frame_buffer = vk::Buffer(d, sizeof(gpu::RenderFrame), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
@@ -142,23 +143,15 @@ struct Renderer::Impl {
     }
     const gpu::RenderFrame frame = frame_record(camera);
     frame_buffer.write(std::as_bytes(std::span(&frame, 1)));
-    const VkDeviceSize pixels = VkDeviceSize(w) * h;
-    if (hit_buffer.size() != pixels * sizeof(gpu::PixelHit)) {
-      hit_buffer = vk::Buffer(device, pixels * sizeof(gpu::PixelHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
-      colour_buffer = vk::Buffer(device, pixels * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
-    }
-    Pipeline& p = *pipelines.at(variant_of(settings));
+    const Variant v = variant_of(settings);
+    Pipeline& p = *pipelines.at(v);
     scene.write_descriptors(p.set);
     vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_FRAME, frame_buffer);
-    vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_HITS, hit_buffer);
-    vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_COLOURS, colour_buffer);
+    outputs.bind(device, p.set, {gpu::NANO_B_HITS, gpu::NANO_B_COLOURS, gpu::NANO_B_COUNTERS}, std::uint64_t(w) * h, v.counters);
     vk::dispatch_pixels_and_wait(device, p.pipeline, p.set, w, h, gpu::NANO_WORKGROUP_SIZE);
     Frame out;
     out.width = w, out.height = h;
-    out.hits.resize(pixels);
-    out.rgba.resize(pixels);
-    hit_buffer.read(std::as_writable_bytes(std::span(out.hits)));
-    colour_buffer.read(std::as_writable_bytes(std::span(out.rgba)));
+    outputs.read(out.hits, out.rgba, out.counters);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
   }

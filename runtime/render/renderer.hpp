@@ -32,13 +32,15 @@ struct RenderSettings {
   glm::vec3 light{0.3f, 0.5f, 0.8f}; // direction towards the light (world; normalised here)
   float depth_cue = 0;               // Å over which colour fades towards the background (0: off)
   EffectSettings effects;            // all off by default; render::package_effects gives the scene's
-  bool without_effect_code = false;  // the shader built without any effect code (bench: what "off" costs)
+  bool without_effect_code = false;  // the shader built without any effect or counter code (bench: what "off" costs)
+  bool counters = false;             // count the work per pixel (Frame::counters; bench --counters)
 };
 
 struct Frame {
   std::uint32_t width = 0, height = 0;
   std::vector<gpu::PixelHit> hits;   // row-major, row 0 at the top
   std::vector<std::uint32_t> rgba;   // RGBA8 (sRGB), R in the low byte
+  std::vector<std::uint32_t> counters;  // with RenderSettings::counters: NANO_RAY_COUNTER_COUNT words a pixel
   double seconds = 0;                // µLAS rebuild + dispatch + read-back, wall clock
 };
 

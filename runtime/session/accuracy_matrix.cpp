@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "runtime/bench/frame_stats.hpp"
+#include "runtime/bench/ray_counters.hpp"
 #include "runtime/oracle/oracle_render.hpp"
 #include "runtime/oracle/render_compare.hpp"
 #include "runtime/session/session.hpp"
@@ -132,6 +133,18 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
       agree += r.agree, row.pixels += r.pixels;
     }
     row.wrong_percent = row.pixels ? 100.0 * double(row.pixels - agree) / double(row.pixels) : 0.0;
+    // Work: every view once more with the counters on (their own pipeline, outside the timing).
+    std::vector<std::uint32_t> words;
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      render::RenderSettings counting = per_view[k];
+      counting.counters = true;
+      renderer.set_settings(counting);
+      const render::Frame f = renderer.render(cameras[k]);
+      words.insert(words.end(), f.counters.begin(), f.counters.end());
+    }
+    const CounterSummary work = summarize_counters(words);
+    row.queries_per_pixel = work.rows[kQueriesStarted].mean;
+    row.candidates_per_pixel = work.rows[kCandidatesMet].mean;
     // Time: the variant and the default alternately on the same frames, the order flipping per
     // round, so both see the same machine.
     std::vector<double> mine, theirs;
@@ -167,16 +180,21 @@ nlohmann::json to_json(const std::vector<MatrixRow>& rows) {
                    {"wrong_pixels_percent", r.wrong_percent},
                    {"pixels", r.pixels},
                    {"device_memory_bytes", r.device_bytes},
+                   {"queries_per_pixel", r.queries_per_pixel},
+                   {"candidates_per_pixel", r.candidates_per_pixel},
                    {"note", r.variant.note}});
   return out;
 }
 
 std::string matrix_markdown(const std::vector<MatrixRow>& rows, const std::string& heading) {
-  std::string md = heading + "\n\n| knob | value | frame time vs default | pixels wrong vs oracle | device memory | note |\n|---|---|---|---|---|---|\n";
+  std::string md = heading +
+                   "\n\n| knob | value | frame time vs default | pixels wrong vs oracle | device memory | queries / pixel | "
+                   "candidates / pixel | note |\n|---|---|---|---|---|---|---|---|\n";
   for (const MatrixRow& r : rows) {
     char line[512];
-    std::snprintf(line, sizeof line, "| %s | %s | %.2f× | %.3f %% | %.1f MB | %s |\n", r.variant.knob.c_str(), r.variant.value.c_str(),
-                  r.time_ratio, r.wrong_percent, double(r.device_bytes) / 1e6, r.variant.note.c_str());
+    std::snprintf(line, sizeof line, "| %s | %s | %.2f× | %.3f %% | %.1f MB | %.1f | %.1f | %s |\n", r.variant.knob.c_str(),
+                  r.variant.value.c_str(), r.time_ratio, r.wrong_percent, double(r.device_bytes) / 1e6, r.queries_per_pixel,
+                  r.candidates_per_pixel, r.variant.note.c_str());
     md += line;
   }
   return md;

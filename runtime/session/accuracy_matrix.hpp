@@ -39,6 +39,8 @@ struct MatrixRow {
   double wrong_percent = 0;           // pixels not agreeing with the oracle (oracle::compare_images)
   std::uint64_t pixels = 0;
   std::uint64_t device_bytes = 0;     // device memory of the scene the variant renders
+  double queries_per_pixel = 0;       // ray queries started, mean over the views' pixels (counters)
+  double candidates_per_pixel = 0;    // candidates met at every level, likewise
 };
 
 using Progress = std::function<void(const std::string&)>;

@@ -35,7 +35,7 @@ std::uint32_t motion_scale(double seconds_per_pixel, std::uint32_t width, std::u
 
 std::uint32_t rest_scale(std::uint32_t shown_scale, double seconds_per_pixel, std::uint32_t width, std::uint32_t height,
                          double budget_seconds) {
-  if (!(seconds_per_pixel > 0)) return 1;
+  if (!(seconds_per_pixel > 0)) return shown_scale == 0 ? kFirstFrameScale : std::max<std::uint32_t>(shown_scale / 2, 1);
   const std::uint32_t coarsest = shown_scale == 0 ? 16 : std::max<std::uint32_t>(shown_scale / 2, 1);
   for (std::uint32_t scale = 1; scale < coarsest; scale *= 2) {
     const double pixels = double(reduced_extent(width, scale)) * reduced_extent(height, scale);

@@ -12,10 +12,14 @@ namespace nano::viewer {
 // smallest that keeps the frame under `budget_seconds` at the measured cost per pixel; 2 while no
 // cost is known yet.
 std::uint32_t motion_scale(double seconds_per_pixel, std::uint32_t width, std::uint32_t height, double budget_seconds);
+// The first frame of a session, before any cost is known, is rendered at 1/kFirstFrameScale per
+// axis: it measures the cost and is on screen at once whatever the scene costs (open → first image).
+constexpr std::uint32_t kFirstFrameScale = 8;
+
 // The reduction factor of the next frame while the camera rests, after one at `shown_scale` of the
 // same state (0: none shown yet): the finest of 1, 2, 4, 8, 16 whose frame fits `budget_seconds`,
 // but at most half of `shown_scale`, so refinement always moves on (1/4 → 1/2 → full when each
-// step costs more than the budget). 1 while no cost is known: the first frame measures it.
+// step costs more than the budget). kFirstFrameScale while no cost is known: that frame measures it.
 std::uint32_t rest_scale(std::uint32_t shown_scale, double seconds_per_pixel, std::uint32_t width, std::uint32_t height,
                          double budget_seconds);
 // ceil(size / scale), at least 1.

@@ -14,8 +14,12 @@
 #include "shared/camera.h"
 #include "shared/instanced_records.h"
 #include "shared/ray_sphere.h"
+#include "shared/ray_counters.h"
 
 layout(local_size_x = NANO_WORKGROUP_SIZE, local_size_y = NANO_WORKGROUP_SIZE) in;
+
+// Work counters per pixel, as render.comp's (shared/ray_counters.h): the TLAS is the top level.
+layout(constant_id = NANO_SPEC_INSTANCED_COUNTERS) const bool kCounters = false;
 
 // Records: shaders/shared/instanced_records.h; bindings: shaders/shared/bindings.h.
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_TLAS) uniform accelerationStructureEXT tlas;
@@ -26,6 +30,7 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_ORDERS, std430) readonly buf
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_FRAME, std430) readonly buffer Frame { InstancedFrameRecord frame; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_IB_COUNTERS, std430) writeonly buffer Counters { uint counters[]; };
 
 vec3 srgb_from_linear(vec3 c) {
   c = clamp(c, 0.0, 1.0);
@@ -55,10 +60,13 @@ void main() {
   mat3 best_world_to_object = mat3(1.0);
   uint best_type = 0u;
 
+  uint candidates = 0u;
+  uint sphere_tests = 0u;
   rayQueryEXT q;
   rayQueryInitializeEXT(q, tlas, gl_RayFlagsNoneEXT, 0xFF, frame.origin.xyz, 0.0, d, placement_inf());
   while (rayQueryProceedEXT(q)) {
     if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
+    if (kCounters) ++candidates;
     uint c = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
     if (c >= uint(copies.length())) continue;
     InstancedCopy copy = copies[c];
@@ -73,6 +81,7 @@ void main() {
     vec3 dm = rayQueryGetIntersectionObjectRayDirectionEXT(q, false);
     float tn;
     float tf;
+    if (kCounters) ++sphere_tests;
     if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) continue;
     float t = tn >= 0.0 ? tn : tf;  // the eye inside an atom sees its far side
     if (!(t >= 0.0) || !(t < best_t)) continue;
@@ -99,4 +108,10 @@ void main() {
   hits[index] = best;
   uvec3 b = uvec3(round(srgb_from_linear(colour) * 255.0));
   colours[index] = b.r | (b.g << 8) | (b.b << 16) | (255u << 24);
+  if (kCounters && (index + 1u) * NANO_RAY_COUNTER_COUNT <= uint(counters.length())) {
+    for (uint k = 0u; k < NANO_RAY_COUNTER_COUNT; ++k) counters[index * NANO_RAY_COUNTER_COUNT + k] = 0u;
+    counters[index * NANO_RAY_COUNTER_COUNT + NANO_RC_ULAS_QUERIES] = 1u;
+    counters[index * NANO_RAY_COUNTER_COUNT + NANO_RC_ULAS_CANDIDATES] = candidates;
+    counters[index * NANO_RAY_COUNTER_COUNT + NANO_RC_SPHERE_TESTS] = sphere_tests;
+  }
 }

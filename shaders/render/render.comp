@@ -4,13 +4,15 @@
 // math of shaders/shared/ — the very functions the CPU oracle (runtime/oracle/) runs.
 //
 //  µLAS: one TLAS over compartment instances (camera-relative transforms); per compartment a BLAS of
-//        prism AABBs (one per triangle that owns molecules, Morton-sorted) plus one AABB around the
-//        core grid. A candidate yields the compartment-space ray (t is the world t).
-//  shell: exact ray–prism test, then every tile of the triangle's replication area: tile-space ray by
-//        M1⁻¹, the Wang square's mLAS (molecule bounds inflated so they contain the true placement,
-//        runtime/render/gpu_scene.cpp), true placement M2 (chart_membrane_molecule), ownership and
-//        seam rule (membrane_keeps_copy), molecule-space ray, the type's nLAS, exact ray–sphere.
-//  core: 3D-DDA over the grid widened by one box; at every cell the boxes within one step (a
+//        prism AABBs (one per triangle that owns molecules, Morton-sorted) plus the core grid's bricks. A candidate yields the compartment-space ray (t is the world t).
+//  shell: exact ray–prism test (its interval bounds every query below), then the tiles of the
+//        triangle's replication area the ray meets (a repLAS query, or slab tests of each slot's box
+//        for areas of ≤ NANO_DIRECT_SLOTS slots): tile-space ray by M1⁻¹, the Wang square's mLAS
+//        (molecule boxes widened so they contain the true placement, runtime/render/gpu_scene.cpp),
+//        ownership and seam rule (membrane_keeps_copy) before the true placement M2
+//        (chart_membrane_molecule), molecule-space ray, the type's nLAS, exact ray–sphere.
+//  core: per brick of NANO_CORE_BRICK³ boxes the µLAS met (only bricks with a box not outside), a
+//        3D-DDA over the brick widened by one box; at every cell the brick's boxes within one step (a
 //        molecule reaches at most one box beyond its own), occupancy and keep-masks, the cube's mLAS,
 //        nLAS, ray–sphere. The walk stops once a cell starts beyond the best hit.
 // t_max shrinks across all levels: the best t is tracked here and handed to outer queries with
@@ -27,6 +29,7 @@
 #include "shared/ray_sphere.h"
 #include "shared/copy_number.h"
 #include "shared/effects.h"
+#include "shared/ray_counters.h"
 
 layout(local_size_x = NANO_WORKGROUP_SIZE, local_size_y = NANO_WORKGROUP_SIZE) in;
 
@@ -51,11 +54,14 @@ const bool kClipping = false;
 const bool kJitter = false;
 const bool kAmbientOcclusion = false;
 const bool kShadows = false;
+const bool kCounters = false;
 #else
 layout(constant_id = NANO_SPEC_CLIPPING) const bool kClipping = false;         // frame.clip half-spaces, per atom centre
 layout(constant_id = NANO_SPEC_JITTER) const bool kJitter = false;           // protein jitter (frame.effect_parameters)
 layout(constant_id = NANO_SPEC_AMBIENT_OCCLUSION) const bool kAmbientOcclusion = false; // frame.effects.y short rays per pixel
 layout(constant_id = NANO_SPEC_SHADOWS) const bool kShadows = false;          // one shadow ray towards frame.light
+// Work counters per pixel (shared/ray_counters.h, `nanoview bench --counters`).
+layout(constant_id = NANO_SPEC_COUNTERS) const bool kCounters = false;
 #endif
 
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ULAS) uniform accelerationStructureEXT ulas;
@@ -85,6 +91,12 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_DROPPED_COPIES, std430) reado
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COUNTERS, std430) writeonly buffer Counters { uint counters[]; };
+
+uint ray_counts[NANO_RAY_COUNTER_COUNT];  // this pixel's work (kCounters only)
+void count_work(uint counter) {
+  if (kCounters) ray_counts[counter] += 1u;
+}
 
 // The best hit so far. Ids follow PixelHit (shared/camera.h).
 float best_t;
@@ -138,24 +150,28 @@ Affine3 jittered(Affine3 m, uvec2 number) {
 }
 
 // Nearest atom of molecule type `type` placed by `m` (compartment space) on the ray (o, d) within
-// [0, best_t]; o is the compartment-space eye (high part). Updates best_t, best.atom and
-// best_normal_c; true iff it found a nearer atom.
-bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d) {
+// [t_lo, best_t] (t_lo: where the copy can begin along the ray, 0 when unknown); o is the
+// compartment-space eye (high part). Updates best_t, best.atom and best_normal_c; true iff it found
+// a nearer atom.
+bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d, float t_lo) {
   mat3 rt = transpose(m.linear);
   vec3 om = rt * ((o - m.translation) + eye_lo);
   vec3 dm = rt * d;
   RenderLevel level = levels[type];
   if (level.count == 0u) return false;
   bool found = false;
+  count_work(NANO_RC_NLAS_QUERIES);
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, om, 0.0, dm, best_t);
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, om, t_lo, dm, best_t);
   while (rayQueryProceedEXT(q)) {
+    count_work(NANO_RC_NLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     if (p >= level.count) continue;
     uint a = orders[level.order_first + p];
     vec4 cr = atoms[a].centre_radius;
     float tn;
     float tf;
+    count_work(NANO_RC_SPHERE_TESTS);
     if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) continue;
     float t = tn >= 0.0 ? tn : tf;
     if (!(t >= 0.0) || !(t < best_t)) continue;
@@ -166,7 +182,7 @@ bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d) {
     best_type = type;
     best_normal_c = m.linear * normalize(om + t * dm - cr.xyz);
     found = true;
-    rayQueryGenerateIntersectionEXT(q, t);
+    if (t >= t_lo) rayQueryGenerateIntersectionEXT(q, t);  // a hit must lie in the query's range
   }
   return found;
 }
@@ -207,9 +223,11 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
   chart_tile_inverse_ray(chart, g, s_over_S, o, d, ot, dt);
   uint first = squares[tile].first_instance;
   bool found = false;
+  count_work(NANO_RC_NLAS_QUERIES);
   rayQueryEXT q;
   rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
   while (rayQueryProceedEXT(q)) {
+    count_work(NANO_RC_NLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     if (p >= level.count) continue;
     uint m = orders[level.order_first + 2u * p];
@@ -219,12 +237,19 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
     vec3 centre = mi.position.xyz + quat_rotate(mi.rotation, cr.xyz);
     float tn;
     float tf;
+    count_work(NANO_RC_SPHERE_TESTS);
     if (!sphere_intersect(ot, dt, centre, cr.w, tn, tf)) continue;
     float t = tn >= 0.0 ? tn : tf;
     if (!(t >= 0.0) || !(t < best_t)) continue;
     vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
-    if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
-    if (!membrane_copy_listed_shows(membrane_copy_listed(mt, membrane_copy_key(slot, m)), mi.flags)) continue;
+    if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) {
+      count_work(NANO_RC_OWNERSHIP_REJECTS);
+      continue;
+    }
+    if (!membrane_copy_listed_shows(membrane_copy_listed(mt, membrane_copy_key(slot, m)), mi.flags)) {
+      count_work(NANO_RC_LISTED_REJECTS);
+      continue;
+    }
     best_t = t;
     best.atom = a;
     best_type = mi.molecule_type;
@@ -245,9 +270,10 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
   return found;
 }
 
-// The membrane copies of replication slot `sxy` of triangle `tl` (local index in its mesh).
+// The membrane copies of replication slot `sxy` of triangle `tl` (local index in its mesh) on the
+// part [t_lo, t_hi] of the ray inside the triangle's prism, where every copy it owns lies.
 bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart chart, ivec2 origin, ivec2 sxy, vec3 o,
-                vec3 d) {
+                vec3 d, float t_lo, float t_hi) {
   Compartment c = compartments[ci];
   RenderCompartment rc = render_compartments[ci];
   ivec2 cell = replication_tile_index(origin, sxy);
@@ -262,24 +288,35 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
   chart_tile_inverse_ray(chart, g, s_over_S, o, d, ot, dt);
   uint first = squares[tile].first_instance;
   bool found = false;
+  count_work(NANO_RC_MLAS_QUERIES);
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, t_lo, dt, min(best_t, t_hi));
   while (rayQueryProceedEXT(q)) {
+    count_work(NANO_RC_MLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     if (p >= level.count) continue;
     uint m = orders[level.order_first + p];
     MoleculeInstance mi = instances[first + m];
-    vec2 uv_m;
-    Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, c.scales.w, mi.position.xyz, mi.rotation, uv_m);
-    if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) continue;
+    // Ownership and the seam rule first: they need only the copy's UV (the same chart_molecule_uv
+    // the placement computes, so bit-identical), and they reject most candidates before the
+    // placement's normal, frame and rotation are computed.
+    vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
+    if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) {
+      count_work(NANO_RC_OWNERSHIP_REJECTS);
+      continue;
+    }
     uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
-    if (!membrane_copy_listed_shows(membrane_copy_listed(mt, membrane_copy_key(slot, m)), mi.flags)) continue;
+    if (!membrane_copy_listed_shows(membrane_copy_listed(mt, membrane_copy_key(slot, m)), mi.flags)) {
+      count_work(NANO_RC_LISTED_REJECTS);
+      continue;
+    }
+    Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, c.scales.w, mi.position.xyz, mi.rotation, uv_m);
     // mLAS-level trivial reject: the copy's bounding sphere wholly clipped.
     if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
     uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
                                         slot, rc.counts.x, m);
     if (kJitter) placement = jittered(placement, number);
-    if (!trace_molecule(mi.molecule_type, placement, o, d)) continue;
+    if (!trace_molecule(mi.molecule_type, placement, o, d, t_lo)) continue;
     found = true;
     best.compartment_instance = inst;
     best.element = meshes[c.mesh].first_triangle + tl;
@@ -288,7 +325,7 @@ bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart 
     best.instance = m;
     best.copy_number_lo = number.x;
     best.copy_number_hi = number.y;
-    rayQueryGenerateIntersectionEXT(q, best_t);
+    if (best_t >= t_lo) rayQueryGenerateIntersectionEXT(q, best_t);
   }
   return found;
 }
@@ -313,10 +350,20 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
   off.h_minus = sh.h_minus;
   off.side = sh.side_offset;
   Prism pr = shell_prism_make(p0, p1, p2, n0, n1, n2, off);  // compiled out when neither test below is on
+  count_work(NANO_RC_PRISM_TESTS);
+  // The ray's part inside the prism, widened by a margin for rounding (jitter moves copies out).
+  float t_lo = 0.0;
+  float t_hi = best_t;
   if (kExactPrism) {
     PrismInterval iv;
     if (!prism_intersect(pr, o, d, 0.0, best_t, iv)) return false;
+    if (!kJitter && !kTwoLevel) {
+      float margin = 0.05 + 1e-5 * iv.t_exit;
+      t_lo = max(iv.t_enter - margin, 0.0);
+      t_hi = iv.t_exit + margin;
+    }
   }
+  count_work(NANO_RC_PRISMS_ENTERED);
   if (kClipping) {
     // µLAS-level trivial reject: every molecule the prism owns lies in the convex hull of its six
     // corners (bilinear walls included), so a hull wholly outside one half-space has nothing to show.
@@ -349,6 +396,23 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
   ivec2 extent = min(replication_extent(uv_min, uv_max, s), ivec2(c.replication_width, c.replication_height));
   bool found = false;
   uint rep = rc.span.w;
+  if (kReplicationLas && rep != NANO_NO_INDEX && uint(extent.x * extent.y) <= NANO_DIRECT_SLOTS) {
+    // A small area: each slot's box (the repLAS's own, in the origin tile's space) by a slab test.
+    vec3 ot;
+    vec3 dt;
+    chart_tile_inverse_ray(chart, replication_tile_uv(origin, s), s_over_S, o, d, ot, dt);
+    float S = rc.slot_lo.w;
+    for (int sy = 0; sy < extent.y; ++sy)
+      for (int sx = 0; sx < extent.x; ++sx) {
+        vec3 shift = vec3(float(sx) * S, float(sy) * S, 0.0);
+        float tn;
+        float tf;
+        if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, ot, dt, t_lo, min(best_t, t_hi), tn, tf)) continue;
+        count_work(NANO_RC_SLOTS_TRIED);
+        if (trace_tile(inst, ci, tl, mt, chart, origin, ivec2(sx, sy), o, d, t_lo, t_hi)) found = true;
+      }
+    return found;
+  }
   if (kReplicationLas && rep != NANO_NO_INDEX) {
     // One query over the replication area's tile boxes (repLAS, in the space of the origin tile:
     // every tile of the triangle shares M1's linear part), then the mLAS of the tiles it meets.
@@ -356,24 +420,28 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
     vec3 ot;
     vec3 dt;
     chart_tile_inverse_ray(chart, replication_tile_uv(origin, s), s_over_S, o, d, ot, dt);
+    count_work(NANO_RC_REPLAS_QUERIES);
     rayQueryEXT q;
-    rayQueryInitializeEXT(q, accelerationStructureEXT(area.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
+    rayQueryInitializeEXT(q, accelerationStructureEXT(area.address), gl_RayFlagsNoneEXT, 0xFF, ot, t_lo, dt, min(best_t, t_hi));
     while (rayQueryProceedEXT(q)) {
       uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
       if (p >= area.count) continue;
       uint slot = orders[area.order_first + p];
       ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
       if (sxy.x >= extent.x || sxy.y >= extent.y) continue;
-      if (trace_tile(inst, ci, tl, mt, chart, origin, sxy, o, d)) {
+      count_work(NANO_RC_SLOTS_TRIED);
+      if (trace_tile(inst, ci, tl, mt, chart, origin, sxy, o, d, t_lo, t_hi)) {
         found = true;
-        rayQueryGenerateIntersectionEXT(q, best_t);
+        if (best_t >= t_lo) rayQueryGenerateIntersectionEXT(q, best_t);
       }
     }
     return found;
   }
   for (int sy = 0; sy < extent.y; ++sy)
-    for (int sx = 0; sx < extent.x; ++sx)
-      if (trace_tile(inst, ci, tl, mt, chart, origin, ivec2(sx, sy), o, d)) found = true;
+    for (int sx = 0; sx < extent.x; ++sx) {
+      count_work(NANO_RC_SLOTS_TRIED);
+      if (trace_tile(inst, ci, tl, mt, chart, origin, ivec2(sx, sy), o, d, t_lo, t_hi)) found = true;
+    }
   return found;
 }
 
@@ -415,19 +483,24 @@ bool trace_box(uint inst, uint ci, ivec3 ijk, vec3 o, vec3 d) {
   if (level.count == 0u) return false;
   uint first = cubes[cube].first_instance;
   bool found = false;
+  count_work(NANO_RC_MLAS_QUERIES);
   rayQueryEXT q;
   rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, o - box_min, 0.0, d, best_t);
   while (rayQueryProceedEXT(q)) {
+    count_work(NANO_RC_MLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     if (p >= level.count) continue;
     uint m = orders[level.order_first + p];
-    if (mask != NANO_NO_INDEX && ((mask_words[mask + m / 32u] >> (m % 32u)) & 1u) == 0u) continue;
+    if (mask != NANO_NO_INDEX && ((mask_words[mask + m / 32u] >> (m % 32u)) & 1u) == 0u) {
+      count_work(NANO_RC_MASK_REJECTS);
+      continue;
+    }
     MoleculeInstance mi = instances[first + m];
     Affine3 placement = core_soluble_molecule(box_min, mi.position.xyz, mi.rotation);
     if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
     uvec2 number = copy_number_core(render_instances[inst].base.xy, rc.span.xy, box, rc.counts.y, m);
     if (kJitter) placement = jittered(placement, number);
-    if (!trace_molecule(mi.molecule_type, placement, o, d)) continue;
+    if (!trace_molecule(mi.molecule_type, placement, o, d, 0.0)) continue;
     found = true;
     best.compartment_instance = inst;
     best.element = box;
@@ -441,15 +514,22 @@ bool trace_box(uint inst, uint ci, ivec3 ijk, vec3 o, vec3 d) {
   return found;
 }
 
-bool trace_core(uint inst, uint ci, vec3 o, vec3 d) {
+// The soluble copies of core brick `brick` (x + bx·(y + by·z), render_scene.h NANO_CORE_BRICK):
+// a 3D-DDA over the brick widened by one box; at every cell the brick's boxes within one step.
+bool trace_core(uint inst, uint ci, uint brick, vec3 o, vec3 d) {
   Compartment c = compartments[ci];
   float B = c.grid_min.w;
   ivec3 dims = ivec3(c.grid_dims.xyz);
-  if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(dims + ivec3(1)) * B)) return false;
-  // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
-  // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
+  ivec3 bricks = (dims + ivec3(NANO_CORE_BRICK - 1u)) / int(NANO_CORE_BRICK);
+  ivec3 first = ivec3(int(brick % uint(bricks.x)), int((brick / uint(bricks.x)) % uint(bricks.y)),
+                      int(brick / uint(bricks.x * bricks.y))) * int(NANO_CORE_BRICK);
+  ivec3 end = min(first + ivec3(NANO_CORE_BRICK), dims);
+  vec3 region_min = core_box_min(c.grid_min.xyz, vec3(B), first - ivec3(1));
+  if (kClipping && clip_removes_box(region_min, core_box_min(c.grid_min.xyz, vec3(B), end + ivec3(1)))) return false;
+  // Every point where a copy of one of the brick's boxes can be hit lies in a cell of this region
+  // within one step of its box.
   GridDda it;
-  dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), dims + ivec3(2), o, d, 0.0, best_t);
+  dda_init(it, region_min, vec3(B), end - first + ivec3(2), o, d, 0.0, best_t);
   ivec3 cell;
   float ta;
   float tb;
@@ -457,17 +537,20 @@ bool trace_core(uint inst, uint ci, vec3 o, vec3 d) {
   bool found = false;
   while (dda_next(it, cell, ta, tb)) {
     if (ta > best_t) break;
+    count_work(NANO_RC_CORE_STEPS);
+    ivec3 at = first - ivec3(1) + cell;  // the box this cell of the region is
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
-          if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
+          ivec3 ijk = at + ivec3(dx, dy, dz);
+          if (any(lessThan(ijk, first)) || any(greaterThanEqual(ijk, end))) continue;
           // The previous cell's neighbourhood was traced already.
-          ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
+          ivec3 from_previous = abs(ijk - previous);
           if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
+          count_work(NANO_RC_CORE_BOXES);
           if (trace_box(inst, ci, ijk, o, d)) found = true;
         }
-    previous = cell;
+    previous = at;
   }
   return found;
 }
@@ -490,10 +573,12 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
   best_normal_c = vec3(0.0);
   best_type = 0u;
 
+  count_work(NANO_RC_ULAS_QUERIES);
   rayQueryEXT q;
   rayQueryInitializeEXT(q, ulas, gl_RayFlagsNoneEXT, 0xFF, origin, 0.0, d, t_max);
   while (rayQueryProceedEXT(q)) {
     if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
+    count_work(NANO_RC_ULAS_CANDIDATES);
     uint inst = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
     uint prim = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     vec3 o;
@@ -512,7 +597,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
     if (prim < rc.counts.z) {
       found = trace_shell(inst, ci, orders[rc.counts.w + prim], o, od);
     } else if (rc.span.z != 0u) {
-      found = trace_core(inst, ci, o, od);
+      found = trace_core(inst, ci, orders[rc.counts.w + prim], o, od);
     }
     if (found) {
       best_to_world = rayQueryGetIntersectionObjectToWorldEXT(q, false);
@@ -532,6 +617,8 @@ void main() {
   uvec2 px = gl_GlobalInvocationID.xy;
   if (px.x >= cam.size.x || px.y >= cam.size.y) return;
   vec3 d = camera_ray_direction(cam, px.x, px.y);
+  if (kCounters)
+    for (uint k = 0u; k < NANO_RAY_COUNTER_COUNT; ++k) ray_counts[k] = 0u;
 
   vec3 origin = kWorldSpaceUlas ? frame.camera.position.xyz : vec3(0.0);
   trace_scene(origin, d, placement_inf(), true);
@@ -574,4 +661,6 @@ void main() {
   vec3 srgb = srgb_from_linear(colour);
   uvec3 b = uvec3(round(srgb * 255.0));
   colours[index] = b.r | (b.g << 8) | (b.b << 16) | (255u << 24);
+  if (kCounters && (index + 1u) * NANO_RAY_COUNTER_COUNT <= uint(counters.length()))
+    for (uint k = 0u; k < NANO_RAY_COUNTER_COUNT; ++k) counters[index * NANO_RAY_COUNTER_COUNT + k] = ray_counts[k];
 }

@@ -15,7 +15,7 @@ NANO_CONST uint NANO_WORKGROUP_SIZE = 8u;
 NANO_CONST uint NANO_DESCRIPTOR_SET = 0u;
 
 // shaders/render/render.comp, set 0. Bindings below NANO_SCENE_BINDING_COUNT hold the scene (one
-// package section or derived buffer each: runtime/render/gpu_scene.cpp); the last three the frame.
+// package section or derived buffer each: runtime/render/gpu_scene.cpp); the last four the frame.
 NANO_CONST uint NANO_B_ULAS = 0u;  // the µLAS; every other binding is a storage buffer
 NANO_CONST uint NANO_B_MOLECULES = 1u;
 NANO_CONST uint NANO_B_ATOMS = 2u;
@@ -44,7 +44,8 @@ NANO_CONST uint NANO_SCENE_BINDING_COUNT = 24u;
 NANO_CONST uint NANO_B_FRAME = 24u;
 NANO_CONST uint NANO_B_HITS = 25u;
 NANO_CONST uint NANO_B_COLOURS = 26u;
-NANO_CONST uint NANO_RENDER_BINDING_COUNT = 27u;
+NANO_CONST uint NANO_B_COUNTERS = 27u;  // per pixel work counters (shared/ray_counters.h); a one-word buffer when off
+NANO_CONST uint NANO_RENDER_BINDING_COUNT = 28u;
 
 // render.comp's specialization constants (runtime/render/renderer.cpp sets them per variant).
 NANO_CONST int NANO_SPEC_EXACT_PRISM = 0;
@@ -56,6 +57,7 @@ NANO_CONST int NANO_SPEC_AMBIENT_OCCLUSION = 5;
 NANO_CONST int NANO_SPEC_SHADOWS = 6;
 NANO_CONST int NANO_SPEC_EYE_FROM_HOST = 7;
 NANO_CONST int NANO_SPEC_WORLD_SPACE_ULAS = 8;
+NANO_CONST int NANO_SPEC_COUNTERS = 9;
 
 // shaders/explicit_instancing/instanced.comp, set 0 (explicit instancing: runtime/explicit_instancing/).
 NANO_CONST uint NANO_IB_TLAS = 0u;  // one instance per copy; every other binding is a storage buffer
@@ -67,13 +69,17 @@ NANO_CONST uint NANO_INSTANCED_SCENE_BINDING_COUNT = 5u;
 NANO_CONST uint NANO_IB_FRAME = 5u;
 NANO_CONST uint NANO_IB_HITS = 6u;
 NANO_CONST uint NANO_IB_COLOURS = 7u;
-NANO_CONST uint NANO_INSTANCED_BINDING_COUNT = 8u;
+NANO_CONST uint NANO_IB_COUNTERS = 8u;  // as NANO_B_COUNTERS
+NANO_CONST uint NANO_INSTANCED_BINDING_COUNT = 9u;
+
+// instanced.comp's specialization constant.
+NANO_CONST int NANO_SPEC_INSTANCED_COUNTERS = 0;
 
 NANO_STATIC_ASSERT(NANO_DESCRIPTOR_SET == 0u, "a pipeline's first and only set is set 0");
 NANO_STATIC_ASSERT(NANO_B_DROPPED_COPIES + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
-NANO_STATIC_ASSERT(NANO_B_COLOURS + 1u == NANO_RENDER_BINDING_COUNT, "frame bindings follow the scene's");
+NANO_STATIC_ASSERT(NANO_B_COUNTERS + 1u == NANO_RENDER_BINDING_COUNT, "frame bindings follow the scene's");
 NANO_STATIC_ASSERT(NANO_IB_ORDERS + 1u == NANO_INSTANCED_SCENE_BINDING_COUNT, "instanced scene bindings are 0 .. count - 1");
-NANO_STATIC_ASSERT(NANO_IB_COLOURS + 1u == NANO_INSTANCED_BINDING_COUNT, "instanced frame bindings follow the scene's");
+NANO_STATIC_ASSERT(NANO_IB_COUNTERS + 1u == NANO_INSTANCED_BINDING_COUNT, "instanced frame bindings follow the scene's");
 
 NANO_END
 

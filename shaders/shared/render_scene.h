@@ -13,11 +13,18 @@ struct RenderCompartment {
   vec4 reach_lo;   // xyz: cube-space minimum of every cube molecule's bounding sphere (≥ −box edge); w: reserved
   vec4 reach_hi;   // xyz: cube-space maximum (≤ 2·box edge); w: reserved
   uvec4 counts;    // x: I₂ (largest square instance count); y: I₃ (cubes); z: prism primitives in the
-                   // compartment's µLAS BLAS (the core-grid box, if any, is primitive z); w: first entry
-                   // of its primitive → triangle map in `orders`
+                   // compartment's µLAS BLAS (core bricks follow them); w: first entry of its
+                   // primitive → triangle (prisms) or brick index (bricks, x + bx·(y + by·z)) map in `orders`
   uvec4 span;      // xy: membrane copy-number span of one instance (lo, hi); z: 1 = has a core grid;
                    // w: repLAS entry in `levels` (NANO_NO_INDEX: none)
+  vec4 slot_lo;    // xyz: tile-space minimum of every mLAS box of the compartment's squares (the
+                   // repLAS box of slot (0, 0); slot (i, j) is moved by (i·S, j·S, 0)); w: S
+  vec4 slot_hi;    // xyz: tile-space maximum; w: reserved
 };
+
+// Replication areas of at most this many slots are tested slot by slot against their boxes
+// (RenderCompartment.slot_lo/hi), cheaper than starting a repLAS query for one or two hits.
+NANO_CONST uint NANO_DIRECT_SLOTS = 4u;
 
 // Per compartment instance (parallel to section "compartment_instances"), rewritten per camera.
 // The eye in compartment space as an unevaluated sum hi + lo of floats (computed in double on the
@@ -52,13 +59,19 @@ struct RenderFrame {
   vec4 effect_parameters;  // x: AO radius (Å); y: time (s); z: jitter amplitude (radians); w: jitter frequency (Hz)
   vec4 clip[14];  // camera-relative world half-spaces (unit n, d): a point p stays iff n·p + d ≥ 0 for all
 };
-NANO_CONST uint NANO_MAX_CLIP_HALF_SPACES = 14u;  // 8 planes + the 6 faces of the clip box
+NANO_CONST uint NANO_MAX_CLIP_HALF_SPACES = 14u;
+
+// The core grid enters a compartment's µLAS BLAS as bricks of NANO_CORE_BRICK³ boxes, each widened
+// by one box (a molecule reaches at most one box beyond its own), and only bricks holding a box
+// that is not outside the compartment: a ray walks the grid only where it meets such a brick, and a
+// brick's walk traces only its own boxes, so no box is traced from two bricks.
+NANO_CONST uint NANO_CORE_BRICK = 4u;  // 8 planes + the 6 faces of the clip box
 
 NANO_END
 
 #ifdef __cplusplus
 #include <cstddef>
-static_assert(sizeof(nano::gpu::RenderCompartment) == 80);
+static_assert(sizeof(nano::gpu::RenderCompartment) == 112);
 static_assert(sizeof(nano::gpu::RenderInstance) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);
 static_assert(sizeof(nano::gpu::Camera) == 80);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "runtime/bench/frame_stats.hpp"
+#include "runtime/bench/ray_counters.hpp"
 #include "runtime/bench/svg_plot.hpp"
 
 namespace {
@@ -26,6 +27,41 @@ TEST(FrameStats, NearestRankPercentiles) {
   EXPECT_EQ(one.p95, 0.25);
   EXPECT_THROW(frame_stats({}), std::invalid_argument);
   EXPECT_EQ(to_json(f)["p95"].get<double>(), f.p95);
+}
+
+// 20 pixels: pixel p has p + 1 µLAS candidates, one query at each level except the repLAS, and
+// 2p slots; the totals add the levels.
+TEST(RayCounters, MeansPercentilesAndTotalsByHand) {
+  using namespace nano::gpu;
+  std::vector<std::uint32_t> words(20 * NANO_RAY_COUNTER_COUNT, 0);
+  for (std::uint32_t p = 0; p < 20; ++p) {
+    std::uint32_t* w = &words[p * NANO_RAY_COUNTER_COUNT];
+    w[NANO_RC_ULAS_QUERIES] = 1, w[NANO_RC_MLAS_QUERIES] = 1, w[NANO_RC_NLAS_QUERIES] = 1;
+    w[NANO_RC_ULAS_CANDIDATES] = p + 1;
+    w[NANO_RC_SLOTS_TRIED] = 2 * p;
+  }
+  const CounterSummary s = summarize_counters(words);
+  EXPECT_EQ(s.pixels, 20u);
+  EXPECT_DOUBLE_EQ(s.rows[NANO_RC_ULAS_CANDIDATES].mean, 10.5);
+  EXPECT_EQ(s.rows[NANO_RC_ULAS_CANDIDATES].p95, 19u);  // the 19th smallest of 1 … 20
+  EXPECT_EQ(s.rows[NANO_RC_ULAS_CANDIDATES].max, 20u);
+  EXPECT_DOUBLE_EQ(s.rows[kQueriesStarted].mean, 3.0);
+  EXPECT_EQ(s.rows[kQueriesStarted].p95, 3u);
+  EXPECT_DOUBLE_EQ(s.rows[kCandidatesMet].mean, 10.5 + 19.0);  // (p + 1) + 2p summed over p, over 20
+  EXPECT_EQ(s.rows[kCandidatesMet].max, 20u + 38u);
+  EXPECT_DOUBLE_EQ(s.rows[NANO_RC_SPHERE_TESTS].mean, 0.0);
+  EXPECT_STREQ(counter_name(NANO_RC_SPHERE_TESTS), "sphere_tests");
+  EXPECT_STREQ(counter_name(kCandidatesMet), "candidates_met");
+  EXPECT_THROW(counter_name(kCounterRows), std::out_of_range);
+  const nlohmann::ordered_json j = to_json(s);
+  EXPECT_EQ(j["per_pixel"]["slots_tried"]["max"], 38);
+  const std::pair<std::string, CounterSummary> columns[] = {{"a", s}};
+  EXPECT_NE(counters_markdown(columns).find("| ulas_candidates | 10.50 | 19 |"), std::string::npos);
+}
+
+TEST(RayCounters, RefusesPartialPixels) {
+  EXPECT_THROW(summarize_counters(std::vector<std::uint32_t>{}), std::invalid_argument);
+  EXPECT_THROW(summarize_counters(std::vector<std::uint32_t>(nano::gpu::NANO_RAY_COUNTER_COUNT + 1)), std::invalid_argument);
 }
 
 TEST(SvgPlot, PointsInsideTheFrameAndLabelled) {

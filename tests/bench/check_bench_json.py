@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Checks a `nanoview bench --json` file holds every key the README promises for its mode, with
-values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit"""
+values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit|counters"""
 import json, math, sys
 
 path, mode = sys.argv[1], sys.argv[2]
@@ -27,6 +27,7 @@ if d.get("validation_errors", 1) != 0:
     problems.append("validation_errors must be 0")
 if mode == "frames":
     need(d, "load_seconds", "top", positive=True)
+    need(d, "open_to_first_image_seconds", "top", positive=True)
     stages = need(d, "load_stages_seconds", "top", dict) or {}
     for k in ("map", "validate", "device", "upload", "nlas_builds", "mlas_builds", "ulas_builds"):
         need(stages, k, "load_stages_seconds")
@@ -63,6 +64,8 @@ elif mode == "matrix":
         w = need(r, "wrong_pixels_percent", where)
         if isinstance(w, (int, float)) and not 0 <= w <= 100:
             problems.append(f"{where}: wrong_pixels_percent {w} outside [0, 100]")
+        q = need(r, "queries_per_pixel", where, positive=True)
+        c = need(r, "candidates_per_pixel", where, positive=True)
 elif mode == "explicit":
     r = need(d, "explicit_vs_virtual", "top", dict) or {}
     for k in ("explicit_seconds_median", "virtual_seconds_median", "explicit_device_bytes", "virtual_device_bytes", "copies"):
@@ -70,6 +73,43 @@ elif mode == "explicit":
     a = need(r, "agreement", "explicit_vs_virtual")
     if isinstance(a, (int, float)) and a < 0.999:
         problems.append(f"explicit and virtual instancing agree on only {a} of the pixels")
+elif mode == "counters":
+    work = need(d, "work", "top", dict) or {}
+    rows = ("ulas_queries", "ulas_candidates", "prism_tests", "prisms_entered", "replas_queries", "slots_tried",
+            "mlas_queries", "mlas_candidates", "ownership_rejects", "listed_rejects", "nlas_queries", "nlas_candidates",
+            "sphere_tests", "core_steps", "core_boxes", "mask_rejects", "queries_started", "candidates_met")
+    per = {}
+    for side in ("virtual", "explicit"):
+        s = (need(work, side, "work", dict) or {}).get("per_pixel", {})
+        per[side] = {k: s.get(k, {}).get("mean", -1) for k in rows}
+        for k in rows:
+            st = s.get(k)
+            if not isinstance(st, dict) or not (0 <= st.get("mean", -1) <= st.get("max", -1) and st.get("p95", -1) <= st.get("max", -1)):
+                problems.append(f"{side}.{k}: expected 0 <= mean <= max and p95 <= max, got {st}")
+    v, e = per["virtual"], per["explicit"]
+    # Laws of the traversal, not measured values: one top-level query per pixel without effects;
+    # explicit instancing has no other level; every nLAS query follows a molecule candidate that
+    # survived the rejections; a prism is entered only after its test.
+    if e["ulas_queries"] != 1 or v["ulas_queries"] != 1:
+        problems.append(f"expected one top-level query per pixel, got virtual {v['ulas_queries']}, explicit {e['ulas_queries']}")
+    if any(e[k] != 0 for k in ("prism_tests", "mlas_queries", "nlas_queries", "core_steps")):
+        problems.append("explicit instancing counted work at levels it does not have")
+    if not e["sphere_tests"] <= e["ulas_candidates"]:
+        problems.append("explicit: more sphere tests than candidates")
+    if not v["prisms_entered"] <= v["prism_tests"]:
+        problems.append("virtual: more prisms entered than tested")
+    if not v["nlas_queries"] <= v["mlas_candidates"] - v["ownership_rejects"] - v["listed_rejects"] - v["mask_rejects"] + 1e-9:
+        problems.append("virtual: more nLAS queries than molecule candidates that survived the rejections")
+    if not v["sphere_tests"] > 0 or not v["queries_started"] > v["ulas_queries"]:
+        problems.append("virtual: a view of the scene should reach atoms")
+    if work.get("counting_changes_no_pixel") is not True:
+        problems.append("counting changed the virtual image")
+    a = need(work, "agreement_virtual_vs_explicit", "work")
+    if isinstance(a, (int, float)) and a < 0.999:
+        problems.append(f"explicit and virtual instancing agree on only {a} of the pixels")
+    fs = need(work, "frame_seconds_median", "work", dict) or {}
+    for k in ("virtual_without_counter_code", "virtual", "virtual_counting", "explicit", "explicit_counting"):
+        need(fs, k, "frame_seconds_median", positive=True)
 else:
     problems.append(f"unknown mode {mode}")
 if problems:

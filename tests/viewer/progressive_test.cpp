@@ -19,7 +19,8 @@ TEST(Progressive, MotionScaleMeetsTheBudget) {
 }
 
 TEST(Progressive, RestScaleStepsTowardsFullResolution) {
-  EXPECT_EQ(rest_scale(0, 0, 1920, 1080, 0.3), 1u);  // nothing measured yet: the first frame measures
+  EXPECT_EQ(rest_scale(0, 0, 1920, 1080, 0.3), kFirstFrameScale);  // nothing measured yet: a coarse first frame measures
+  EXPECT_EQ(rest_scale(8, 0, 1920, 1080, 0.3), 4u);                // still unmeasured: refinement moves on
   const double cheap = 0.1 / (1920.0 * 1080);       // a full frame in 0.1 s: no steps
   EXPECT_EQ(rest_scale(0, cheap, 1920, 1080, 0.3), 1u);
   EXPECT_EQ(rest_scale(8, cheap, 1920, 1080, 0.3), 1u);

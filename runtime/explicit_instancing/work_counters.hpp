@@ -1,0 +1,36 @@
+#pragma once
+// Where the time of a frame goes (`nanoview bench --counters`): the per-pixel work of virtual
+// instancing at every level of its traversal beside explicit instancing's on the same views, the
+// frame time of each, and what the counters themselves cost (issue #16 item 1).
+#include <cstdint>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "format/package.hpp"
+#include "runtime/bench/ray_counters.hpp"
+#include "runtime/render/gpu_scene.hpp"
+#include "runtime/vk/device.hpp"
+#include "shared/camera.h"
+
+namespace nano::instanced {
+
+struct WorkCounters {
+  bench::CounterSummary virtual_work, explicit_work;  // over every pixel of every view
+  double agreement = 0;         // compare_hits of the counted frames: virtual against explicit
+  bool counting_changes_no_pixel = false;  // virtual hits with counters on == with them off, every view
+  // Frame medians measured alternately in one run (virtual without counter code, virtual with the
+  // constant off, virtual counting; explicit without and with counting).
+  double virtual_no_counter_code_seconds = 0, virtual_seconds = 0, virtual_counting_seconds = 0;
+  double explicit_seconds = 0, explicit_counting_seconds = 0;
+  std::uint64_t frames = 0;  // per variant, warm-ups excluded
+  nlohmann::ordered_json to_json() const;
+};
+
+// Builds the explicit scene (InputError beyond 2,000,000 copies, as compare_explicit_and_virtual),
+// renders every camera once counting with both renderers, then `rounds` rounds of the five timed
+// variants in an order that turns each round. Throws std::invalid_argument without cameras or rounds.
+WorkCounters count_work(const vk::Device& device, const format::Package& package, render::GpuScene& virtual_scene,
+                        const std::vector<gpu::Camera>& cameras, unsigned rounds);
+
+}  // namespace nano::instanced
