@@ -16,7 +16,7 @@ packages=(
   libglfw3-dev libimgui-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   python3 python3-gemmi python3-numpy python-biopython-doc freesasa
-  xvfb xauth
+  xvfb xauth xdotool
 )
 backports_packages=(mesa-vulkan-drivers)
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <map>
+#include <optional>
 #include <string>
 #include <stdexcept>
 #include <tuple>
@@ -46,6 +47,7 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   if (v.no_effect_code) desc.code = {nano_spv_render_nano_no_effects_comp, nano_spv_render_nano_no_effects_comp_words};
   else desc.code = {nano_spv_render_comp, nano_spv_render_comp_words};
   desc.sets = {ray_query_set(gpu::NANO_B_ULAS, gpu::NANO_RENDER_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
+  desc.push_constant_bytes = 2 * sizeof(std::uint32_t);  // the part's first pixel
   desc.specialization.set_bool(gpu::NANO_SPEC_EXACT_PRISM, v.exact_prism);
   desc.specialization.set_bool(gpu::NANO_SPEC_REPLICATION_LAS, v.replication_las);
   desc.specialization.set_bool(gpu::NANO_SPEC_TWO_LEVEL, v.two_level);
@@ -89,6 +91,14 @@ struct Renderer::Impl {
   std::map<Variant, std::unique_ptr<Pipeline>> pipelines;  // built on first use, kept for toggling back
   vk::Buffer frame_buffer;
   PixelOutputs outputs;
+  // The frame begun and not yet finished.
+  struct Pending {
+    std::uint32_t width = 0, height = 0, next_row = 0, next_column = 0;
+    Variant variant{};
+    std::chrono::steady_clock::time_point start;
+    double traced_seconds = 0;  // begin + bands, not the time between them
+  };
+  std::optional<Pending> pending;
 
   Impl(const vk::Device& d, GpuScene& s, const RenderSettings& r) : device(d), scene(s) {
     frame_buffer = vk::Buffer(d, sizeof(gpu::RenderFrame), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
@@ -131,8 +141,16 @@ struct Renderer::Impl {
   }
 
   Frame render(const gpu::Camera& camera) {
+    begin(camera);
+    while (!trace_part(std::uint64_t(camera.size.x) * camera.size.y).complete) {
+    }
+    return finish();
+  }
+
+  void begin(const gpu::Camera& camera) {
     const std::uint32_t w = camera.size.x, h = camera.size.y;
     if (w == 0 || h == 0) throw std::invalid_argument("render: image size must be positive");
+    pending.reset();
     const auto start = std::chrono::steady_clock::now();
     const glm::dvec3 eye = ulas_origin(camera);
     if (settings.effects.animation_on) {
@@ -148,11 +166,48 @@ struct Renderer::Impl {
     scene.write_descriptors(p.set);
     vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_FRAME, frame_buffer);
     outputs.bind(device, p.set, {gpu::NANO_B_HITS, gpu::NANO_B_COLOURS, gpu::NANO_B_COUNTERS}, std::uint64_t(w) * h, v.counters);
-    vk::dispatch_pixels_and_wait(device, p.pipeline, p.set, w, h, gpu::NANO_WORKGROUP_SIZE);
+    pending = Pending{w, h, 0, 0, v, start, 0};
+    pending->traced_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  Renderer::Part trace_part(std::uint64_t pixels) {
+    if (!pending) throw std::logic_error("Renderer::trace_part: no frame begun");
+    if (variant_of(settings).key() != pending->variant.key())
+      throw std::logic_error("Renderer::trace_part: the settings changed since begin()");
+    Pending& f = *pending;
+    if (f.next_row >= f.height) throw std::logic_error("Renderer::trace_part: the frame is complete; finish() it");
+    const auto start = std::chrono::steady_clock::now();
+    const std::uint64_t wg = gpu::NANO_WORKGROUP_SIZE;
+    const std::uint64_t strip_pixels = wg * f.width;
+    std::uint32_t x = f.next_column, y = f.next_row, w, h;
+    if (f.next_column == 0 && pixels >= std::uint64_t(f.width) * (f.height - f.next_row)) {  // the rest
+      h = f.height - f.next_row;
+      w = f.width;
+      f.next_row = f.height;
+    } else if (f.next_column == 0 && pixels >= strip_pixels) {  // whole strips of 8 rows
+      h = std::uint32_t(std::min<std::uint64_t>(pixels / strip_pixels * wg, f.height - f.next_row));
+      w = f.width;
+      f.next_row += h;
+    } else {  // a run of workgroups along the current strip
+      w = std::uint32_t(std::clamp<std::uint64_t>(pixels / (wg * wg) * wg, wg, f.width - f.next_column));
+      h = std::uint32_t(std::min<std::uint64_t>(wg, f.height - f.next_row));
+      f.next_column += w;
+      if (f.next_column >= f.width) f.next_column = 0, f.next_row += h;
+    }
+    Pipeline& p = *pipelines.at(f.variant);
+    vk::dispatch_region_and_wait(device, p.pipeline, p.set, x, y, w, h, std::uint32_t(wg));
+    f.traced_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return {std::uint64_t(w) * h, f.next_row >= f.height};
+  }
+
+  Frame finish() {
+    if (!pending || pending->next_row < pending->height) throw std::logic_error("Renderer::finish: the frame is not complete");
+    const auto start = std::chrono::steady_clock::now();
     Frame out;
-    out.width = w, out.height = h;
+    out.width = pending->width, out.height = pending->height;
     outputs.read(out.hits, out.rgba, out.counters);
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out.seconds = pending->traced_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    pending.reset();
     return out;
   }
 };
@@ -177,6 +232,9 @@ Renderer::Renderer(const vk::Device& device, GpuScene& scene, const RenderSettin
     : impl_(std::make_unique<Impl>(device, scene, settings)) {}
 Renderer::~Renderer() = default;
 Frame Renderer::render(const gpu::Camera& camera) { return impl_->render(camera); }
+void Renderer::begin(const gpu::Camera& camera) { impl_->begin(camera); }
+Renderer::Part Renderer::trace_part(std::uint64_t pixels) { return impl_->trace_part(pixels); }
+Frame Renderer::finish() { return impl_->finish(); }
 void Renderer::set_settings(const RenderSettings& settings) { impl_->set_settings(settings); }
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
 

@@ -52,6 +52,19 @@ public:
   // camera.position is the world eye; the µLAS is rebuilt relative to it before tracing.
   Frame render(const gpu::Camera& camera);
 
+  // The same frame in parts, so a caller can do other work (a viewer: input, presenting) between
+  // them: begin() prepares it, each trace_part() traces about `pixels` more (whole 8×8 workgroups:
+  // runs along strips of 8 rows, or whole strips when the budget allows) and says how many it
+  // traced and whether the frame is complete, finish() reads it back. A new begin() abandons an
+  // unfinished frame; settings must not change in between (std::logic_error).
+  struct Part {
+    std::uint64_t pixels = 0;
+    bool complete = false;
+  };
+  void begin(const gpu::Camera& camera);
+  Part trace_part(std::uint64_t pixels);
+  Frame finish();
+
   // Effects and knobs for the next frames. A change of what is compiled in (the specialization
   // constants) builds another pipeline, once; parameters (planes, time, AO radius) cost nothing.
   // Throws std::invalid_argument for more than 8 clip planes or effects the two-level path lacks.

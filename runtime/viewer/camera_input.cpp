@@ -45,6 +45,7 @@ InputResult handle_camera_input(Window& window, CameraController& camera, double
   }
 
   const std::vector<int> presses = window.take_key_presses();
+  r.keys = presses;
   if (!io.WantCaptureKeyboard) {
     const auto pressed = [&](int key) { return std::find(presses.begin(), presses.end(), key) != presses.end(); };
     if (pressed(GLFW_KEY_TAB)) camera.toggle_mode();

@@ -5,6 +5,7 @@
 // A left click without a drag is a pick; F12 or P asks for a screenshot; K adds the camera to the
 // camera path as a keyframe and L plays (or stops) the path.
 #include <optional>
+#include <vector>
 #include <utility>
 
 #include "runtime/viewer/camera_controller.hpp"
@@ -19,6 +20,7 @@ struct InputResult {
   bool screenshot = false;
   bool add_keyframe = false;    // K
   bool toggle_path = false;     // L
+  std::vector<int> keys;        // every key pressed since the last call (GLFW codes), in order
 };
 
 // Call between Overlay::begin_frame and end_frame. `seconds`: time since the previous call.

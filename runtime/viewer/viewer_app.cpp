@@ -1,6 +1,9 @@
 #include "runtime/viewer/viewer_app.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +38,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr std::pair<std::uint32_t, std::uint32_t> kDefaultSize{960, 720};
+// A frame is traced in parts of about this many seconds, input and presenting in between, so the
+// window answers at ≥ 30 Hz whatever the whole frame costs (one queue suffices: nothing waits on
+// more than one part).
+constexpr double kPartSeconds = 0.015;
 
 std::optional<double> centre_depth(const render::Frame& frame) {
   if (frame.hits.empty()) return std::nullopt;
@@ -155,66 +162,113 @@ private:
     return state_.settings.effects.ambient_occlusion_on && accumulator_.count() < state_.ao_samples;
   }
 
-  render::Frame render_frame(std::uint32_t width, std::uint32_t height, std::uint32_t sample) {
-    render::RenderSettings s = state_.settings;
-    s.depth_cue = render::depth_cue_for(state_.camera.camera());
-    s.effects.sample_index = sample;
-    renderer_->set_settings(s);
-    render::Frame frame = renderer_->render(state_.camera.camera().to_gpu(width, height));
+  // A frame of the current state being made: at 1/scale per axis of the window's `size` (scale 1:
+  // the full frame, AO sample `sample`), traced part by part between polls of the window.
+  struct Job {
+    std::uint32_t scale = 1, sample = 0;
+    std::pair<std::uint32_t, std::uint32_t> size;
+    std::uint64_t version = 0;
+    render::RenderSettings settings;
+  };
+
+  Job make_job(std::uint32_t scale) const {
+    Job job;
+    job.scale = scale;
+    job.size = render_size();
+    job.version = state_.version;
+    if (scale == 1) job.sample = full_is_current() && state_.settings.effects.ambient_occlusion_on ? accumulator_.count() : 0;
+    job.settings = state_.settings;
+    job.settings.depth_cue = render::depth_cue_for(state_.camera.camera());
+    job.settings.effects.sample_index = job.sample;
+    return job;
+  }
+
+  gpu::Camera job_camera(const Job& job) const {
+    return state_.camera.camera().to_gpu(reduced_extent(job.size.first, job.scale), reduced_extent(job.size.second, job.scale));
+  }
+
+  // Takes a finished frame of `job`: the full frame (a new average when the state changed,
+  // otherwise one more AO sample into it) or a reduced one the presenter stretches over the window.
+  void adopt(const Job& job, render::Frame frame) {
     ++rendered_;
-    const std::uint64_t pixels = std::uint64_t(width) * height;
+    const std::uint64_t pixels = std::uint64_t(frame.width) * frame.height;
     state_.stats.seconds = frame.seconds;
-    state_.stats.width = width, state_.stats.height = height;
+    state_.stats.width = frame.width, state_.stats.height = frame.height;
     state_.stats.rays_per_second =
-        frame.seconds > 0 ? double(render::Renderer::rays_per_frame(s, pixels)) / frame.seconds : 0;
+        frame.seconds > 0 ? double(render::Renderer::rays_per_frame(job.settings, pixels)) / frame.seconds : 0;
     seconds_per_pixel_ = frame.seconds / double(pixels);
     state_.camera.set_focus_depth(centre_depth(frame));
-    return frame;
+    if (job.scale == 1) {
+      if (job.sample == 0) accumulator_.reset();
+      full_ = std::move(frame);
+      full_version_ = job.version;
+      accumulator_.add(full_.rgba, full_.width, full_.height);
+      state_.stats.scale = 1;
+      state_.stats.samples = accumulator_.count();
+      shown_ = &full_;
+    } else {
+      reduced_ = std::move(frame);
+      reduced_version_ = job.version;
+      reduced_scale_ = job.scale;
+      reduced_size_ = job.size;
+      state_.stats.scale = job.scale;
+      state_.stats.samples = 1;
+      shown_ = &reduced_;
+    }
   }
 
-  // The next full-resolution frame of the current state: a new average when the state changed,
-  // otherwise (AO on) one more sample into it.
-  void render_full() {
-    const auto [w, h] = render_size();
-    const bool ao = state_.settings.effects.ambient_occlusion_on;
-    if (!full_is_current() || !ao) accumulator_.reset();
-    full_ = render_frame(w, h, accumulator_.count());
-    full_version_ = state_.version;
-    accumulator_.add(full_.rgba, w, h);
-    state_.stats.scale = 1;
-    state_.stats.samples = accumulator_.count();
-    shown_ = &full_;
+  // One whole frame now (scripts, screenshots); abandons a banded frame in progress.
+  void render_now(std::uint32_t scale) {
+    job_.reset();
+    const Job job = make_job(scale);
+    renderer_->set_settings(job.settings);
+    adopt(job, renderer_->render(job_camera(job)));
   }
 
-  // One frame at 1/scale resolution per axis (the presenter stretches it over the window).
-  void render_reduced(std::uint32_t scale) {
-    const auto [w, h] = render_size();
-    reduced_ = render_frame(reduced_extent(w, scale), reduced_extent(h, scale), 0);
-    reduced_version_ = state_.version;
-    reduced_scale_ = scale;
-    reduced_size_ = {w, h};
-    state_.stats.scale = scale;
-    state_.stats.samples = 1;
-    shown_ = &reduced_;
+  void render_full() { render_now(1); }
+
+  // Starts a banded frame of the current state at 1/scale (nothing traced yet).
+  void start_job(std::uint32_t scale) {
+    job_ = make_job(scale);
+    part_seconds_per_pixel_ = 0;
+    renderer_->set_settings(job_->settings);
+    renderer_->begin(job_camera(*job_));
+    if (input_log_ && scale == 1)
+      std::fprintf(stderr, "view: full %ux%u frame begun at %.3f\n", job_->size.first, job_->size.second, wall_seconds());
   }
 
-  // At rest: the next refinement step towards the full-resolution frame of the current state.
-  // Each step is one frame between two polls of the window, so a big window on a slow device
-  // still answers input after every step instead of after one long full-resolution frame.
-  // Returns whether it showed a reduced frame (false: the full one).
-  bool refine() {
+  // Traces the next part of the frame in progress, sized to kPartSeconds by the dearest cost per
+  // pixel met so far in this frame or the last frame's average (cost varies a lot over an image:
+  // a part sized by a cheap background part would be far too long over the scene); true when it
+  // completed the frame (then adopted).
+  bool advance_job() {
+    const double cost = std::max(part_seconds_per_pixel_, seconds_per_pixel_);
+    const std::uint64_t budget = cost > 0 ? std::uint64_t(std::clamp(kPartSeconds / cost, 1.0, 1e9))
+                                          : ~std::uint64_t(0);  // nothing measured yet: the (coarse first) frame whole
+    const auto start = Clock::now();
+    const render::Renderer::Part part = renderer_->trace_part(budget);
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    part_seconds_per_pixel_ = std::max(part_seconds_per_pixel_, seconds / double(std::max<std::uint64_t>(part.pixels, 1)));
+    if (!part.complete) return false;
+    const Job job = *job_;
+    job_.reset();
+    part_seconds_per_pixel_ = 0;
+    adopt(job, renderer_->finish());
+    if (input_log_ && job.scale == 1) std::fprintf(stderr, "view: full frame finished at %.3f\n", wall_seconds());
+    return true;
+  }
+
+  static double wall_seconds() {
+    return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  }
+
+  // At rest: the scale of the next refinement step towards the full-resolution frame of the
+  // current state (coarse steps first, so something of a new state shows at once).
+  std::uint32_t refinement_scale() const {
     const auto [w, h] = render_size();
     const bool reduced_current =
         shown_ == &reduced_ && reduced_version_ == state_.version && reduced_size_ == std::pair(w, h);
-    const std::uint32_t scale = full_is_current() ? 1
-                                                  : rest_scale(reduced_current ? reduced_scale_ : 0, seconds_per_pixel_,
-                                                               w, h, state_.rest_step_budget);
-    if (scale == 1) {
-      render_full();
-      return false;
-    }
-    render_reduced(scale);
-    return true;
+    return full_is_current() ? 1 : rest_scale(reduced_current ? reduced_scale_ : 0, seconds_per_pixel_, w, h, state_.rest_step_budget);
   }
 
   bool present() {
@@ -275,9 +329,10 @@ private:
 
   void interactive_loop() {
     auto last = Clock::now();
-    bool shown_reduced = false, active = false;
+    bool active = false;
     while (!window_.should_close()) {
-      const bool busy = active || shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples() ||
+      const bool shown_reduced = shown_ == &reduced_;
+      const bool busy = active || job_ || shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples() ||
                         state_.playing || state_.path.play_time;
       // At rest with every sample in, sleep until something happens: no frame, no CPU.
       if (busy) window_.poll_events();
@@ -293,6 +348,8 @@ private:
 
       overlay_->begin_frame();
       const InputResult input = handle_camera_input(window_, state_.camera, dt);
+      if (input_log_)
+        for (int key : input.keys) std::fprintf(stderr, "view: key %d handled at %.3f\n", key, wall_seconds());
       if (input.camera_moved) {
         state_.touch();
         if (state_.path.play_time) {  // the user takes the camera back
@@ -337,26 +394,42 @@ private:
         if (input.screenshot || state_.screenshot_requested) {
           state_.screenshot_requested = false;
           screenshot();
-          shown_reduced = false;
         }
-        if (moving) {
+        // A frame of a state that has changed since it began is dropped, except a reduced one
+        // while moving (each is cheap and shows the motion; dropping them could show nothing).
+        if (job_ && job_->version != state_.version && !(moving && job_->scale > 1)) job_.reset();
+        if (job_ && job_->size != render_size()) job_.reset();
+        if (!job_) {
           const auto [rw, rh] = render_size();
-          render_reduced(motion_scale(seconds_per_pixel_, rw, rh, state_.motion_budget));
-          shown_reduced = true;
-        } else if (shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples()) {
-          shown_reduced = refine();
+          if (moving) start_job(motion_scale(seconds_per_pixel_, rw, rh, state_.motion_budget));
+          else if (shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples()) start_job(refinement_scale());
         }
+        const auto traced = Clock::now();
+        if (job_) advance_job();
+        trace_time_ = std::chrono::duration<double>(Clock::now() - traced).count();
       } catch (const std::invalid_argument& e) {
         // Settings the renderer refuses (e.g. an effect the two-level path lacks): say so, keep going.
         state_.status = e.what();
         state_.touch();
       }
       log_status();
-      present();
+      const auto presenting = Clock::now();
+      // While a frame is traced in parts, the window (panel, overlay) is presented at ~60 Hz,
+      // not after every part.
+      if (!job_ || input.camera_moved || std::chrono::duration<double>(presenting - last_present_).count() >= 1.0 / 60) {
+        present();
+        last_present_ = presenting;
+      }
+      if (input_log_) {
+        const double p = std::chrono::duration<double>(Clock::now() - presenting).count();
+        const double all = std::chrono::duration<double>(Clock::now() - now).count();
+        if (all > 0.05) std::fprintf(stderr, "view: slow iteration %.3f s: trace %.3f present %.3f\n", all, trace_time_, p);
+      }
     }
   }
 
   void shutdown() {
+    job_.reset();
     renderer_.reset();
     overlay_.reset();
     presenter_.reset();
@@ -381,6 +454,11 @@ private:
   Accumulator accumulator_;
   const render::Frame* shown_ = nullptr;  // what the window shows (its hits answer clicks)
   double seconds_per_pixel_ = 0;
+  std::optional<Job> job_;  // the frame in progress, traced in parts
+  double part_seconds_per_pixel_ = 0;  // the dearest cost per pixel of its parts so far
+  double trace_time_ = 0;
+  Clock::time_point last_present_{};
+  const bool input_log_ = std::getenv("NANO_VIEW_INPUT_LOG") != nullptr;  // tests: input and full-frame times
   std::string logged_status_;
   std::uint64_t rendered_ = 0, presented_ = 0;
 };

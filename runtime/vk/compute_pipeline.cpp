@@ -146,11 +146,14 @@ void write_acceleration_structure(VkDevice device, VkDescriptorSet set, std::uin
   vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
 }
 
-void dispatch_pixels_and_wait(const Device& device, const ComputePipeline& pipeline, VkDescriptorSet set,
-                              std::uint32_t width, std::uint32_t height, std::uint32_t workgroup) {
+namespace {
+
+void dispatch_and_wait(const Device& device, const ComputePipeline& pipeline, VkDescriptorSet set, std::uint32_t width,
+                       std::uint32_t height, std::uint32_t workgroup, const std::uint32_t* origin) {
   device.submit_once([&](VkCommandBuffer commands) {
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
+    if (origin) vkCmdPushConstants(commands, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, 2 * sizeof *origin, origin);
     vkCmdDispatch(commands, (width + workgroup - 1) / workgroup, (height + workgroup - 1) / workgroup, 1);
     VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -158,6 +161,19 @@ void dispatch_pixels_and_wait(const Device& device, const ComputePipeline& pipel
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0,
                          nullptr, 0, nullptr);
   });
+}
+
+}  // namespace
+
+void dispatch_pixels_and_wait(const Device& device, const ComputePipeline& pipeline, VkDescriptorSet set,
+                              std::uint32_t width, std::uint32_t height, std::uint32_t workgroup) {
+  dispatch_and_wait(device, pipeline, set, width, height, workgroup, nullptr);
+}
+
+void dispatch_region_and_wait(const Device& device, const ComputePipeline& pipeline, VkDescriptorSet set, std::uint32_t x,
+                              std::uint32_t y, std::uint32_t width, std::uint32_t height, std::uint32_t workgroup) {
+  const std::uint32_t origin[2] = {x, y};
+  dispatch_and_wait(device, pipeline, set, width, height, workgroup, origin);
 }
 
 }  // namespace nano::vk

@@ -87,4 +87,9 @@ void write_acceleration_structure(VkDevice device, VkDescriptorSet set, std::uin
 void dispatch_pixels_and_wait(const Device& device, const ComputePipeline& pipeline, VkDescriptorSet set,
                               std::uint32_t width, std::uint32_t height, std::uint32_t workgroup);
 
+// The same for the width × height pixels from (x, y) of a larger image, handing (x, y) to the
+// shader as an 8-byte push constant (the pipeline's layout must declare one).
+void dispatch_region_and_wait(const Device& device, const ComputePipeline& pipeline, VkDescriptorSet set, std::uint32_t x,
+                              std::uint32_t y, std::uint32_t width, std::uint32_t height, std::uint32_t workgroup);
+
 }  // namespace nano::vk

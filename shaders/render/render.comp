@@ -93,6 +93,9 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffe
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COUNTERS, std430) writeonly buffer Counters { uint counters[]; };
 
+// The frame may be traced in parts (a viewer interleaves them with input): this dispatch's first pixel.
+layout(push_constant) uniform Part { uvec2 origin; } part;
+
 uint ray_counts[NANO_RAY_COUNTER_COUNT];  // this pixel's work (kCounters only)
 void count_work(uint counter) {
   if (kCounters) ray_counts[counter] += 1u;
@@ -614,7 +617,7 @@ vec3 srgb_from_linear(vec3 c) {
 
 void main() {
   Camera cam = frame.camera;
-  uvec2 px = gl_GlobalInvocationID.xy;
+  uvec2 px = gl_GlobalInvocationID.xy + part.origin;
   if (px.x >= cam.size.x || px.y >= cam.size.y) return;
   vec3 d = camera_ray_direction(cam, px.x, px.y);
   if (kCounters)

@@ -2,6 +2,7 @@
 // queries) on the bundled virion: both are exact renderers of the same scene, so they must show the
 // same atom of the same copy at the same depth in (nearly) every pixel.
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 
@@ -18,6 +19,7 @@
 #include "runtime/render/gpu_scene.hpp"
 #include "runtime/render/renderer.hpp"
 #include "runtime/vk/device.hpp"
+#include "shared/ray_counters.h"
 #include "runtime/vk/instance.hpp"
 
 namespace nano::instanced {
@@ -137,6 +139,62 @@ TEST_F(Instanced, CompareExplicitAndVirtual) {
   EXPECT_GT(c.explicit_seconds_median, 0);
   EXPECT_GT(c.virtual_seconds_median, 0);
   EXPECT_THROW(compare_explicit_and_virtual(s.device, s.package, *s.virtual_scene, {}, 1), std::invalid_argument);
+}
+
+// A frame traced in parts of a few workgroups (as the viewer does between polls of its window) is
+// the very frame render() makes, whatever the part sizes; a part never runs past the frame.
+TEST_F(Instanced, FrameInPartsEqualsWholeFrame) {
+  Session& s = session();
+  render::Renderer renderer(s.device, *s.virtual_scene);
+  const gpu::Camera camera = views(60, 0)[0];  // 60×60: strips and runs end inside workgroups
+  const render::Frame whole = renderer.render(camera);
+  for (const std::uint64_t budget : {std::uint64_t(1), std::uint64_t(100), std::uint64_t(600), std::uint64_t(1000000)}) {
+    renderer.begin(camera);
+    std::uint64_t traced = 0, parts = 0;
+    for (bool complete = false; !complete; ++parts) {
+      const render::Renderer::Part part = renderer.trace_part(budget);
+      ASSERT_GT(part.pixels, 0u);
+      traced += part.pixels;
+      complete = part.complete;
+    }
+    EXPECT_THROW(renderer.trace_part(budget), std::logic_error);  // nothing left: the frame must be finished
+    const render::Frame f = renderer.finish();
+    EXPECT_EQ(traced, 60u * 60u) << "budget " << budget;
+    if (budget == 1) EXPECT_EQ(parts, 8u * 8u);  // one workgroup of 8×8 at a time (60 = 7·8 + 4)
+    ASSERT_EQ(f.hits.size(), whole.hits.size());
+    EXPECT_EQ(0, std::memcmp(f.hits.data(), whole.hits.data(), whole.hits.size() * sizeof(gpu::PixelHit))) << "budget " << budget;
+    EXPECT_EQ(f.rgba, whole.rgba) << "budget " << budget;
+  }
+  EXPECT_THROW(renderer.finish(), std::logic_error);
+}
+
+// Counting changes no pixel, and every pixel's counts obey the traversal's own laws: one µLAS query
+// per primary ray, a prism entered only after its test, an nLAS query only for a molecule candidate
+// that survived ownership, the drop list and the keep masks, a sphere test only for an atom candidate,
+// and a hit only after a sphere test.
+TEST_F(Instanced, CountersObeyTheTraversal) {
+  Session& s = session();
+  render::Renderer renderer(s.device, *s.virtual_scene);
+  const gpu::Camera camera = views(48, 0)[0];
+  const render::Frame plain = renderer.render(camera);
+  renderer.set_settings(render::RenderSettings{.counters = true});
+  const render::Frame counted = renderer.render(camera);
+  ASSERT_EQ(counted.counters.size(), counted.hits.size() * gpu::NANO_RAY_COUNTER_COUNT);
+  EXPECT_EQ(0, std::memcmp(plain.hits.data(), counted.hits.data(), plain.hits.size() * sizeof(gpu::PixelHit)));
+  std::uint64_t membrane_pixels = 0;
+  for (std::size_t p = 0; p < counted.hits.size(); ++p) {
+    const std::uint32_t* c = &counted.counters[p * gpu::NANO_RAY_COUNTER_COUNT];
+    ASSERT_EQ(c[gpu::NANO_RC_ULAS_QUERIES], 1u) << p;
+    ASSERT_LE(c[gpu::NANO_RC_PRISMS_ENTERED], c[gpu::NANO_RC_PRISM_TESTS]) << p;
+    ASSERT_LE(c[gpu::NANO_RC_PRISM_TESTS], c[gpu::NANO_RC_ULAS_CANDIDATES]) << p;
+    ASSERT_LE(std::uint64_t(c[gpu::NANO_RC_NLAS_QUERIES]) + c[gpu::NANO_RC_OWNERSHIP_REJECTS] + c[gpu::NANO_RC_LISTED_REJECTS] +
+                  c[gpu::NANO_RC_MASK_REJECTS],
+              c[gpu::NANO_RC_MLAS_CANDIDATES]) << p;
+    ASSERT_LE(c[gpu::NANO_RC_SPHERE_TESTS], c[gpu::NANO_RC_NLAS_CANDIDATES]) << p;
+    if (counted.hits[p].atom != gpu::kNoHit) ASSERT_GE(c[gpu::NANO_RC_SPHERE_TESTS], 1u) << p;
+    if (counted.hits[p].atom != gpu::kNoHit && counted.hits[p].kind == 0u) ++membrane_pixels;
+  }
+  EXPECT_GT(membrane_pixels, 0u);  // the view reaches the membrane, so the shell counters were exercised
 }
 
 }  // namespace
