@@ -234,9 +234,12 @@ void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json
   const unsigned rounds = o.frames ? o.frames : 3;
   // The verify views: chosen so the oracle can resolve them, the hard cases first.
   const oracle::ExplicitScene scene(session.package);
+  // The verify views (near: the hard cases first) and the package's own camera (far: the overview,
+  // where the level of detail acts).
   std::vector<gpu::Camera> cameras;
   for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o.matrix_cameras))
     cameras.push_back(vc.view.to_gpu(w, h));
+  cameras.push_back(camera_option(session.package, o.camera).to_gpu(w, h));
   if (o.variant.shell != "adaptive-overlap" || o.variant.levels != "3+rep" || o.variant.prism != "exact")
     throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
   const std::vector<bench::MatrixVariant> variants = bench::matrix_variants(o.variant.render_settings(), session.package);
@@ -281,13 +284,18 @@ void run_counters(const Options& o, RenderSession& session, nlohmann::ordered_js
   out["size"] = {w, h};
   out["camera"] = camera.to_string();
   out["work"] = r.to_json();
-  const std::pair<std::string, bench::CounterSummary> columns[] = {{"virtual", r.virtual_work}, {"explicit", r.explicit_work}};
+  std::vector<std::pair<std::string, bench::CounterSummary>> columns{{"virtual", r.virtual_work}};
+  if (r.explicit_work) columns.emplace_back("explicit", *r.explicit_work);
   std::printf("%s", bench::counters_markdown(columns).c_str());
-  std::printf("frame median: virtual %.4f s, explicit %.4f s (virtual / explicit %.2f); counting costs %.2f×; the counters "
-              "constant off against no counter code %.3f×; agreement %.5f; counting changes %s\n",
-              r.virtual_seconds, r.explicit_seconds, r.virtual_seconds / r.explicit_seconds,
-              r.virtual_counting_seconds / r.virtual_seconds, r.virtual_seconds / r.virtual_no_counter_code_seconds, r.agreement,
-              r.counting_changes_no_pixel ? "no pixel" : "PIXELS");
+  std::printf("frame median: virtual %.4f s; counting costs %.2f×; the counters constant off against no counter code %.3f×; "
+              "counting changes %s\n",
+              r.virtual_seconds, r.virtual_counting_seconds / r.virtual_seconds,
+              r.virtual_seconds / r.virtual_no_counter_code_seconds, r.counting_changes_no_pixel ? "no pixel" : "PIXELS");
+  if (r.explicit_work)
+    std::printf("explicit %.4f s (virtual / explicit %.2f); agreement %.5f\n", r.explicit_seconds,
+                r.virtual_seconds / r.explicit_seconds, r.agreement);
+  else
+    std::printf("explicit instancing left out: %s\n", r.explicit_skipped.c_str());
 }
 
 }  // namespace

@@ -17,6 +17,10 @@ void add_variant_options(CLI::App& command, VariantOptions& o) {
                      "two-float-eye (the eye enters compartment space as a double-computed float pair) | camera-relative "
                      "(float transform of the eye) | world (world-space µLAS, plain float)")
       ->capture_default_str();
+  command.add_option("--lod", o.lod,
+                     "level of detail: off (every atom) | auto (a copy whose atoms span < 1 pixel shows coarse beads) | PIXELS "
+                     "(the threshold)")
+      ->capture_default_str();
 }
 
 void add_effect_options(CLI::App& command, EffectOptions& o) {

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -78,7 +80,7 @@ nlohmann::json to_json(const LoadReport& r) {
             {"mlas", r.memory.mlas},
             {"ulas", r.memory.ulas},
             {"scratch_peak", r.memory.scratch_peak}}},
-          {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}, {"core_bricks", r.core_bricks}}},
+          {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}}},
           {"sections", {{"imported", r.sections_imported}, {"copied_from_pages", r.sections_copied_from_pages}}}};
 }
 
@@ -94,7 +96,7 @@ struct GpuScene::Impl : format::PackageView {
   LoadReport report;
 
   std::vector<vk::Buffer> section_buffers;  // indexed by Binding (package sections), others unused
-  vk::Buffer shell_buffer, render_compartment_buffer, render_instance_buffer, level_buffer, order_buffer;
+  vk::Buffer shell_buffer, render_compartment_buffer, render_instance_buffer, level_buffer, order_buffer, bead_buffer;
 
   std::vector<double> type_radius;                   // from the atoms (as the oracle)
   std::vector<gpu::RenderCompartment> render_compartments;
@@ -106,7 +108,7 @@ struct GpuScene::Impl : format::PackageView {
   vk::AccelerationStructure ulas;
   bool has_ulas = false;
   // Level records: types, squares, cubes, replication areas, then (2-level only) squares of atoms.
-  std::uint32_t first_square = 0, first_cube = 0, first_area = 0, first_atom_square = 0;
+  std::uint32_t first_square = 0, first_cube = 0, first_area = 0, first_atom_square = 0, first_bead = 0;
   std::vector<std::pair<dvec3, dvec3>> square_reach;  // per Wang square: tile-space union of its mLAS boxes
 
   Impl(const vk::Device& d, const format::Package& package, const SceneOptions& o)
@@ -122,9 +124,11 @@ struct GpuScene::Impl : format::PackageView {
     first_cube = first_square + std::uint32_t(squares.size());
     first_area = first_cube + std::uint32_t(cubes.size());
     first_atom_square = first_area + std::uint32_t(compartments.size());
-    level_records.assign(first_atom_square + squares.size(), gpu::RenderLevel{});
+    first_bead = first_atom_square + std::uint32_t(squares.size());
+    level_records.assign(first_bead + molecules.size(), gpu::RenderLevel{});
     levels.resize(level_records.size());
     build_molecule_levels();
+    build_bead_levels();
     report.nlas_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
     build_tile_levels();
@@ -313,6 +317,45 @@ struct GpuScene::Impl : format::PackageView {
     }
   }
 
+  // The level of detail: per molecule type, its atoms grouped by the cell of NANO_BEAD_EDGE Å their
+  // centre falls in; a bead is the sphere about the group's centroid that holds every atom sphere of
+  // the group (so a coarse copy covers what its atoms cover) and reports the atom nearest that
+  // centroid. orders hold bead indices.
+  void build_bead_levels() {
+    std::vector<gpu::Bead> beads;
+    for (std::uint32_t t = 0; t < molecules.size(); ++t) {
+      const gpu::MoleculeType& m = molecules[t];
+      if (m.atom_count == 0) continue;
+      std::map<std::tuple<long, long, long>, std::vector<std::uint32_t>> cells;
+      for (std::uint32_t a = m.first_atom; a < m.first_atom + m.atom_count; ++a) {
+        const dvec3 c = glm::floor(dvec3(vec3(atoms[a].centre_radius)) / double(gpu::NANO_BEAD_EDGE));
+        cells[{long(c.x), long(c.y), long(c.z)}].push_back(a);
+      }
+      std::vector<VkAabbPositionsKHR> boxes;
+      std::vector<std::uint32_t> indices;
+      for (const auto& [cell, members] : cells) {
+        dvec3 centre(0.0);
+        for (std::uint32_t a : members) centre += dvec3(vec3(atoms[a].centre_radius));
+        centre /= double(members.size());
+        double radius = 0, nearest = INFINITY;
+        std::uint32_t representative = members.front();
+        for (std::uint32_t a : members) {
+          const double from = glm::length(dvec3(vec3(atoms[a].centre_radius)) - centre);
+          radius = std::max(radius, from + atoms[a].centre_radius.w);
+          if (from < nearest) nearest = from, representative = a;
+        }
+        radius += 1e-3;  // the float centre
+        indices.push_back(std::uint32_t(beads.size()));
+        beads.push_back({glm::vec4(vec3(centre), float(radius)), glm::uvec4(representative, 0, 0, 0)});
+        boxes.push_back(box_of(centre - radius, centre + radius));
+      }
+      levels[first_bead + t] = build_level(boxes, indices, first_bead + t, report.memory.nlas);
+    }
+    if (beads.empty()) beads.push_back({});  // a binding needs a buffer
+    bead_buffer = storage(std::as_bytes(std::span(beads)));
+    report.memory.derived += bead_buffer.size();
+  }
+
   // How far a membrane molecule's true placement (chart_membrane_molecule: the interpolated normal
   // n(uv_m) and the frame built on it, not M1's face frame) can stray from where M1 puts it, per
   // compartment. In tile space (M1⁻¹) an atom offset p of a copy becomes T·p with T = L·F, L the
@@ -402,12 +445,19 @@ struct GpuScene::Impl : format::PackageView {
       const double sigma = d.sigma * (1 + 1e-4), delta = d.delta + 1e-3, pad = 0.1;
       for (std::uint32_t m = squares[t].first_instance; m < squares[t].first_instance + squares[t].instance_count; ++m) {
         const dvec3 pos(instances[m].position);
-        const auto [lo, hi] = placed_extent(instances[m]);
-        const dvec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
-        const dvec3 e = h + d.e * (glm::abs(c) + h) + sigma * (std::abs(pos.z) * delta + d.bulge * (1 + 1e-4)) + pad;
-        boxes.push_back(box_of(pos + c - e, pos + c + e));
-        square_reach[t].first = glm::min(square_reach[t].first, pos + c - e);
-        square_reach[t].second = glm::max(square_reach[t].second, pos + c + e);
+        const auto [atoms_lo, atoms_hi] = placed_extent(instances[m]);
+        const dvec3 c = (atoms_lo + atoms_hi) * 0.5, h = (atoms_hi - atoms_lo) * 0.5;
+        const double off_surface = sigma * (std::abs(pos.z) * delta + d.bulge * (1 + 1e-4));
+        // Two bounds of the same copy, both containing it: its own atoms' box widened by the
+        // chart's turn and stretch, and the sphere of its bounding radius stretched by σ. Their
+        // intersection holds it too; which is tighter depends on the chart (a strongly stretched
+        // or mirrored one turns the box far more than it stretches the sphere).
+        const dvec3 e = h + d.e * (glm::abs(c) + h) + off_surface + pad;
+        const double radius = sigma * type_radius[instances[m].molecule_type] + off_surface + pad;
+        const dvec3 lo = glm::max(pos + c - e, pos - radius), hi = glm::min(pos + c + e, pos + radius);
+        boxes.push_back(box_of(lo, hi));
+        square_reach[t].first = glm::min(square_reach[t].first, lo);
+        square_reach[t].second = glm::max(square_reach[t].second, hi);
       }
       add_tile_level(first_square + t, boxes);
     }
@@ -504,45 +554,8 @@ struct GpuScene::Impl : format::PackageView {
     return out;
   }
 
-  // The core bricks (render_scene.h NANO_CORE_BRICK) that hold a box not outside the compartment,
-  // as x + bx·(y + by·z) over the grid's bricks.
-  std::vector<std::uint32_t> core_bricks(const gpu::Compartment& c) const {
-    const glm::uvec3 dims(c.grid_dims);
-    const glm::uvec3 bdims = (dims + gpu::NANO_CORE_BRICK - 1u) / gpu::NANO_CORE_BRICK;
-    std::vector<char> used(std::size_t(bdims.x) * bdims.y * bdims.z, 0);
-    for (std::uint32_t z = 0; z < dims.z; ++z)
-      for (std::uint32_t y = 0; y < dims.y; ++y)
-        for (std::uint32_t x = 0; x < dims.x; ++x) {
-          const std::uint64_t box = x + std::uint64_t(dims.x) * (y + std::uint64_t(dims.y) * z);
-          if (occupancy[c.grid_dims.w + box] == gpu::NANO_BOX_OUTSIDE) continue;
-          const glm::uvec3 b = glm::uvec3(x, y, z) / gpu::NANO_CORE_BRICK;
-          used[b.x + std::size_t(bdims.x) * (b.y + std::size_t(bdims.y) * b.z)] = 1;
-        }
-    std::vector<std::uint32_t> out;
-    for (std::size_t k = 0; k < used.size(); ++k)
-      if (used[k]) out.push_back(std::uint32_t(k));
-    return out;
-  }
-
-  // Each brick's boxes widened by one box on every side, in compartment space.
-  std::vector<VkAabbPositionsKHR> core_brick_boxes(const gpu::Compartment& c, std::span<const std::uint32_t> bricks) const {
-    const glm::uvec3 dims(c.grid_dims);
-    const glm::uvec3 bdims = (dims + gpu::NANO_CORE_BRICK - 1u) / gpu::NANO_CORE_BRICK;
-    const double B = c.grid_min.w;
-    std::vector<VkAabbPositionsKHR> out;
-    for (std::uint32_t k : bricks) {
-      const glm::uvec3 b(k % bdims.x, (k / bdims.x) % bdims.y, k / (bdims.x * bdims.y));
-      const glm::uvec3 first = b * gpu::NANO_CORE_BRICK;
-      const glm::uvec3 end = glm::min(first + gpu::NANO_CORE_BRICK, dims);
-      const dvec3 lo = dvec3(c.grid_min) + B * (dvec3(first) - 1.0);
-      const dvec3 hi = dvec3(c.grid_min) + B * (dvec3(end) + 1.0);
-      out.push_back(outward_box(vec3(lo), vec3(hi)));
-    }
-    return out;
-  }
-
   // µLAS BLAS per compartment: Morton-sorted prism boxes (triangles that own molecules), then the
-  // Morton-sorted core bricks (the regions the core renderer's DDA walks).
+  // core grid widened by one box (the region the core renderer's DDA walks).
   void build_compartment_blases() {
     const std::vector<gpu::TriangleShell> shell_records = mode_shells();
     shell_buffer = storage(std::as_bytes(std::span(shell_records)));
@@ -579,14 +592,10 @@ struct GpuScene::Impl : format::PackageView {
         orders.push_back(prism_triangles[i]);
       }
       if (rc.span.z != 0) {
-        const std::vector<std::uint32_t> bricks = core_bricks(c);
-        const std::vector<VkAabbPositionsKHR> brick_boxes = core_brick_boxes(c, bricks);
-        const std::vector<std::uint32_t> brick_order = morton_order(brick_boxes);
-        for (std::uint32_t i : brick_order) {
-          boxes.push_back(brick_boxes[i]);
-          orders.push_back(bricks[i]);
-        }
-        report.core_bricks += bricks.size();
+        const dvec3 B(c.grid_min.w);
+        const dvec3 lo = dvec3(c.grid_min) - B;
+        const dvec3 hi = dvec3(c.grid_min) + B * (dvec3(glm::uvec3(c.grid_dims)) + 1.0);
+        boxes.push_back(outward_box(vec3(lo), vec3(hi)));
       }
       report.prisms += prisms.size();
       if (boxes.empty()) continue;
@@ -672,11 +681,13 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_INSTANCES, s.render_instance_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_LEVELS, s.level_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_ORDERS, s.order_buffer);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_BEADS, s.bead_buffer);
 }
 
 std::uint32_t GpuScene::first_square_level() const { return impl_->first_square; }
 std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }
 std::uint32_t GpuScene::first_atom_square_level() const { return impl_->first_atom_square; }
+std::uint32_t GpuScene::first_bead_level() const { return impl_->first_bead; }
 std::uint32_t GpuScene::molecule_type_count() const { return std::uint32_t(impl_->molecules.size()); }
 const LoadReport& GpuScene::report() const { return impl_->report; }
 

@@ -53,7 +53,6 @@ struct LoadReport {
   double upload_seconds = 0, nlas_seconds = 0, mlas_seconds = 0, ulas_seconds = 0;
   MemoryReport memory;
   std::uint64_t nlas_count = 0, mlas_count = 0, prisms = 0;
-  std::uint64_t core_bricks = 0;  // core-grid bricks in the µLAS BLASes (render_scene.h NANO_CORE_BRICK)
   std::uint64_t sections_imported = 0, sections_copied_from_pages = 0;
 };
 nlohmann::json to_json(const LoadReport& report);
@@ -85,6 +84,7 @@ public:
   std::uint32_t first_square_level() const;
   std::uint32_t first_cube_level() const;
   std::uint32_t first_atom_square_level() const;  // valid with SceneOptions::two_level_membranes
+  std::uint32_t first_bead_level() const;         // then one bead level per molecule type (render_scene.h Bead)
   std::uint32_t molecule_type_count() const;
 
   const LoadReport& report() const;

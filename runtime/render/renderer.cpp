@@ -25,10 +25,10 @@ namespace {
 // What selects a pipeline: the shader build and its specialization constants.
 struct Variant {
   bool exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows, eye_from_host,
-      world_space_ulas, counters;
+      world_space_ulas, counters, lod;
   auto key() const {
     return std::tuple(exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows,
-                      eye_from_host, world_space_ulas, counters);
+                      eye_from_host, world_space_ulas, counters, lod);
   }
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
@@ -39,7 +39,8 @@ Variant variant_of(const RenderSettings& s) {
   return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
           effects && e.clipping_on && e.clipping.any(), effects && e.jitter_on && e.jitter_degrees > 0,
           effects && e.ambient_occlusion_on && e.ao_rays > 0, effects && e.shadows_on,
-          s.precision == Precision::two_float_eye, s.precision == Precision::world, !s.without_effect_code && s.counters};
+          s.precision == Precision::two_float_eye, s.precision == Precision::world, !s.without_effect_code && s.counters,
+          !s.without_effect_code && s.lod_pixels > 0};
 }
 
 vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
@@ -59,6 +60,7 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
     desc.specialization.set_bool(gpu::NANO_SPEC_AMBIENT_OCCLUSION, v.ambient_occlusion);
     desc.specialization.set_bool(gpu::NANO_SPEC_SHADOWS, v.shadows);
     desc.specialization.set_bool(gpu::NANO_SPEC_COUNTERS, v.counters);
+    desc.specialization.set_bool(gpu::NANO_SPEC_LOD, v.lod);
   }
   return desc;
 }
@@ -73,6 +75,8 @@ void check(const RenderSettings& s) {
     throw std::invalid_argument("ambient occlusion needs 1 to 1024 rays and a positive radius");
   if (e.shadows_on && !(glm::length(e.light_direction) > 0)) throw std::invalid_argument("shadows need a light direction");
   if (s.counters && s.without_effect_code) throw std::invalid_argument("the build without effect code has no counters");
+  if (!(s.lod_pixels >= 0 && s.lod_pixels <= 1e4)) throw std::invalid_argument("--lod: a pixel threshold in (0, 10000]");
+  if (s.lod_pixels > 0 && s.without_effect_code) throw std::invalid_argument("the build without effect code has no level of detail");
 }
 
 struct Pipeline {
@@ -130,6 +134,8 @@ struct Renderer::Impl {
     }
     frame.effects.y = e.ao_rays;
     frame.effects.z = e.sample_index;
+    frame.effects.w = scene.first_bead_level();
+    frame.lod = glm::vec4(2.0f * camera.forward.w / float(camera.size.y), float(settings.lod_pixels), gpu::NANO_TYPICAL_ATOM_DIAMETER, 0.f);
     const glm::vec3 jitter = jitter_frame_parameters(e);
     frame.effect_parameters = glm::vec4(e.ao_radius, jitter.x, jitter.y, jitter.z);
     return frame;

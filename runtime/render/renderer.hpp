@@ -34,6 +34,7 @@ struct RenderSettings {
   EffectSettings effects;            // all off by default; render::package_effects gives the scene's
   bool without_effect_code = false;  // the shader built without any effect or counter code (bench: what "off" costs)
   bool counters = false;             // count the work per pixel (Frame::counters; bench --counters)
+  double lod_pixels = 0;             // > 0: copies whose atoms span fewer pixels are drawn as beads (--lod)
 };
 
 struct Frame {

@@ -58,6 +58,10 @@ std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, c
   add("prism test", "aabb only", [](MatrixVariant& m) { m.settings.exact_prism = false; });
   add("precision", "camera-relative float", [](MatrixVariant& m) { m.settings.precision = render::Precision::camera_relative; });
   add("precision", "world float", [](MatrixVariant& m) { m.settings.precision = render::Precision::world; });
+  add("lod", "auto (beads under 1 px)", [](MatrixVariant& m) { m.settings.lod_pixels = 1; },
+      "copies whose atoms span < 1 pixel drawn as 8 Å beads; the oracle draws every atom");
+  add("lod", "4 px", [](MatrixVariant& m) { m.settings.lod_pixels = 4; },
+      "copies whose atoms span < 4 pixels drawn as beads");
   render::EffectSettings effects = render::package_effects(package);
   effects.clipping_on = effects.animation_on = effects.jitter_on = effects.ambient_occlusion_on = effects.shadows_on = false;
   effects.time = 1.0;

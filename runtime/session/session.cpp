@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "common/error.hpp"
 #include "format/validator.hpp"
@@ -20,6 +21,16 @@ render::SceneOptions VariantOptions::scene_options() const {
   return o;
 }
 
+double parse_lod(const std::string& text) {
+  if (text == "off") return 0;
+  if (text == "auto") return 1;  // an atom smaller than a pixel: its bead is what a pixel can show
+  char* end = nullptr;
+  const double pixels = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(pixels > 0 && pixels <= 1e4))
+    throw InputError("--lod", "", "expected off, auto or a pixel threshold in (0, 10000], got '" + text + "'");
+  return pixels;
+}
+
 render::RenderSettings VariantOptions::render_settings() const {
   if (prism != "exact" && prism != "aabb") throw InputError("--prism", "", "expected exact or aabb, got '" + prism + "'");
   if (levels != "3+rep" && levels != "3" && levels != "2")
@@ -33,6 +44,7 @@ render::RenderSettings VariantOptions::render_settings() const {
   s.exact_prism = prism == "exact";
   s.replication_las = levels == "3+rep";
   s.two_level = levels == "2";
+  s.lod_pixels = parse_lod(lod);
   return s;
 }
 

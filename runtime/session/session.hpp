@@ -23,11 +23,15 @@ namespace nano::view {
 
 // The variant options `render`, `verify` and `bench` share: --shell, --prism, --levels.
 struct VariantOptions {
-  std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep", precision = "two-float-eye";
+  std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep", precision = "two-float-eye", lod = "off";
   // Throw InputError naming the option whose value is not one of its choices.
   render::SceneOptions scene_options() const;
   render::RenderSettings render_settings() const;
 };
+
+// --lod: off → 0; auto → 1 (copies whose atoms span less than a pixel show their beads); a number
+// of pixels in (0, 10000]. Throws InputError naming --lod otherwise.
+double parse_lod(const std::string& text);
 
 // The window case (`nanoview view`): the instance also enables `instance_extensions` (the surface
 // extensions GLFW names), `create_surface` makes the window's surface from it, and the device must

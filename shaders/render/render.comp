@@ -4,15 +4,15 @@
 // math of shaders/shared/ — the very functions the CPU oracle (runtime/oracle/) runs.
 //
 //  µLAS: one TLAS over compartment instances (camera-relative transforms); per compartment a BLAS of
-//        prism AABBs (one per triangle that owns molecules, Morton-sorted) plus the core grid's bricks. A candidate yields the compartment-space ray (t is the world t).
+//        prism AABBs (one per triangle that owns molecules, Morton-sorted) plus one AABB around the
+//        core grid. A candidate yields the compartment-space ray (t is the world t).
 //  shell: exact ray–prism test (its interval bounds every query below), then the tiles of the
 //        triangle's replication area the ray meets (a repLAS query, or slab tests of each slot's box
 //        for areas of ≤ NANO_DIRECT_SLOTS slots): tile-space ray by M1⁻¹, the Wang square's mLAS
 //        (molecule boxes widened so they contain the true placement, runtime/render/gpu_scene.cpp),
 //        ownership and seam rule (membrane_keeps_copy) before the true placement M2
 //        (chart_membrane_molecule), molecule-space ray, the type's nLAS, exact ray–sphere.
-//  core: per brick of NANO_CORE_BRICK³ boxes the µLAS met (only bricks with a box not outside), a
-//        3D-DDA over the brick widened by one box; at every cell the brick's boxes within one step (a
+//  core: 3D-DDA over the grid widened by one box; at every cell the boxes within one step (a
 //        molecule reaches at most one box beyond its own), occupancy and keep-masks, the cube's mLAS,
 //        nLAS, ray–sphere. The walk stops once a cell starts beyond the best hit.
 // t_max shrinks across all levels: the best t is tracked here and handed to outer queries with
@@ -55,6 +55,7 @@ const bool kJitter = false;
 const bool kAmbientOcclusion = false;
 const bool kShadows = false;
 const bool kCounters = false;
+const bool kLod = false;
 #else
 layout(constant_id = NANO_SPEC_CLIPPING) const bool kClipping = false;         // frame.clip half-spaces, per atom centre
 layout(constant_id = NANO_SPEC_JITTER) const bool kJitter = false;           // protein jitter (frame.effect_parameters)
@@ -62,6 +63,8 @@ layout(constant_id = NANO_SPEC_AMBIENT_OCCLUSION) const bool kAmbientOcclusion =
 layout(constant_id = NANO_SPEC_SHADOWS) const bool kShadows = false;          // one shadow ray towards frame.light
 // Work counters per pixel (shared/ray_counters.h, `nanoview bench --counters`).
 layout(constant_id = NANO_SPEC_COUNTERS) const bool kCounters = false;
+// Level of detail: copies whose atoms span less than frame.lod.y pixels are drawn as their beads.
+layout(constant_id = NANO_SPEC_LOD) const bool kLod = false;
 #endif
 
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ULAS) uniform accelerationStructureEXT ulas;
@@ -88,6 +91,7 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_LEVELS, std430) readonly buff
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ORDERS, std430) readonly buffer Orders { uint orders[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_TRIANGLE_DROPS, std430) readonly buffer TriangleDropRanges { TriangleDrops triangle_drops[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_DROPPED_COPIES, std430) readonly buffer DroppedCopies { uint dropped_copies[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_BEADS, std430) readonly buffer Beads { Bead beads[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
@@ -160,7 +164,9 @@ bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d, float t_lo) {
   mat3 rt = transpose(m.linear);
   vec3 om = rt * ((o - m.translation) + eye_lo);
   vec3 dm = rt * d;
-  RenderLevel level = levels[type];
+  // Beads when an atom of the copy, at the copy's distance, spans fewer than frame.lod.y pixels.
+  bool coarse = kLod && frame.lod.z < frame.lod.y * frame.lod.x * length(m.translation - o);
+  RenderLevel level = levels[coarse ? frame.effects.w + type : type];
   if (level.count == 0u) return false;
   bool found = false;
   count_work(NANO_RC_NLAS_QUERIES);
@@ -171,7 +177,7 @@ bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d, float t_lo) {
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     if (p >= level.count) continue;
     uint a = orders[level.order_first + p];
-    vec4 cr = atoms[a].centre_radius;
+    vec4 cr = coarse ? beads[a].centre_radius : atoms[a].centre_radius;
     float tn;
     float tf;
     count_work(NANO_RC_SPHERE_TESTS);
@@ -181,7 +187,7 @@ bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d, float t_lo) {
     // An atom is clipped whole, by its centre: never cut in half.
     if (kClipping && clip_removes_point(m.linear * cr.xyz + m.translation)) continue;
     best_t = t;
-    best.atom = a;
+    best.atom = coarse ? beads[a].atom.x : a;
     best_type = type;
     best_normal_c = m.linear * normalize(om + t * dm - cr.xyz);
     found = true;
@@ -517,22 +523,18 @@ bool trace_box(uint inst, uint ci, ivec3 ijk, vec3 o, vec3 d) {
   return found;
 }
 
-// The soluble copies of core brick `brick` (x + bx·(y + by·z), render_scene.h NANO_CORE_BRICK):
-// a 3D-DDA over the brick widened by one box; at every cell the brick's boxes within one step.
-bool trace_core(uint inst, uint ci, uint brick, vec3 o, vec3 d) {
+// The soluble copies of compartment instance `inst`'s core grid: a 3D-DDA over the grid widened by
+// one box, in ray order; at every cell the boxes within one step. The walk stops once a cell starts
+// beyond the best hit.
+bool trace_core(uint inst, uint ci, vec3 o, vec3 d) {
   Compartment c = compartments[ci];
   float B = c.grid_min.w;
   ivec3 dims = ivec3(c.grid_dims.xyz);
-  ivec3 bricks = (dims + ivec3(NANO_CORE_BRICK - 1u)) / int(NANO_CORE_BRICK);
-  ivec3 first = ivec3(int(brick % uint(bricks.x)), int((brick / uint(bricks.x)) % uint(bricks.y)),
-                      int(brick / uint(bricks.x * bricks.y))) * int(NANO_CORE_BRICK);
-  ivec3 end = min(first + ivec3(NANO_CORE_BRICK), dims);
-  vec3 region_min = core_box_min(c.grid_min.xyz, vec3(B), first - ivec3(1));
-  if (kClipping && clip_removes_box(region_min, core_box_min(c.grid_min.xyz, vec3(B), end + ivec3(1)))) return false;
-  // Every point where a copy of one of the brick's boxes can be hit lies in a cell of this region
-  // within one step of its box.
+  if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(dims + ivec3(1)) * B)) return false;
+  // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
+  // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
   GridDda it;
-  dda_init(it, region_min, vec3(B), end - first + ivec3(2), o, d, 0.0, best_t);
+  dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), dims + ivec3(2), o, d, 0.0, best_t);
   ivec3 cell;
   float ta;
   float tb;
@@ -541,19 +543,18 @@ bool trace_core(uint inst, uint ci, uint brick, vec3 o, vec3 d) {
   while (dda_next(it, cell, ta, tb)) {
     if (ta > best_t) break;
     count_work(NANO_RC_CORE_STEPS);
-    ivec3 at = first - ivec3(1) + cell;  // the box this cell of the region is
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          ivec3 ijk = at + ivec3(dx, dy, dz);
-          if (any(lessThan(ijk, first)) || any(greaterThanEqual(ijk, end))) continue;
+          ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
+          if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
           // The previous cell's neighbourhood was traced already.
-          ivec3 from_previous = abs(ijk - previous);
+          ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
           if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
           count_work(NANO_RC_CORE_BOXES);
           if (trace_box(inst, ci, ijk, o, d)) found = true;
         }
-    previous = at;
+    previous = cell;
   }
   return found;
 }
@@ -600,7 +601,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
     if (prim < rc.counts.z) {
       found = trace_shell(inst, ci, orders[rc.counts.w + prim], o, od);
     } else if (rc.span.z != 0u) {
-      found = trace_core(inst, ci, orders[rc.counts.w + prim], o, od);
+      found = trace_core(inst, ci, o, od);
     }
     if (found) {
       best_to_world = rayQueryGetIntersectionObjectToWorldEXT(q, false);

@@ -13,8 +13,8 @@ struct RenderCompartment {
   vec4 reach_lo;   // xyz: cube-space minimum of every cube molecule's bounding sphere (≥ −box edge); w: reserved
   vec4 reach_hi;   // xyz: cube-space maximum (≤ 2·box edge); w: reserved
   uvec4 counts;    // x: I₂ (largest square instance count); y: I₃ (cubes); z: prism primitives in the
-                   // compartment's µLAS BLAS (core bricks follow them); w: first entry of its
-                   // primitive → triangle (prisms) or brick index (bricks, x + bx·(y + by·z)) map in `orders`
+                   // compartment's µLAS BLAS (the core-grid box, if any, is primitive z); w: first entry
+                   // of its primitive → triangle map in `orders`
   uvec4 span;      // xy: membrane copy-number span of one instance (lo, hi); z: 1 = has a core grid;
                    // w: repLAS entry in `levels` (NANO_NO_INDEX: none)
   vec4 slot_lo;    // xyz: tile-space minimum of every mLAS box of the compartment's squares (the
@@ -25,6 +25,15 @@ struct RenderCompartment {
 // Replication areas of at most this many slots are tested slot by slot against their boxes
 // (RenderCompartment.slot_lo/hi), cheaper than starting a repLAS query for one or two hits.
 NANO_CONST uint NANO_DIRECT_SLOTS = 4u;
+
+// The level of detail: a molecule type's atoms merged into beads (runtime/render/gpu_scene.cpp: the
+// atoms whose centres share a cell of NANO_BEAD_EDGE Å), each a sphere around its atoms' spheres.
+struct Bead {
+  vec4 centre_radius;  // molecule space, Å
+  uvec4 atom;          // x: the atom a hit on the bead reports (the one nearest its centre); yzw: reserved
+};
+NANO_CONST float NANO_BEAD_EDGE = 8.0f;
+NANO_CONST float NANO_TYPICAL_ATOM_DIAMETER = 3.4f;  // Å: carbon's van der Waals diameter
 
 // Per compartment instance (parallel to section "compartment_instances"), rewritten per camera.
 // The eye in compartment space as an unevaluated sum hi + lo of floats (computed in double on the
@@ -55,17 +64,14 @@ struct RenderFrame {
   vec4 light;    // xyz: unit direction towards the light (world; the shadow light when shadows are on);
                  // w: depth-cue distance (Å, 0 = off)
   uvec4 effects; // x: clipping half-spaces in `clip` (≤ NANO_MAX_CLIP_HALF_SPACES); y: ambient-occlusion
-                 // rays; z: sample index (seeds the AO directions); w: reserved
+                 // rays; z: sample index (seeds the AO directions); w: first bead level in `levels`
   vec4 effect_parameters;  // x: AO radius (Å); y: time (s); z: jitter amplitude (radians); w: jitter frequency (Hz)
+  vec4 lod;       // level of detail: x: a pixel's footprint per Å of distance (2·tan(fov/2) / height);
+                  // y: a copy whose atoms (z: their typical diameter, Å) span fewer pixels than this is
+                  // drawn as its beads; w: reserved. effects.w holds the first bead level in `levels`.
   vec4 clip[14];  // camera-relative world half-spaces (unit n, d): a point p stays iff n·p + d ≥ 0 for all
 };
-NANO_CONST uint NANO_MAX_CLIP_HALF_SPACES = 14u;
-
-// The core grid enters a compartment's µLAS BLAS as bricks of NANO_CORE_BRICK³ boxes, each widened
-// by one box (a molecule reaches at most one box beyond its own), and only bricks holding a box
-// that is not outside the compartment: a ray walks the grid only where it meets such a brick, and a
-// brick's walk traces only its own boxes, so no box is traced from two bricks.
-NANO_CONST uint NANO_CORE_BRICK = 4u;  // 8 planes + the 6 faces of the clip box
+NANO_CONST uint NANO_MAX_CLIP_HALF_SPACES = 14u;  // 8 planes + the 6 faces of the clip box
 
 NANO_END
 
@@ -75,7 +81,8 @@ static_assert(sizeof(nano::gpu::RenderCompartment) == 112);
 static_assert(sizeof(nano::gpu::RenderInstance) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);
 static_assert(sizeof(nano::gpu::Camera) == 80);
-static_assert(sizeof(nano::gpu::RenderFrame) == 368);
+static_assert(sizeof(nano::gpu::RenderFrame) == 384);
+static_assert(sizeof(nano::gpu::Bead) == 32);
 static_assert(sizeof(nano::gpu::PixelHit) == 48 && offsetof(nano::gpu::PixelHit, cell) == 16 &&
               offsetof(nano::gpu::PixelHit, instance) == 32);
 #endif

@@ -197,5 +197,40 @@ TEST_F(Instanced, CountersObeyTheTraversal) {
   EXPECT_GT(membrane_pixels, 0u);  // the view reaches the membrane, so the shell counters were exercised
 }
 
+
+// The level of detail: a threshold no copy reaches changes no pixel; one every copy reaches draws
+// every copy as beads, which hold their atoms' spheres, so every pixel that showed an atom still
+// shows something at most as far (and reports an atom of the same molecule type), and the beads
+// really are coarser (some pixels change).
+TEST_F(Instanced, BeadsHoldTheirAtoms) {
+  Session& s = session();
+  const gpu::Camera camera = views(64, 0)[0];
+  render::Renderer renderer(s.device, *s.virtual_scene);
+  const render::Frame atoms = renderer.render(camera);
+  renderer.set_settings(render::RenderSettings{.lod_pixels = 1e-6});
+  const render::Frame never = renderer.render(camera);
+  EXPECT_EQ(0, std::memcmp(atoms.hits.data(), never.hits.data(), atoms.hits.size() * sizeof(gpu::PixelHit)));
+  renderer.set_settings(render::RenderSettings{.lod_pixels = 1e4});
+  const render::Frame beads = renderer.render(camera);
+  const auto molecules = s.package.records<format::SectionKind::molecules>();
+  const auto type_of = [&](std::uint32_t atom) {
+    for (std::uint32_t t = 0; t < molecules.size(); ++t)
+      if (atom >= molecules[t].first_atom && atom - molecules[t].first_atom < molecules[t].atom_count) return t;
+    return ~0u;
+  };
+  std::uint64_t changed = 0;
+  for (std::size_t p = 0; p < atoms.hits.size(); ++p) {
+    const gpu::PixelHit& a = atoms.hits[p];
+    const gpu::PixelHit& b = beads.hits[p];
+    if (a.atom == gpu::kNoHit) continue;
+    ASSERT_NE(b.atom, gpu::kNoHit) << p;
+    ASSERT_LE(b.depth, a.depth * (1 + 1e-5f) + 1e-3f) << p;
+    if (b.copy_number_lo == a.copy_number_lo && b.copy_number_hi == a.copy_number_hi)
+      EXPECT_EQ(type_of(b.atom), type_of(a.atom)) << p;
+    changed += b.atom != a.atom || b.depth != a.depth;
+  }
+  EXPECT_GT(changed, 0u);
+}
+
 }  // namespace
 }  // namespace nano::instanced
