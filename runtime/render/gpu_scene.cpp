@@ -447,13 +447,22 @@ struct GpuScene::Impl : format::PackageView {
         const dvec3 pos(instances[m].position);
         const auto [atoms_lo, atoms_hi] = placed_extent(instances[m]);
         const dvec3 c = (atoms_lo + atoms_hi) * 0.5, h = (atoms_hi - atoms_lo) * 0.5;
-        const double off_surface = sigma * (std::abs(pos.z) * delta + d.bulge * (1 + 1e-4));
+        // Where the true centre lies off M1's: z·(n − N) + (X_smooth − X_flat). L keeps a world
+        // vector's component along N as tile z and maps its tangential part, at most σ-stretched,
+        // to tile x, y. Along N: |z|·(1 − cos θ) = |z|·|n − N|²/2 ≤ |z|·δ²/2, and the lift ≤ b;
+        // tangentially: |z|·sin θ ≤ |z|·δ, and the lift, a combination of corner normals each
+        // within δ of N, ≤ b·δ.
+        const double bulge = d.bulge * (1 + 1e-4);
+        const double off_xy = sigma * delta * (std::abs(pos.z) + bulge);
+        const dvec3 off(off_xy, off_xy, std::abs(pos.z) * delta * delta / 2 + bulge);
         // Two bounds of the same copy, both containing it: its own atoms' box widened by the
-        // chart's turn and stretch, and the sphere of its bounding radius stretched by σ. Their
-        // intersection holds it too; which is tighter depends on the chart (a strongly stretched
-        // or mirrored one turns the box far more than it stretches the sphere).
-        const dvec3 e = h + d.e * (glm::abs(c) + h) + off_surface + pad;
-        const double radius = sigma * type_radius[instances[m].molecule_type] + off_surface + pad;
+        // chart's turn and stretch, and the sphere of its bounding radius (stretched by up to σ in
+        // tile x, y, not in z). Their intersection holds it too; which is tighter depends on the
+        // chart (a strongly stretched or mirrored one turns the box far more than it stretches the
+        // sphere).
+        const double r = type_radius[instances[m].molecule_type];
+        const dvec3 e = h + d.e * (glm::abs(c) + h) + off + pad;
+        const dvec3 radius = dvec3(sigma * r, sigma * r, r) + off + pad;
         const dvec3 lo = glm::max(pos + c - e, pos - radius), hi = glm::min(pos + c + e, pos + radius);
         boxes.push_back(box_of(lo, hi));
         square_reach[t].first = glm::min(square_reach[t].first, lo);
