@@ -29,6 +29,7 @@
 #include "runtime/bench/svg_plot.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/oracle/explicit_scene.hpp"
+#include "runtime/oracle/oracle_render.hpp"
 #include "runtime/oracle/verify_cameras.hpp"
 #include "runtime/explicit_instancing/explicit_vs_virtual.hpp"
 #include "runtime/explicit_instancing/work_counters.hpp"
@@ -235,11 +236,19 @@ void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json
   // The verify views: chosen so the oracle can resolve them, the hard cases first.
   const oracle::ExplicitScene scene(session.package);
   // The verify views (near: the hard cases first) and the package's own camera (far: the overview,
-  // where the level of detail acts).
+  // where the level of detail acts) when the CPU oracle can resolve it (a whole cell cannot).
   std::vector<gpu::Camera> cameras;
   for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o.matrix_cameras))
     cameras.push_back(vc.view.to_gpu(w, h));
-  cameras.push_back(camera_option(session.package, o.camera).to_gpu(w, h));
+  const gpu::Camera far = camera_option(session.package, o.camera).to_gpu(w, h);
+  try {
+    oracle::OracleRenderOptions probe;
+    probe.camera_name = "the matrix's far view";
+    (void)oracle::oracle_render(scene, session.package, far, probe);
+    cameras.push_back(far);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "matrix: far view left out: %s\n", e.what());
+  }
   if (o.variant.shell != "adaptive-overlap" || o.variant.levels != "3+rep" || o.variant.prism != "exact")
     throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
   const std::vector<bench::MatrixVariant> variants = bench::matrix_variants(o.variant.render_settings(), session.package);
