@@ -361,11 +361,11 @@ struct GpuScene::Impl : format::PackageView {
   // compartment. In tile space (M1⁻¹) an atom offset p of a copy becomes T·p with T = L·F, L the
   // inverse linear part of M1 and F the copy's frame; its centre (x, y, z) moves by
   // z·L(n − N) + L(X_smooth − X_flat). So a copy whose M1-placed atoms fill the box c ± h (about its
-  // origin) lies in c ± (h + E·(|c| + h) + σ·(|z|·δ + b)), with E the element-wise largest |T − I|, σ
-  // L's largest singular value, δ = max |n_i − N| over corners (n(uv_m) of an owned copy is a
-  // positive combination of them) and b the smooth surface's largest lift off its facet
-  // (chart_smooth_bulge). E is sampled over each triangle (a barycentric grid, where owned copies
-  // sit) and widened by a fifth plus 0.02 for what lies between samples.
+  // origin) lies in c ± (h + E·(|c| + h) + that offset's bound, per axis in build_tile_levels), with
+  // E the element-wise largest |T − I|, σ L's largest singular value, δ = max |n_i − N| over
+  // corners (n(uv_m) of an owned copy is a positive combination of them) and b the smooth surface's
+  // largest lift off its facet (chart_smooth_bulge). E is sampled over each triangle (a barycentric
+  // grid, where owned copies sit) and widened by a fifth plus 0.02 for what lies between samples.
   struct Distortion {
     double sigma = 0, delta = 0, bulge = 0;
     dmat3 e{0.0};  // element-wise max |T − I|

@@ -99,8 +99,7 @@ struct Renderer::Impl {
   struct Pending {
     std::uint32_t width = 0, height = 0, next_row = 0, next_column = 0;
     Variant variant{};
-    std::chrono::steady_clock::time_point start;
-    double traced_seconds = 0;  // begin + bands, not the time between them
+    double traced_seconds = 0;  // begin + parts, not the time between them
   };
   std::optional<Pending> pending;
 
@@ -172,8 +171,7 @@ struct Renderer::Impl {
     scene.write_descriptors(p.set);
     vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_FRAME, frame_buffer);
     outputs.bind(device, p.set, {gpu::NANO_B_HITS, gpu::NANO_B_COLOURS, gpu::NANO_B_COUNTERS}, std::uint64_t(w) * h, v.counters);
-    pending = Pending{w, h, 0, 0, v, start, 0};
-    pending->traced_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    pending = Pending{w, h, 0, 0, v, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
   }
 
   Renderer::Part trace_part(std::uint64_t pixels) {

@@ -404,9 +404,7 @@ private:
           if (moving) start_job(motion_scale(seconds_per_pixel_, rw, rh, state_.motion_budget));
           else if (shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples()) start_job(refinement_scale());
         }
-        const auto traced = Clock::now();
         if (job_) advance_job();
-        trace_time_ = std::chrono::duration<double>(Clock::now() - traced).count();
       } catch (const std::invalid_argument& e) {
         // Settings the renderer refuses (e.g. an effect the two-level path lacks): say so, keep going.
         state_.status = e.what();
@@ -419,11 +417,6 @@ private:
       if (!job_ || input.camera_moved || std::chrono::duration<double>(presenting - last_present_).count() >= 1.0 / 60) {
         present();
         last_present_ = presenting;
-      }
-      if (input_log_) {
-        const double p = std::chrono::duration<double>(Clock::now() - presenting).count();
-        const double all = std::chrono::duration<double>(Clock::now() - now).count();
-        if (all > 0.05) std::fprintf(stderr, "view: slow iteration %.3f s: trace %.3f present %.3f\n", all, trace_time_, p);
       }
     }
   }
@@ -456,7 +449,6 @@ private:
   double seconds_per_pixel_ = 0;
   std::optional<Job> job_;  // the frame in progress, traced in parts
   double part_seconds_per_pixel_ = 0;  // the dearest cost per pixel of its parts so far
-  double trace_time_ = 0;
   Clock::time_point last_present_{};
   const bool input_log_ = std::getenv("NANO_VIEW_INPUT_LOG") != nullptr;  // tests: input and full-frame times
   std::string logged_status_;
