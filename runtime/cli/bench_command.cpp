@@ -94,7 +94,7 @@ std::pair<std::uint64_t, std::uint64_t> on_screen(const format::Package& package
 
 nlohmann::ordered_json memory_json(const render::MemoryReport& m) {
   return {{"package_data", m.package_data}, {"derived", m.derived}, {"nlas", m.nlas}, {"mlas", m.mlas},
-          {"ulas", m.ulas}, {"package_imported_in_place", m.package_imported}, {"build_scratch_peak", m.scratch_peak}};
+          {"ulas", m.ulas}, {"flat", m.flat}, {"package_imported_in_place", m.package_imported}, {"build_scratch_peak", m.scratch_peak}};
 }
 
 void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
@@ -138,6 +138,8 @@ void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json
   out["atoms_of_molecules_on_screen"] = double(atoms) / double(cameras.size());
   out["device_memory_bytes"] = load.memory.total();
   out["device_memory"] = memory_json(load.memory);
+  out["flat_level"] = {{"copies", load.flattened_copies}, {"triangles", load.flattened_triangles},
+                       {"last_build_seconds", load.flat_seconds}};
   out["acceleration_structures"] = {{"nlas", load.nlas_count}, {"mlas", load.mlas_count}, {"prisms", load.prisms}};
   std::printf("open -> first image %.3f s (a %ux%u frame in %.3f s after the load)\n", double(out["open_to_first_image_seconds"]),
               first.width, first.height, first.seconds);
@@ -147,9 +149,10 @@ void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json
   std::printf("frames %zu at %ux%u: min %.4f s, median %.4f s, p95 %.4f s; %.3g rays/s; %.0f molecules (%.3g atoms) on screen\n",
               cameras.size(), w, h, stats.min, stats.median, stats.p95, double(rays) / stats.median,
               double(molecules) / double(cameras.size()), double(atoms) / double(cameras.size()));
-  std::printf("device memory %.2f MB: package %.2f, derived %.2f, nLAS %.2f, mLAS %.2f, µLAS %.2f (build scratch peak %.2f, freed)\n",
+  std::printf("device memory %.2f MB: package %.2f, derived %.2f, nLAS %.2f, mLAS %.2f, µLAS %.2f, flat level %.2f (build "
+              "scratch peak %.2f, freed)\n",
               load.memory.total() / 1e6, load.memory.package_data / 1e6, load.memory.derived / 1e6, load.memory.nlas / 1e6,
-              load.memory.mlas / 1e6, load.memory.ulas / 1e6, load.memory.scratch_peak / 1e6);
+              load.memory.mlas / 1e6, load.memory.ulas / 1e6, load.memory.flat / 1e6, load.memory.scratch_peak / 1e6);
 }
 
 struct EffectVariant {
@@ -275,7 +278,8 @@ void run_explicit(const Options& o, RenderSession& session, nlohmann::ordered_js
   std::vector<gpu::Camera> cameras;
   for (const Camera& c : frame_cameras(o, camera_option(session.package, o.camera), 4)) cameras.push_back(c.to_gpu(w, h));
   const instanced::ExplicitVsVirtual r =
-      instanced::compare_explicit_and_virtual(session.device, session.package, *session.scene, cameras, rounds);
+      instanced::compare_explicit_and_virtual(session.device, session.package, *session.scene, cameras, rounds,
+                                              o.variant.render_settings());
   out["size"] = {w, h};
   out["explicit_vs_virtual"] = r.to_json();
   std::printf("%llu copies; frame median: explicit %.4f s, virtual %.4f s (virtual / explicit %.2f); device memory: explicit "
@@ -289,7 +293,8 @@ void run_counters(const Options& o, RenderSession& session, nlohmann::ordered_js
   const auto [w, h] = parse_size(o.size.empty() ? "128x128" : o.size);
   const unsigned rounds = o.frames ? o.frames : 3;
   const Camera camera = camera_option(session.package, o.camera);
-  const instanced::WorkCounters r = instanced::count_work(session.device, session.package, *session.scene, {camera.to_gpu(w, h)}, rounds);
+  const instanced::WorkCounters r = instanced::count_work(session.device, session.package, *session.scene,
+                                                          {camera.to_gpu(w, h)}, rounds, o.variant.render_settings());
   out["size"] = {w, h};
   out["camera"] = camera.to_string();
   out["work"] = r.to_json();

@@ -21,6 +21,10 @@ void add_variant_options(CLI::App& command, VariantOptions& o) {
                      "level of detail: off (every atom) | auto (a copy whose atoms span < 1 pixel shows coarse beads) | PIXELS "
                      "(the threshold)")
       ->capture_default_str();
+  command.add_option("--flatten", o.flatten,
+                     "flat level: off (every copy traced virtually) | auto (the membrane copies of the triangles nearest the eye "
+                     "that fit half the scene's device memory become one TLAS instance each) | MB (that budget)")
+      ->capture_default_str();
 }
 
 void add_effect_options(CLI::App& command, EffectOptions& o) {

@@ -134,6 +134,7 @@ void run_verify(const VerifyOptions& o) {
 
 void add_verify_command(CLI::App& app) {
   auto o = std::make_shared<VerifyOptions>();
+  o->variant.flatten = "off";  // verify checks the virtual traversal unless asked for the flat level
   auto* cmd = app.add_subcommand("verify", "Compare the device's image with explicit instancing on the CPU, pixel by pixel");
   cmd->add_option("PKG", o->package, "package (.nup)")->required();
   cmd->add_option("--size", o->size, "image size WxH (cameras that need exactly axis-aligned rays add one to even sizes)")

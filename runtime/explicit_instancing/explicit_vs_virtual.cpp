@@ -33,12 +33,12 @@ nlohmann::json ExplicitVsVirtual::to_json() const {
 
 ExplicitVsVirtual compare_explicit_and_virtual(const vk::Device& device, const format::Package& package,
                                                render::GpuScene& virtual_scene, const std::vector<gpu::Camera>& cameras,
-                                               unsigned rounds) {
+                                               unsigned rounds, const render::RenderSettings& virtual_settings) {
   if (cameras.empty() || rounds == 0)
     throw std::invalid_argument("compare_explicit_and_virtual: needs at least one camera and one round");
   InstancedScene explicit_scene(device, package);
   InstancedRenderer explicit_renderer(device, explicit_scene);
-  render::Renderer virtual_renderer(device, virtual_scene);  // default settings: effects off, as explicit
+  render::Renderer virtual_renderer(device, virtual_scene, virtual_settings);
   // Warm-up: pipeline compilation and first-touch of buffers stay out of the medians.
   explicit_renderer.render(cameras.front());
   virtual_renderer.render(cameras.front());

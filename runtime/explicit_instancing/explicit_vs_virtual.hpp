@@ -10,6 +10,7 @@
 #include "runtime/oracle/render_compare.hpp"
 #include "runtime/explicit_instancing/instanced_scene.hpp"
 #include "runtime/render/gpu_scene.hpp"
+#include "runtime/render/renderer.hpp"
 #include "runtime/vk/device.hpp"
 #include "shared/camera.h"
 
@@ -36,9 +37,10 @@ struct ExplicitVsVirtual {
 // camera by explicit then virtual instancing, and takes the median frame time of each. Virtual
 // memory is virtual_scene.report().memory.total() (sections the device imports in place are not
 // counted there; the explicit scene copies its atoms). Throws std::invalid_argument without
-// cameras or rounds.
+// cameras or rounds. `virtual_settings` are the virtual renderer's (effects as given: explicit
+// instancing has none, so callers pass them off).
 ExplicitVsVirtual compare_explicit_and_virtual(const vk::Device& device, const format::Package& package,
                                                render::GpuScene& virtual_scene, const std::vector<gpu::Camera>& cameras,
-                                               unsigned rounds);
+                                               unsigned rounds, const render::RenderSettings& virtual_settings = {});
 
 }  // namespace nano::instanced

@@ -23,7 +23,7 @@ using FrameRecord = gpu::InstancedFrameRecord;
 vk::ComputePipelineDesc pipeline_desc(bool counters) {
   vk::ComputePipelineDesc desc;
   desc.code = {nano_spv_instanced_comp, nano_spv_instanced_comp_words};
-  desc.sets = {render::ray_query_set(gpu::NANO_IB_TLAS, gpu::NANO_INSTANCED_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
+  desc.sets = {render::ray_query_set({gpu::NANO_IB_TLAS}, gpu::NANO_INSTANCED_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
   desc.specialization.set_bool(gpu::NANO_SPEC_INSTANCED_COUNTERS, counters);
   return desc;
 }

@@ -31,7 +31,8 @@ nlohmann::ordered_json WorkCounters::to_json() const {
 }
 
 WorkCounters count_work(const vk::Device& device, const format::Package& package, render::GpuScene& virtual_scene,
-                        const std::vector<gpu::Camera>& cameras, unsigned rounds) {
+                        const std::vector<gpu::Camera>& cameras, unsigned rounds,
+                        const render::RenderSettings& virtual_settings) {
   if (cameras.empty() || rounds == 0) throw std::invalid_argument("count_work: needs at least one camera and one round");
   WorkCounters out;
   std::optional<InstancedScene> explicit_scene;
@@ -42,7 +43,9 @@ WorkCounters count_work(const vk::Device& device, const format::Package& package
   } catch (const InputError& e) {
     out.explicit_skipped = e.what();
   }
-  render::RenderSettings plain;  // effects off, as explicit instancing
+  render::RenderSettings plain = virtual_settings;
+  plain.counters = false;
+  plain.without_effect_code = false;
   render::RenderSettings counting = plain;
   counting.counters = true;
   render::RenderSettings no_code = plain;

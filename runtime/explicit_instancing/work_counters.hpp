@@ -12,6 +12,7 @@
 #include "format/package.hpp"
 #include "runtime/bench/ray_counters.hpp"
 #include "runtime/render/gpu_scene.hpp"
+#include "runtime/render/renderer.hpp"
 #include "runtime/vk/device.hpp"
 #include "shared/camera.h"
 
@@ -34,8 +35,10 @@ struct WorkCounters {
 // Builds the explicit scene (beyond 2,000,000 copies, as compare_explicit_and_virtual refuses, the
 // explicit side is left out and said why), renders every camera once counting with both
 // renderers, then `rounds` rounds of the timed variants in an order that turns each round. Throws
-// std::invalid_argument without cameras or rounds.
+// std::invalid_argument without cameras or rounds. `virtual_settings`: the virtual renderer's
+// variant (counters and effect code are set here; callers pass effects off, as explicit instancing).
 WorkCounters count_work(const vk::Device& device, const format::Package& package, render::GpuScene& virtual_scene,
-                        const std::vector<gpu::Camera>& cameras, unsigned rounds);
+                        const std::vector<gpu::Camera>& cameras, unsigned rounds,
+                        const render::RenderSettings& virtual_settings = {});
 
 }  // namespace nano::instanced

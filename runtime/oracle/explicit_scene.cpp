@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "common/error.hpp"
@@ -288,9 +290,12 @@ struct ExplicitScene::Impl : format::PackageView {
     }
   };
 
-  void walk_membrane(const CompartmentPlan& plan, const gpu::Compartment& c, const Aabb& query, Emitter& emit) const {
+  // Triangles [first, first + count) of the mesh (local indices; clamped to the mesh).
+  void walk_membrane(const CompartmentPlan& plan, const gpu::Compartment& c, const Aabb& query, Emitter& emit,
+                     std::uint32_t first = 0, std::uint32_t count = ~0u) const {
     const gpu::Mesh& mesh = meshes[c.mesh];
-    for (std::uint32_t tl = 0; tl < mesh.triangle_count; ++tl) {
+    const std::uint32_t end = first + std::min(count, mesh.triangle_count - std::min(first, mesh.triangle_count));
+    for (std::uint32_t tl = first; tl < end; ++tl) {
       const std::uint32_t t = mesh.first_triangle + tl;
       const gpu::Triangle& tri = triangles[t];
       const std::uint32_t f = mesh.first_vertex;
@@ -342,6 +347,28 @@ struct ExplicitScene::Impl : format::PackageView {
           }
         }
     }
+  }
+
+  // The copies of instance i in `box`: all, or (`triangle`) the membrane copies of that local triangle.
+  void walk_instance(std::uint32_t i, const WorldBox& box, const std::function<void(const Copy&)>& visit,
+                     std::optional<std::uint32_t> triangle) const {
+    if (i >= compartment_instances.size()) throw std::out_of_range("ExplicitScene: no compartment instance " + str(i));
+    const std::uint32_t ci = compartment_instances[i].compartment;
+    const CompartmentPlan& plan = plans[ci];
+    const InstancePlan& ip = instance_plans[i];
+    const Aabb query = local_query(ip, box);
+    if (!plan.bound.meets(query)) return;
+    Emitter emit{*this, ip, box, visit, {}, {}};
+    emit.copy.id.compartment_instance = i;
+    // n·(L c + T) + d = (Lᵀn)·c + (n·T + d): the world half-spaces in compartment space.
+    for (const glm::dvec4& h : options.clip)
+      emit.local_clip.push_back(
+          glm::dvec4(glm::transpose(ip.linear) * dvec3(h), glm::dot(dvec3(h), ip.translation) + h.w + kClipCullSlack));
+    if (plan.membrane) {
+      if (triangle) walk_membrane(plan, compartments[ci], query, emit, *triangle, 1);
+      else walk_membrane(plan, compartments[ci], query, emit);
+    }
+    if (plan.core && !triangle) walk_core(plan, compartments[ci], query, emit);
   }
 
   // The keep-mask words of a BOUNDARY box: binary search over the compartment's sorted records.
@@ -414,22 +441,16 @@ ExplicitScene::ExplicitScene(ExplicitScene&&) noexcept = default;
 std::uint64_t ExplicitScene::copy_number_limit() const { return impl_->number_limit; }
 
 void ExplicitScene::for_each_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit) const {
-  const Impl& s = *impl_;
-  for (std::uint32_t i = 0; i < s.compartment_instances.size(); ++i) {
-    const std::uint32_t ci = s.compartment_instances[i].compartment;
-    const CompartmentPlan& plan = s.plans[ci];
-    const InstancePlan& ip = s.instance_plans[i];
-    const Aabb query = s.local_query(ip, box);
-    if (!plan.bound.meets(query)) continue;
-    Impl::Emitter emit{s, ip, box, visit, {}, {}};
-    emit.copy.id.compartment_instance = i;
-    // n·(L c + T) + d = (Lᵀn)·c + (n·T + d): the world half-spaces in compartment space.
-    for (const glm::dvec4& h : s.options.clip)
-      emit.local_clip.push_back(
-          glm::dvec4(glm::transpose(ip.linear) * dvec3(h), glm::dot(dvec3(h), ip.translation) + h.w + kClipCullSlack));
-    if (plan.membrane) s.walk_membrane(plan, s.compartments[ci], query, emit);
-    if (plan.core) s.walk_core(plan, s.compartments[ci], query, emit);
-  }
+  for (std::uint32_t i = 0; i < impl_->compartment_instances.size(); ++i) for_each_copy_of(i, box, visit);
+}
+
+void ExplicitScene::for_each_copy_of(std::uint32_t i, const WorldBox& box, const std::function<void(const Copy&)>& visit) const {
+  impl_->walk_instance(i, box, visit, std::nullopt);
+}
+
+void ExplicitScene::for_each_membrane_copy(std::uint32_t i, std::uint32_t triangle,
+                                           const std::function<void(const Copy&)>& visit) const {
+  impl_->walk_instance(i, WorldBox::everything(), visit, triangle);
 }
 
 void ExplicitScene::for_each_atom(const WorldBox& box, const std::function<void(const AtomSample&)>& visit) const {

@@ -104,6 +104,11 @@ public:
   // instance, membrane triangles then core boxes; BOUNDARY boxes yield the molecules their
   // keep-mask keeps).
   void for_each_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit) const;
+  // The same for compartment instance `instance` alone (std::out_of_range beyond the last).
+  void for_each_copy_of(std::uint32_t instance, const WorldBox& box, const std::function<void(const Copy&)>& visit) const;
+  // The membrane copies local triangle `triangle` of compartment instance `instance` owns (none
+  // beyond the mesh's last triangle), in for_each_copy's order.
+  void for_each_membrane_copy(std::uint32_t instance, std::uint32_t triangle, const std::function<void(const Copy&)>& visit) const;
   // Every atom whose centre lies in `box`; atoms of a copy are consecutive, in the type's order.
   void for_each_atom(const WorldBox& box, const std::function<void(const AtomSample&)>& visit) const;
 

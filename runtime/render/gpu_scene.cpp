@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "common/singular_value.hpp"
 #include "format/package_view.hpp"
+#include "runtime/render/flat_level.hpp"
 #include "runtime/render/morton.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
 #include "runtime/vk/error.hpp"
@@ -79,8 +80,11 @@ nlohmann::json to_json(const LoadReport& r) {
             {"nlas", r.memory.nlas},
             {"mlas", r.memory.mlas},
             {"ulas", r.memory.ulas},
+            {"flat", r.memory.flat},
             {"scratch_peak", r.memory.scratch_peak}}},
           {"structures", {{"nlas", r.nlas_count}, {"mlas", r.mlas_count}, {"prisms", r.prisms}}},
+          {"flat_level",
+           {{"copies", r.flattened_copies}, {"triangles", r.flattened_triangles}, {"last_build_seconds", r.flat_seconds}}},
           {"sections", {{"imported", r.sections_imported}, {"copied_from_pages", r.sections_copied_from_pages}}}};
 }
 
@@ -105,8 +109,15 @@ struct GpuScene::Impl : format::PackageView {
   std::vector<std::uint32_t> orders;
   std::vector<Level> levels;                          // one per level record that has primitives
   std::vector<vk::AccelerationStructure> compartment_blas;  // per compartment; empty handle: nothing to trace
+  std::vector<std::vector<VkAabbPositionsKHR>> compartment_boxes;  // their build input (prisms, then the core box)
   vk::AccelerationStructure ulas;
   bool has_ulas = false;
+  std::uint64_t flatten_budget = 0;
+  gpu::Camera flatten_camera{};
+  bool flatten_both_sides = false;
+  std::unique_ptr<FlatLevel> flat;       // empty until a budget asks for copies
+  vk::Buffer flat_placeholder;           // bound in place of the flat level's records while it is empty
+  vk::Buffer flat_triangle_buffer;       // FlatLevel::triangle_bits, rewritten by set_eye
   // Level records: types, squares, cubes, replication areas, then (2-level only) squares of atoms.
   std::uint32_t first_square = 0, first_cube = 0, first_area = 0, first_atom_square = 0, first_bead = 0;
   std::vector<std::pair<dvec3, dvec3>> square_reach;  // per Wang square: tile-space union of its mLAS boxes
@@ -607,20 +618,59 @@ struct GpuScene::Impl : format::PackageView {
         boxes.push_back(outward_box(vec3(lo), vec3(hi)));
       }
       report.prisms += prisms.size();
-      if (boxes.empty()) continue;
-      const vk::Buffer input =
-          vk::Buffer::with_data(device, std::as_bytes(std::span(boxes)), vk::kBuildInputUsage, vk::MemoryUse::DeviceLocal);
-      compartment_blas[ci] = vk::build_bottom_level(device, vk::AabbGeometry{input.address(), std::uint32_t(boxes.size())});
-      report.memory.ulas += compartment_blas[ci].size();
-      note_scratch(compartment_blas[ci]);
+      compartment_boxes.push_back(std::move(boxes));
+      build_compartment_blas(ci, compartment_boxes.back());
+    }
+  }
+
+  void build_compartment_blas(std::uint32_t ci, const std::vector<VkAabbPositionsKHR>& boxes) {
+    if (compartment_blas[ci].handle() != VK_NULL_HANDLE) report.memory.ulas -= compartment_blas[ci].size();
+    compartment_blas[ci] = {};
+    if (boxes.empty()) return;
+    const vk::Buffer input =
+        vk::Buffer::with_data(device, std::as_bytes(std::span(boxes)), vk::kBuildInputUsage, vk::MemoryUse::DeviceLocal);
+    compartment_blas[ci] = vk::build_bottom_level(device, vk::AabbGeometry{input.address(), std::uint32_t(boxes.size())});
+    report.memory.ulas += compartment_blas[ci].size();
+    note_scratch(compartment_blas[ci]);
+  }
+
+  // After the flat level's choice changed: a compartment with one instance gets its µLAS BLAS again
+  // with each flattened triangle's prism box shrunk to the point at its centre, so traversal all
+  // but never meets it (a ray through that very point is a candidate the shader skips by the
+  // triangle's bit; a NaN box, "inactive" by the Vulkan spec, lost neighbouring prisms on
+  // lavapipe). Compartments shared by several instances keep every prism; the shader skips
+  // flattened ones by their bit, each µLAS candidate still costing a callback.
+  void deactivate_flattened_prisms() {
+    std::vector<std::uint32_t> instance_count(compartments.size(), 0), sole_instance(compartments.size(), 0);
+    for (std::uint32_t i = 0; i < compartment_instances.size(); ++i)
+      ++instance_count[compartment_instances[i].compartment], sole_instance[compartment_instances[i].compartment] = i;
+    for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
+      if (instance_count[ci] != 1 || render_compartments[ci].counts.z == 0) continue;
+      const gpu::RenderCompartment& rc = render_compartments[ci];
+      std::vector<VkAabbPositionsKHR> boxes = compartment_boxes[ci];
+      for (std::uint32_t prim = 0; prim < rc.counts.z; ++prim)
+        if (flat->flattened(sole_instance[ci], orders[rc.counts.w + prim])) {
+          VkAabbPositionsKHR& b = boxes[prim];
+          const float x = 0.5f * (b.minX + b.maxX), y = 0.5f * (b.minY + b.maxY), z = 0.5f * (b.minZ + b.maxZ);
+          b = {x, y, z, x, y, z};
+        }
+      build_compartment_blas(ci, boxes);
     }
   }
 
   void upload_derived() {
     render_compartment_buffer = storage(std::as_bytes(std::span(render_compartments)));
+    flat = std::make_unique<FlatLevel>(device, p, [this](std::uint32_t type) -> const vk::AccelerationStructure* {
+      return type < molecules.size() && level_records[type].count > 0 ? &levels[type].blas : nullptr;
+    });
+    flat_triangle_buffer = vk::Buffer(device, flat->triangle_bits().size() * sizeof(std::uint32_t),
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
+    flat_triangle_buffer.write(std::as_bytes(std::span(flat->triangle_bits())));
     std::uint64_t base = 0;
-    for (const gpu::CompartmentInstance& ci : compartment_instances) {
-      render_instances.push_back({glm::uvec4(std::uint32_t(base), std::uint32_t(base >> 32), ci.compartment, 0), {}, {}});
+    for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
+      const gpu::CompartmentInstance& ci = compartment_instances[i];
+      render_instances.push_back(
+          {glm::uvec4(std::uint32_t(base), std::uint32_t(base >> 32), ci.compartment, flat->first_bit(i)), {}, {}});
       const gpu::RenderCompartment& rc = render_compartments[ci.compartment];
       const gpu::Compartment& c = compartments[ci.compartment];
       const std::uint64_t core_span =
@@ -631,14 +681,24 @@ struct GpuScene::Impl : format::PackageView {
                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
     level_buffer = storage(std::as_bytes(std::span(level_records)));
     order_buffer = storage(std::as_bytes(std::span(orders)));
+    const gpu::FlatCopy none{};
+    flat_placeholder = storage(std::as_bytes(std::span(&none, 1)));
     report.memory.derived += render_compartment_buffer.size() + render_instance_buffer.size() + level_buffer.size() +
-                             order_buffer.size();
+                             order_buffer.size() + flat_placeholder.size() + flat_triangle_buffer.size();
   }
 
   void set_eye(const dvec3& eye, std::span<const format::InstanceTransform> moved) {
     if (!moved.empty() && moved.size() != compartment_instances.size())
       throw std::invalid_argument("set_eye: " + std::to_string(moved.size()) + " transforms for " +
                                   std::to_string(compartment_instances.size()) + " compartment instances");
+    if (flat->select(flatten_camera, moved.empty() ? flatten_budget : 0, flatten_both_sides)) {
+      flat_triangle_buffer.write(std::as_bytes(std::span(flat->triangle_bits())));
+      deactivate_flattened_prisms();
+      report.memory.flat = flat->memory_bytes();
+      report.flattened_copies = flat->copies();
+      report.flattened_triangles = flat->triangles();
+      report.flat_seconds = flat->last_build_seconds();
+    }
     std::vector<VkAccelerationStructureInstanceKHR> records;
     for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
       const gpu::CompartmentInstance& ci = compartment_instances[i];
@@ -691,7 +751,25 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
   vk::write_storage_buffer(d, set, gpu::NANO_B_LEVELS, s.level_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_ORDERS, s.order_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_BEADS, s.bead_buffer);
+  const bool flat = !s.flat->empty();
+  vk::write_acceleration_structure(d, set, gpu::NANO_B_FLAT_TLAS, flat ? s.flat->tlas() : s.ulas);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_FLAT_COPIES, flat ? s.flat->copy_records() : s.flat_placeholder);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_FLAT_TRIANGLES, s.flat_triangle_buffer);
 }
+
+void GpuScene::set_flatten(std::uint64_t bytes, const gpu::Camera& camera, bool both_sides) {
+  impl_->flatten_budget = bytes;
+  impl_->flatten_camera = camera;
+  impl_->flatten_both_sides = both_sides;
+}
+
+glm::vec4 GpuScene::flat_eye(const glm::dvec3& eye) const {
+  const Impl& s = *impl_;
+  if (s.flat->empty()) return glm::vec4(0.f);
+  return glm::vec4(glm::vec3(eye - s.flat->anchor()), 1.f);
+}
+
+std::uint64_t GpuScene::flattened_copies() const { return impl_->flat->copies(); }
 
 std::uint32_t GpuScene::first_square_level() const { return impl_->first_square; }
 std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }

@@ -19,6 +19,7 @@
 #include "runtime/vk/acceleration_structure.hpp"
 #include "runtime/vk/buffer.hpp"
 #include "runtime/vk/device.hpp"
+#include "shared/camera.h"
 
 namespace nano::render {
 
@@ -44,15 +45,19 @@ struct MemoryReport {
   std::uint64_t nlas = 0;          // molecule types (BLAS of atom boxes + TLAS)
   std::uint64_t mlas = 0;          // Wang squares and cubes
   std::uint64_t ulas = 0;          // per-compartment prism BLASes + the instance TLAS
+  std::uint64_t flat = 0;          // the flat level (flat_level.hpp), when it holds copies
   std::uint64_t scratch_peak = 0;  // largest build scratch (freed after each build; not in total)
   // Device-side allocations; imported pages are the package's own mapping, not counted here.
-  std::uint64_t total() const { return package_data + derived + nlas + mlas + ulas; }
+  std::uint64_t total() const { return package_data + derived + nlas + mlas + ulas + flat; }
 };
 
 struct LoadReport {
   double upload_seconds = 0, nlas_seconds = 0, mlas_seconds = 0, ulas_seconds = 0;
   MemoryReport memory;
   std::uint64_t nlas_count = 0, mlas_count = 0, prisms = 0;
+  std::uint64_t flattened_copies = 0;  // copies in the flat level after the last set_eye
+  std::uint64_t flattened_triangles = 0;
+  double flat_seconds = 0;             // its last (re)build: enumeration, upload, TLAS
   std::uint64_t sections_imported = 0, sections_copied_from_pages = 0;
 };
 nlohmann::json to_json(const LoadReport& report);
@@ -74,6 +79,16 @@ public:
   // only the µLAS changes, never the mLAS or nLAS. Throws std::invalid_argument for a wrong count
   // or a singular transform.
   void set_eye(const glm::dvec3& eye, std::span<const format::InstanceTransform> transforms);
+
+  // The device memory the flat level (flat_level.hpp) may take from the next set_eye on, and the
+  // view it chooses for: the membrane copies of the triangles that cover most pixels of `camera`
+  // and fit are flattened, the µLAS skips them (`both_sides`: back faces count too, as when
+  // clipping opens the membrane). 0 (the default) traces every copy virtually; so does set_eye with
+  // moved transforms.
+  void set_flatten(std::uint64_t bytes, const gpu::Camera& camera, bool both_sides);
+  // The flat level's RenderFrame.flat_eye for a camera at world position `eye` (w = 0: empty level).
+  glm::vec4 flat_eye(const glm::dvec3& eye) const;
+  std::uint64_t flattened_copies() const;
 
   const format::Package& package() const;
 

@@ -1,13 +1,17 @@
 #include "runtime/render/pixel_outputs.hpp"
 
+#include <algorithm>
+
 #include "shared/ray_counters.h"
 
 namespace nano::render {
 
-std::vector<vk::DescriptorBinding> ray_query_set(std::uint32_t structure, std::uint32_t count) {
-  std::vector<vk::DescriptorBinding> set{{structure, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}};
+std::vector<vk::DescriptorBinding> ray_query_set(std::initializer_list<std::uint32_t> structures, std::uint32_t count) {
+  std::vector<vk::DescriptorBinding> set;
   for (std::uint32_t b = 0; b < count; ++b)
-    if (b != structure) set.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    set.push_back({b, std::find(structures.begin(), structures.end(), b) != structures.end()
+                          ? VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR
+                          : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   return set;
 }
 

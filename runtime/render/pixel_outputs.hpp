@@ -4,6 +4,7 @@
 // counters per pixel (shared/ray_counters.h). Owns the host-visible buffers, binds them and reads
 // them back, so the two renderers share one way of doing it.
 #include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 #include "runtime/vk/buffer.hpp"
@@ -18,9 +19,9 @@ struct PixelOutputBindings {
   std::uint32_t hits, colours, counters;
 };
 
-// One acceleration structure at `structure` followed by storage buffers up to `count` − 1: the
-// layout of set 0 of both pixel pipelines.
-std::vector<vk::DescriptorBinding> ray_query_set(std::uint32_t structure, std::uint32_t count);
+// Bindings 0 .. `count` − 1, acceleration structures at `structures` and storage buffers elsewhere:
+// the layout of set 0 of both pixel pipelines.
+std::vector<vk::DescriptorBinding> ray_query_set(std::initializer_list<std::uint32_t> structures, std::uint32_t count);
 
 class PixelOutputs {
 public:

@@ -25,10 +25,10 @@ namespace {
 // What selects a pipeline: the shader build and its specialization constants.
 struct Variant {
   bool exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows, eye_from_host,
-      world_space_ulas, counters, lod;
+      world_space_ulas, counters, lod, flat;
   auto key() const {
     return std::tuple(exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows,
-                      eye_from_host, world_space_ulas, counters, lod);
+                      eye_from_host, world_space_ulas, counters, lod, flat);
   }
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
@@ -36,24 +36,27 @@ struct Variant {
 Variant variant_of(const RenderSettings& s) {
   const EffectSettings& e = s.effects;
   const bool effects = !s.without_effect_code;
+  const bool jitter = effects && e.jitter_on && e.jitter_degrees > 0;
   return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
-          effects && e.clipping_on && e.clipping.any(), effects && e.jitter_on && e.jitter_degrees > 0,
+          effects && e.clipping_on && e.clipping.any(), jitter,
           effects && e.ambient_occlusion_on && e.ao_rays > 0, effects && e.shadows_on,
           s.precision == Precision::two_float_eye, s.precision == Precision::world, !s.without_effect_code && s.counters,
-          !s.without_effect_code && s.lod_pixels > 0};
+          !s.without_effect_code && s.lod_pixels > 0,
+          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world};
 }
 
 vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   vk::ComputePipelineDesc desc;
   if (v.no_effect_code) desc.code = {nano_spv_render_nano_no_effects_comp, nano_spv_render_nano_no_effects_comp_words};
   else desc.code = {nano_spv_render_comp, nano_spv_render_comp_words};
-  desc.sets = {ray_query_set(gpu::NANO_B_ULAS, gpu::NANO_RENDER_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
+  desc.sets = {ray_query_set({gpu::NANO_B_ULAS, gpu::NANO_B_FLAT_TLAS}, gpu::NANO_RENDER_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
   desc.push_constant_bytes = 2 * sizeof(std::uint32_t);  // the part's first pixel
   desc.specialization.set_bool(gpu::NANO_SPEC_EXACT_PRISM, v.exact_prism);
   desc.specialization.set_bool(gpu::NANO_SPEC_REPLICATION_LAS, v.replication_las);
   desc.specialization.set_bool(gpu::NANO_SPEC_TWO_LEVEL, v.two_level);
   desc.specialization.set_bool(gpu::NANO_SPEC_EYE_FROM_HOST, v.eye_from_host);
   desc.specialization.set_bool(gpu::NANO_SPEC_WORLD_SPACE_ULAS, v.world_space_ulas);
+  desc.specialization.set_bool(gpu::NANO_SPEC_FLAT, v.flat);
   if (!v.no_effect_code) {
     desc.specialization.set_bool(gpu::NANO_SPEC_CLIPPING, v.clipping);
     desc.specialization.set_bool(gpu::NANO_SPEC_JITTER, v.jitter);
@@ -134,10 +137,18 @@ struct Renderer::Impl {
     frame.effects.y = e.ao_rays;
     frame.effects.z = e.sample_index;
     frame.effects.w = scene.first_bead_level();
+    frame.flat_eye = variant_of(settings).flat ? scene.flat_eye(ulas_origin(camera)) : glm::vec4(0.f);
     frame.lod = glm::vec4(2.0f * camera.forward.w / float(camera.size.y), float(settings.lod_pixels), gpu::NANO_TYPICAL_ATOM_DIAMETER, 0.f);
     const glm::vec3 jitter = jitter_frame_parameters(e);
     frame.effect_parameters = glm::vec4(e.ao_radius, jitter.x, jitter.y, jitter.z);
     return frame;
+  }
+
+  std::uint64_t flatten_budget() const {
+    if (!variant_of(settings).flat) return 0;
+    if (settings.flatten_bytes != kFlattenAuto) return settings.flatten_bytes;
+    const MemoryReport& m = scene.report().memory;
+    return (m.total() - m.flat) / 2;
   }
 
   // Where the µLAS's origin lies in the world: the eye, or the world origin (Precision::world).
@@ -158,6 +169,7 @@ struct Renderer::Impl {
     pending.reset();
     const auto start = std::chrono::steady_clock::now();
     const glm::dvec3 eye = ulas_origin(camera);
+    scene.set_flatten(flatten_budget(), camera, variant_of(settings).clipping);
     if (settings.effects.animation_on) {
       const std::vector<format::InstanceTransform> moved = animated_instance_transforms(scene.package(), settings.effects.time);
       scene.set_eye(eye, moved);

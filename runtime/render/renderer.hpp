@@ -35,7 +35,12 @@ struct RenderSettings {
   bool without_effect_code = false;  // the shader built without any effect or counter code (bench: what "off" costs)
   bool counters = false;             // count the work per pixel (Frame::counters; bench --counters)
   double lod_pixels = 0;             // > 0: copies whose atoms span fewer pixels are drawn as beads (--lod)
+  // Device memory for the flat level (GpuScene::set_flatten_budget, --flatten): 0 traces every
+  // compartment instance virtually; kFlattenAuto: half of what the scene itself takes. No flat
+  // level with jitter, --levels 2 or Precision::world (those measure or move the virtual path).
+  std::uint64_t flatten_bytes = 0;
 };
+inline constexpr std::uint64_t kFlattenAuto = ~std::uint64_t{0};
 
 struct Frame {
   std::uint32_t width = 0, height = 0;

@@ -31,6 +31,16 @@ double parse_lod(const std::string& text) {
   return pixels;
 }
 
+std::uint64_t parse_flatten(const std::string& text) {
+  if (text == "off") return 0;
+  if (text == "auto") return render::kFlattenAuto;
+  char* end = nullptr;
+  const double megabytes = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(megabytes > 0 && megabytes <= 1e6))
+    throw InputError("--flatten", "", "expected off, auto or a device-memory budget in MB in (0, 1000000], got '" + text + "'");
+  return std::uint64_t(megabytes * 1e6);
+}
+
 render::RenderSettings VariantOptions::render_settings() const {
   if (prism != "exact" && prism != "aabb") throw InputError("--prism", "", "expected exact or aabb, got '" + prism + "'");
   if (levels != "3+rep" && levels != "3" && levels != "2")
@@ -45,6 +55,7 @@ render::RenderSettings VariantOptions::render_settings() const {
   s.replication_las = levels == "3+rep";
   s.two_level = levels == "2";
   s.lod_pixels = parse_lod(lod);
+  s.flatten_bytes = parse_flatten(flatten);
   return s;
 }
 

@@ -23,7 +23,8 @@ namespace nano::view {
 
 // The variant options `render`, `verify` and `bench` share: --shell, --prism, --levels.
 struct VariantOptions {
-  std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep", precision = "two-float-eye", lod = "off";
+  std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep", precision = "two-float-eye", lod = "off",
+              flatten = "auto";
   // Throw InputError naming the option whose value is not one of its choices.
   render::SceneOptions scene_options() const;
   render::RenderSettings render_settings() const;
@@ -32,6 +33,11 @@ struct VariantOptions {
 // --lod: off → 0; auto → 1 (copies whose atoms span less than a pixel show their beads); a number
 // of pixels in (0, 10000]. Throws InputError naming --lod otherwise.
 double parse_lod(const std::string& text);
+
+// --flatten: off → 0 (every compartment instance traced virtually); auto → render::kFlattenAuto (the
+// flat level may take half the scene's device memory); a number of MB in (0, 1e6]. Throws
+// InputError naming --flatten otherwise.
+std::uint64_t parse_flatten(const std::string& text);
 
 // The window case (`nanoview view`): the instance also enables `instance_extensions` (the surface
 // extensions GLFW names), `create_surface` makes the window's surface from it, and the device must

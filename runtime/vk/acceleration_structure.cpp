@@ -76,14 +76,34 @@ AccelerationStructure build_bottom_level(const Device& device, const AabbGeometr
   return build(device, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, vk_geometry, geometry.count);
 }
 
-AccelerationStructure build_top_level(const Device& device, VkDeviceAddress instances, std::uint32_t count) {
-  if (count == 0 || instances == 0) throw std::invalid_argument("build_top_level: needs a device address and at least one instance");
+namespace {
+VkAccelerationStructureGeometryKHR instance_geometry(VkDeviceAddress instances) {
   VkAccelerationStructureGeometryKHR vk_geometry{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
   vk_geometry.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
   vk_geometry.geometry.instances.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR;
   vk_geometry.geometry.instances.arrayOfPointers = VK_FALSE;
   vk_geometry.geometry.instances.data.deviceAddress = instances;
-  return build(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, vk_geometry, count);
+  return vk_geometry;
+}
+}  // namespace
+
+AccelerationStructure build_top_level(const Device& device, VkDeviceAddress instances, std::uint32_t count) {
+  if (count == 0 || instances == 0) throw std::invalid_argument("build_top_level: needs a device address and at least one instance");
+  return build(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, instance_geometry(instances), count);
+}
+
+VkDeviceSize top_level_size(const Device& device, std::uint32_t count) {
+  const VkAccelerationStructureGeometryKHR geometry = instance_geometry(0);
+  VkAccelerationStructureBuildGeometryInfoKHR build_info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+  build_info.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;
+  build_info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
+  build_info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  build_info.geometryCount = 1;
+  build_info.pGeometries = &geometry;
+  VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+  device.acceleration_structure_functions().get_build_sizes(device.handle(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR,
+                                                            &build_info, &count, &sizes);
+  return sizes.accelerationStructureSize;
 }
 
 AccelerationStructure build_top_level(const Device& device, std::span<const VkAccelerationStructureInstanceKHR> instances) {

@@ -61,6 +61,8 @@ struct AabbGeometry {
 AccelerationStructure build_bottom_level(const Device& device, const AabbGeometry& geometry);
 AccelerationStructure build_top_level(const Device& device, VkDeviceAddress instances, std::uint32_t count);
 AccelerationStructure build_top_level(const Device& device, std::span<const VkAccelerationStructureInstanceKHR> instances);
+// The storage a top-level structure over `count` instances needs on this device (no build).
+VkDeviceSize top_level_size(const Device& device, std::uint32_t count);
 
 // Row-major 3x4 object-to-world matrix from a GLM affine transform (last row 0 0 0 1 is dropped).
 VkTransformMatrixKHR to_transform_matrix(const glm::dmat4& object_to_world);

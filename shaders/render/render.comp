@@ -49,6 +49,9 @@ layout(constant_id = NANO_SPEC_WORLD_SPACE_ULAS) const bool kWorldSpaceUlas = fa
 // constant that is false removes the effect's code before the driver compiles the pipeline. The
 // NANO_NO_EFFECTS build of this file (render_no_effects) has no effect code at all, to measure that
 // claim (`nanoview bench --effects`).
+// The flat level (runtime/render/flat_level.hpp): the membrane copies of the triangles nearest the
+// eye, one TLAS instance each, traced in one query before the µLAS, which skips those triangles.
+layout(constant_id = NANO_SPEC_FLAT) const bool kFlat = false;
 #ifdef NANO_NO_EFFECTS
 const bool kClipping = false;
 const bool kJitter = false;
@@ -92,6 +95,9 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ORDERS, std430) readonly buff
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_TRIANGLE_DROPS, std430) readonly buffer TriangleDropRanges { TriangleDrops triangle_drops[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_DROPPED_COPIES, std430) readonly buffer DroppedCopies { uint dropped_copies[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_BEADS, std430) readonly buffer Beads { Bead beads[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TLAS) uniform accelerationStructureEXT flat_tlas;
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_COPIES, std430) readonly buffer FlatCopies { FlatCopy flat_copies[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TRIANGLES, std430) readonly buffer FlatTriangles { uint flat_triangles[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
@@ -559,6 +565,64 @@ bool trace_core(uint inst, uint ci, vec3 o, vec3 d) {
   return found;
 }
 
+bool triangle_flattened(uint bit) {
+  return (bit >> 5) < uint(flat_triangles.length()) && ((flat_triangles[bit >> 5] >> (bit & 31u)) & 1u) != 0u;
+}
+
+// The flat level's copies on the ray (o, d) (o camera-relative world) within [0, best_t]: one query
+// over a TLAS of copies, each an instance of its molecule type's nLAS BLAS, so every candidate is an
+// atom box in molecule space (the ray the hardware transformed) — as explicit instancing traces.
+// Every index read from the level is checked against the buffer it names.
+void trace_flat(vec3 o, vec3 d) {
+  count_work(NANO_RC_FLAT_QUERIES);
+  rayQueryEXT q;
+  rayQueryInitializeEXT(q, flat_tlas, gl_RayFlagsNoneEXT, 0xFF, o + frame.flat_eye.xyz, 0.0, d, best_t);
+  while (rayQueryProceedEXT(q)) {
+    if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
+    count_work(NANO_RC_FLAT_CANDIDATES);
+    uint c = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
+    if (c >= uint(flat_copies.length())) continue;
+    FlatCopy fc = flat_copies[c];
+    if (fc.molecule_type >= frame.levels.z) continue;
+    RenderLevel level = levels[fc.molecule_type];
+    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+    if (p >= level.count) continue;
+    uint a = orders[level.order_first + p];
+    vec4 cr = atoms[a].centre_radius;
+    vec3 om = rayQueryGetIntersectionObjectRayOriginEXT(q, false);
+    vec3 dm = rayQueryGetIntersectionObjectRayDirectionEXT(q, false);
+    float tn;
+    float tf;
+    count_work(NANO_RC_SPHERE_TESTS);
+    if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) continue;
+    float t = tn >= 0.0 ? tn : tf;
+    if (!(t >= 0.0) || !(t < best_t)) continue;
+    mat4x3 to_level = rayQueryGetIntersectionObjectToWorldEXT(q, false);
+    if (kClipping) {
+      // An atom is clipped whole, by its centre (camera-relative: the level's space minus flat_eye).
+      vec3 centre = to_level * vec4(cr.xyz, 1.0) - frame.flat_eye.xyz;
+      bool removed = false;
+      for (uint k = 0u; k < frame.effects.x && k < NANO_MAX_CLIP_HALF_SPACES; ++k)
+        if (!clip_keeps_point(frame.clip[k], centre)) removed = true;
+      if (removed) continue;
+    }
+    best_t = t;
+    best.compartment_instance = fc.compartment_instance;
+    best.element = fc.element;
+    best.kind = fc.kind;
+    best.cell = fc.cell;
+    best.instance = fc.instance;
+    best.atom = a;
+    best.copy_number_lo = fc.number_lo;
+    best.copy_number_hi = fc.number_hi;
+    best_type = fc.molecule_type;
+    // World normal by the inverse transpose (an instance may scale); the hit's "compartment" is the world.
+    best_normal_c = normalize(transpose(mat3(rayQueryGetIntersectionWorldToObjectEXT(q, false))) * (om + t * dm - cr.xyz));
+    best_to_world = mat4x3(1.0);
+    rayQueryGenerateIntersectionEXT(q, t);
+  }
+}
+
 // Traces one ray through the whole scene: origin camera-relative world, unit direction d, hits in
 // [0, t_max]. Primary rays take each instance's eye from the host's double computation
 // (RenderInstance), not the hardware's float transform of the origin; secondary rays (AO, shadows)
@@ -577,9 +641,11 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
   best_normal_c = vec3(0.0);
   best_type = 0u;
 
+  bool use_flat = kFlat && frame.flat_eye.w != 0.0;
+  if (use_flat) trace_flat(origin, d);  // first: its hit bounds every µLAS candidate
   count_work(NANO_RC_ULAS_QUERIES);
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, ulas, gl_RayFlagsNoneEXT, 0xFF, origin, 0.0, d, t_max);
+  rayQueryInitializeEXT(q, ulas, gl_RayFlagsNoneEXT, 0xFF, origin, 0.0, d, best_t);
   while (rayQueryProceedEXT(q)) {
     if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
     count_work(NANO_RC_ULAS_CANDIDATES);
@@ -599,7 +665,9 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
     RenderCompartment rc = render_compartments[ci];
     bool found = false;
     if (prim < rc.counts.z) {
-      found = trace_shell(inst, ci, orders[rc.counts.w + prim], o, od);
+      uint tl = orders[rc.counts.w + prim];
+      if (use_flat && triangle_flattened(render_instances[inst].base.w + tl)) continue;  // its copies are in the flat level
+      found = trace_shell(inst, ci, tl, o, od);
     } else if (rc.span.z != 0u) {
       found = trace_core(inst, ci, o, od);
     }

@@ -41,12 +41,15 @@ NANO_CONST uint NANO_B_ORDERS = 21u;
 NANO_CONST uint NANO_B_TRIANGLE_DROPS = 22u;
 NANO_CONST uint NANO_B_DROPPED_COPIES = 23u;
 NANO_CONST uint NANO_B_BEADS = 24u;  // coarse beads per molecule type (render_scene.h Bead; the level of detail)
-NANO_CONST uint NANO_SCENE_BINDING_COUNT = 25u;
-NANO_CONST uint NANO_B_FRAME = 25u;
-NANO_CONST uint NANO_B_HITS = 26u;
-NANO_CONST uint NANO_B_COLOURS = 27u;
-NANO_CONST uint NANO_B_COUNTERS = 28u;  // per pixel work counters (shared/ray_counters.h); a one-word buffer when off
-NANO_CONST uint NANO_RENDER_BINDING_COUNT = 29u;
+NANO_CONST uint NANO_B_FLAT_TLAS = 25u;    // the flat level (render_scene.h FlatCopy); the µLAS stands in when empty
+NANO_CONST uint NANO_B_FLAT_COPIES = 26u;
+NANO_CONST uint NANO_B_FLAT_TRIANGLES = 27u;  // one bit per triangle of every compartment instance: flattened
+NANO_CONST uint NANO_SCENE_BINDING_COUNT = 28u;
+NANO_CONST uint NANO_B_FRAME = 28u;
+NANO_CONST uint NANO_B_HITS = 29u;
+NANO_CONST uint NANO_B_COLOURS = 30u;
+NANO_CONST uint NANO_B_COUNTERS = 31u;  // per pixel work counters (shared/ray_counters.h); a one-word buffer when off
+NANO_CONST uint NANO_RENDER_BINDING_COUNT = 32u;
 
 // render.comp's specialization constants (runtime/render/renderer.cpp sets them per variant).
 NANO_CONST int NANO_SPEC_EXACT_PRISM = 0;
@@ -60,6 +63,7 @@ NANO_CONST int NANO_SPEC_EYE_FROM_HOST = 7;
 NANO_CONST int NANO_SPEC_WORLD_SPACE_ULAS = 8;
 NANO_CONST int NANO_SPEC_COUNTERS = 9;
 NANO_CONST int NANO_SPEC_LOD = 10;
+NANO_CONST int NANO_SPEC_FLAT = 11;  // the flat level is traced (runtime/render/flat_level.hpp)
 
 // shaders/explicit_instancing/instanced.comp, set 0 (explicit instancing: runtime/explicit_instancing/).
 NANO_CONST uint NANO_IB_TLAS = 0u;  // one instance per copy; every other binding is a storage buffer
@@ -78,7 +82,7 @@ NANO_CONST uint NANO_INSTANCED_BINDING_COUNT = 9u;
 NANO_CONST int NANO_SPEC_INSTANCED_COUNTERS = 0;
 
 NANO_STATIC_ASSERT(NANO_DESCRIPTOR_SET == 0u, "a pipeline's first and only set is set 0");
-NANO_STATIC_ASSERT(NANO_B_BEADS + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
+NANO_STATIC_ASSERT(NANO_B_FLAT_TRIANGLES + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
 NANO_STATIC_ASSERT(NANO_B_COUNTERS + 1u == NANO_RENDER_BINDING_COUNT, "frame bindings follow the scene's");
 NANO_STATIC_ASSERT(NANO_IB_ORDERS + 1u == NANO_INSTANCED_SCENE_BINDING_COUNT, "instanced scene bindings are 0 .. count - 1");
 NANO_STATIC_ASSERT(NANO_IB_COUNTERS + 1u == NANO_INSTANCED_BINDING_COUNT, "instanced frame bindings follow the scene's");

@@ -25,7 +25,9 @@ NANO_CONST uint NANO_RC_SPHERE_TESTS = 12u;     // exact ray–sphere tests
 NANO_CONST uint NANO_RC_CORE_STEPS = 13u;       // core-grid DDA steps
 NANO_CONST uint NANO_RC_CORE_BOXES = 14u;       // core boxes traced (inside the grid, not yet traced)
 NANO_CONST uint NANO_RC_MASK_REJECTS = 15u;     // soluble candidates a boundary box's keep mask removes
-NANO_CONST uint NANO_RAY_COUNTER_COUNT = 16u;
+NANO_CONST uint NANO_RC_FLAT_QUERIES = 16u;     // queries of the flat level (copies of flattened compartment instances)
+NANO_CONST uint NANO_RC_FLAT_CANDIDATES = 17u;  // atom candidates the flat level met
+NANO_CONST uint NANO_RAY_COUNTER_COUNT = 18u;
 
 NANO_END
 

@@ -40,7 +40,8 @@ NANO_CONST float NANO_TYPICAL_ATOM_DIAMETER = 3.4f;  // Å: carbon's van der Waa
 // host): compartment coordinates of a cell reach 4·10^4 Å, where one float ulp is 0.004 Å, so the
 // molecule-space ray origin is formed as (hi − T) + lo to keep the hit depth to ~1e-5 Å.
 struct RenderInstance {
-  uvec4 base;    // xy: first copy number (lo, hi); z: compartment; w: reserved
+  uvec4 base;    // xy: first copy number (lo, hi); z: compartment; w: the flat level's bit of its
+                 // triangle 0 (NANO_B_FLAT_TRIANGLES; triangle tl is bit w + tl)
   vec4 eye_hi;   // xyz: float(eye_c); w: reserved
   vec4 eye_lo;   // xyz: float(eye_c − eye_hi); w: reserved
 };
@@ -69,9 +70,28 @@ struct RenderFrame {
   vec4 lod;       // level of detail: x: a pixel's footprint per Å of distance (2·tan(fov/2) / height);
                   // y: a copy whose atoms (z: their typical diameter, Å) span fewer pixels than this is
                   // drawn as its beads; w: reserved. effects.w holds the first bead level in `levels`.
+  vec4 flat_eye;  // the flat level (FlatCopy): xyz: the eye in its space (eye − anchor, from double);
+                  // w: 1 when it holds copies, 0 when every compartment instance is traced virtually
   vec4 clip[14];  // camera-relative world half-spaces (unit n, d): a point p stays iff n·p + d ≥ 0 for all
 };
 NANO_CONST uint NANO_MAX_CLIP_HALF_SPACES = 14u;  // 8 planes + the 6 faces of the clip box
+
+// The flat level (runtime/render/flat_level.hpp): the membrane copies of the triangles nearest the
+// eye that fit a memory budget, one TLAS instance each over its molecule type's nLAS BLAS, traced as
+// explicit instancing traces (one query, atom candidates); the µLAS skips those triangles' prisms
+// (a bit per triangle at RenderInstance.base.w). Per TLAS instance (its custom index names it): the
+// copy's identity as the virtual path reports it (PixelHit).
+struct FlatCopy {
+  uint compartment_instance;
+  uint element;        // membrane: triangle (section index); core: box linear index
+  uint kind;           // 0 membrane, 1 core (PixelHit.kind)
+  uint instance;       // the molecule within its Wang square or cube
+  ivec4 cell;          // membrane: (a, b, 0, 0); core: (i, j, k, 0)
+  uint number_lo;      // copy number
+  uint number_hi;
+  uint molecule_type;
+  uint reserved;
+};
 
 NANO_END
 
@@ -81,7 +101,8 @@ static_assert(sizeof(nano::gpu::RenderCompartment) == 112);
 static_assert(sizeof(nano::gpu::RenderInstance) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);
 static_assert(sizeof(nano::gpu::Camera) == 80);
-static_assert(sizeof(nano::gpu::RenderFrame) == 384);
+static_assert(sizeof(nano::gpu::RenderFrame) == 400);
+static_assert(sizeof(nano::gpu::FlatCopy) == 48);
 static_assert(sizeof(nano::gpu::Bead) == 32);
 static_assert(sizeof(nano::gpu::PixelHit) == 48 && offsetof(nano::gpu::PixelHit, cell) == 16 &&
               offsetof(nano::gpu::PixelHit, instance) == 32);

@@ -39,12 +39,18 @@ if mode == "frames":
     need(d, "rays_per_second", "top", positive=True)
     need(d, "device_memory_bytes", "top", int, positive=True)
     mem = need(d, "device_memory", "top", dict) or {}
-    for k in ("package_data", "derived", "nlas", "mlas", "ulas"):
+    for k in ("package_data", "derived", "nlas", "mlas", "ulas", "flat"):
         need(mem, k, "device_memory", int)
-    total = sum(mem.get(k, 0) for k in ("package_data", "derived", "nlas", "mlas", "ulas"))
+    total = sum(mem.get(k, 0) for k in ("package_data", "derived", "nlas", "mlas", "ulas", "flat"))
     if total != d.get("device_memory_bytes"):
         problems.append(f"device_memory categories sum to {total}, not device_memory_bytes")
     need(d, "molecules_on_screen", "top", positive=True)
+    flat = need(d, "flat_level", "top", dict) or {}
+    for k in ("copies", "triangles", "last_build_seconds"):
+        need(flat, k, "flat_level")
+    # --flatten auto: the level takes at most half of what the scene itself takes.
+    if mem.get("flat", 0) * 2 > total - mem.get("flat", 0):
+        problems.append(f"flat level {mem.get('flat')} B is more than half the scene's {total - mem.get('flat', 0)} B")
 elif mode == "effects":
     names = [v.get("name") for v in need(d, "variants", "top", list) or []]
     for n in ("no effect code", "all off", "clipping", "animation", "jitter", "ao", "shadows", "all on"):
@@ -77,7 +83,8 @@ elif mode == "counters":
     work = need(d, "work", "top", dict) or {}
     rows = ("ulas_queries", "ulas_candidates", "prism_tests", "prisms_entered", "replas_queries", "slots_tried",
             "mlas_queries", "mlas_candidates", "ownership_rejects", "listed_rejects", "nlas_queries", "nlas_candidates",
-            "sphere_tests", "core_steps", "core_boxes", "mask_rejects", "queries_started", "candidates_met")
+            "sphere_tests", "core_steps", "core_boxes", "mask_rejects", "flat_queries", "flat_candidates",
+            "queries_started", "candidates_met")
     per = {}
     for side in ("virtual", "explicit"):
         s = (need(work, side, "work", dict) or {}).get("per_pixel", {})
@@ -92,7 +99,7 @@ elif mode == "counters":
     # survived the rejections; a prism is entered only after its test.
     if e["ulas_queries"] != 1 or v["ulas_queries"] != 1:
         problems.append(f"expected one top-level query per pixel, got virtual {v['ulas_queries']}, explicit {e['ulas_queries']}")
-    if any(e[k] != 0 for k in ("prism_tests", "mlas_queries", "nlas_queries", "core_steps")):
+    if any(e[k] != 0 for k in ("prism_tests", "mlas_queries", "nlas_queries", "core_steps", "flat_queries")):
         problems.append("explicit instancing counted work at levels it does not have")
     if not e["sphere_tests"] <= e["ulas_candidates"]:
         problems.append("explicit: more sphere tests than candidates")
@@ -100,6 +107,8 @@ elif mode == "counters":
         problems.append("virtual: more prisms entered than tested")
     if not v["nlas_queries"] <= v["mlas_candidates"] - v["ownership_rejects"] - v["listed_rejects"] - v["mask_rejects"] + 1e-9:
         problems.append("virtual: more nLAS queries than molecule candidates that survived the rejections")
+    if not v["flat_queries"] <= 1 or not v["sphere_tests"] <= v["nlas_candidates"] + v["flat_candidates"] + 1e-9:
+        problems.append("virtual: at most one flat-level query a ray, and a sphere test only for an atom candidate")
     if not v["sphere_tests"] > 0 or not v["queries_started"] > v["ulas_queries"]:
         problems.append("virtual: a view of the scene should reach atoms")
     if work.get("counting_changes_no_pixel") is not True:

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
+#include "format/package_view.hpp"
 #include "format/validator.hpp"
 #include "runtime/oracle/explicit_scene.hpp"
 #include "runtime/oracle/verify_cameras.hpp"
@@ -230,6 +231,88 @@ TEST_F(Instanced, BeadsHoldTheirAtoms) {
     changed += b.atom != a.atom || b.depth != a.depth;
   }
   EXPECT_GT(changed, 0u);
+}
+
+}  // namespace
+}  // namespace nano::instanced
+
+namespace nano::instanced {
+namespace {
+
+// The flat level (runtime/render/flat_level.hpp) puts the copies of the triangles in view into one
+// TLAS and the µLAS skips those triangles: the picture must not change — the same atom of the same
+// copy with the same ids at the same depth — whatever the budget lets in, and a budget must hold.
+TEST_F(Instanced, FlatLevelShowsWhatTheVirtualPathShows) {
+  Session& s = session();
+  const std::vector<gpu::Camera> cameras = views(64, 4);
+  render::Renderer virtual_renderer(s.device, *s.virtual_scene);  // flatten_bytes 0: every copy virtual
+  std::vector<render::Frame> reference;
+  for (const gpu::Camera& c : cameras) reference.push_back(virtual_renderer.render(c));
+  ASSERT_EQ(s.virtual_scene->report().flattened_copies, 0u);
+
+  for (const std::uint64_t budget : {std::uint64_t(64'000'000), std::uint64_t(1'500'000)}) {
+    render::Renderer flat_renderer(s.device, *s.virtual_scene, render::RenderSettings{.flatten_bytes = budget});
+    std::uint64_t flattened_views = 0;
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+      const render::Frame f = flat_renderer.render(cameras[i]);
+      const render::LoadReport& r = s.virtual_scene->report();
+      EXPECT_LE(r.memory.flat, budget);
+      EXPECT_EQ(r.memory.flat == 0, r.flattened_copies == 0);
+      flattened_views += r.flattened_copies > 0;
+      const oracle::CompareResult a = oracle::compare_images(reference[i].hits, f.hits, 64, 64);
+      std::printf("budget %llu B, view %zu: %llu copies of %llu triangles flat (%.2f MB); %llu/%llu agree (missed %llu, "
+                  "other atom %llu, other ids %llu, depth %llu, max |Δt| %.3g Å)\n",
+                  (unsigned long long)budget, i, (unsigned long long)r.flattened_copies,
+                  (unsigned long long)r.flattened_triangles, r.memory.flat / 1e6, (unsigned long long)a.agree,
+                  (unsigned long long)a.pixels, (unsigned long long)a.missed, (unsigned long long)a.different_atom,
+                  (unsigned long long)a.different_ids, (unsigned long long)a.depth_only, a.max_depth_difference);
+      EXPECT_EQ(a.missed, 0u) << "view " << i;
+      EXPECT_EQ(a.different_ids, 0u) << "view " << i;
+      EXPECT_GE(a.agreement(), 0.999) << "view " << i;
+    }
+    EXPECT_GE(flattened_views, 2u) << "budget " << budget << ": the level must really hold copies";
+  }
+
+  // Flattening off again restores the µLAS's prisms: the very frames of before, bit for bit.
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const render::Frame again = virtual_renderer.render(cameras[i]);
+    EXPECT_EQ(s.virtual_scene->report().flattened_copies, 0u);
+    EXPECT_EQ(0, std::memcmp(again.hits.data(), reference[i].hits.data(), again.hits.size() * sizeof(gpu::PixelHit)))
+        << "view " << i;
+  }
+}
+
+// A flat frame's counters: one flat query and one µLAS query per primary ray, an atom candidate of
+// the flat level tested as a sphere; a budget too small for one triangle flattens nothing, and so
+// do moved compartments (animation: the level holds the package's placement).
+TEST_F(Instanced, FlatLevelCountsAndRefuses) {
+  Session& s = session();
+  const gpu::Camera camera = views(48, 0)[0];
+  render::Renderer renderer(s.device, *s.virtual_scene, render::RenderSettings{.counters = true, .flatten_bytes = 64'000'000});
+  const render::Frame f = renderer.render(camera);
+  ASSERT_GT(s.virtual_scene->report().flattened_copies, 0u);
+  std::uint64_t flat_candidates = 0;
+  for (std::size_t p = 0; p < f.hits.size(); ++p) {
+    const std::uint32_t* c = &f.counters[p * gpu::NANO_RAY_COUNTER_COUNT];
+    ASSERT_EQ(c[gpu::NANO_RC_FLAT_QUERIES], 1u) << p;
+    ASSERT_EQ(c[gpu::NANO_RC_ULAS_QUERIES], 1u) << p;
+    ASSERT_LE(c[gpu::NANO_RC_SPHERE_TESTS], c[gpu::NANO_RC_NLAS_CANDIDATES] + c[gpu::NANO_RC_FLAT_CANDIDATES]) << p;
+    flat_candidates += c[gpu::NANO_RC_FLAT_CANDIDATES];
+  }
+  EXPECT_GT(flat_candidates, 0u);
+
+  renderer.set_settings(render::RenderSettings{.flatten_bytes = 1});
+  renderer.render(camera);
+  EXPECT_EQ(s.virtual_scene->report().flattened_copies, 0u);
+  EXPECT_EQ(s.virtual_scene->report().memory.flat, 0u);
+
+  std::vector<format::InstanceTransform> moved;
+  for (const gpu::CompartmentInstance& ci : s.package.records<format::SectionKind::compartment_instances>())
+    moved.push_back(format::instance_transform(ci));
+  s.virtual_scene->set_flatten(64'000'000, camera, false);
+  s.virtual_scene->set_eye(glm::dvec3(glm::vec3(camera.position)), moved);
+  EXPECT_EQ(s.virtual_scene->report().flattened_copies, 0u);
+  s.virtual_scene->set_flatten(0, camera, false);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "common/error.hpp"
@@ -17,6 +18,7 @@ namespace {
 
 using oracle::AtomSample;
 using oracle::Copy;
+using oracle::CopyKind;
 using oracle::ExplicitScene;
 using oracle::WorldBox;
 
@@ -99,6 +101,43 @@ TEST(ExplicitScene, CopyNumbersAreUniqueAndBelowTheLimit) {
   });
   EXPECT_EQ(numbers.size(), copies);
   EXPECT_GT(copies, 50u);
+}
+
+// Enumerating one instance, or one triangle's membrane copies, yields exactly the copies the whole
+// enumeration gives that instance or triangle (the flat level takes triangles one by one).
+TEST(ExplicitScene, PerInstanceAndPerTriangleEnumerationsPartitionTheWhole) {
+  const TestPackage pkg(hand_scene());
+  const ExplicitScene scene(pkg.package);
+  const auto key = [](const Copy& c) { return std::pair(c.id.compartment_instance, c.number); };
+  std::set<std::pair<std::uint32_t, std::uint64_t>> whole, by_instance, by_triangle, membrane;
+  scene.for_each_copy(WorldBox::everything(), [&](const Copy& c) {
+    whole.insert(key(c));
+    if (c.id.kind == CopyKind::membrane) membrane.insert(key(c));
+  });
+  const auto instances = pkg.package.records<format::SectionKind::compartment_instances>();
+  const auto compartments = pkg.package.records<format::SectionKind::compartments>();
+  const auto meshes = pkg.package.records<format::SectionKind::meshes>();
+  const auto triangles = pkg.package.records<format::SectionKind::triangles>();
+  for (std::uint32_t i = 0; i < instances.size(); ++i) {
+    scene.for_each_copy_of(i, WorldBox::everything(), [&](const Copy& c) {
+      EXPECT_EQ(c.id.compartment_instance, i);
+      by_instance.insert(key(c));
+    });
+    const gpu::Mesh& mesh = meshes[compartments[instances[i].compartment].mesh];
+    for (std::uint32_t tl = 0; tl <= mesh.triangle_count; ++tl)  // one past the last: nothing
+      scene.for_each_membrane_copy(i, tl, [&](const Copy& c) {
+        EXPECT_EQ(c.id.kind, CopyKind::membrane);
+        EXPECT_EQ(c.id.element, mesh.first_triangle + tl);
+        EXPECT_LT(c.id.element, triangles.size());
+        by_triangle.insert(key(c));
+      });
+  }
+  EXPECT_EQ(by_instance, whole);
+  EXPECT_EQ(by_triangle, membrane);
+  EXPECT_GT(membrane.size(), 0u);
+  EXPECT_LT(membrane.size(), whole.size());  // the hand scene has a core grid too
+  EXPECT_THROW(scene.for_each_copy_of(std::uint32_t(instances.size()), WorldBox::everything(), [](const Copy&) {}),
+               std::out_of_range);
 }
 
 TEST(ExplicitScene, AtomInfoTravelsWithTheAtom) {

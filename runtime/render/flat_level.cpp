@@ -1,0 +1,300 @@
+#include "runtime/render/flat_level.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "common/singular_value.hpp"
+#include "format/package_view.hpp"
+#include "runtime/oracle/explicit_scene.hpp"
+#include "runtime/render/morton.hpp"
+#include "shared/render_scene.h"
+
+namespace nano::render {
+namespace {
+
+using glm::dvec3;
+using glm::vec3;
+
+// The instance custom index (24 bits) names the copy record.
+constexpr std::uint64_t kCopyLimit = std::uint64_t{1} << 24;
+
+// One copy as the oracle placed it.
+struct Placed {
+  dvec3 origin;      // world position of the molecule origin
+  glm::mat3 linear;  // molecule → world linear part
+  float radius;      // world bounding radius (Morton sort only)
+  gpu::FlatCopy record;
+};
+
+// A triangle of one compartment instance: what select() ranks and takes whole.
+struct FlatTriangle {
+  std::uint32_t instance = 0, local = 0;
+  dvec3 centroid{0.0};  // world
+  dvec3 normal{0.0};    // world unit normal (the mesh's winding: outward for a closed oriented mesh)
+  double area = 0;      // world Å²
+  double radius = 0;    // world distance from the centroid to its farthest corner
+  bool owns = false;    // its shell is not empty (a triangle without offsets owns no copy)
+};
+
+// Flattening a copy costs its share of a TLAS rebuild whenever the choice changes (~1 µs a copy on
+// lavapipe, every frame of an orbit) and saves the virtual traversal of each pixel it covers
+// (~40 µs a pixel on the virion's membrane): a triangle whose copies cover fewer pixels than this
+// each is not worth its place (a whole red blood cell in view is 10⁻⁴ pixels a copy).
+constexpr double kMinPixelsPerCopy = 0.05;
+
+}  // namespace
+
+struct FlatLevel::Impl : format::PackageView {
+  const vk::Device& device;
+  const format::Package& p;
+  std::function<const vk::AccelerationStructure*(std::uint32_t)> molecule_blas;
+  std::unique_ptr<oracle::ExplicitScene> oracle;  // made on the first non-empty choice
+  std::vector<std::uint32_t> instance_first_bit;   // per compartment instance
+  std::vector<FlatTriangle> all;                    // indexed by bit
+  std::vector<std::optional<std::vector<Placed>>> cache;  // per bit, once enumerated
+  std::uint64_t cached_copies = 0;
+  struct Density {
+    double copies = 0, area = 0;  // over the triangles enumerated so far
+  };
+  std::vector<Density> densities;  // per compartment instance
+  std::uint64_t capacity_budget = 0, capacity_copies = 0;  // the last budget and the copies it holds
+  std::vector<bool> chosen;  // per bit
+  std::vector<std::uint32_t> bits;  // chosen, 32 a word
+  std::uint64_t chosen_triangles = 0;
+  vk::AccelerationStructure tlas;
+  vk::Buffer copy_buffer;
+  std::uint64_t copy_count = 0;
+  dvec3 anchor{0.0};
+  double build_seconds = 0;
+
+  Impl(const vk::Device& d, const format::Package& package,
+       std::function<const vk::AccelerationStructure*(std::uint32_t)> blas)
+      : PackageView(package), device(d), p(package), molecule_blas(std::move(blas)) {
+    for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
+      instance_first_bit.push_back(std::uint32_t(all.size()));
+      const gpu::CompartmentInstance& ci = compartment_instances[i];
+      if (ci.compartment >= compartments.size() || compartments[ci.compartment].mesh >= meshes.size()) continue;
+      const format::InstanceTransform t = format::instance_transform(ci);
+      const gpu::Mesh& m = meshes[compartments[ci.compartment].mesh];
+      for (std::uint32_t tl = 0; tl < m.triangle_count; ++tl) {
+        const std::uint32_t tri = m.first_triangle + tl;
+        const gpu::Triangle& v = triangles[tri];
+        const dvec3 a = t.translation + t.linear * dvec3(positions[m.first_vertex + v.v0]);
+        const dvec3 b = t.translation + t.linear * dvec3(positions[m.first_vertex + v.v1]);
+        const dvec3 c = t.translation + t.linear * dvec3(positions[m.first_vertex + v.v2]);
+        FlatTriangle f;
+        f.instance = i, f.local = tl;
+        f.centroid = (a + b + c) / 3.0;
+        const dvec3 n = glm::cross(b - a, c - a);
+        f.area = 0.5 * glm::length(n);
+        f.normal = f.area > 0 ? n / (2.0 * f.area) : dvec3(0.0);
+        f.radius = std::max({glm::length(a - f.centroid), glm::length(b - f.centroid), glm::length(c - f.centroid)});
+        f.owns = tri < shells.size() && (shells[tri].h_plus != 0 || shells[tri].h_minus != 0 || shells[tri].side_offset != 0);
+        all.push_back(f);
+      }
+    }
+    cache.resize(all.size());
+    densities.resize(compartment_instances.size());
+    chosen.assign(all.size(), false);
+    bits.assign((all.size() + 31) / 32 + 1, 0u);  // never empty: a storage buffer needs a word
+  }
+
+  std::uint64_t bytes_for(std::uint64_t count) const {
+    if (count == 0) return 0;
+    return vk::top_level_size(device, std::uint32_t(std::min(count, kCopyLimit))) + count * sizeof(gpu::FlatCopy);
+  }
+
+  // The most copies a level within `budget` bytes can hold.
+  std::uint64_t capacity(std::uint64_t budget) const {
+    std::uint64_t lo = 0, hi = std::min(kCopyLimit - 1, budget / sizeof(gpu::FlatCopy));
+    while (lo < hi) {
+      const std::uint64_t mid = lo + (hi - lo + 1) / 2;
+      if (bytes_for(mid) <= budget) lo = mid; else hi = mid - 1;
+    }
+    return lo;
+  }
+
+  // The copies (with atoms) triangle `bit` owns, enumerated once.
+  const std::vector<Placed>& copies_of(std::uint32_t bit) {
+    std::optional<std::vector<Placed>>& slot = cache[bit];
+    if (slot) return *slot;
+    slot.emplace();
+    if (!all[bit].owns) return *slot;
+    if (!oracle) oracle = std::make_unique<oracle::ExplicitScene>(p);
+    oracle->for_each_membrane_copy(all[bit].instance, all[bit].local, [&](const oracle::Copy& c) {
+      if (c.molecule_type >= molecules.size() || !molecule_blas(c.molecule_type)) return;  // nothing to hit
+      gpu::FlatCopy r{};
+      r.compartment_instance = c.id.compartment_instance;
+      r.element = c.id.element;
+      r.kind = std::uint32_t(c.id.kind);
+      r.instance = c.id.instance;
+      r.cell = glm::ivec4(c.id.cell, 0);
+      r.number_lo = std::uint32_t(c.number);
+      r.number_hi = std::uint32_t(c.number >> 32);
+      r.molecule_type = c.molecule_type;
+      slot->push_back({c.origin, glm::mat3(c.linear), float(c.radius), r});
+    });
+    cached_copies += slot->size();
+    densities[all[bit].instance].copies += double(slot->size());
+    densities[all[bit].instance].area += all[bit].area;
+    return *slot;
+  }
+
+  // What flattening triangle f saves per Å², in pixels (0: outside the view): the pixels a patch at
+  // its centroid would cover facing the eye. Not its projected area: a grazing patch covers fewer
+  // pixels, but each of their rays crosses more overlapping prisms, which is what the virtual path
+  // pays for. A quarter of it for a patch facing away (seen only through the gaps of the near side,
+  // unless clipping opens the membrane: `both_sides`).
+  double pixels_per_area(const FlatTriangle& f, const gpu::Camera& camera, bool both_sides) const {
+    const dvec3 to = f.centroid - dvec3(vec3(camera.position));
+    const double d = glm::length(to);
+    if (!(d > f.radius)) return std::numeric_limits<double>::infinity();  // the eye is at the triangle
+    const double facing = -glm::dot(f.normal, to) / d;
+    const double hidden = facing < 0 && !both_sides ? 0.25 : 1.0;
+    const double z = glm::dot(to, dvec3(vec3(camera.forward)));
+    if (z <= -f.radius) return 0;  // behind the eye
+    const double tan_half = camera.forward.w, aspect = camera.right.w, slack = f.radius / std::max(z, f.radius);
+    if (std::abs(glm::dot(to, dvec3(vec3(camera.right)))) / std::max(z, 1e-9) > tan_half * aspect + slack) return 0;
+    if (std::abs(glm::dot(to, dvec3(vec3(camera.up)))) / std::max(z, 1e-9) > tan_half + slack) return 0;
+    const double pixels_per_radian = double(camera.size.y) / (2.0 * tan_half);
+    return hidden * pixels_per_radian * pixels_per_radian / (d * d);
+  }
+
+  bool select(const gpu::Camera& camera, std::uint64_t budget, bool both_sides) {
+    const dvec3 eye(vec3(camera.position));
+    if (budget > 0 && (!std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z) || camera.size.y == 0 ||
+                       !(camera.forward.w > 0)))
+      throw std::invalid_argument("FlatLevel::select: a camera with a finite eye, a field of view and an image");
+    std::vector<bool> choice(all.size(), false);
+    if (budget != capacity_budget) capacity_budget = budget, capacity_copies = budget > 0 ? capacity(budget) : 0;
+    const std::uint64_t room = capacity_copies;
+    if (room > 0) {
+      // Most pixels per Å² first (copies follow area), each taken while its copies cover enough
+      // pixels to pay and the level has room: the nearest triangles in view, facing ones first.
+      std::vector<std::pair<double, std::uint32_t>> order;  // a max-heap: usually few are taken
+      for (std::uint32_t b = 0; b < all.size(); ++b)
+        if (all[b].owns)
+          if (const double s = pixels_per_area(all[b], camera, both_sides); s > 0) order.push_back({s, b});
+      std::make_heap(order.begin(), order.end());
+      std::uint64_t used = 0;
+      for (auto end = order.end(); end != order.begin(); --end) {
+        std::pop_heap(order.begin(), end);
+        const auto [score, b] = *(end - 1);
+        // A triangle not enumerated yet is judged by its instance's copies per Å² so far: an
+        // enumeration costs about what its placement does on the device.
+        const Density& density = densities[all[b].instance];
+        if (!cache[b] && density.area > 0 &&
+            score < kMinPixelsPerCopy * density.copies / density.area)
+          break;
+        const std::uint64_t n = copies_of(b).size();
+        if (n == 0) continue;
+        if (score * all[b].area < kMinPixelsPerCopy * double(n)) break;  // later ones pay less still
+        if (used + n > room) break;
+        choice[b] = true;
+        used += n;
+      }
+    }
+    // Host memory: forget enumerated triangles the choice does not hold once they outgrow it.
+    if (cached_copies > 4 * room + 100'000)
+      for (std::uint32_t b = 0; b < all.size(); ++b)
+        if (!choice[b] && cache[b]) cached_copies -= cache[b]->size(), cache[b].reset();
+    if (choice == chosen) return false;
+    chosen = std::move(choice);
+    rebuild();
+    return true;
+  }
+
+  // The level over the chosen triangles' copies, Morton-sorted (the TLAS build splits in input order).
+  void rebuild() {
+    tlas = {};
+    copy_buffer = {};
+    copy_count = 0;
+    chosen_triangles = 0;
+    std::fill(bits.begin(), bits.end(), 0u);
+    std::vector<const Placed*> placed;
+    for (std::uint32_t b = 0; b < all.size(); ++b)
+      if (chosen[b]) {
+        bits[b >> 5] |= 1u << (b & 31u);
+        ++chosen_triangles;
+        for (const Placed& c : *cache[b]) placed.push_back(&c);
+      }
+    if (placed.empty()) return;
+    dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const Placed* c : placed) lo = glm::min(lo, c->origin), hi = glm::max(hi, c->origin);
+    anchor = 0.5 * (lo + hi);
+    std::vector<VkAabbPositionsKHR> bounds;
+    bounds.reserve(placed.size());
+    for (const Placed* c : placed) {
+      const dvec3 a = c->origin - anchor - double(c->radius), b = c->origin - anchor + double(c->radius);
+      bounds.push_back({float(a.x), float(a.y), float(a.z), float(b.x), float(b.y), float(b.z)});
+    }
+    const std::vector<std::uint32_t> order = morton_order(bounds);
+    std::vector<VkAccelerationStructureInstanceKHR> instances;
+    std::vector<gpu::FlatCopy> records;
+    instances.reserve(placed.size());
+    records.reserve(placed.size());
+    for (std::uint32_t k : order) {
+      const Placed& c = *placed[k];
+      glm::dmat4 m(glm::dmat3(c.linear));
+      m[3] = glm::dvec4(c.origin - anchor, 1.0);
+      instances.push_back(vk::make_instance(*molecule_blas(c.record.molecule_type), m, std::uint32_t(records.size())));
+      records.push_back(c.record);
+    }
+    {
+      const vk::Buffer input = vk::Buffer::with_data(device, std::as_bytes(std::span(instances)), vk::kBuildInputUsage,
+                                                     vk::MemoryUse::DeviceLocal);
+      tlas = vk::build_top_level(device, input.address(), std::uint32_t(instances.size()));
+    }  // the instance records are build input only: freed once the TLAS exists
+    copy_buffer = vk::Buffer::with_data(device, std::as_bytes(std::span(records)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                        vk::MemoryUse::DeviceLocal);
+    copy_count = records.size();
+  }
+};
+
+FlatLevel::FlatLevel(const vk::Device& device, const format::Package& package,
+                     std::function<const vk::AccelerationStructure*(std::uint32_t)> molecule_blas)
+    : impl_(std::make_unique<Impl>(device, package, std::move(molecule_blas))) {}
+FlatLevel::~FlatLevel() = default;
+FlatLevel::FlatLevel(FlatLevel&&) noexcept = default;
+
+bool FlatLevel::select(const gpu::Camera& camera, std::uint64_t budget_bytes, bool both_sides) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool changed = impl_->select(camera, budget_bytes, both_sides);
+  if (changed) impl_->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return changed;
+}
+std::uint32_t FlatLevel::first_bit(std::uint32_t instance) const {
+  if (instance >= impl_->instance_first_bit.size()) throw std::out_of_range("FlatLevel::first_bit: no such compartment instance");
+  return impl_->instance_first_bit[instance];
+}
+bool FlatLevel::flattened(std::uint32_t instance, std::uint32_t triangle) const {
+  if (instance >= impl_->instance_first_bit.size()) return false;
+  const std::uint64_t b = std::uint64_t{impl_->instance_first_bit[instance]} + triangle;
+  const std::uint64_t end = instance + 1 < impl_->instance_first_bit.size() ? impl_->instance_first_bit[instance + 1] : impl_->all.size();
+  return b < end && impl_->chosen[b];
+}
+const std::vector<std::uint32_t>& FlatLevel::triangle_bits() const { return impl_->bits; }
+std::uint64_t FlatLevel::triangles() const { return impl_->chosen_triangles; }
+bool FlatLevel::empty() const { return impl_->copy_count == 0; }
+glm::dvec3 FlatLevel::anchor() const { return impl_->anchor; }
+std::uint64_t FlatLevel::copies() const { return impl_->copy_count; }
+std::uint64_t FlatLevel::memory_bytes() const { return empty() ? 0 : impl_->tlas.size() + impl_->copy_buffer.size(); }
+double FlatLevel::last_build_seconds() const { return impl_->build_seconds; }
+const vk::AccelerationStructure& FlatLevel::tlas() const {
+  if (empty()) throw std::logic_error("FlatLevel::tlas: the level is empty");
+  return impl_->tlas;
+}
+const vk::Buffer& FlatLevel::copy_records() const {
+  if (empty()) throw std::logic_error("FlatLevel::copy_records: the level is empty");
+  return impl_->copy_buffer;
+}
+std::uint64_t FlatLevel::bytes_for(std::uint64_t count) const { return impl_->bytes_for(count); }
+
+}  // namespace nano::render
