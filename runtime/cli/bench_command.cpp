@@ -204,6 +204,9 @@ void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_jso
   const Camera camera = camera_option(session.package, o.camera);
   render::RenderSettings base = o.variant.render_settings();
   base.depth_cue = render::depth_cue_for(camera);
+  // Each effect's cost on the virtual traversal: jitter turns the flat level off, which would
+  // otherwise be counted against it.
+  base.flatten_bytes = 0;
   const std::vector<EffectVariant> variants = effect_variants(base, render::package_effects(session.package), camera);
   render::Renderer renderer(session.device, *session.scene, variants.front().settings);
   const gpu::Camera gpu_camera = camera.to_gpu(w, h);

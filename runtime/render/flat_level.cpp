@@ -167,7 +167,7 @@ struct FlatLevel::Impl : format::PackageView {
     return hidden * pixels_per_radian * pixels_per_radian / (d * d);
   }
 
-  bool select(const gpu::Camera& camera, std::uint64_t budget, bool both_sides) {
+  bool select(const gpu::Camera& camera, std::uint64_t budget, bool both_sides, std::uint64_t new_copies) {
     const dvec3 eye(vec3(camera.position));
     if (budget > 0 && (!std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z) || camera.size.y == 0 ||
                        !(camera.forward.w > 0)))
@@ -183,7 +183,7 @@ struct FlatLevel::Impl : format::PackageView {
         if (all[b].owns)
           if (const double s = pixels_per_area(all[b], camera, both_sides); s > 0) order.push_back({s, b});
       std::make_heap(order.begin(), order.end());
-      std::uint64_t used = 0;
+      std::uint64_t used = 0, enumerated = 0;
       for (auto end = order.end(); end != order.begin(); --end) {
         std::pop_heap(order.begin(), end);
         const auto [score, b] = *(end - 1);
@@ -193,7 +193,10 @@ struct FlatLevel::Impl : format::PackageView {
         if (!cache[b] && density.area > 0 &&
             score < kMinPixelsPerCopy * density.copies / density.area)
           break;
+        if (!cache[b] && enumerated >= new_copies) break;  // the rest on later calls
+        const bool fresh = !cache[b];
         const std::uint64_t n = copies_of(b).size();
+        if (fresh) enumerated += n + 1;
         if (n == 0) continue;
         if (score * all[b].area < kMinPixelsPerCopy * double(n)) break;  // later ones pay less still
         if (used + n > room) break;
@@ -264,9 +267,9 @@ FlatLevel::FlatLevel(const vk::Device& device, const format::Package& package,
 FlatLevel::~FlatLevel() = default;
 FlatLevel::FlatLevel(FlatLevel&&) noexcept = default;
 
-bool FlatLevel::select(const gpu::Camera& camera, std::uint64_t budget_bytes, bool both_sides) {
+bool FlatLevel::select(const gpu::Camera& camera, std::uint64_t budget_bytes, bool both_sides, std::uint64_t new_copies) {
   const auto start = std::chrono::steady_clock::now();
-  const bool changed = impl_->select(camera, budget_bytes, both_sides);
+  const bool changed = impl_->select(camera, budget_bytes, both_sides, new_copies);
   if (changed) impl_->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return changed;
 }

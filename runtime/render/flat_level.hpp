@@ -48,8 +48,11 @@ public:
   // level's device memory stays within `budget_bytes` (0 empties the level). Rebuilds the level
   // only when the choice differs from the last one. Returns true iff it changed. Throws
   // std::invalid_argument for a budget with a camera without a finite eye, a field of view or an
-  // image.
-  bool select(const gpu::Camera& camera, std::uint64_t budget_bytes, bool both_sides);
+  // image. Triangles met for the first time are enumerated (on the CPU, ~7 µs a copy) until
+  // `new_copies` copies have been: the rest of the choice waits for later calls, so a caller that
+  // must answer input soon (the viewer) bounds the pause.
+  bool select(const gpu::Camera& camera, std::uint64_t budget_bytes, bool both_sides,
+              std::uint64_t new_copies = ~std::uint64_t{0});
 
   // Triangle `triangle` (local to its mesh) of compartment instance `instance` is bit
   // first_bit(instance) + triangle of triangle_bits().

@@ -115,6 +115,7 @@ struct GpuScene::Impl : format::PackageView {
   std::uint64_t flatten_budget = 0;
   gpu::Camera flatten_camera{};
   bool flatten_both_sides = false;
+  std::uint64_t flatten_new_copies = ~std::uint64_t{0};
   std::unique_ptr<FlatLevel> flat;       // empty until a budget asks for copies
   vk::Buffer flat_placeholder;           // bound in place of the flat level's records while it is empty
   vk::Buffer flat_triangle_buffer;       // FlatLevel::triangle_bits, rewritten by set_eye
@@ -691,7 +692,7 @@ struct GpuScene::Impl : format::PackageView {
     if (!moved.empty() && moved.size() != compartment_instances.size())
       throw std::invalid_argument("set_eye: " + std::to_string(moved.size()) + " transforms for " +
                                   std::to_string(compartment_instances.size()) + " compartment instances");
-    if (flat->select(flatten_camera, moved.empty() ? flatten_budget : 0, flatten_both_sides)) {
+    if (flat->select(flatten_camera, moved.empty() ? flatten_budget : 0, flatten_both_sides, flatten_new_copies)) {
       flat_triangle_buffer.write(std::as_bytes(std::span(flat->triangle_bits())));
       deactivate_flattened_prisms();
       report.memory.flat = flat->memory_bytes();
@@ -757,7 +758,8 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
   vk::write_storage_buffer(d, set, gpu::NANO_B_FLAT_TRIANGLES, s.flat_triangle_buffer);
 }
 
-void GpuScene::set_flatten(std::uint64_t bytes, const gpu::Camera& camera, bool both_sides) {
+void GpuScene::set_flatten(std::uint64_t bytes, const gpu::Camera& camera, bool both_sides, std::uint64_t new_copies) {
+  impl_->flatten_new_copies = new_copies;
   impl_->flatten_budget = bytes;
   impl_->flatten_camera = camera;
   impl_->flatten_both_sides = both_sides;

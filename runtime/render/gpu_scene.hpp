@@ -85,7 +85,9 @@ public:
   // and fit are flattened, the µLAS skips them (`both_sides`: back faces count too, as when
   // clipping opens the membrane). 0 (the default) traces every copy virtually; so does set_eye with
   // moved transforms.
-  void set_flatten(std::uint64_t bytes, const gpu::Camera& camera, bool both_sides);
+  // `new_copies`: FlatLevel::select's bound on copies enumerated per set_eye.
+  void set_flatten(std::uint64_t bytes, const gpu::Camera& camera, bool both_sides,
+                   std::uint64_t new_copies = ~std::uint64_t{0});
   // The flat level's RenderFrame.flat_eye for a camera at world position `eye` (w = 0: empty level).
   glm::vec4 flat_eye(const glm::dvec3& eye) const;
   std::uint64_t flattened_copies() const;

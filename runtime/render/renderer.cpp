@@ -169,7 +169,7 @@ struct Renderer::Impl {
     pending.reset();
     const auto start = std::chrono::steady_clock::now();
     const glm::dvec3 eye = ulas_origin(camera);
-    scene.set_flatten(flatten_budget(), camera, variant_of(settings).clipping);
+    scene.set_flatten(flatten_budget(), camera, variant_of(settings).clipping, settings.flatten_new_copies);
     if (settings.effects.animation_on) {
       const std::vector<format::InstanceTransform> moved = animated_instance_transforms(scene.package(), settings.effects.time);
       scene.set_eye(eye, moved);

@@ -39,6 +39,9 @@ struct RenderSettings {
   // compartment instance virtually; kFlattenAuto: half of what the scene itself takes. No flat
   // level with jitter, --levels 2 or Precision::world (those measure or move the virtual path).
   std::uint64_t flatten_bytes = 0;
+  // Copies the flat level may enumerate on the CPU before a frame (the rest before later frames):
+  // the viewer bounds the pause a frame's start takes; a single render takes them all.
+  std::uint64_t flatten_new_copies = ~std::uint64_t{0};
 };
 inline constexpr std::uint64_t kFlattenAuto = ~std::uint64_t{0};
 

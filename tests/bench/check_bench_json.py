@@ -61,7 +61,7 @@ elif mode == "effects":
 elif mode == "matrix":
     rows = need(d, "matrix", "top", list) or []
     knobs = {r.get("knob") for r in rows}
-    for k in ("default", "hierarchy", "shell", "prism test", "precision", "lod", "effect"):
+    for k in ("default", "hierarchy", "shell", "prism test", "precision", "lod", "flat level", "effect"):
         if k not in knobs:
             problems.append(f"matrix: no row for knob {k!r}")
     for r in rows:

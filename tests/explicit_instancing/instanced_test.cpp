@@ -315,5 +315,30 @@ TEST_F(Instanced, FlatLevelCountsAndRefuses) {
   s.virtual_scene->set_flatten(0, camera, false);
 }
 
+// A bound on the copies enumerated per frame (the viewer's) grows the level over frames of one view
+// to what an unbounded frame takes at once, and shows the same picture at every step.
+TEST_F(Instanced, FlatLevelGrowsWithinItsEnumerationBound) {
+  Session& s = session();
+  const gpu::Camera camera = views(48, 0)[0];
+  render::GpuScene fresh(s.device, s.package);  // nothing enumerated yet
+  render::Renderer unbounded(s.device, *s.virtual_scene, render::RenderSettings{.flatten_bytes = 64'000'000});
+  const render::Frame whole = unbounded.render(camera);
+  const std::uint64_t all = s.virtual_scene->report().flattened_copies;
+  render::Renderer bounded(s.device, fresh, render::RenderSettings{.flatten_bytes = 64'000'000, .flatten_new_copies = 500});
+  std::uint64_t previous = 0, frames = 0;
+  for (; frames < 100; ++frames) {
+    const render::Frame f = bounded.render(camera);
+    const std::uint64_t now = fresh.report().flattened_copies;
+    const oracle::CompareResult a = oracle::compare_images(whole.hits, f.hits, 48, 48);
+    EXPECT_EQ(a.missed + a.different_ids, 0u) << "frame " << frames;
+    EXPECT_GE(now, previous);
+    if (now == previous && frames > 0) break;
+    if (frames == 0) EXPECT_LT(now, all) << "the bound held back nothing";
+    previous = now;
+  }
+  EXPECT_EQ(previous, all);
+  EXPECT_GT(frames, 1u);
+}
+
 }  // namespace
 }  // namespace nano::instanced
