@@ -60,10 +60,7 @@ struct FlatLevel::Impl : format::PackageView {
   std::vector<FlatTriangle> all;                    // indexed by bit
   std::vector<std::optional<std::vector<Placed>>> cache;  // per bit, once enumerated
   std::uint64_t cached_copies = 0;
-  struct Density {
-    double copies = 0, area = 0;  // over the triangles enumerated so far
-  };
-  std::vector<Density> densities;  // per compartment instance
+  std::vector<double> densities;  // per compartment instance: mean membrane copies per world Å²
   std::uint64_t capacity_budget = 0, capacity_copies = 0;  // the last budget and the copies it holds
   std::vector<bool> chosen;  // per bit
   std::vector<std::uint32_t> bits;  // chosen, 32 a word
@@ -72,6 +69,7 @@ struct FlatLevel::Impl : format::PackageView {
   vk::Buffer copy_buffer;
   std::uint64_t copy_count = 0;
   dvec3 anchor{0.0};
+  bool rebuilt = false;  // by the last select()
   double build_seconds = 0;
 
   Impl(const vk::Device& d, const format::Package& package,
@@ -101,9 +99,22 @@ struct FlatLevel::Impl : format::PackageView {
       }
     }
     cache.resize(all.size());
-    densities.resize(compartment_instances.size());
+    for (const gpu::CompartmentInstance& ci : compartment_instances) densities.push_back(membrane_density(ci));
     chosen.assign(all.size(), false);
     bits.assign((all.size() + 31) / 32 + 1, 0u);  // never empty: a storage buffer needs a word
+  }
+
+  // Molecules per Wang square (the tile set's mean) over the square's world area (Wang squares are
+  // S Å wide in compartment space; the instance scales areas by |det L|^(2/3)).
+  double membrane_density(const gpu::CompartmentInstance& ci) const {
+    if (ci.compartment >= compartments.size()) return 0;
+    const gpu::Compartment& c = compartments[ci.compartment];
+    if (c.membrane_recipe == gpu::NANO_NO_INDEX || c.membrane_tile_count == 0 || !(c.scales.y > 0)) return 0;
+    double molecules = 0;
+    for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count && t < squares.size(); ++t)
+      molecules += squares[t].instance_count;
+    const double area_scale = std::pow(std::abs(glm::determinant(format::instance_transform(ci).linear)), 2.0 / 3.0);
+    return molecules / c.membrane_tile_count / (double(c.scales.y) * c.scales.y * area_scale);
   }
 
   std::uint64_t bytes_for(std::uint64_t count) const {
@@ -142,8 +153,6 @@ struct FlatLevel::Impl : format::PackageView {
       slot->push_back({c.origin, glm::mat3(c.linear), float(c.radius), r});
     });
     cached_copies += slot->size();
-    densities[all[bit].instance].copies += double(slot->size());
-    densities[all[bit].instance].area += all[bit].area;
     return *slot;
   }
 
@@ -187,12 +196,11 @@ struct FlatLevel::Impl : format::PackageView {
       for (auto end = order.end(); end != order.begin(); --end) {
         std::pop_heap(order.begin(), end);
         const auto [score, b] = *(end - 1);
-        // A triangle not enumerated yet is judged by its instance's copies per Å² so far: an
-        // enumeration costs about what its placement does on the device.
-        const Density& density = densities[all[b].instance];
-        if (!cache[b] && density.area > 0 &&
-            score < kMinPixelsPerCopy * density.copies / density.area)
-          break;
+        // Judged first by its instance's mean copies per Å² (an enumeration costs about what the
+        // placement does on the device), then by its own copies. Neither depends on what earlier
+        // calls enumerated: unbounded, the choice is a function of the camera and the budget (a movie's
+        // frames equal single renders).
+        if (score < kMinPixelsPerCopy * densities[all[b].instance]) break;
         if (!cache[b] && enumerated >= new_copies) break;  // the rest on later calls
         const bool fresh = !cache[b];
         const std::uint64_t n = copies_of(b).size();
@@ -208,14 +216,19 @@ struct FlatLevel::Impl : format::PackageView {
     if (cached_copies > 4 * room + 100'000)
       for (std::uint32_t b = 0; b < all.size(); ++b)
         if (!choice[b] && cache[b]) cached_copies -= cache[b]->size(), cache[b].reset();
-    if (choice == chosen) return false;
-    chosen = std::move(choice);
-    rebuild();
-    return true;
+    const bool changed = choice != chosen;
+    if (changed) chosen = std::move(choice);
+    rebuilt = changed || (copy_count > 0 && eye != anchor);
+    if (rebuilt) rebuild(eye);
+    return changed;
   }
 
-  // The level over the chosen triangles' copies, Morton-sorted (the TLAS build splits in input order).
-  void rebuild() {
+  // The level over the chosen triangles' copies relative to the eye, Morton-sorted (the TLAS build
+  // splits in input order). Relative to the eye as the µLAS is: the hardware forms each copy's
+  // object-space ray origin from a float transform whose translation is the copy's distance from
+  // the eye, so a copy 10 Å away is placed to ~10⁻⁶ Å (an anchor 10⁴ Å away cost 10⁻³ Å: a pixel
+  // in 10⁵ of blood's closest view grazed another atom than the oracle).
+  void rebuild(const dvec3& eye) {
     tlas = {};
     copy_buffer = {};
     copy_count = 0;
@@ -229,9 +242,7 @@ struct FlatLevel::Impl : format::PackageView {
         for (const Placed& c : *cache[b]) placed.push_back(&c);
       }
     if (placed.empty()) return;
-    dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    for (const Placed* c : placed) lo = glm::min(lo, c->origin), hi = glm::max(hi, c->origin);
-    anchor = 0.5 * (lo + hi);
+    anchor = eye;
     std::vector<VkAabbPositionsKHR> bounds;
     bounds.reserve(placed.size());
     for (const Placed* c : placed) {
@@ -270,7 +281,7 @@ FlatLevel::FlatLevel(FlatLevel&&) noexcept = default;
 bool FlatLevel::select(const gpu::Camera& camera, std::uint64_t budget_bytes, bool both_sides, std::uint64_t new_copies) {
   const auto start = std::chrono::steady_clock::now();
   const bool changed = impl_->select(camera, budget_bytes, both_sides, new_copies);
-  if (changed) impl_->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (impl_->rebuilt) impl_->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return changed;
 }
 std::uint32_t FlatLevel::first_bit(std::uint32_t instance) const {

@@ -8,14 +8,14 @@
 // away, while their copies cover enough pixels to pay for their share of a rebuild and
 // the level's device memory (TLAS and copy records) stays within the budget; the µLAS skips the
 // prisms of those triangles (one bit each, NANO_B_FLAT_TRIANGLES). The choice is remade for every
-// camera; the level is rebuilt only when it changes. Core-grid copies stay virtual.
+// camera; the level is rebuilt when it or the eye changes. Core-grid copies stay virtual.
 //
 // The copies come from the CPU oracle (oracle::ExplicitScene): the shaders' own placement math,
 // with the compartment instance transform applied in double, so the flat level draws the copies
 // the virtual path draws, with the same identities (FlatCopy → PixelHit).
 //
-// Precision: TLAS transforms are float, relative to an anchor (the centre of the flattened copies),
-// fixed while the choice stands; the eye enters as eye − anchor, from double.
+// Precision: TLAS transforms are float, relative to the eye (the camera's float position, as the
+// µLAS): the level is rebuilt whenever the eye moves, like the µLAS.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -46,7 +46,7 @@ public:
   // away ranks as if twice as far unless `both_sides`, as when clipping may open the membrane),
   // each while its copies are worth at least 0.05 pixels each (flat_level.cpp says why) and the
   // level's device memory stays within `budget_bytes` (0 empties the level). Rebuilds the level
-  // only when the choice differs from the last one. Returns true iff it changed. Throws
+  // when the choice or the eye changed. Returns true iff the choice changed. Throws
   // std::invalid_argument for a budget with a camera without a finite eye, a field of view or an
   // image. Triangles met for the first time are enumerated (on the CPU, ~7 µs a copy) until
   // `new_copies` copies have been: the rest of the choice waits for later calls, so a caller that
@@ -60,11 +60,11 @@ public:
   bool flattened(std::uint32_t instance, std::uint32_t triangle) const;
   const std::vector<std::uint32_t>& triangle_bits() const;
   bool empty() const;              // no copy flattened: the shader skips the level
-  glm::dvec3 anchor() const;       // world point the TLAS transforms are relative to
+  glm::dvec3 anchor() const;       // world point the TLAS transforms are relative to (the last eye)
   std::uint64_t copies() const;    // copies in the level
   std::uint64_t memory_bytes() const;  // TLAS + copy records (0 when empty)
   std::uint64_t triangles() const;     // triangles flattened
-  double last_build_seconds() const;   // the last select() that changed the choice: enumeration, upload, TLAS build
+  double last_build_seconds() const;   // the last select() that rebuilt: enumeration, upload, TLAS build
 
   // The level's TLAS and FlatCopy records; valid only when !empty().
   const vk::AccelerationStructure& tlas() const;
