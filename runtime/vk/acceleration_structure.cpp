@@ -11,19 +11,31 @@ VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) {
   return alignment <= 1 ? value : (value + alignment - 1) / alignment * alignment;
 }
 
-AccelerationStructure build(const Device& device, VkAccelerationStructureTypeKHR type,
-                            const VkAccelerationStructureGeometryKHR& geometry, std::uint32_t primitive_count) {
-  const auto& khr = device.acceleration_structure_functions();
+// One fast-trace build of one geometry; `geometry` must outlive the returned record.
+VkAccelerationStructureBuildGeometryInfoKHR build_info_of(VkAccelerationStructureTypeKHR type,
+                                                          const VkAccelerationStructureGeometryKHR& geometry) {
   VkAccelerationStructureBuildGeometryInfoKHR build_info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
   build_info.type = type;
   build_info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
   build_info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
   build_info.geometryCount = 1;
   build_info.pGeometries = &geometry;
+  return build_info;
+}
 
+VkAccelerationStructureBuildSizesInfoKHR build_sizes(const Device& device, const VkAccelerationStructureBuildGeometryInfoKHR& info,
+                                                     std::uint32_t primitive_count) {
   VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-  khr.get_build_sizes(device.handle(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build_info, &primitive_count,
-                      &sizes);
+  device.acceleration_structure_functions().get_build_sizes(device.handle(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR,
+                                                            &info, &primitive_count, &sizes);
+  return sizes;
+}
+
+AccelerationStructure build(const Device& device, VkAccelerationStructureTypeKHR type,
+                            const VkAccelerationStructureGeometryKHR& geometry, std::uint32_t primitive_count) {
+  const auto& khr = device.acceleration_structure_functions();
+  VkAccelerationStructureBuildGeometryInfoKHR build_info = build_info_of(type, geometry);
+  const VkAccelerationStructureBuildSizesInfoKHR sizes = build_sizes(device, build_info, primitive_count);
 
   Buffer storage(device, sizes.accelerationStructureSize,
                  VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
@@ -94,16 +106,7 @@ AccelerationStructure build_top_level(const Device& device, VkDeviceAddress inst
 
 VkDeviceSize top_level_size(const Device& device, std::uint32_t count) {
   const VkAccelerationStructureGeometryKHR geometry = instance_geometry(0);
-  VkAccelerationStructureBuildGeometryInfoKHR build_info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
-  build_info.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;
-  build_info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
-  build_info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
-  build_info.geometryCount = 1;
-  build_info.pGeometries = &geometry;
-  VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-  device.acceleration_structure_functions().get_build_sizes(device.handle(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR,
-                                                            &build_info, &count, &sizes);
-  return sizes.accelerationStructureSize;
+  return build_sizes(device, build_info_of(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry), count).accelerationStructureSize;
 }
 
 AccelerationStructure build_top_level(const Device& device, std::span<const VkAccelerationStructureInstanceKHR> instances) {

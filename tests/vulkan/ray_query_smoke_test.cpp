@@ -211,3 +211,30 @@ TEST(VulkanSmoke, OneSphereUnderTransformedInstanceMatchesAnalyticGeometry) {
 }
 
 }  // namespace
+
+// top_level_size names the storage build_top_level allocates for as many instances (the flat
+// level budgets its memory with it before building).
+TEST(VulkanSmoke, TopLevelSizeIsWhatTheBuildTakes) {
+  using namespace nano::vk;
+  Instance instance(InstanceOptions{.validation = true});
+  {
+    const Device device = open_ray_query_device(instance);
+    const VkAabbPositionsKHR aabb{-1, -1, -1, 1, 1, 1};
+    const Buffer aabbs = Buffer::with_data(device, std::as_bytes(std::span(&aabb, 1)), kBuildInputUsage, MemoryUse::DeviceLocal);
+    const AccelerationStructure blas = build_bottom_level(device, AabbGeometry{aabbs.address(), 1});
+    VkDeviceSize previous = 0;
+    for (const std::uint32_t n : {1u, 7u, 1000u}) {
+      std::vector<VkAccelerationStructureInstanceKHR> instances;
+      for (std::uint32_t i = 0; i < n; ++i) {
+        glm::dmat4 m(1.0);
+        m[3] = glm::dvec4(3.0 * i, 0.0, 0.0, 1.0);
+        instances.push_back(make_instance(blas, m, i));
+      }
+      const AccelerationStructure tlas = build_top_level(device, std::span(instances));
+      EXPECT_EQ(top_level_size(device, n), tlas.size()) << n << " instances";
+      EXPECT_GE(tlas.size(), previous);
+      previous = tlas.size();
+    }
+  }
+  EXPECT_EQ(instance.validation_errors(), 0u);
+}
