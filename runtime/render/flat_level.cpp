@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <unordered_map>
 #include <stdexcept>
 
 #include <glm/mat3x3.hpp>
@@ -35,7 +36,6 @@ struct Placed {
 
 // A triangle of one compartment instance: what select() ranks and takes whole.
 struct FlatTriangle {
-  std::uint32_t instance = 0, local = 0;
   dvec3 centroid{0.0};  // world
   dvec3 normal{0.0};    // world unit normal (the mesh's winding: outward for a closed oriented mesh)
   double area = 0;      // world Å²
@@ -56,13 +56,19 @@ struct FlatLevel::Impl : format::PackageView {
   const format::Package& p;
   std::function<const vk::AccelerationStructure*(std::uint32_t)> molecule_blas;
   std::unique_ptr<oracle::ExplicitScene> oracle;  // made on the first non-empty choice
-  std::vector<std::uint32_t> instance_first_bit;   // per compartment instance
-  std::vector<FlatTriangle> all;                    // indexed by bit
-  std::vector<std::optional<std::vector<Placed>>> cache;  // per bit, once enumerated
+  // Per compartment instance: its first bit, a sphere around its mesh (world), and its triangles in
+  // the world, made the first time the instance could matter (a scene of a thousand cells keeps
+  // only those ever near the eye).
+  std::vector<std::uint32_t> instance_first_bit;
+  std::uint32_t total_bits = 0;
+  std::vector<dvec3> instance_centres;
+  std::vector<double> instance_radii;
+  std::vector<std::optional<std::vector<FlatTriangle>>> instance_triangles;
+  std::unordered_map<std::uint32_t, std::vector<Placed>> cache;  // per bit, once enumerated
   std::uint64_t cached_copies = 0;
   std::vector<double> densities;  // per compartment instance: mean membrane copies per world Å²
   std::uint64_t capacity_budget = 0, capacity_copies = 0;  // the last budget and the copies it holds
-  std::vector<bool> chosen;  // per bit
+  std::vector<std::uint32_t> chosen;  // bits, ascending
   std::vector<std::uint32_t> bits;  // chosen, 32 a word
   std::uint64_t chosen_triangles = 0;
   vk::AccelerationStructure tlas;
@@ -75,33 +81,56 @@ struct FlatLevel::Impl : format::PackageView {
   Impl(const vk::Device& d, const format::Package& package,
        std::function<const vk::AccelerationStructure*(std::uint32_t)> blas)
       : PackageView(package), device(d), p(package), molecule_blas(std::move(blas)) {
-    for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
-      instance_first_bit.push_back(std::uint32_t(all.size()));
-      const gpu::CompartmentInstance& ci = compartment_instances[i];
-      if (ci.compartment >= compartments.size() || compartments[ci.compartment].mesh >= meshes.size()) continue;
+    for (const gpu::CompartmentInstance& ci : compartment_instances) {
+      instance_first_bit.push_back(total_bits);
       const format::InstanceTransform t = format::instance_transform(ci);
-      const gpu::Mesh& m = meshes[compartments[ci.compartment].mesh];
-      for (std::uint32_t tl = 0; tl < m.triangle_count; ++tl) {
-        const std::uint32_t tri = m.first_triangle + tl;
-        const gpu::Triangle& v = triangles[tri];
-        const dvec3 a = t.translation + t.linear * dvec3(positions[m.first_vertex + v.v0]);
-        const dvec3 b = t.translation + t.linear * dvec3(positions[m.first_vertex + v.v1]);
-        const dvec3 c = t.translation + t.linear * dvec3(positions[m.first_vertex + v.v2]);
-        FlatTriangle f;
-        f.instance = i, f.local = tl;
-        f.centroid = (a + b + c) / 3.0;
-        const dvec3 n = glm::cross(b - a, c - a);
-        f.area = 0.5 * glm::length(n);
-        f.normal = f.area > 0 ? n / (2.0 * f.area) : dvec3(0.0);
-        f.radius = std::max({glm::length(a - f.centroid), glm::length(b - f.centroid), glm::length(c - f.centroid)});
-        f.owns = tri < shells.size() && (shells[tri].h_plus != 0 || shells[tri].h_minus != 0 || shells[tri].side_offset != 0);
-        all.push_back(f);
-      }
+      const gpu::Mesh* m = mesh_of(ci);
+      const dvec3 lo = m ? dvec3(m->aabb_min) : dvec3(0.0), hi = m ? dvec3(m->aabb_max) : dvec3(0.0);
+      instance_centres.push_back(t.translation + t.linear * (0.5 * (lo + hi)));
+      instance_radii.push_back(0.5 * glm::length(hi - lo) * largest_singular_value(t.linear));
+      densities.push_back(membrane_density(ci));
+      total_bits += m ? m->triangle_count : 0;
     }
-    cache.resize(all.size());
-    for (const gpu::CompartmentInstance& ci : compartment_instances) densities.push_back(membrane_density(ci));
-    chosen.assign(all.size(), false);
-    bits.assign((all.size() + 31) / 32 + 1, 0u);  // never empty: a storage buffer needs a word
+    instance_triangles.resize(compartment_instances.size());
+    bits.assign(total_bits / 32 + 1, 0u);  // never empty: a storage buffer needs a word
+  }
+
+  const gpu::Mesh* mesh_of(const gpu::CompartmentInstance& ci) const {
+    if (ci.compartment >= compartments.size() || compartments[ci.compartment].mesh >= meshes.size()) return nullptr;
+    return &meshes[compartments[ci.compartment].mesh];
+  }
+
+  const std::vector<FlatTriangle>& triangles_of(std::uint32_t i) {
+    std::optional<std::vector<FlatTriangle>>& slot = instance_triangles[i];
+    if (slot) return *slot;
+    slot.emplace();
+    const gpu::CompartmentInstance& ci = compartment_instances[i];
+    const gpu::Mesh* m = mesh_of(ci);
+    if (!m) return *slot;
+    const format::InstanceTransform t = format::instance_transform(ci);
+    for (std::uint32_t tl = 0; tl < m->triangle_count; ++tl) {
+      const std::uint32_t tri = m->first_triangle + tl;
+      const gpu::Triangle& v = triangles[tri];
+      const dvec3 a = t.translation + t.linear * dvec3(positions[m->first_vertex + v.v0]);
+      const dvec3 b = t.translation + t.linear * dvec3(positions[m->first_vertex + v.v1]);
+      const dvec3 c = t.translation + t.linear * dvec3(positions[m->first_vertex + v.v2]);
+      FlatTriangle f;
+      f.centroid = (a + b + c) / 3.0;
+      const dvec3 n = glm::cross(b - a, c - a);
+      f.area = 0.5 * glm::length(n);
+      f.normal = f.area > 0 ? n / (2.0 * f.area) : dvec3(0.0);
+      f.radius = std::max({glm::length(a - f.centroid), glm::length(b - f.centroid), glm::length(c - f.centroid)});
+      f.owns = tri < shells.size() && (shells[tri].h_plus != 0 || shells[tri].h_minus != 0 || shells[tri].side_offset != 0);
+      slot->push_back(f);
+    }
+    return *slot;
+  }
+
+  // The compartment instance of a bit, and its triangle there.
+  std::pair<std::uint32_t, std::uint32_t> locate(std::uint32_t bit) const {
+    const auto it = std::upper_bound(instance_first_bit.begin(), instance_first_bit.end(), bit);
+    const auto i = std::uint32_t(it - instance_first_bit.begin() - 1);
+    return {i, bit - instance_first_bit[i]};
   }
 
   // Molecules per Wang square (the tile set's mean) over the square's world area (Wang squares are
@@ -134,12 +163,12 @@ struct FlatLevel::Impl : format::PackageView {
 
   // The copies (with atoms) triangle `bit` owns, enumerated once.
   const std::vector<Placed>& copies_of(std::uint32_t bit) {
-    std::optional<std::vector<Placed>>& slot = cache[bit];
-    if (slot) return *slot;
-    slot.emplace();
-    if (!all[bit].owns) return *slot;
+    if (const auto it = cache.find(bit); it != cache.end()) return it->second;
+    std::vector<Placed>& slot = cache[bit];
+    const auto [instance, local] = locate(bit);
+    if (!triangles_of(instance)[local].owns) return slot;
     if (!oracle) oracle = std::make_unique<oracle::ExplicitScene>(p);
-    oracle->for_each_membrane_copy(all[bit].instance, all[bit].local, [&](const oracle::Copy& c) {
+    oracle->for_each_membrane_copy(instance, local, [&](const oracle::Copy& c) {
       if (c.molecule_type >= molecules.size() || !molecule_blas(c.molecule_type)) return;  // nothing to hit
       gpu::FlatCopy r{};
       r.compartment_instance = c.id.compartment_instance;
@@ -150,10 +179,10 @@ struct FlatLevel::Impl : format::PackageView {
       r.number_lo = std::uint32_t(c.number);
       r.number_hi = std::uint32_t(c.number >> 32);
       r.molecule_type = c.molecule_type;
-      slot->push_back({c.origin, glm::mat3(c.linear), float(c.radius), r});
+      slot.push_back({c.origin, glm::mat3(c.linear), float(c.radius), r});
     });
-    cached_copies += slot->size();
-    return *slot;
+    cached_copies += slot.size();
+    return slot;
   }
 
   // What flattening triangle f saves per Å², in pixels (0: outside the view): the pixels a patch at
@@ -165,15 +194,25 @@ struct FlatLevel::Impl : format::PackageView {
     const dvec3 to = f.centroid - dvec3(vec3(camera.position));
     const double d = glm::length(to);
     if (!(d > f.radius)) return std::numeric_limits<double>::infinity();  // the eye is at the triangle
+    if (!in_view(to, f.radius, camera)) return 0;
     const double facing = -glm::dot(f.normal, to) / d;
     const double hidden = facing < 0 && !both_sides ? 0.25 : 1.0;
+    return hidden * pixels_per_radian_squared(camera) / (d * d);
+  }
+
+  static double pixels_per_radian_squared(const gpu::Camera& camera) {
+    const double ppr = double(camera.size.y) / (2.0 * camera.forward.w);
+    return ppr * ppr;
+  }
+
+  // True iff a ball of `radius` at `to` from the eye may meet the view's pyramid (a cone test per
+  // image axis, widened by the ball's angular radius).
+  static bool in_view(const dvec3& to, double radius, const gpu::Camera& camera) {
     const double z = glm::dot(to, dvec3(vec3(camera.forward)));
-    if (z <= -f.radius) return 0;  // behind the eye
-    const double tan_half = camera.forward.w, aspect = camera.right.w, slack = f.radius / std::max(z, f.radius);
-    if (std::abs(glm::dot(to, dvec3(vec3(camera.right)))) / std::max(z, 1e-9) > tan_half * aspect + slack) return 0;
-    if (std::abs(glm::dot(to, dvec3(vec3(camera.up)))) / std::max(z, 1e-9) > tan_half + slack) return 0;
-    const double pixels_per_radian = double(camera.size.y) / (2.0 * tan_half);
-    return hidden * pixels_per_radian * pixels_per_radian / (d * d);
+    if (z <= -radius) return false;  // behind the eye
+    const double tan_half = camera.forward.w, aspect = camera.right.w, slack = radius / std::max(z, radius);
+    if (std::abs(glm::dot(to, dvec3(vec3(camera.right)))) / std::max(z, 1e-9) > tan_half * aspect + slack) return false;
+    return std::abs(glm::dot(to, dvec3(vec3(camera.up)))) / std::max(z, 1e-9) <= tan_half + slack;
   }
 
   bool select(const gpu::Camera& camera, std::uint64_t budget, bool both_sides, std::uint64_t new_copies) {
@@ -181,16 +220,26 @@ struct FlatLevel::Impl : format::PackageView {
     if (budget > 0 && (!std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z) || camera.size.y == 0 ||
                        !(camera.forward.w > 0)))
       throw std::invalid_argument("FlatLevel::select: a camera with a finite eye, a field of view and an image");
-    std::vector<bool> choice(all.size(), false);
+    std::vector<std::uint32_t> choice;
     if (budget != capacity_budget) capacity_budget = budget, capacity_copies = budget > 0 ? capacity(budget) : 0;
     const std::uint64_t room = capacity_copies;
     if (room > 0) {
       // Most pixels per Å² first (copies follow area), each taken while its copies cover enough
       // pixels to pay and the level has room: the nearest triangles in view, facing ones first.
       std::vector<std::pair<double, std::uint32_t>> order;  // a max-heap: usually few are taken
-      for (std::uint32_t b = 0; b < all.size(); ++b)
-        if (all[b].owns)
-          if (const double s = pixels_per_area(all[b], camera, both_sides); s > 0) order.push_back({s, b});
+      for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
+        // Whole instances out of view, or too far for any of their triangles to pay, are skipped.
+        const dvec3 to = instance_centres[i] - eye;
+        const double gap = std::max(glm::length(to) - instance_radii[i], 1e-9);
+        if (!(densities[i] > 0) || !in_view(to, instance_radii[i], camera) ||
+            pixels_per_radian_squared(camera) / (gap * gap) < kMinPixelsPerCopy * densities[i])
+          continue;
+        const std::vector<FlatTriangle>& tris = triangles_of(i);
+        for (std::uint32_t tl = 0; tl < tris.size(); ++tl)
+          if (tris[tl].owns)
+            if (const double s = pixels_per_area(tris[tl], camera, both_sides); s > 0)
+              order.push_back({s, instance_first_bit[i] + tl});
+      }
       std::make_heap(order.begin(), order.end());
       std::uint64_t used = 0, enumerated = 0;
       for (auto end = order.end(); end != order.begin(); --end) {
@@ -200,22 +249,27 @@ struct FlatLevel::Impl : format::PackageView {
         // placement does on the device), then by its own copies. Neither depends on what earlier
         // calls enumerated: unbounded, the choice is a function of the camera and the budget (a movie's
         // frames equal single renders).
-        if (score < kMinPixelsPerCopy * densities[all[b].instance]) break;
-        if (!cache[b] && enumerated >= new_copies) break;  // the rest on later calls
-        const bool fresh = !cache[b];
+        const auto [instance, local] = locate(b);
+        if (score < kMinPixelsPerCopy * densities[instance]) break;
+        const bool fresh = !cache.count(b);
+        if (fresh && enumerated >= new_copies) break;  // the rest on later calls
         const std::uint64_t n = copies_of(b).size();
         if (fresh) enumerated += n + 1;
         if (n == 0) continue;
-        if (score * all[b].area < kMinPixelsPerCopy * double(n)) break;  // later ones pay less still
+        if (score * triangles_of(instance)[local].area < kMinPixelsPerCopy * double(n)) break;  // later ones pay less still
         if (used + n > room) break;
-        choice[b] = true;
+        choice.push_back(b);
         used += n;
       }
+      std::sort(choice.begin(), choice.end());
     }
     // Host memory: forget enumerated triangles the choice does not hold once they outgrow it.
     if (cached_copies > 4 * room + 100'000)
-      for (std::uint32_t b = 0; b < all.size(); ++b)
-        if (!choice[b] && cache[b]) cached_copies -= cache[b]->size(), cache[b].reset();
+      for (auto it = cache.begin(); it != cache.end();)
+        if (!std::binary_search(choice.begin(), choice.end(), it->first))
+          cached_copies -= it->second.size(), it = cache.erase(it);
+        else
+          ++it;
     const bool changed = choice != chosen;
     if (changed) chosen = std::move(choice);
     rebuilt = changed || (copy_count > 0 && eye != anchor);
@@ -235,12 +289,11 @@ struct FlatLevel::Impl : format::PackageView {
     chosen_triangles = 0;
     std::fill(bits.begin(), bits.end(), 0u);
     std::vector<const Placed*> placed;
-    for (std::uint32_t b = 0; b < all.size(); ++b)
-      if (chosen[b]) {
-        bits[b >> 5] |= 1u << (b & 31u);
-        ++chosen_triangles;
-        for (const Placed& c : *cache[b]) placed.push_back(&c);
-      }
+    for (const std::uint32_t b : chosen) {
+      bits[b >> 5] |= 1u << (b & 31u);
+      ++chosen_triangles;
+      for (const Placed& c : cache.at(b)) placed.push_back(&c);
+    }
     if (placed.empty()) return;
     anchor = eye;
     std::vector<VkAabbPositionsKHR> bounds;
@@ -291,8 +344,8 @@ std::uint32_t FlatLevel::first_bit(std::uint32_t instance) const {
 bool FlatLevel::flattened(std::uint32_t instance, std::uint32_t triangle) const {
   if (instance >= impl_->instance_first_bit.size()) return false;
   const std::uint64_t b = std::uint64_t{impl_->instance_first_bit[instance]} + triangle;
-  const std::uint64_t end = instance + 1 < impl_->instance_first_bit.size() ? impl_->instance_first_bit[instance + 1] : impl_->all.size();
-  return b < end && impl_->chosen[b];
+  const std::uint64_t end = instance + 1 < impl_->instance_first_bit.size() ? impl_->instance_first_bit[instance + 1] : impl_->total_bits;
+  return b < end && std::binary_search(impl_->chosen.begin(), impl_->chosen.end(), std::uint32_t(b));
 }
 const std::vector<std::uint32_t>& FlatLevel::triangle_bits() const { return impl_->bits; }
 std::uint64_t FlatLevel::triangles() const { return impl_->chosen_triangles; }
