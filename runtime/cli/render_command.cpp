@@ -124,12 +124,12 @@ void render_still(const RenderOptions& o, const Camera& camera, render::Renderer
 
 void print_load(const render::LoadReport& load) {
   std::printf("load: upload %.3f s, nLAS %.3f s, mLAS %.3f s, µLAS %.3f s; device memory %.2f MB "
-              "(package %.2f, derived %.2f, nLAS %.2f, mLAS %.2f, µLAS %.2f; build scratch peak %.2f, freed); "
-              "%.2f MB of %llu sections read in place from the mapped package\n",
+              "(package %.2f, derived %.2f, nLAS %.2f, mLAS %.2f, µLAS %.2f, flat level %.2f for %llu copies; build "
+              "scratch peak %.2f, freed); %.2f MB of %llu sections read in place from the mapped package\n",
               load.upload_seconds, load.nlas_seconds, load.mlas_seconds, load.ulas_seconds, load.memory.total() / 1e6,
               load.memory.package_data / 1e6, load.memory.derived / 1e6, load.memory.nlas / 1e6, load.memory.mlas / 1e6,
-              load.memory.ulas / 1e6, load.memory.scratch_peak / 1e6, load.memory.package_imported / 1e6,
-              (unsigned long long)load.sections_imported);
+              load.memory.ulas / 1e6, load.memory.flat / 1e6, (unsigned long long)load.flattened_copies,
+              load.memory.scratch_peak / 1e6, load.memory.package_imported / 1e6, (unsigned long long)load.sections_imported);
 }
 
 }  // namespace
