@@ -362,6 +362,5 @@ const vk::Buffer& FlatLevel::copy_records() const {
   if (empty()) throw std::logic_error("FlatLevel::copy_records: the level is empty");
   return impl_->copy_buffer;
 }
-std::uint64_t FlatLevel::bytes_for(std::uint64_t count) const { return impl_->bytes_for(count); }
 
 }  // namespace nano::render

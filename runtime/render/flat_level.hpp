@@ -70,9 +70,6 @@ public:
   const vk::AccelerationStructure& tlas() const;
   const vk::Buffer& copy_records() const;
 
-  // Device bytes a level of `count` copies takes (TLAS + 48-byte records), as select() counts them.
-  std::uint64_t bytes_for(std::uint64_t count) const;
-
   struct Impl;
 
 private:

@@ -771,8 +771,6 @@ glm::vec4 GpuScene::flat_eye(const glm::dvec3& eye) const {
   return glm::vec4(glm::vec3(eye - s.flat->anchor()), 1.f);
 }
 
-std::uint64_t GpuScene::flattened_copies() const { return impl_->flat->copies(); }
-
 std::uint32_t GpuScene::first_square_level() const { return impl_->first_square; }
 std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }
 std::uint32_t GpuScene::first_atom_square_level() const { return impl_->first_atom_square; }

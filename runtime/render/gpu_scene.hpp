@@ -90,7 +90,6 @@ public:
                    std::uint64_t new_copies = ~std::uint64_t{0});
   // The flat level's RenderFrame.flat_eye for a camera at world position `eye` (w = 0: empty level).
   glm::vec4 flat_eye(const glm::dvec3& eye) const;
-  std::uint64_t flattened_copies() const;
 
   const format::Package& package() const;
 

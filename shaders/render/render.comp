@@ -574,6 +574,8 @@ bool triangle_flattened(uint bit) {
 // atom box in molecule space (the ray the hardware transformed) — as explicit instancing traces.
 // Every index read from the level is checked against the buffer it names.
 void trace_flat(vec3 o, vec3 d) {
+  // The level's space is camera-relative world moved by flat_eye: x_camera = x_level − flat_eye.
+  if (kClipping) load_clip_half_spaces(mat4x3(vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, 1.0), -frame.flat_eye.xyz));
   count_work(NANO_RC_FLAT_QUERIES);
   rayQueryEXT q;
   rayQueryInitializeEXT(q, flat_tlas, gl_RayFlagsNoneEXT, 0xFF, o + frame.flat_eye.xyz, 0.0, d, best_t);
@@ -597,15 +599,8 @@ void trace_flat(vec3 o, vec3 d) {
     if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) continue;
     float t = tn >= 0.0 ? tn : tf;
     if (!(t >= 0.0) || !(t < best_t)) continue;
-    mat4x3 to_level = rayQueryGetIntersectionObjectToWorldEXT(q, false);
-    if (kClipping) {
-      // An atom is clipped whole, by its centre (camera-relative: the level's space minus flat_eye).
-      vec3 centre = to_level * vec4(cr.xyz, 1.0) - frame.flat_eye.xyz;
-      bool removed = false;
-      for (uint k = 0u; k < frame.effects.x && k < NANO_MAX_CLIP_HALF_SPACES; ++k)
-        if (!clip_keeps_point(frame.clip[k], centre)) removed = true;
-      if (removed) continue;
-    }
+    // An atom is clipped whole, by its centre (clip_c is in the level's space: see above).
+    if (kClipping && clip_removes_point(rayQueryGetIntersectionObjectToWorldEXT(q, false) * vec4(cr.xyz, 1.0))) continue;
     best_t = t;
     best.compartment_instance = fc.compartment_instance;
     best.element = fc.element;
