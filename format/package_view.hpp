@@ -53,6 +53,8 @@ struct PackageView {
   std::span<const std::uint32_t> mask_words;
   std::span<const gpu::TriangleDrops> triangle_drops;  // empty (no drops) or parallel to triangles
   std::span<const std::uint32_t> dropped_copies;
+  std::span<const gpu::Bead> beads;                // format 2.5; empty: no level of detail
+  std::span<const gpu::BeadRange> bead_ranges;     // empty or parallel to molecules
 
   explicit PackageView(const Package& p)
       : molecules(p.records<SectionKind::molecules>()),
@@ -75,7 +77,9 @@ struct PackageView {
         boundary_boxes(p.records<SectionKind::boundary_boxes>()),
         mask_words(p.records<SectionKind::mask_words>()),
         triangle_drops(p.records<SectionKind::triangle_drops>()),
-        dropped_copies(p.records<SectionKind::dropped_copies>()) {}
+        dropped_copies(p.records<SectionKind::dropped_copies>()),
+        beads(p.records<SectionKind::beads>()),
+        bead_ranges(p.records<SectionKind::bead_ranges>()) {}
 
   // True iff the baker listed membrane copy `key` (membrane_copy_key) of triangle t (dropped, or an
   // alternate shown: membrane_copy_listed_shows): a binary search over the triangle's ascending keys,

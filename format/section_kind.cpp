@@ -42,6 +42,8 @@ constexpr std::array kKinds = {
     info<SectionKind::keyframes>("keyframes"),
     info<SectionKind::triangle_drops>("triangle_drops"),
     info<SectionKind::dropped_copies>("dropped_copies"),
+    info<SectionKind::beads>("beads"),
+    info<SectionKind::bead_ranges>("bead_ranges"),
 };
 static_assert(kKinds.size() == std::size(kAllSectionKinds), "every kind has a name");
 

@@ -37,6 +37,8 @@ enum class SectionKind : std::uint32_t {
   keyframes = 24,  // format 2.1
   triangle_drops = 25,   // format 2.2
   dropped_copies = 26,   // format 2.2
+  beads = 27,            // format 2.5
+  bead_ranges = 28,      // format 2.5
 };
 
 // Every kind this reader knows, in numeric order.
@@ -49,7 +51,8 @@ inline constexpr SectionKind kAllSectionKinds[] = {
     SectionKind::compartments,    SectionKind::occupancy,       SectionKind::scene,
     SectionKind::compartment_instances, SectionKind::provenance,  SectionKind::boundary_boxes,
     SectionKind::mask_words,      SectionKind::effects,         SectionKind::keyframes,
-    SectionKind::triangle_drops,  SectionKind::dropped_copies,
+    SectionKind::triangle_drops,  SectionKind::dropped_copies,  SectionKind::beads,
+    SectionKind::bead_ranges,
 };
 
 bool is_known_section_kind(std::uint32_t kind);
@@ -88,6 +91,8 @@ template <> struct RecordOf<SectionKind::effects> { using type = gpu::SceneEffec
 template <> struct RecordOf<SectionKind::keyframes> { using type = gpu::InstanceKeyframe; };
 template <> struct RecordOf<SectionKind::triangle_drops> { using type = gpu::TriangleDrops; };
 template <> struct RecordOf<SectionKind::dropped_copies> { using type = std::uint32_t; };
+template <> struct RecordOf<SectionKind::beads> { using type = gpu::Bead; };
+template <> struct RecordOf<SectionKind::bead_ranges> { using type = gpu::BeadRange; };
 template <SectionKind K> using record_t = typename RecordOf<K>::type;
 
 }  // namespace nano::format

@@ -43,6 +43,7 @@ public:
     check_effects();
     check_keyframes();
     check_membrane_drops();
+    check_beads();
     check_provenance();
   }
 
@@ -466,6 +467,54 @@ private:
                      str(instance) + "; mesh " + str(m) + " holds " + str(slot_limit) + " slots of at most " +
                      str(instance_limit) + " instances");
         }
+    }
+  }
+
+  // The level of detail (format 2.5): per molecule type a non-empty range of beads that together
+  // merge exactly its atoms, each bead a finite sphere inside the type's box holding the atom it
+  // reports, which is one of the type's. The renderer trusts these indices and boxes.
+  void check_beads() {
+    if (p_.record_count(SectionKind::beads) == 0 && p_.record_count(SectionKind::bead_ranges) == 0) return;
+    require(SectionKind::beads, SectionKind::bead_ranges);
+    require(SectionKind::bead_ranges, SectionKind::beads);
+    const auto mols = p_.records<SectionKind::molecules>();
+    const auto ranges = p_.records<SectionKind::bead_ranges>();
+    if (ranges.size() != mols.size())
+      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::bead_ranges, 0),
+                         "bead_ranges has " + str(ranges.size()) + " records for " + str(mols.size()) + " molecule types");
+    const auto beads = p_.records<SectionKind::beads>();
+    const auto atoms = p_.records<SectionKind::atoms>();
+    for (std::uint64_t t = 0; t < ranges.size(); ++t) {
+      const Cursor rc = cursor<SectionKind::bead_ranges>(t);
+      if (ranges[t].count == 0) fail(rc, 4, Rule::bad_value, "molecule type " + str(t) + " has no beads");
+      range(rc, 0, ranges[t].first, ranges[t].count, SectionKind::beads, "bead range");
+      const gpu::MoleculeType& m = mols[t];
+      std::uint64_t merged = 0;
+      for (std::uint64_t b = ranges[t].first; b < std::uint64_t{ranges[t].first} + ranges[t].count; ++b) {
+        const gpu::Bead& bead = beads[b];
+        const Cursor c = cursor<SectionKind::beads>(b);
+        finite(c, 0, bead.centre_radius, "bead");
+        if (!(bead.centre_radius.w > 0)) fail(c, 12, Rule::bad_value, "bead radius is not positive");
+        const glm::vec3 centre(bead.centre_radius);
+        const float slack = 1e-3f * (1.0f + m.aabb_min.w);
+        for (int a = 0; a < 3; ++a)
+          if (centre[a] < m.aabb_min[a] - slack || centre[a] > m.aabb_max[a] + slack)
+            fail(c, 4 * a, Rule::bad_value, "bead centre lies outside molecule type " + str(t) + "'s box");
+        if (bead.atom < m.first_atom || bead.atom - m.first_atom >= m.atom_count)
+          fail(c, 16, Rule::index_out_of_range,
+               "atom " + str(bead.atom) + " is not one of molecule type " + str(t) + "'s atoms [" + str(m.first_atom) +
+                   ", +" + str(m.atom_count) + ")");
+        const glm::vec4 atom = atoms[bead.atom].centre_radius;
+        if (glm::length(glm::vec3(atom) - centre) + atom.w > bead.centre_radius.w + slack)
+          fail(c, 12, Rule::bad_value, "bead does not hold the sphere of the atom it reports");
+        if (bead.atom_count == 0) fail(c, 20, Rule::bad_value, "bead merges no atom");
+        merged += bead.atom_count;
+        zero(c, 24, bead.reserved0);
+        zero(c, 28, bead.reserved1);
+      }
+      if (merged != m.atom_count)
+        fail(rc, 0, Rule::bad_value,
+             "the beads of molecule type " + str(t) + " merge " + str(merged) + " atoms, not its " + str(m.atom_count));
     }
   }
 

@@ -71,6 +71,15 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
                           {"curvature", s.surface->curvature},
                           {"normal_tilt", s.surface->tilt},
                           {"facet_sag", s.surface->max_rise}};
+  // The level of detail per molecule type: how many beads stand for how many atoms.
+  auto& lod = j["level_of_detail"] = nlohmann::ordered_json::object();
+  const auto molecules = package.records<format::SectionKind::molecules>();
+  const auto ranges = package.records<format::SectionKind::bead_ranges>();
+  const auto strings = package.records<format::SectionKind::strings>();
+  for (std::size_t t = 0; t < molecules.size() && t < ranges.size(); ++t) {
+    const gpu::MoleculeType& m = molecules[t];
+    lod[std::string(strings.data() + m.name_offset, m.name_length)] = {{"atoms", m.atom_count}, {"beads", ranges[t].count}};
+  }
   auto& sections = j["sections"] = nlohmann::ordered_json::object();
   for (const format::SectionEntry& e : package.entries())
     sections[format::section_kind_name(e.kind)] = e.stored_size;

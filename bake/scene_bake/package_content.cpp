@@ -8,6 +8,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "bake/structure/coarse_beads.hpp"
+
 namespace nano::bake {
 namespace {
 
@@ -77,6 +79,16 @@ std::uint32_t PackageContent::add_molecule(const BakedMolecule& molecule) {
     info.residue_number = atom.residue_number;
     atom_info.push_back(info);
   }
+  const gpu::BeadRange range{checked_index(beads), 0};
+  for (const structure::CoarseBead& bead : structure::coarse_beads(molecule.atoms)) {
+    gpu::Bead b{};
+    // The float centre moves by up to an ulp: 1e-3 Å keeps every atom sphere inside.
+    b.centre_radius = glm::vec4(glm::vec3(bead.centre), static_cast<float>(bead.radius + 1e-3));
+    b.atom = record.first_atom + bead.representative;
+    b.atom_count = bead.atom_count;
+    beads.push_back(b);
+  }
+  bead_ranges.push_back({range.first, checked_index(beads) - range.first});
   molecules.push_back(record);
   return index;
 }
@@ -183,6 +195,8 @@ std::vector<format::SectionSource> PackageContent::sections() const {
   add(SectionKind::molecules, std::span(molecules));
   add(SectionKind::atoms, std::span(atoms));
   add(SectionKind::atom_info, std::span(atom_info));
+  add(SectionKind::beads, std::span(beads));
+  add(SectionKind::bead_ranges, std::span(bead_ranges));
   add(SectionKind::tiles2d, std::span(tiles2d));
   add(SectionKind::tiles3d, std::span(tiles3d));
   add(SectionKind::instances, std::span(instances));

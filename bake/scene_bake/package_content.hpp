@@ -25,6 +25,8 @@ struct PackageContent {
   std::vector<gpu::MoleculeType> molecules;
   std::vector<gpu::Atom> atoms;
   std::vector<format::AtomInfo> atom_info;
+  std::vector<gpu::Bead> beads;              // the level of detail (structure/coarse_beads.hpp)
+  std::vector<gpu::BeadRange> bead_ranges;   // parallel to molecules
   std::vector<gpu::Tile2D> tiles2d;
   std::vector<gpu::Tile3D> tiles3d;
   std::vector<gpu::MoleculeInstance> instances;
@@ -49,7 +51,8 @@ struct PackageContent {
 
   // Appends `text` to the string table; returns (offset, length).
   std::pair<std::uint32_t, std::uint32_t> add_string(const std::string& text);
-  // Molecule types must be added in library order: record i is library molecule i.
+  // Molecule types must be added in library order: record i is library molecule i. Adds the type's
+  // atoms and its coarse beads.
   std::uint32_t add_molecule(const BakedMolecule& molecule);
   // A Wang set's tiles (2D or 3D by the set) and their instances, with tile-space AABBs from atoms.
   TileRange add_wang_set(const BakedWangSet& set, const std::vector<BakedMolecule>& library);

@@ -268,7 +268,16 @@ void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json
   const std::string heading = "Accuracy/time matrix of " + session.package.name() + " on " + session.device.description() + ", " +
                               std::to_string(cameras.size()) + " verify views at " + std::to_string(w) + "×" + std::to_string(h) +
                               ", " + std::to_string(rounds) + " rounds";
-  const std::string md = bench::matrix_markdown(rows, heading);
+  // The level of detail's own views: the scene camera and the same view from four times as far,
+  // against full detail (no oracle reaches a whole cell).
+  const Camera scene_camera = camera_option(session.package, o.camera);
+  Camera farther = scene_camera;
+  farther.eye = scene_camera.at + 4.0 * (scene_camera.eye - scene_camera.at);
+  const std::vector<bench::LodFarRow> far_rows = bench::run_lod_far_views(
+      session.device, *session.scene, {{"scene camera", far}, {"4× as far", farther.to_gpu(w, h)}}, variants, rounds,
+      [](const std::string& what) { std::fprintf(stderr, "matrix: %s\n", what.c_str()); });
+  out["lod_far_views"] = bench::to_json(far_rows);
+  const std::string md = bench::matrix_markdown(rows, heading) + bench::lod_far_markdown(far_rows);
   std::printf("%s", md.c_str());
   if (!o.markdown.empty()) write_text(o.markdown, md);
   if (!o.plot.empty())

@@ -100,7 +100,7 @@ struct GpuScene::Impl : format::PackageView {
   LoadReport report;
 
   std::vector<vk::Buffer> section_buffers;  // indexed by Binding (package sections), others unused
-  vk::Buffer shell_buffer, render_compartment_buffer, render_instance_buffer, level_buffer, order_buffer, bead_buffer;
+  vk::Buffer shell_buffer, render_compartment_buffer, render_instance_buffer, level_buffer, order_buffer;
 
   std::vector<double> type_radius;                   // from the atoms (as the oracle)
   std::vector<gpu::RenderCompartment> render_compartments;
@@ -171,6 +171,7 @@ struct GpuScene::Impl : format::PackageView {
         {gpu::NANO_B_COMPARTMENTS, SectionKind::compartments}, {gpu::NANO_B_OCCUPANCY, SectionKind::occupancy},
         {gpu::NANO_B_BOUNDARY_BOXES, SectionKind::boundary_boxes}, {gpu::NANO_B_MASK_WORDS, SectionKind::mask_words},
         {gpu::NANO_B_TRIANGLE_DROPS, SectionKind::triangle_drops}, {gpu::NANO_B_DROPPED_COPIES, SectionKind::dropped_copies},
+        {gpu::NANO_B_BEADS, SectionKind::beads},
     };
     section_buffers.resize(gpu::NANO_SCENE_BINDING_COUNT);
     for (const auto& [binding, kind] : kinds) {
@@ -329,43 +330,22 @@ struct GpuScene::Impl : format::PackageView {
     }
   }
 
-  // The level of detail: per molecule type, its atoms grouped by the cell of NANO_BEAD_EDGE Å their
-  // centre falls in; a bead is the sphere about the group's centroid that holds every atom sphere of
-  // the group (so a coarse copy covers what its atoms cover) and reports the atom nearest that
-  // centroid. orders hold bead indices.
+  // The level of detail: per molecule type a level over the beads the baker stored for it
+  // (sections beads / bead_ranges, validated: indices in range, every type has beads). A package
+  // without them (format < 2.5) has no bead levels, and has_beads() says so.
   void build_bead_levels() {
-    std::vector<gpu::Bead> beads;
+    if (bead_ranges.empty()) return;
     for (std::uint32_t t = 0; t < molecules.size(); ++t) {
-      const gpu::MoleculeType& m = molecules[t];
-      if (m.atom_count == 0) continue;
-      std::map<std::tuple<long, long, long>, std::vector<std::uint32_t>> cells;
-      for (std::uint32_t a = m.first_atom; a < m.first_atom + m.atom_count; ++a) {
-        const dvec3 c = glm::floor(dvec3(vec3(atoms[a].centre_radius)) / double(gpu::NANO_BEAD_EDGE));
-        cells[{long(c.x), long(c.y), long(c.z)}].push_back(a);
-      }
       std::vector<VkAabbPositionsKHR> boxes;
       std::vector<std::uint32_t> indices;
-      for (const auto& [cell, members] : cells) {
-        dvec3 centre(0.0);
-        for (std::uint32_t a : members) centre += dvec3(vec3(atoms[a].centre_radius));
-        centre /= double(members.size());
-        double radius = 0, nearest = INFINITY;
-        std::uint32_t representative = members.front();
-        for (std::uint32_t a : members) {
-          const double from = glm::length(dvec3(vec3(atoms[a].centre_radius)) - centre);
-          radius = std::max(radius, from + atoms[a].centre_radius.w);
-          if (from < nearest) nearest = from, representative = a;
-        }
-        radius += 1e-3;  // the float centre
-        indices.push_back(std::uint32_t(beads.size()));
-        beads.push_back({glm::vec4(vec3(centre), float(radius)), glm::uvec4(representative, 0, 0, 0)});
+      for (std::uint32_t b = bead_ranges[t].first; b < bead_ranges[t].first + bead_ranges[t].count; ++b) {
+        const dvec3 centre(vec3(beads[b].centre_radius));
+        const double radius = beads[b].centre_radius.w;
+        indices.push_back(b);
         boxes.push_back(box_of(centre - radius, centre + radius));
       }
       levels[first_bead + t] = build_level(boxes, indices, first_bead + t, report.memory.nlas);
     }
-    if (beads.empty()) beads.push_back({});  // a binding needs a buffer
-    bead_buffer = storage(std::as_bytes(std::span(beads)));
-    report.memory.derived += bead_buffer.size();
   }
 
   // How far a membrane molecule's true placement (chart_membrane_molecule: the interpolated normal
@@ -745,14 +725,14 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
     if (b == gpu::NANO_B_SHELLS) continue;
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   }
-  for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES}) vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
+  for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES, gpu::NANO_B_BEADS})
+    vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   vk::write_storage_buffer(d, set, gpu::NANO_B_SHELLS, s.shell_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_COMPARTMENTS, s.render_compartment_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_INSTANCES, s.render_instance_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_LEVELS, s.level_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_ORDERS, s.order_buffer);
-  vk::write_storage_buffer(d, set, gpu::NANO_B_BEADS, s.bead_buffer);
-  const bool flat = !s.flat->empty();
+    const bool flat = !s.flat->empty();
   vk::write_acceleration_structure(d, set, gpu::NANO_B_FLAT_TLAS, flat ? s.flat->tlas() : s.ulas);
   vk::write_storage_buffer(d, set, gpu::NANO_B_FLAT_COPIES, flat ? s.flat->copy_records() : s.flat_placeholder);
   vk::write_storage_buffer(d, set, gpu::NANO_B_FLAT_TRIANGLES, s.flat_triangle_buffer);
@@ -775,6 +755,7 @@ std::uint32_t GpuScene::first_square_level() const { return impl_->first_square;
 std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }
 std::uint32_t GpuScene::first_atom_square_level() const { return impl_->first_atom_square; }
 std::uint32_t GpuScene::first_bead_level() const { return impl_->first_bead; }
+bool GpuScene::has_beads() const { return !impl_->bead_ranges.empty(); }
 std::uint32_t GpuScene::molecule_type_count() const { return std::uint32_t(impl_->molecules.size()); }
 const LoadReport& GpuScene::report() const { return impl_->report; }
 

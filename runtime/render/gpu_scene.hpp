@@ -100,7 +100,8 @@ public:
   std::uint32_t first_square_level() const;
   std::uint32_t first_cube_level() const;
   std::uint32_t first_atom_square_level() const;  // valid with SceneOptions::two_level_membranes
-  std::uint32_t first_bead_level() const;         // then one bead level per molecule type (render_scene.h Bead)
+  std::uint32_t first_bead_level() const;         // then one bead level per molecule type (package_records.h Bead)
+  bool has_beads() const;                         // the package holds the level of detail (format ≥ 2.5)
   std::uint32_t molecule_type_count() const;
 
   const LoadReport& report() const;

@@ -113,6 +113,9 @@ struct Renderer::Impl {
 
   void set_settings(const RenderSettings& r) {
     check(r);
+    if (r.lod_pixels > 0 && !scene.has_beads())
+      throw std::invalid_argument(scene.package().name() +
+                                  ": no beads (baked before format 2.5), so no level of detail: bake it again, or --lod off");
     settings = r;
     const Variant v = variant_of(r);
     if (!pipelines.count(v)) pipelines.emplace(v, std::make_unique<Pipeline>(device, v));

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <stdexcept>
 
 #include "runtime/bench/frame_stats.hpp"
 #include "runtime/bench/ray_counters.hpp"
@@ -62,7 +63,7 @@ std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, c
   add("precision", "camera-relative float", [](MatrixVariant& m) { m.settings.precision = render::Precision::camera_relative; });
   add("precision", "world float", [](MatrixVariant& m) { m.settings.precision = render::Precision::world; });
   add("lod", "auto (beads under 1 px)", [](MatrixVariant& m) { m.settings.lod_pixels = 1; },
-      "copies whose atoms span < 1 pixel drawn as 8 Å beads; the oracle draws every atom");
+      "copies whose atoms span < 1 pixel drawn as their baked beads (residues, fragments of large ones); the oracle draws every atom");
   add("lod", "4 px", [](MatrixVariant& m) { m.settings.lod_pixels = 4; },
       "copies whose atoms span < 4 pixels drawn as beads");
   add("flat level", "auto (half the scene's memory)", [](MatrixVariant& m) { m.settings.flatten_bytes = render::kFlattenAuto; },
@@ -177,6 +178,80 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
     rows.push_back(std::move(row));
   }
   return rows;
+}
+
+std::vector<LodFarRow> run_lod_far_views(const vk::Device& device, render::GpuScene& scene,
+                                         const std::vector<LodFarView>& views, const std::vector<MatrixVariant>& variants,
+                                         unsigned rounds, const Progress& progress) {
+  const MatrixVariant* full = nullptr;
+  for (const MatrixVariant& v : variants)
+    if (v.is_default) full = &v;
+  if (!full) throw std::invalid_argument("run_lod_far_views: no default variant");
+  render::Renderer full_renderer(device, scene, full->settings);
+  std::vector<LodFarRow> rows;
+  for (const MatrixVariant& v : variants) {
+    if (v.knob != "lod") continue;
+    render::Renderer renderer(device, scene, v.settings);
+    for (const LodFarView& view : views) {
+      if (progress) progress("lod " + v.value + ", " + view.name);
+      LodFarRow row;
+      row.view = view.name, row.value = v.value;
+      const render::Frame reference = full_renderer.render(view.camera), coarse = renderer.render(view.camera);
+      std::uint64_t changed = 0, coverage = 0;
+      for (std::size_t p = 0; p < reference.hits.size(); ++p) {
+        const gpu::PixelHit& a = reference.hits[p];
+        const gpu::PixelHit& b = coarse.hits[p];
+        coverage += (a.atom == gpu::kNoHit) != (b.atom == gpu::kNoHit);
+        changed += a.atom != b.atom || a.copy_number_lo != b.copy_number_lo || a.copy_number_hi != b.copy_number_hi ||
+                   a.depth != b.depth;
+      }
+      row.pixels = reference.hits.size();
+      row.ids_changed_percent = 100.0 * double(changed) / double(row.pixels);
+      row.coverage_changed_percent = 100.0 * double(coverage) / double(row.pixels);
+      std::vector<double> mine, theirs;
+      for (unsigned round = 0; round < rounds; ++round) {
+        if (round % 2 == 0) {
+          mine.push_back(renderer.render(view.camera).seconds);
+          theirs.push_back(full_renderer.render(view.camera).seconds);
+        } else {
+          theirs.push_back(full_renderer.render(view.camera).seconds);
+          mine.push_back(renderer.render(view.camera).seconds);
+        }
+      }
+      row.seconds_median = frame_stats(mine).median;
+      row.full_seconds_median = frame_stats(theirs).median;
+      row.time_ratio = row.seconds_median / row.full_seconds_median;
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
+nlohmann::json to_json(const std::vector<LodFarRow>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const LodFarRow& r : rows)
+    out.push_back({{"view", r.view},
+                   {"lod", r.value},
+                   {"time_ratio", r.time_ratio},
+                   {"frame_seconds_median", r.seconds_median},
+                   {"full_detail_frame_seconds_median", r.full_seconds_median},
+                   {"ids_changed_percent", r.ids_changed_percent},
+                   {"coverage_changed_percent", r.coverage_changed_percent},
+                   {"pixels", r.pixels}});
+  return out;
+}
+
+std::string lod_far_markdown(const std::vector<LodFarRow>& rows) {
+  std::string md =
+      "\nLevel of detail on far views, against the full-detail frame of the same renderer (the oracle cannot resolve them)\n\n"
+      "| view | lod | frame time vs full detail | pixels changed (id or depth) | silhouette changed |\n|---|---|---|---|---|\n";
+  for (const LodFarRow& r : rows) {
+    char line[512];
+    std::snprintf(line, sizeof line, "| %s | %s | %.2f× | %.2f %% | %.2f %% |\n", r.view.c_str(), r.value.c_str(), r.time_ratio,
+                  r.ids_changed_percent, r.coverage_changed_percent);
+    md += line;
+  }
+  return md;
 }
 
 nlohmann::json to_json(const std::vector<MatrixRow>& rows) {

@@ -52,6 +52,27 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
                                            const std::vector<MatrixVariant>& variants, unsigned rounds,
                                            const Progress& progress = {});
 
+// The level of detail where it acts: far views (a whole cell, a whole scene) that the CPU oracle
+// cannot resolve, so each lod variant is compared with the full-detail frame of the same renderer
+// (which verify holds to the oracle on the near views) and timed alternately with it.
+struct LodFarView {
+  std::string name;
+  gpu::Camera camera;
+};
+struct LodFarRow {
+  std::string view, value;
+  double seconds_median = 0, full_seconds_median = 0, time_ratio = 1;
+  double ids_changed_percent = 0;       // pixels naming another atom or copy, or another depth, than full detail
+  double coverage_changed_percent = 0;  // pixels that turned from background to molecule or back: the silhouette
+  std::uint64_t pixels = 0;
+};
+// `variants`: the matrix's rows; those of knob "lod" are measured against the default's settings.
+std::vector<LodFarRow> run_lod_far_views(const vk::Device& device, render::GpuScene& scene,
+                                         const std::vector<LodFarView>& views, const std::vector<MatrixVariant>& variants,
+                                         unsigned rounds, const Progress& progress = {});
+nlohmann::json to_json(const std::vector<LodFarRow>& rows);
+std::string lod_far_markdown(const std::vector<LodFarRow>& rows);
+
 nlohmann::json to_json(const std::vector<MatrixRow>& rows);
 std::string matrix_markdown(const std::vector<MatrixRow>& rows, const std::string& heading);
 PlotSpec matrix_plot(const std::vector<MatrixRow>& rows, const std::string& title);

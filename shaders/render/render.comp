@@ -193,7 +193,7 @@ bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d, float t_lo) {
     // An atom is clipped whole, by its centre: never cut in half.
     if (kClipping && clip_removes_point(m.linear * cr.xyz + m.translation)) continue;
     best_t = t;
-    best.atom = coarse ? beads[a].atom.x : a;
+    best.atom = coarse ? beads[a].atom : a;
     best_type = type;
     best_normal_c = m.linear * normalize(om + t * dm - cr.xyz);
     found = true;

@@ -231,6 +231,25 @@ struct CompartmentInstance {
   uint reserved2;
 };
 
+// Section "beads" (format 2.5, optional): the level of detail's coarse model of each molecule type,
+// baked by bake/structure/coarse_beads.hpp: a residue, or a fragment of a large residue, as one
+// sphere holding its atoms' spheres. A copy whose atoms would span under the --lod threshold is drawn
+// as its type's beads. Without the section the runtime has no level of detail.
+struct Bead {
+  vec4 centre_radius;  // molecule space, Å; radius > 0
+  uint atom;           // the atom a hit on the bead reports (index into "atoms", inside the type's
+                       // range): the bead's atom nearest its centre
+  uint atom_count;     // atoms merged into the bead (≥ 1)
+  uint reserved0;
+  uint reserved1;
+};
+
+// Section "bead_ranges" (format 2.5, with "beads"): parallel to "molecules", each type's beads.
+struct BeadRange {
+  uint first;  // range in section "beads", count ≥ 1
+  uint count;
+};
+
 NANO_END
 
 #ifdef __cplusplus
@@ -284,6 +303,11 @@ NANO_AT(Compartment, replication_height, 80) NANO_AT(Compartment, name_offset, 8
 NANO_AT(Compartment, name_length, 88) NANO_AT(Compartment, reserved0, 92) NANO_AT(Compartment, core_masks, 96)
 NANO_PIN(TriangleDrops, 8)
 NANO_AT(TriangleDrops, first, 0) NANO_AT(TriangleDrops, count, 4)
+NANO_PIN(Bead, 32)
+NANO_AT(Bead, centre_radius, 0) NANO_AT(Bead, atom, 16) NANO_AT(Bead, atom_count, 20)
+NANO_AT(Bead, reserved0, 24) NANO_AT(Bead, reserved1, 28)
+NANO_PIN(BeadRange, 8)
+NANO_AT(BeadRange, first, 0) NANO_AT(BeadRange, count, 4)
 NANO_PIN(BoundaryBox, 8)
 NANO_AT(BoundaryBox, box, 0) NANO_AT(BoundaryBox, first_word, 4)
 NANO_PIN(SceneSettings, 64)

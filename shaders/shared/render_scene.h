@@ -26,13 +26,6 @@ struct RenderCompartment {
 // (RenderCompartment.slot_lo/hi), cheaper than starting a repLAS query for one or two hits.
 NANO_CONST uint NANO_DIRECT_SLOTS = 4u;
 
-// The level of detail: a molecule type's atoms merged into beads (runtime/render/gpu_scene.cpp: the
-// atoms whose centres share a cell of NANO_BEAD_EDGE Å), each a sphere around its atoms' spheres.
-struct Bead {
-  vec4 centre_radius;  // molecule space, Å
-  uvec4 atom;          // x: the atom a hit on the bead reports (the one nearest its centre); yzw: reserved
-};
-NANO_CONST float NANO_BEAD_EDGE = 8.0f;
 NANO_CONST float NANO_TYPICAL_ATOM_DIAMETER = 3.4f;  // Å: carbon's van der Waals diameter
 
 // Per compartment instance (parallel to section "compartment_instances"), rewritten per camera.
@@ -103,7 +96,6 @@ static_assert(sizeof(nano::gpu::RenderLevel) == 16);
 static_assert(sizeof(nano::gpu::Camera) == 80);
 static_assert(sizeof(nano::gpu::RenderFrame) == 400);
 static_assert(sizeof(nano::gpu::FlatCopy) == 48);
-static_assert(sizeof(nano::gpu::Bead) == 32);
 static_assert(sizeof(nano::gpu::PixelHit) == 48 && offsetof(nano::gpu::PixelHit, cell) == 16 &&
               offsetof(nano::gpu::PixelHit, instance) == 32);
 #endif

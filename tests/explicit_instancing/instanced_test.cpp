@@ -1,6 +1,7 @@
 // Explicit instancing (one TLAS instance per molecule copy) against virtual instancing (nested ray
 // queries) on the bundled virion: both are exact renderers of the same scene, so they must show the
 // same atom of the same copy at the same depth in (nearly) every pixel.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -10,6 +11,7 @@
 
 #include "common/error.hpp"
 #include "format/package_view.hpp"
+#include "format/writer.hpp"
 #include "format/validator.hpp"
 #include "runtime/oracle/explicit_scene.hpp"
 #include "runtime/oracle/verify_cameras.hpp"
@@ -231,6 +233,33 @@ TEST_F(Instanced, BeadsHoldTheirAtoms) {
     changed += b.atom != a.atom || b.depth != a.depth;
   }
   EXPECT_GT(changed, 0u);
+}
+
+// A package baked before format 2.5 has no beads: the renderer draws it at full detail and refuses
+// a level of detail with a message naming the package, instead of drawing far copies as nothing.
+TEST_F(Instanced, PackageWithoutBeadsRefusesLevelOfDetail) {
+  Session& s = session();
+  std::vector<format::SectionSource> sections;
+  for (const format::SectionEntry& e : s.package.entries()) {
+    const auto kind = static_cast<format::SectionKind>(e.kind);
+    if (kind == format::SectionKind::beads || kind == format::SectionKind::bead_ranges) continue;
+    sections.push_back({e.kind, s.package.raw_bytes(kind), format::Compression::none, e.flags});
+  }
+  const std::vector<std::byte> bytes = format::build_package(sections);
+  const format::Package old = format::Package::from_bytes(bytes, "old.nup");
+  format::validate_semantics(old);
+  render::GpuScene scene(s.device, old);
+  EXPECT_FALSE(scene.has_beads());
+  EXPECT_TRUE(s.virtual_scene->has_beads());
+  render::Renderer renderer(s.device, scene);
+  const render::Frame full = renderer.render(views(16, 0)[0]);
+  EXPECT_GT(std::count_if(full.hits.begin(), full.hits.end(), [](const gpu::PixelHit& h) { return h.atom != gpu::kNoHit; }), 0);
+  try {
+    renderer.set_settings(render::RenderSettings{.lod_pixels = 1});
+    ADD_FAILURE() << "a level of detail without beads was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("old.nup: no beads"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

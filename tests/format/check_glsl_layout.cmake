@@ -23,7 +23,9 @@ foreach(expect
     "boundary_boxes.first_word: offset 4,[^\n]*topLevelArrayStride 8"
     "instanced_copies.reserved: offset 12,[^\n]*topLevelArrayStride 16"
     "instanced_types.colour: offset 16,[^\n]*topLevelArrayStride 32"
-    "instanced_frames.light: offset 96,[^\n]*topLevelArrayStride 112")
+    "instanced_frames.light: offset 96,[^\n]*topLevelArrayStride 112"
+    "beads.reserved1: offset 28,[^\n]*topLevelArrayStride 32"
+    "bead_ranges.count: offset 4,[^\n]*topLevelArrayStride 8")
   if(NOT out MATCHES "${expect}")
     message(FATAL_ERROR "std430 layout differs from C++: no match for '${expect}' in\n${out}")
   endif()

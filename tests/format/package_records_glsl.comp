@@ -23,6 +23,8 @@ layout(std430, binding = 13) writeonly buffer Out { uint sink[]; };
 layout(std430, binding = 14) readonly buffer ICopies { InstancedCopy instanced_copies[]; };
 layout(std430, binding = 15) readonly buffer ITypes { InstancedType instanced_types[]; };
 layout(std430, binding = 16) readonly buffer IFrames { InstancedFrameRecord instanced_frames[]; };
+layout(std430, binding = 17) readonly buffer Beads { Bead beads[]; };
+layout(std430, binding = 18) readonly buffer BeadRanges { BeadRange bead_ranges[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -31,5 +33,5 @@ void main() {
             triangles[i].v2 + shells[i].seam_edges + compartments[i].reserved0 + compartments[i].core_masks.w +
             scene[i].reserved2 + compartment_instances[i].reserved2 + boundary_boxes[i].first_word + NANO_NO_INDEX +
             instanced_copies[i].reserved + floatBitsToUint(instanced_types[i].colour.w) +
-            floatBitsToUint(instanced_frames[i].light.w);
+            floatBitsToUint(instanced_frames[i].light.w) + beads[i].reserved1 + bead_ranges[i].count;
 }

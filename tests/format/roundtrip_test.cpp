@@ -45,6 +45,8 @@ auto fields(const gpu::Compartment& c) {
 }
 auto fields(const gpu::BoundaryBox& b) { return std::tie(b.box, b.first_word); }
 auto fields(const gpu::TriangleDrops& d) { return std::tie(d.first, d.count); }
+auto fields(const gpu::Bead& b) { return std::tie(b.centre_radius, b.atom, b.atom_count, b.reserved0, b.reserved1); }
+auto fields(const gpu::BeadRange& r) { return std::tie(r.first, r.count); }
 auto fields(const gpu::SceneSettings& s) {
   return std::tie(s.camera_eye, s.camera_target, s.camera_up, s.effect_flags, s.reserved0, s.reserved1, s.reserved2);
 }
@@ -90,6 +92,8 @@ void expect_scene(const Package& p, const SampleScene& s) {
   expect_section<K::mask_words>(p, s.mask_words);
   expect_section<K::triangle_drops>(p, s.triangle_drops);
   expect_section<K::dropped_copies>(p, s.dropped_copies);
+  expect_section<K::beads>(p, s.beads);
+  expect_section<K::bead_ranges>(p, s.bead_ranges);
 }
 
 TEST(RoundTrip, EverySectionKindUncompressed) {
@@ -203,9 +207,11 @@ TEST(SectionKinds, NamesRoundTripAndRecordSizes) {
     EXPECT_EQ(section_kind_from_name(section_kind_name(k)), k);
   }
   EXPECT_FALSE(is_known_section_kind(0));
-  EXPECT_FALSE(is_known_section_kind(27));
+  EXPECT_FALSE(is_known_section_kind(29));
   EXPECT_EQ(record_size(SectionKind::triangle_drops), 8u);
   EXPECT_EQ(record_size(SectionKind::dropped_copies), 4u);
+  EXPECT_EQ(record_size(SectionKind::beads), 32u);
+  EXPECT_EQ(record_size(SectionKind::bead_ranges), 8u);
   EXPECT_EQ(record_size(SectionKind::effects), 256u);
   EXPECT_EQ(record_size(SectionKind::keyframes), 64u);
   EXPECT_EQ(section_kind_name(4711u), "kind 4711");

@@ -72,6 +72,10 @@ SampleScene make_sample_scene() {
   // 0, triangle 3 slot 8's instance 1 (W x H = 3 x 3 slots, squares of at most 2 instances).
   s.triangle_drops = {{0, 0}, {0, 2}, {2, 0}, {2, 1}};
   s.dropped_copies = {1, 4u << 16, (8u << 16) | 1u};
+  // The level of detail: type 0's three atoms as one bead about their centroid (0, 0, 1/6),
+  // reporting atom 2 (the nearest); type 1's two atoms as a bead each.
+  s.beads = {{vec4(0, 0, 1.0f / 6, 2.02f), 2, 3, 0, 0}, {vec4(0, 0, 0, 1.001f), 3, 1, 0, 0}, {vec4(0.5f, 0, 0, 0.501f), 4, 1, 0, 0}};
+  s.bead_ranges = {{0, 1}, {1, 2}};
   s.scene = {{vec4(0, 0, 10, 0.8f), vec4(0, 0, 0, 0), vec4(0, 1, 0, 0),
               gpu::NANO_EFFECT_AMBIENT_OCCLUSION | gpu::NANO_EFFECT_SHADOWS | gpu::NANO_EFFECT_CLIPPING_PLANES |
                   gpu::NANO_EFFECT_PROXY_ANIMATION,
@@ -123,6 +127,8 @@ std::vector<SectionSource> sections_of(const SampleScene& s, Compression c, std:
       source(K::keyframes, s.keyframes, c),
       source(K::triangle_drops, s.triangle_drops, c),
       source(K::dropped_copies, s.dropped_copies, c),
+      source(K::beads, s.beads, c),
+      source(K::bead_ranges, s.bead_ranges, c),
   };
   std::vector<SectionSource> out;
   for (const SectionSource& src : all)

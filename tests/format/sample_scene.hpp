@@ -35,6 +35,8 @@ struct SampleScene {
   std::vector<std::uint32_t> dropped_copies;
   std::vector<gpu::SceneEffects> effects;
   std::vector<gpu::InstanceKeyframe> keyframes;
+  std::vector<gpu::Bead> beads;
+  std::vector<gpu::BeadRange> bead_ranges;
 };
 
 SampleScene make_sample_scene();

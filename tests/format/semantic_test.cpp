@@ -220,6 +220,29 @@ const Case kCases[] = {
     {"drops on a mesh without membrane",
      [](SampleScene& s) { s.compartments[0].membrane_recipe = gpu::NANO_NO_INDEX; s.compartments[0].membrane_tile_count = 0; },
      Rule::index_out_of_range, SectionKind::dropped_copies, 0},
+    {"bead ranges not parallel to molecules", [](SampleScene& s) { s.bead_ranges.pop_back(); }, Rule::record_size,
+     SectionKind::bead_ranges, 0},
+    {"molecule type without beads", [](SampleScene& s) { s.bead_ranges[1].count = 0; }, Rule::bad_value,
+     SectionKind::bead_ranges, 8 + 4},
+    {"bead range past the beads", [](SampleScene& s) { s.bead_ranges[1].count = 3; }, Rule::index_out_of_range,
+     SectionKind::bead_ranges, 8},
+    {"bead reports another type's atom", [](SampleScene& s) { s.beads[0].atom = 3; }, Rule::index_out_of_range,
+     SectionKind::beads, 16},
+    {"bead atom past the atoms", [](SampleScene& s) { s.beads[2].atom = 0xffffffffu; }, Rule::index_out_of_range,
+     SectionKind::beads, 2 * 32 + 16},
+    {"NaN bead", [](SampleScene& s) { s.beads[1].centre_radius.y = kNaN; }, Rule::non_finite, SectionKind::beads, 32 + 4},
+    {"zero bead radius", [](SampleScene& s) { s.beads[1].centre_radius.w = 0; }, Rule::bad_value, SectionKind::beads,
+     32 + 12},
+    {"bead outside its type's box", [](SampleScene& s) { s.beads[0].centre_radius.x = 40; }, Rule::bad_value,
+     SectionKind::beads, 0},
+    {"bead smaller than the atom it reports", [](SampleScene& s) { s.beads[0].centre_radius.w = 1.2f; }, Rule::bad_value,
+     SectionKind::beads, 12},
+    {"beads merge fewer atoms than the type has", [](SampleScene& s) { s.beads[0].atom_count = 2; }, Rule::bad_value,
+     SectionKind::bead_ranges, 0},
+    {"bead merging no atom", [](SampleScene& s) { s.beads[2].atom_count = 0; }, Rule::bad_value, SectionKind::beads,
+     2 * 32 + 20},
+    {"bead reserved", [](SampleScene& s) { s.beads[1].reserved1 = 5; }, Rule::nonzero_reserved, SectionKind::beads,
+     32 + 28},
     {"NUL in provenance", [](SampleScene& s) { s.provenance[5] = '\0'; }, Rule::bad_value, SectionKind::provenance, 5},
 };
 
@@ -296,6 +319,24 @@ TEST(SemanticOptional, NoMembraneAndNoCoreGrid) {
   s.triangle_drops.assign(4, {0, 0});  // a mesh without membrane drops nothing
   s.dropped_copies.clear();
   EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
+}
+
+// A package may leave out the level of detail (before format 2.5), but not half of it.
+TEST(SemanticOptional, NoBeads) {
+  SampleScene s = make_sample_scene();
+  s.beads.clear();
+  s.bead_ranges.clear();
+  EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
+  for (const SectionKind without : {SectionKind::beads, SectionKind::bead_ranges}) {
+    const SampleScene full = make_sample_scene();
+    const Package p = Package::from_bytes(build_package(sections_of(full, Compression::none, without)));
+    try {
+      validate_semantics(p);
+      ADD_FAILURE() << "without " << section_kind_name(without) << ": accepted";
+    } catch (const PackageError& e) {
+      EXPECT_EQ(e.code(), Rule::missing_section) << e.what();
+    }
+  }
 }
 
 // A package may leave out the drops (before format 2.2, or nothing dropped).

@@ -4,7 +4,7 @@ Checks a nanobake --report against expectations written from the biology (BIOLOG
 the baker: `represented_atoms=1.2e12:0.10` means within 10 % of 1.2e12; `copies.rbc.haemoglobin=2.7e8:0.10`
 reads compartment rbc's copies of haemoglobin; `lipids.virion.total` its membrane's lipids in both
 leaflets; `bilayer.virion.beside_proteins` the share of a real bilayer's lipids it holds beside its
-proteins. Also checks the report's required keys.
+proteins. Also checks the report's required keys and that every molecule type has beads.
 """
 import json
 import sys
@@ -29,7 +29,7 @@ def lookup(report, key):
 def main():
     report = json.load(open(sys.argv[1]))
     failures = 0
-    for key in ("represented_atoms", "compartments", "instances", "sections", "stages"):
+    for key in ("represented_atoms", "compartments", "instances", "level_of_detail", "sections", "stages"):
         if key not in report:
             print(f"missing key {key}")
             failures += 1
@@ -42,6 +42,11 @@ def main():
         lo, hi = i["aabb"]
         if not all(a < b for a, b in zip(lo, hi)):
             print(f"empty instance aabb {i}")
+            failures += 1
+    # Every molecule type has its coarse model, fewer beads than atoms (a type of one atom aside).
+    for name, lod in report.get("level_of_detail", {}).items():
+        if not 1 <= lod["beads"] <= max(1, lod["atoms"] - 1):
+            print(f"level of detail of {name}: {lod['beads']} beads for {lod['atoms']} atoms")
             failures += 1
     for spec in sys.argv[2:]:
         key, expectation = spec.split("=")

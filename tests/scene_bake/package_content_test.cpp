@@ -123,6 +123,39 @@ TEST(PackageContent, MoleculesTilesAndMeshPassTheValidatorWithTheirValues) {
   EXPECT_EQ(package.records<format::SectionKind::triangles>().size(), sphere.triangles.size());
 }
 
+// The level of detail: each molecule type's beads follow its atoms, report absolute atom indices
+// inside the type's own range, hold every atom sphere (the baker's double beads widened for the
+// float centre) and pass the validator.
+TEST(PackageContent, BeadsArePerTypeRangesOverAbsoluteAtoms) {
+  bake::BakedMolecule second = two_atom_molecule();
+  second.atoms[1].residue_number = 8;  // two residues: two beads
+  const std::vector<bake::BakedMolecule> library{two_atom_molecule(), second};
+  bake::PackageContent content;
+  content.add_molecule(library[0]);
+  content.add_molecule(library[1]);
+  ASSERT_EQ(content.bead_ranges.size(), 2u);
+  EXPECT_EQ(content.bead_ranges[0].first, 0u);
+  EXPECT_EQ(content.bead_ranges[0].count, 1u);
+  EXPECT_EQ(content.bead_ranges[1].first, 1u);
+  EXPECT_EQ(content.bead_ranges[1].count, 2u);
+  ASSERT_EQ(content.beads.size(), 3u);
+  // One residue: the bead about the pair's centre (0, 0, 0), radius 1 + 1.5, reporting its first atom.
+  EXPECT_EQ(content.beads[0].centre_radius, glm::vec4(0, 0, 0, 2.501f));
+  EXPECT_EQ(content.beads[0].atom, 0u);
+  EXPECT_EQ(content.beads[0].atom_count, 2u);
+  // The second type's atoms are atoms 2 and 3 of the package, a bead each.
+  EXPECT_EQ(content.beads[1].atom, 2u);
+  EXPECT_EQ(content.beads[2].atom, 3u);
+  EXPECT_EQ(content.beads[2].centre_radius, glm::vec4(1, 0, 0, 1.501f));
+  content.scene.camera_eye = {0, 0, 500, 0.8f};
+  content.scene.camera_up = {0, 1, 0, 0};
+  const auto bytes = format::build_package(content.sections());
+  const format::Package package = format::Package::from_bytes(bytes);
+  EXPECT_NO_THROW(format::validate_semantics(package));
+  EXPECT_EQ(package.records<format::SectionKind::beads>().size(), 3u);
+  EXPECT_EQ(package.records<format::SectionKind::bead_ranges>().size(), 2u);
+}
+
 // Dropped membrane copies: one range per triangle of every mesh added, the keys in order, the
 // sections written (required: a 2.1 reader must refuse them) only when a copy is dropped at all,
 // and out-of-order keys refused.
