@@ -120,10 +120,18 @@ struct SolubleDescription {
 
 struct MeshSource {
   enum class Kind { file, sphere, rbc };
+  // UVs: kept when the mesh has usable ones, made by the baker otherwise (automatic); or always
+  // kept (a mesh without usable UVs is refused); or always made (bake/mesh/uv_charts.hpp).
+  enum class Uv { automatic, keep, generate };
   Kind kind = Kind::file;
   std::filesystem::path file;  // Kind::file, resolved against the scene file's folder
   int triangles = 0;           // generated meshes: target triangle count
   double radius = 0.0;         // Kind::sphere, Å
+  double unit = 1.0;           // Å per file unit ("units": "A" 1, "nm" 10, "um" 10^4); files only
+  // At most one: the mesh scaled uniformly so its largest bounding-box side, or its enclosed
+  // volume, becomes this (Å, Å^3), after the units.
+  std::optional<double> diameter, volume;
+  Uv uv = Uv::automatic;
   bool operator==(const MeshSource&) const = default;
 };
 

@@ -195,28 +195,55 @@ SolubleDescription parse_soluble(const std::string& name, const JsonCursor& c,
   return s;
 }
 
+MeshSource::Uv parse_uv_policy(const JsonCursor& c) {
+  const std::string text = c.string();
+  if (text == "auto") return MeshSource::Uv::automatic;
+  if (text == "keep") return MeshSource::Uv::keep;
+  if (text == "generate") return MeshSource::Uv::generate;
+  c.fail("expected \"auto\", \"keep\" or \"generate\", got " + c.shown());
+}
+
+double parse_unit(const JsonCursor& c) {
+  const std::string text = c.string();
+  if (text == "A" || text == "Å" || text == "angstrom") return 1.0;
+  if (text == "nm") return 10.0;
+  if (text == "um" || text == "µm") return 1e4;
+  c.fail("expected \"A\", \"nm\" or \"um\", got " + c.shown());
+}
+
+// Keys every mesh takes: its UV policy and a target size.
+void parse_mesh_size_and_uvs(const JsonCursor& c, MeshSource& mesh) {
+  if (const auto uv = c.optional("uv")) mesh.uv = parse_uv_policy(*uv);
+  if (c.has("diameter") && c.has("volume")) c.fail("give \"diameter\" or \"volume\", not both");
+  if (const auto d = c.optional("diameter")) mesh.diameter = d->number_greater_than(0.0);
+  if (const auto v = c.optional("volume")) mesh.volume = v->number_greater_than(0.0);
+}
+
 MeshSource parse_mesh(const JsonCursor& c, const std::filesystem::path& folder) {
   const bool from_file = c.has("file"), generated = c.has("generate");
   if (from_file == generated) c.fail("expected exactly one of \"file\" and \"generate\"");
   MeshSource mesh;
   if (from_file) {
-    c.only_keys({"file"});
+    c.only_keys({"file", "units", "diameter", "volume", "uv"});
     mesh.file = resolve_path(c.required("file"), folder);
+    if (const auto units = c.optional("units")) mesh.unit = parse_unit(*units);
+    parse_mesh_size_and_uvs(c, mesh);
     return mesh;
   }
   const JsonCursor kind = c.required("generate");
   const std::string name = kind.string();
   if (name == "sphere") {
-    c.only_keys({"generate", "triangles", "radius"});
+    c.only_keys({"generate", "triangles", "radius", "diameter", "volume", "uv"});
     mesh.kind = MeshSource::Kind::sphere;
     mesh.radius = c.required("radius").number_greater_than(0.0);
   } else if (name == "rbc") {
-    c.only_keys({"generate", "triangles"});
+    c.only_keys({"generate", "triangles", "diameter", "volume", "uv"});
     mesh.kind = MeshSource::Kind::rbc;
   } else {
     kind.fail("expected \"sphere\" or \"rbc\", got " + kind.shown());
   }
   mesh.triangles = static_cast<int>(c.required("triangles").integer_between(1, max_triangles));
+  parse_mesh_size_and_uvs(c, mesh);
   return mesh;
 }
 
@@ -229,7 +256,10 @@ CompartmentDescription parse_compartment(const std::string& name, const JsonCurs
   if (const auto m = c.optional("membrane")) comp.membrane = resolve(*m, scene.membranes, "membrane");
   if (const auto s = c.optional("soluble")) comp.soluble = resolve(*s, scene.solubles, "soluble");
   if (!comp.membrane && !comp.soluble) c.fail("a compartment needs a \"membrane\", a \"soluble\" or both");
-  if (const auto scale = c.optional("scale")) comp.scale = scale->number_greater_than(0.0);
+  if (const auto scale = c.optional("scale")) {
+    if (comp.mesh.diameter || comp.mesh.volume) scale->fail("give the mesh a \"scale\" or a \"diameter\"/\"volume\", not both");
+    comp.scale = scale->number_greater_than(0.0);
+  }
   return comp;
 }
 

@@ -55,6 +55,9 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
                             {"copies", copies},
                             {"core_boxes", {{"inside", c.core_boxes_inside}, {"boundary", c.core_boxes_boundary}}},
                             {"replication_area", {c.replication_width, c.replication_height}}});
+    compartments.back()["mesh_scale"] = c.mesh_scale;
+    compartments.back()["uvs"] = c.uv_origin;
+    if (c.charts) compartments.back()["charts"] = mesh::to_json(*c.charts);
     if (c.membrane) compartments.back()["membrane"] = membrane_json(*c.membrane);
   }
   auto& instances = j["instances"] = nlohmann::ordered_json::array();
@@ -91,7 +94,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
 
 std::string bake_summary(const BakedScene& scene, const format::Package& package) {
   std::ostringstream out;
-  char line[256];
+  char line[512];
   std::snprintf(line, sizeof line, "%s: %zu compartment(s), %zu instance(s), %.3g represented atoms, %.2f MB\n",
                 package.name().c_str(), scene.compartments.size(), scene.instances.size(),
                 static_cast<double>(scene.represented_atoms), package.file_size() / 1e6);
@@ -104,6 +107,13 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       out << line;
     }
     out << "\n";
+    if (c.charts) {
+      std::snprintf(line, sizeof line,
+                    "  %s UVs %s: %zu charts, seam %.4g Å, stretch max %.3f (mean %.3f), %.0f%% of the UV square used, %.2f s\n",
+                    c.name.c_str(), c.uv_origin.c_str(), c.charts->charts.size(), c.charts->seam_length, c.charts->max_stretch,
+                    c.charts->mean_stretch, 100.0 * c.charts->packing_efficiency, c.charts->seconds);
+      out << line;
+    }
     if (c.membrane) {
       const MembraneSummary& m = *c.membrane;
       const double lipids = total(m.lipids) / m.area_um2;

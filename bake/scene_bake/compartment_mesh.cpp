@@ -1,6 +1,10 @@
 #include "bake/scene_bake/compartment_mesh.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
+
+#include <glm/geometric.hpp>
 
 #include "bake/mesh/mesh_reader.hpp"
 #include "bake/mesh/rbc_mesh.hpp"
@@ -42,21 +46,85 @@ void scale_mesh(mesh::ProxyMesh& mesh, double scale) {
   for (glm::dvec3& p : mesh.positions) p *= scale;
 }
 
-CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment) {
-  CompartmentMesh result = read_or_generate(compartment.mesh);
-  scale_mesh(result.mesh, compartment.scale);
-  result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
-  if (!result.report.usable()) {
-    std::ostringstream problems;
-    problems << "mesh is not usable for compartment '" << compartment.name << "':";
-    for (const mesh::MeshProblem& p : result.report.problems) {
-      problems << "\n  ";
-      if (p.face >= 0) problems << "face " << p.face << ": ";
-      problems << p.rule << " (" << p.value << ")";
-      if (!p.detail.empty()) problems << " " << p.detail;
-    }
-    throw InputError(result.origin, "", problems.str());
+namespace {
+
+bool is_uv_rule(const std::string& rule) {
+  return rule == mesh::rule::no_uvs || rule == mesh::rule::uv_outside || rule == mesh::rule::zero_area_uv ||
+         rule == mesh::rule::flipped_uv;
+}
+
+[[noreturn]] void refuse(const CompartmentMesh& m, const std::string& compartment, const std::vector<mesh::MeshProblem>& list) {
+  std::ostringstream problems;
+  problems << "mesh is not usable for compartment '" << compartment << "':";
+  for (const mesh::MeshProblem& p : list) {
+    problems << "\n  ";
+    if (p.face >= 0) problems << "face " << p.face << ": ";
+    problems << p.rule << " (" << p.value << ")";
+    if (!p.detail.empty()) problems << " " << p.detail;
   }
+  throw InputError(m.origin, "", problems.str());
+}
+
+// The enclosed volume by the divergence theorem (positive for an outward closed mesh).
+double enclosed_volume(const mesh::ProxyMesh& m) {
+  double v = 0;
+  for (const mesh::Triangle& t : m.triangles)
+    v += glm::dot(m.positions[t[0]], glm::cross(m.positions[t[1]], m.positions[t[2]])) / 6.0;
+  return v;
+}
+
+double largest_side(const mesh::ProxyMesh& m) {
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::dvec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+}
+
+}  // namespace
+
+CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment) {
+  const scene::MeshSource& source = compartment.mesh;
+  CompartmentMesh result = read_or_generate(source);
+  result.scale = source.unit * compartment.scale;
+  scale_mesh(result.mesh, result.scale);
+  if (source.diameter) {
+    const double factor = *source.diameter / largest_side(result.mesh);
+    scale_mesh(result.mesh, factor);
+    result.scale *= factor;
+  } else if (source.volume) {
+    const double volume = enclosed_volume(result.mesh);
+    if (!(volume > 0))
+      throw InputError(result.origin, "", "\"volume\" needs a closed, outward mesh; this one encloses " + std::to_string(volume) +
+                                              " Å³ (compartment '" + compartment.name + "')");
+    const double factor = std::cbrt(*source.volume / volume);
+    scale_mesh(result.mesh, factor);
+    result.scale *= factor;
+  }
+  result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
+  bool uv_trouble = false;
+  std::vector<mesh::MeshProblem> shape_problems;
+  for (const mesh::MeshProblem& p : result.report.problems) {
+    if (is_uv_rule(p.rule)) uv_trouble = true;
+    else shape_problems.push_back(p);
+  }
+  const bool generate = source.uv == scene::MeshSource::Uv::generate ||
+                        (source.uv == scene::MeshSource::Uv::automatic && uv_trouble);
+  if (!generate) {
+    if (!result.report.usable()) refuse(result, compartment.name, result.report.problems);
+    result.uv_origin = "from the mesh";
+    return result;
+  }
+  // Charts need a sound surface: report its own problems first, not their consequences for UVs.
+  if (!shape_problems.empty()) refuse(result, compartment.name, shape_problems);
+  result.uv_origin = source.uv == scene::MeshSource::Uv::generate ? "made by the baker (the scene asks \"uv\": \"generate\")"
+                     : result.mesh.has_uvs()                       ? "made by the baker (the mesh's own UVs fail the checks)"
+                                                                   : "made by the baker (the mesh has none)";
+  try {
+    result.charts = mesh::generate_uv_charts(result.mesh);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(result.origin, "", std::string("cannot make UV charts for compartment '") + compartment.name + "': " + e.what());
+  }
+  result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
+  if (!result.report.usable()) refuse(result, compartment.name, result.report.problems);
   return result;
 }
 

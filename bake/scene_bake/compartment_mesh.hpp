@@ -1,9 +1,11 @@
 #pragma once
 // A compartment's proxy mesh in compartment space: read or generated as the scene says, scaled,
 // and checked — an unusable mesh stops the bake with every problem listed, naming the file.
+#include <optional>
 #include <string>
 
 #include "bake/mesh/mesh_check.hpp"
+#include "bake/mesh/uv_charts.hpp"
 #include "bake/mesh/proxy_mesh.hpp"
 #include "bake/scene/scene_description.hpp"
 
@@ -13,9 +15,13 @@ struct CompartmentMesh {
   mesh::ProxyMesh mesh;     // compartment space (scale applied)
   mesh::MeshReport report;  // check-mesh report of the scaled mesh
   std::string origin;       // file name or "generated sphere (N triangles, radius R)"
+  double scale = 1.0;       // compartment space per mesh unit: units × scale, diameter or volume
+  std::optional<mesh::ChartAtlas> charts;  // when the baker made the UVs
+  std::string uv_origin;    // "from the mesh" or why the baker made them
 };
 
-// Reads or generates the mesh, multiplies positions by the compartment's scale and checks it.
+// Reads or generates the mesh, scales it (units, then the compartment's scale or the mesh's target
+// diameter or volume), makes UVs when the mesh has none usable (or the scene asks) and checks it.
 // Throws InputError naming the mesh (and the compartment) with all problems when unusable.
 CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment);
 

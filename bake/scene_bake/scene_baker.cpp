@@ -355,6 +355,9 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       CompartmentSummary summary;
       summary.name = description.name;
       summary.mesh_origin = bake.mesh.origin;
+      summary.mesh_scale = bake.mesh.scale;
+      summary.uv_origin = bake.mesh.uv_origin;
+      summary.charts = bake.mesh.charts;
       summary.triangles = static_cast<std::uint32_t>(bake.mesh.mesh.triangles.size());
       if (bake.membrane) {
         const BakedMembrane& m = *bake.membrane;

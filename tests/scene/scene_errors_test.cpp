@@ -168,6 +168,25 @@ TEST(SceneErrors, ExactlyOneAmountPerMolecule) {
                      "solubles.lumen.molecules[0]", "exactly one of \"concentration_mM\" and \"copies_per_um3\", got both");
 }
 
+TEST(SceneErrors, MeshUnitsSizeAndUvs) {
+  const auto with_mesh = [](Json mesh) { return [mesh](Json& d) { d["compartments"]["virion"]["mesh"] = mesh; }; };
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"units", "inch"}})), "compartments.virion.mesh.units",
+                     "expected \"A\", \"nm\" or \"um\", got \"inch\"");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"uv", "lscm"}})), "compartments.virion.mesh.uv",
+                     "expected \"auto\", \"keep\" or \"generate\"");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"diameter", 10}, {"volume", 10}})),
+                     "compartments.virion.mesh", "\"diameter\" or \"volume\", not both");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"diameter", -1}})), "compartments.virion.mesh.diameter",
+                     "expected a number > 0");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"generate", "sphere"}, {"triangles", 100}, {"radius", 5}, {"units", "nm"}})),
+                     "compartments.virion.mesh.units", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["compartments"]["virion"]["mesh"] = Json{{"file", "c.obj"}, {"volume", 1e6}};
+                       d["compartments"]["virion"]["scale"] = 2;
+                     }),
+                     "compartments.virion.scale", "not both");
+}
+
 TEST(SceneErrors, StructuralRules) {
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
                        d["membranes"]["envelope"].erase("proteins");

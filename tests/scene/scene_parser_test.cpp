@@ -43,7 +43,7 @@ constexpr const char* complete_scene = R"({
   "compartments": {
     "virion": {"mesh": {"generate": "sphere", "triangles": 1280, "radius": 500}, "membrane": "envelope", "soluble": "lumen"},
     "cell": {"mesh": {"generate": "rbc", "triangles": 5000}, "membrane": "rbc_membrane", "soluble": "cytoplasm", "scale": 0.5},
-    "blob": {"mesh": {"file": "meshes/blob.obj"}, "soluble": "cytoplasm"}
+    "blob": {"mesh": {"file": "meshes/blob.obj", "units": "nm", "diameter": 2000, "uv": "generate"}, "soluble": "cytoplasm"}
   },
   "instances": [
     {"compartment": "cell", "matrix": [[0, -1, 0, 100], [1, 0, 0, 200], [0, 0, 1, 300]]},
@@ -95,7 +95,8 @@ SceneDescription expected_scene() {
   s.compartments = {
       {"virion", {MeshSource::Kind::sphere, {}, 1280, 500.0}, NameRef{"envelope", 0}, NameRef{"lumen", 1}, 1.0},
       {"cell", {MeshSource::Kind::rbc, {}, 5000, 0.0}, NameRef{"rbc_membrane", 1}, NameRef{"cytoplasm", 0}, 0.5},
-      {"blob", {MeshSource::Kind::file, "/scenes/demo/meshes/blob.obj", 0, 0.0}, std::nullopt, NameRef{"cytoplasm", 0}, 1.0},
+      {"blob", {MeshSource::Kind::file, "/scenes/demo/meshes/blob.obj", 0, 0.0, 10.0, 2000.0, std::nullopt, MeshSource::Uv::generate},
+       std::nullopt, NameRef{"cytoplasm", 0}, 1.0},
   };
   const NameRef virion{"virion", 0}, cell{"cell", 1}, blob{"blob", 2};
   s.instances = {

@@ -77,22 +77,84 @@ TEST(CompartmentMesh, GeneratedSphereIsScaledAndChecked) {
   EXPECT_NE(m.origin.find("sphere"), std::string::npos);
 }
 
-TEST(CompartmentMesh, UnusableMeshNamesTheFileAndTheProblem) {
-  const fs::path path = fs::temp_directory_path() / "nano_scene_bake_no_uvs.obj";
-  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+// A unit tetrahedron written as OBJ without UVs (volume 1/6, largest side 1).
+fs::path tetrahedron_file(const char* name, bool open = false) {
+  const fs::path path = fs::temp_directory_path() / name;
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n" << (open ? "" : "f 3 1 4\n");
+  return path;
+}
+
+scene::CompartmentDescription tetrahedron(const fs::path& path) {
   scene::CompartmentDescription c;
   c.name = "tetra";
   c.mesh.kind = scene::MeshSource::Kind::file;
   c.mesh.file = path;
+  return c;
+}
+
+std::string load_error(const scene::CompartmentDescription& c) {
   try {
     bake::load_compartment_mesh(c);
-    FAIL() << "expected an InputError";
   } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("nano_scene_bake_no_uvs.obj"), std::string::npos) << what;
-    EXPECT_NE(what.find("no UVs"), std::string::npos) << what;
-    EXPECT_NE(what.find("tetra"), std::string::npos) << what;
+    return e.what();
   }
+  return "accepted";
+}
+
+TEST(CompartmentMesh, UnusableMeshNamesTheFileAndTheProblem) {
+  scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_no_uvs.obj"));
+  c.mesh.uv = scene::MeshSource::Uv::keep;  // the scene forbids the baker's charts
+  const std::string what = load_error(c);
+  EXPECT_NE(what.find("nano_scene_bake_no_uvs.obj"), std::string::npos) << what;
+  EXPECT_NE(what.find("no UVs"), std::string::npos) << what;
+  EXPECT_NE(what.find("tetra"), std::string::npos) << what;
+}
+
+// Without UVs the baker makes them: four faces 70.5° apart are four charts, and the result passes
+// check-mesh.
+TEST(CompartmentMesh, MeshWithoutUvsGetsCharts) {
+  const bake::CompartmentMesh m = bake::load_compartment_mesh(tetrahedron(tetrahedron_file("nano_scene_bake_charts.obj")));
+  ASSERT_TRUE(m.charts.has_value());
+  EXPECT_EQ(m.charts->charts.size(), 4u);
+  EXPECT_TRUE(m.report.usable());
+  EXPECT_TRUE(m.mesh.has_uvs());
+  EXPECT_NE(m.uv_origin.find("the mesh has none"), std::string::npos) << m.uv_origin;
+}
+
+// A surface with a hole is refused for what it is (a border), not for its missing UVs.
+TEST(CompartmentMesh, OpenMeshWithoutUvsIsRefusedForItsHole) {
+  const std::string what = load_error(tetrahedron(tetrahedron_file("nano_scene_bake_open.obj", true)));
+  EXPECT_NE(what.find("border edge"), std::string::npos) << what;
+  EXPECT_EQ(what.find("no UVs"), std::string::npos) << what;
+}
+
+// Units, then a target diameter (largest box side) or volume; the scale is reported.
+TEST(CompartmentMesh, UnitsDiameterAndVolumeScaleTheMesh) {
+  scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_units.obj"));
+  c.mesh.unit = 10.0;  // nm
+  bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  EXPECT_DOUBLE_EQ(m.scale, 10.0);
+  double largest_x = 0;
+  for (const glm::dvec3& p : m.mesh.positions) largest_x = std::max(largest_x, p.x);
+  EXPECT_DOUBLE_EQ(largest_x, 10.0);
+  c.mesh.diameter = 250.0;
+  m = bake::load_compartment_mesh(c);
+  EXPECT_NEAR(m.scale, 250.0, 1e-9);
+  double largest_z = 0;
+  for (const glm::dvec3& p : m.mesh.positions) largest_z = std::max(largest_z, p.z);
+  EXPECT_NEAR(largest_z, 250.0, 1e-9);
+  c.mesh.diameter.reset();
+  c.mesh.volume = 1000.0;  // (1/6)·s³ = 1000 → s = 6000^(1/3)
+  m = bake::load_compartment_mesh(c);
+  EXPECT_NEAR(m.scale, std::cbrt(6000.0), 1e-9);
+  ASSERT_TRUE(m.report.volume.has_value());
+  EXPECT_NEAR(*m.report.volume, 1000.0, 1e-6);
+  // A volume needs a closed, outward surface: inside out it encloses a negative volume.
+  const fs::path inside_out = fs::temp_directory_path() / "nano_scene_bake_inside_out.obj";
+  std::ofstream(inside_out) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 2 4 3\nf 3 4 1\n";
+  scene::CompartmentDescription reversed = tetrahedron(inside_out);
+  reversed.mesh.volume = 1000.0;
+  EXPECT_NE(load_error(reversed).find("closed, outward mesh"), std::string::npos) << load_error(reversed);
 }
 
 TEST(WangBake, PerTileAbundanceConvertsToSurfaceDensity) {
