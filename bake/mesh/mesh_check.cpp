@@ -13,6 +13,11 @@
 
 namespace nano::mesh {
 
+bool is_uv_rule(const std::string& rule) {
+  return rule == rule::no_uvs || rule == rule::uv_outside || rule == rule::zero_area_uv || rule == rule::flipped_uv;
+}
+
+
 namespace {
 
 double edge_length(const ProxyMesh& mesh, const MeshEdge& edge) {

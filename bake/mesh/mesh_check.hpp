@@ -33,6 +33,10 @@ inline constexpr const char* flipped_uv = "flipped UV triangle";                
 inline constexpr const char* thin_uv = "long thin UV triangle inflates replication area";  // warning; value: elongation
 }  // namespace rule
 
+// The rules about UVs (no UVs, outside the square, zero-area, flipped): those the baker's charts
+// (uv_charts.hpp) replace.
+bool is_uv_rule(const std::string& rule);
+
 struct MeshProblem {
   std::int64_t face = -1;  // 0-based triangle index; −1 for a whole-mesh problem
   std::string rule;

@@ -1,5 +1,6 @@
 #pragma once
-// Loads a proxy mesh from OBJ, PLY or OFF. The file formats are parsed by OpenMesh (confined to
+// Loads a proxy mesh from OBJ, PLY, OFF, STL (parsed by OpenMesh) or Draco .drc (draco_codec.hpp).
+// The OpenMesh formats are parsed by OpenMesh (confined to
 // mesh_reader_openmesh.cpp); this layer keeps the raw face list as written, so check-mesh can
 // still see what OpenMesh's half-edge builder would silently repair (non-manifold edges, faces
 // with repeated vertices) and report it against the face index of the file.

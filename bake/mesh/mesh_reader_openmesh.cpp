@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <span>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -17,6 +19,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 
+#include "bake/mesh/draco_codec.hpp"
 #include "bake/mesh/vertex_normals.hpp"
 #include "common/error.hpp"
 
@@ -262,8 +265,13 @@ ProxyMesh read_proxy_mesh(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  if (extension != ".obj" && extension != ".ply" && extension != ".off")
-    throw InputError(file, "", "unsupported mesh format '" + extension + "' (use .obj, .ply or .off)");
+  if (extension == ".drc") {
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return decode_draco_mesh(std::as_bytes(std::span(text.data(), text.size())), file);
+  }
+  if (extension != ".obj" && extension != ".ply" && extension != ".off" && extension != ".stl")
+    throw InputError(file, "", "unsupported mesh format '" + extension + "' (use .obj, .ply, .off, .stl or .drc)");
 
   if (extension == ".obj") reject_obj_faces_with_repeated_vertices(path, file);
   RawImporter importer;

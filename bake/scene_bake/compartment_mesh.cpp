@@ -48,11 +48,6 @@ void scale_mesh(mesh::ProxyMesh& mesh, double scale) {
 
 namespace {
 
-bool is_uv_rule(const std::string& rule) {
-  return rule == mesh::rule::no_uvs || rule == mesh::rule::uv_outside || rule == mesh::rule::zero_area_uv ||
-         rule == mesh::rule::flipped_uv;
-}
-
 [[noreturn]] void refuse(const CompartmentMesh& m, const std::string& compartment, const std::vector<mesh::MeshProblem>& list) {
   std::ostringstream problems;
   problems << "mesh is not usable for compartment '" << compartment << "':";
@@ -103,7 +98,7 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
   bool uv_trouble = false;
   std::vector<mesh::MeshProblem> shape_problems;
   for (const mesh::MeshProblem& p : result.report.problems) {
-    if (is_uv_rule(p.rule)) uv_trouble = true;
+    if (mesh::is_uv_rule(p.rule)) uv_trouble = true;
     else shape_problems.push_back(p);
   }
   const bool generate = source.uv == scene::MeshSource::Uv::generate ||

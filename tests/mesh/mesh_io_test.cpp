@@ -1,10 +1,14 @@
-// Loading through OpenMesh (OBJ, PLY, OFF), the OBJ writer, normals, and bad input.
+// Loading through OpenMesh (OBJ, PLY, OFF, STL) and Draco, the OBJ writer, normals, and bad input.
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <set>
 #include <numbers>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "bake/mesh/draco_codec.hpp"
 #include "bake/mesh/mesh_reader.hpp"
 #include "bake/mesh/obj_writer.hpp"
 #include "bake/mesh/sphere_mesh.hpp"
@@ -117,8 +121,75 @@ TEST(MeshReader, BadInputNamesFileAndRule) {
   ply.append(reinterpret_cast<const char*>(&count), 1);
   ply.append(reinterpret_cast<const char*>(indices), sizeof indices);
   expect_input_error(dir.write("nan.ply", ply), "vertex 1", "finite");
-  expect_input_error(dir.write("mesh.stl", "solid x\nendsolid x\n"), "", "unsupported mesh format");
+  expect_input_error(dir.write("mesh.stl", "solid x\nendsolid x\n"), "", "");
+  expect_input_error(dir.write("mesh.dae", "<COLLADA/>\n"), "", "unsupported mesh format");
+  expect_input_error(dir.write("garbage.drc", "DRACO but not really a Draco file at all"), "", "Draco");
+  expect_input_error(dir.write("empty.drc", ""), "", "Draco");
   expect_input_error(dir.write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n"), "", "");
+}
+
+// The octahedron as ASCII STL (facets with their own corners, no UVs) reads as the OBJ does:
+// corners welded back to 6 vertices, the same 8 triangles.
+TEST(MeshReader, StlReadsAsTheObj) {
+  TempDir dir;
+  const ProxyMesh obj = read_proxy_mesh(dir.write("octa.obj", testing::octahedron));
+  std::string stl = "solid octahedron\n";
+  for (std::size_t t = 0; t < obj.triangles.size(); ++t) {
+    stl += "facet normal 0 0 0\nouter loop\n";
+    for (int c = 0; c < 3; ++c) {
+      const glm::dvec3 p = obj.corner_position(t, c);
+      stl += "vertex " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    }
+    stl += "endloop\nendfacet\n";
+  }
+  stl += "endsolid octahedron\n";
+  const ProxyMesh read = read_proxy_mesh(dir.write("octa.stl", stl));
+  ASSERT_EQ(read.triangles.size(), obj.triangles.size());
+  EXPECT_EQ(read.positions.size(), obj.positions.size());
+  EXPECT_FALSE(read.has_uvs());
+  for (std::size_t t = 0; t < obj.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(glm::length(read.corner_position(t, c) - obj.corner_position(t, c)), 0.0, 1e-6);
+}
+
+// Draco round trip: the mesh read back from a .drc equals the OpenMesh read of the same mesh
+// within half a quantisation step (Draco quantises over the bounding box's largest side), with the
+// same triangles (Draco may reorder them: compared as sets of welded positions).
+TEST(MeshReader, DracoRoundTripWithinQuantisation) {
+  TempDir dir;
+  const auto obj_file = dir.path() / "sphere.obj";
+  write_obj(obj_file, make_sphere_mesh(432, 500.0));
+  const ProxyMesh original = read_proxy_mesh(obj_file);
+  for (const int bits : {11, 16}) {
+    SCOPED_TRACE(bits);
+    const std::vector<std::byte> bytes = encode_draco_mesh(original, {.position_bits = bits, .uv_bits = bits, .normal_bits = 10});
+    const auto drc = dir.path() / ("sphere" + std::to_string(bits) + ".drc");
+    std::ofstream(drc, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    const ProxyMesh decoded = read_proxy_mesh(drc);
+    ASSERT_EQ(decoded.triangles.size(), original.triangles.size());
+    ASSERT_EQ(decoded.positions.size(), original.positions.size());
+    ASSERT_TRUE(decoded.has_uvs());
+    const double step = 1000.0 / ((1 << bits) - 1);  // the sphere's box is 1000 Å on a side
+    // Each decoded position next to exactly one original position, within half a step per axis.
+    std::vector<std::uint32_t> to_original(decoded.positions.size());
+    for (std::size_t v = 0; v < decoded.positions.size(); ++v) {
+      std::size_t nearest = 0;
+      for (std::size_t o = 1; o < original.positions.size(); ++o)
+        if (glm::length(original.positions[o] - decoded.positions[v]) < glm::length(original.positions[nearest] - decoded.positions[v]))
+          nearest = o;
+      const glm::dvec3 d = glm::abs(original.positions[nearest] - decoded.positions[v]);
+      EXPECT_LE(std::max({d.x, d.y, d.z}), 0.5 * step + 1000.0 * 1e-6) << v;  // plus Draco's float dequantisation
+      to_original[v] = std::uint32_t(nearest);
+    }
+    const auto canonical = [](Triangle t) {  // the rotation starting at the smallest index
+      while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
+      return t;
+    };
+    std::set<Triangle> expected, got;
+    for (const Triangle& t : original.triangles) expected.insert(canonical(t));
+    for (const Triangle& t : decoded.triangles) got.insert(canonical({to_original[t[0]], to_original[t[1]], to_original[t[2]]}));
+    EXPECT_EQ(got, expected);
+    EXPECT_LT(bytes.size(), std::filesystem::file_size(obj_file) / 4);
+  }
 }
 
 TEST(ObjWriter, FormatsPerCornerIndices) {

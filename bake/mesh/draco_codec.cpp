@@ -1,0 +1,119 @@
+#include "bake/mesh/draco_codec.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
+
+#include "bake/mesh/vertex_normals.hpp"
+#include "common/error.hpp"
+
+namespace nano::mesh {
+namespace {
+
+template <int N> std::array<float, N> as_floats(const glm::vec<N, double>& v) {
+  std::array<float, N> out{};
+  for (int i = 0; i < N; ++i) out[i] = float(v[i]);
+  return out;
+}
+
+// Per-corner values of a Draco attribute, deduplicated into (values, per-triangle indices).
+template <int N>
+bool read_corners(const draco::Mesh& m, draco::GeometryAttribute::Type type, std::vector<glm::vec<N, double>>& values,
+                  std::vector<Triangle>& corners) {
+  const draco::PointAttribute* attribute = m.GetNamedAttribute(type);
+  if (!attribute || attribute->num_components() < N) return false;
+  std::map<std::array<float, N>, std::uint32_t> index;
+  for (draco::FaceIndex f(0); f < m.num_faces(); ++f) {
+    Triangle t{};
+    for (int c = 0; c < 3; ++c) {
+      std::array<float, N> v{};
+      if (!attribute->ConvertValue<float>(attribute->mapped_index(m.face(f)[c]), N, v.data())) return false;
+      const auto [it, added] = index.try_emplace(v, std::uint32_t(values.size()));
+      if (added) {
+        glm::vec<N, double> d;
+        for (int i = 0; i < N; ++i) d[i] = v[i];
+        values.push_back(d);
+      }
+      t[c] = it->second;
+    }
+    corners.push_back(t);
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::byte> encode_draco_mesh(const ProxyMesh& mesh, const DracoQuantisation& q) {
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(int(mesh.triangles.size()));
+  const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  const int uv = mesh.has_uvs() ? builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32) : -1;
+  const int normal = mesh.has_normals() ? builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32) : -1;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const draco::FaceIndex f(static_cast<std::uint32_t>(t));
+    const auto p0 = as_floats(mesh.corner_position(t, 0)), p1 = as_floats(mesh.corner_position(t, 1)),
+               p2 = as_floats(mesh.corner_position(t, 2));
+    builder.SetAttributeValuesForFace(position, f, p0.data(), p1.data(), p2.data());
+    if (uv >= 0) {
+      const auto a = as_floats(mesh.corner_uv(t, 0)), b = as_floats(mesh.corner_uv(t, 1)), c = as_floats(mesh.corner_uv(t, 2));
+      builder.SetAttributeValuesForFace(uv, f, a.data(), b.data(), c.data());
+    }
+    if (normal >= 0) {
+      const auto a = as_floats(mesh.corner_normal(t, 0)), b = as_floats(mesh.corner_normal(t, 1)),
+                 c = as_floats(mesh.corner_normal(t, 2));
+      builder.SetAttributeValuesForFace(normal, f, a.data(), b.data(), c.data());
+    }
+  }
+  const std::unique_ptr<draco::Mesh> built = builder.Finalize();
+  if (!built) throw std::runtime_error("Draco could not build the mesh");
+  draco::Encoder encoder;
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, q.position_bits);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, q.uv_bits);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, q.normal_bits);
+  draco::EncoderBuffer buffer;
+  const draco::Status status = encoder.EncodeMeshToBuffer(*built, &buffer);
+  if (!status.ok()) throw std::runtime_error("Draco could not encode the mesh: " + status.error_msg_string());
+  std::vector<std::byte> out(buffer.size());
+  std::memcpy(out.data(), buffer.data(), buffer.size());
+  return out;
+}
+
+ProxyMesh decode_draco_mesh(std::span<const std::byte> bytes, const std::string& file) {
+  draco::DecoderBuffer buffer;
+  buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  const auto geometry = draco::Decoder::GetEncodedGeometryType(&buffer);
+  if (!geometry.ok()) throw InputError(file, "", "not a Draco file: " + geometry.status().error_msg_string());
+  if (geometry.value() != draco::TRIANGULAR_MESH) throw InputError(file, "", "a Draco point cloud, not a triangle mesh");
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+  if (!decoded.ok()) throw InputError(file, "", "Draco cannot decode it: " + decoded.status().error_msg_string());
+  const draco::Mesh& m = *decoded.value();
+  if (m.num_faces() == 0) throw InputError(file, "", "mesh has no faces");
+  ProxyMesh mesh;
+  if (!read_corners<3>(m, draco::GeometryAttribute::POSITION, mesh.positions, mesh.triangles))
+    throw InputError(file, "", "the Draco mesh has no readable positions");
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const glm::dvec3& p = mesh.positions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError(file, "vertex " + std::to_string(v), "coordinate is not a finite number");
+  }
+  if (!read_corners<2>(m, draco::GeometryAttribute::TEX_COORD, mesh.uvs, mesh.uv_triangles)) mesh.uvs.clear(), mesh.uv_triangles.clear();
+  bool normals = read_corners<3>(m, draco::GeometryAttribute::NORMAL, mesh.normals, mesh.normal_triangles);
+  for (glm::dvec3& n : mesh.normals) {
+    const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    if (!(length > 0) || !std::isfinite(length)) normals = false;
+    else n /= length;
+  }
+  if (!normals) {
+    mesh.normals.clear(), mesh.normal_triangles.clear();
+    compute_angle_weighted_normals(mesh);
+  }
+  return mesh;
+}
+
+}  // namespace nano::mesh
