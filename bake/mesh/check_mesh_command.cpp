@@ -19,6 +19,7 @@ void add_check_mesh_command(CLI::App& app) {
     bool json = false;
     std::optional<double> tile_size;
     std::string make_uvs;
+    std::size_t max_triangles = mesh::CheckOptions{}.max_triangles;
   };
   auto args = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
@@ -31,6 +32,7 @@ void add_check_mesh_command(CLI::App& app) {
   command->add_option("--make-uvs", args->make_uvs,
                       "replace the mesh's UVs by the charts the baker makes, check that, and write it as OBJ");
   command->add_flag("--json", args->json, "print the report as JSON");
+  command->add_option("--max-triangles", args->max_triangles, "refuse a mesh of more triangles")->capture_default_str();
   command->add_option("--tile-size", args->tile_size,
                       "world size S of one Wang tile (default k/20: 20 tiles across the unit UV square)")
       ->check(CLI::PositiveNumber);
@@ -38,6 +40,7 @@ void add_check_mesh_command(CLI::App& app) {
     mesh::ProxyMesh proxy = mesh::read_proxy_mesh(args->mesh);
     mesh::CheckOptions options;
     options.tile_size = args->tile_size;
+    options.max_triangles = args->max_triangles;
     mesh::MeshReport report = mesh::check_mesh(proxy, options);
     // The charts a scene would get ("uv": "auto"), when nothing but the UVs is wrong, or those
     // --make-uvs asks for.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <numeric>
 
 #include <glm/geometric.hpp>
 
@@ -39,6 +40,25 @@ double min_angle_degrees(const ProxyMesh& mesh, std::size_t t) {
   return smallest;
 }
 
+// Connected runs of border edges (joined at shared vertices): the holes of the surface.
+std::size_t count_holes(const ProxyMesh& mesh, const std::vector<MeshEdge>& edges) {
+  std::vector<std::uint32_t> parent(mesh.positions.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto root = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::vector<bool> on_border(mesh.positions.size(), false);
+  for (const MeshEdge& edge : edges) {
+    if (edge.uses.size() != 1) continue;
+    on_border[edge.a] = on_border[edge.b] = true;
+    parent[root(edge.a)] = root(edge.b);
+  }
+  std::size_t loops = 0;
+  for (std::uint32_t v = 0; v < parent.size(); ++v) loops += on_border[v] && root(v) == v;
+  return loops;
+}
+
 void check_topology(const ProxyMesh& mesh, const std::vector<MeshEdge>& edges, MeshReport& report) {
   bool border = false, non_manifold = false, inconsistent = false;
   for (const MeshEdge& edge : edges) {
@@ -57,6 +77,14 @@ void check_topology(const ProxyMesh& mesh, const std::vector<MeshEdge>& edges, M
       report.problems.push_back({later.face, rule::inconsistent_orientation, static_cast<double>(earlier.face),
                                  edge_name(edge) + " runs the same way in face " + std::to_string(earlier.face)});
     }
+  }
+  report.holes = count_holes(mesh, edges);
+  if (report.holes > 0) {
+    std::size_t border_edges = 0;
+    for (const MeshEdge& edge : edges) border_edges += edge.uses.size() == 1;
+    report.problems.push_back({-1, rule::holes, static_cast<double>(report.holes),
+                               std::to_string(report.holes) + " boundary loop(s) of " + std::to_string(border_edges) +
+                                   " border edges: the surface is open"});
   }
   const auto vertices = non_manifold_vertices(mesh, edges);
   for (const NonManifoldVertex& v : vertices)
@@ -192,6 +220,10 @@ MeshReport check_mesh(const ProxyMesh& mesh, const CheckOptions& options) {
   MeshReport report;
   report.triangles = mesh.triangles.size();
   report.vertices = mesh.positions.size();
+  if (mesh.triangles.size() > options.max_triangles)
+    report.problems.push_back({-1, rule::too_many_triangles, static_cast<double>(mesh.triangles.size()),
+                               "more than " + std::to_string(options.max_triangles) +
+                                   " triangles: a proxy mesh is low-poly (its triangles become prisms of molecules)"});
   const std::vector<MeshEdge> edges = collect_edges(mesh);
   check_topology(mesh, edges, report);
   const bool degenerate = check_triangle_shapes(mesh, options, report);
@@ -220,7 +252,7 @@ nlohmann::json report_to_json(const MeshReport& r) {
   };
   json j = {{"usable", r.usable()},  {"triangles", r.triangles}, {"vertices", r.vertices},
             {"closed", r.closed},    {"manifold", r.manifold},   {"oriented", r.oriented},
-            {"outward", r.outward},  {"problems", problem_list(r.problems)},
+            {"outward", r.outward},  {"holes", r.holes},       {"problems", problem_list(r.problems)},
             {"warnings", problem_list(r.warnings)}, {"area", r.area}};
   j["volume"] = r.volume ? json(*r.volume) : json(nullptr);
   if (!r.has_uvs) {

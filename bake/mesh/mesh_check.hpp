@@ -17,6 +17,8 @@ namespace nano::mesh {
 // Rule names as they appear in reports; tests and scripts match on them.
 namespace rule {
 inline constexpr const char* border_edge = "border edge";                          // value: edge length
+inline constexpr const char* holes = "holes";                                      // value: boundary loops
+inline constexpr const char* too_many_triangles = "too many triangles";            // value: triangles
 inline constexpr const char* non_manifold_edge = "non-manifold edge";              // value: faces on the edge
 inline constexpr const char* non_manifold_vertex = "non-manifold vertex";          // value: separate fans
 inline constexpr const char* inconsistent_orientation = "inconsistent orientation";  // value: neighbour face
@@ -53,6 +55,7 @@ struct CheckOptions {
   // World size S of a Wang tile. Default: k / 20, i.e. 20 tiles across the unit UV square.
   std::optional<double> tile_size;
   double min_angle_degrees = 1.0;   // sliver rule
+  std::size_t max_triangles = 4'000'000;  // a proxy mesh is low-poly: more is refused
   double thin_uv_elongation = 8.0;  // warning rule, see check_mesh
   std::size_t worst_count = 5;
 };
@@ -60,6 +63,7 @@ struct CheckOptions {
 struct MeshReport {
   std::size_t triangles = 0, vertices = 0;
   bool closed = false, manifold = false, oriented = false, outward = false;
+  std::size_t holes = 0;              // boundary loops (connected runs of border edges)
   std::vector<MeshProblem> problems;  // any entry makes the mesh unusable
   std::vector<MeshProblem> warnings;  // usable, but worth knowing
   double area = 0.0;
@@ -79,7 +83,9 @@ struct MeshReport {
 };
 
 // Rules, in the order they are reported:
-// - topology (exact, from position indices): border edges, non-manifold edges (> 2 faces) and
+// - size: more than max_triangles triangles;
+// - topology (exact, from position indices): border edges, and the holes they bound (connected runs
+//   of border edges, one whole-mesh problem with their count), non-manifold edges (> 2 faces) and
 //   vertices (> 1 fan), inconsistent orientation (an interior edge walked the same way by both
 //   faces); outward = CGAL's is_outward_oriented and a positive signed volume;
 // - degenerate triangles: a repeated vertex index, or three exactly collinear corners (exact

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <set>
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
@@ -306,6 +307,72 @@ std::vector<std::vector<std::uint32_t>> grow_charts(const Surface& s, double cos
   return charts;
 }
 
+// Greedy growth leaves slivers of charts between the big ones. Neighbouring charts merge, the
+// pair whose union stays nearest its mean normal first, while every face of the union lies within
+// the angle of that mean (area-weighted normal): the charts a cone of that angle allows, fewer seams.
+void merge_charts(const Surface& s, std::vector<std::vector<std::uint32_t>>& charts, double cos_limit) {
+  std::vector<std::uint32_t> chart_of(s.size());
+  std::vector<dvec3> normal_sum(charts.size(), dvec3(0.0));
+  for (std::uint32_t c = 0; c < charts.size(); ++c)
+    for (std::uint32_t f : charts[c]) chart_of[f] = c, normal_sum[c] += s.normal[f] * s.area[f];
+  const auto worst_cos = [&](std::uint32_t a, std::uint32_t b) {  // smallest cos to the union's mean
+    const dvec3 sum = normal_sum[a] + normal_sum[b];
+    if (!(glm::length(sum) > 0)) return -1.0;
+    const dvec3 axis = glm::normalize(sum);
+    double worst = 1.0;
+    for (std::uint32_t c : {a, b})
+      for (std::uint32_t f : charts[c]) worst = std::min(worst, glm::dot(s.normal[f], axis));
+    return worst;
+  };
+  for (;;) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (std::uint32_t f = 0; f < s.size(); ++f)
+      for (std::uint32_t g : s.across[f])
+        if (g != kNone && chart_of[f] != chart_of[g]) pairs.insert(std::minmax(chart_of[f], chart_of[g]));
+    double best = cos_limit;
+    std::pair<std::uint32_t, std::uint32_t> chosen{kNone, kNone};
+    for (const auto& [a, b] : pairs)
+      if (const double w = worst_cos(a, b); w >= best && (chosen.first == kNone || w > best)) best = w, chosen = {a, b};
+    if (chosen.first == kNone) break;
+    const auto [keep, gone] = chosen;
+    for (std::uint32_t f : charts[gone]) chart_of[f] = keep;
+    charts[keep].insert(charts[keep].end(), charts[gone].begin(), charts[gone].end());
+    charts[gone].clear();
+    normal_sum[keep] += normal_sum[gone];
+    normal_sum[gone] = dvec3(0.0);
+  }
+  std::erase_if(charts, [](const std::vector<std::uint32_t>& c) { return c.empty(); });
+}
+
+// Growth by a normal cone leaves ragged borders on faceted surfaces (alternate faces in and
+// out), and a vertex where a chart's faces meet only at a corner makes the chart no disk. A face
+// whose neighbours across two or three edges all belong to one other chart joins it; a few passes
+// straighten the borders.
+void smooth_borders(const Surface& s, std::vector<std::vector<std::uint32_t>>& charts) {
+  std::vector<std::uint32_t> chart_of(s.size());
+  for (std::uint32_t c = 0; c < charts.size(); ++c)
+    for (std::uint32_t f : charts[c]) chart_of[f] = c;
+  for (int pass = 0; pass < 4; ++pass) {
+    bool changed = false;
+    for (std::uint32_t f = 0; f < s.size(); ++f) {
+      const auto& n = s.across[f];
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = n[k], b = n[(k + 1) % 3];
+        if (a == kNone || b == kNone) continue;
+        const std::uint32_t other = chart_of[a];
+        if (other != chart_of[f] && chart_of[b] == other) {
+          chart_of[f] = other, changed = true;
+          break;
+        }
+      }
+    }
+    if (!changed) break;
+  }
+  for (auto& c : charts) c.clear();
+  for (std::uint32_t f = 0; f < s.size(); ++f) charts[chart_of[f]].push_back(f);
+  std::erase_if(charts, [](const std::vector<std::uint32_t>& c) { return c.empty(); });
+}
+
 // Each chart rotated to its principal axes (a tighter box) and placed on shelves, tallest first,
 // `gutter` Å apart and from the square's sides; returns the atlas edge in Å.
 double pack(std::vector<Flattened>& charts, double gutter) {
@@ -373,7 +440,10 @@ ChartAtlas generate_uv_charts(ProxyMesh& mesh, const ChartOptions& options) {
   const Surface s(mesh);
   const double cos_limit = std::cos(options.max_normal_angle_degrees * M_PI / 180.0);
   std::deque<std::vector<std::uint32_t>> pending;
-  for (auto& chart : grow_charts(s, cos_limit, options.seed)) pending.push_back(std::move(chart));
+  std::vector<std::vector<std::uint32_t>> grown = grow_charts(s, cos_limit, options.seed);
+  merge_charts(s, grown, cos_limit);
+  smooth_borders(s, grown);
+  for (auto& chart : grown) pending.push_back(std::move(chart));
   std::vector<Flattened> charts;
   while (!pending.empty()) {
     std::vector<std::uint32_t> faces = std::move(pending.front());

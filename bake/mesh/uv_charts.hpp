@@ -6,7 +6,8 @@
 // membrane's tiles keep one density across charts).
 //
 // Charts grow from seed faces over edges while a face's normal stays within max_normal_angle of
-// the seed's (seams fall along high-curvature and feature edges); a chart that is not a disk (a
+// the seed's (seams fall along high-curvature and feature edges), then neighbouring charts merge
+// while their union keeps every normal within that angle of its mean; a chart that is not a disk (a
 // hole, a handle, a pinched vertex) or whose flattening fails the stretch bound is cut in two
 // across its longest axis, down to single triangles if need be. Deterministic for a seed.
 #include <cstddef>

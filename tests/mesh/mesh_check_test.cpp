@@ -165,6 +165,33 @@ TEST(CheckMesh, OpenBorder) {
   EXPECT_FALSE(r.closed);
   EXPECT_FALSE(r.volume);
   EXPECT_TRUE(r.manifold && r.oriented);
+  // One hole, named once for the whole mesh with its loop count.
+  EXPECT_EQ(r.holes, 1u);
+  EXPECT_EQ(faces_with(r, rule::holes), (std::vector<std::int64_t>{-1}));
+}
+
+// Two faces that share no vertex removed: two boundary loops.
+TEST(CheckMesh, HolesAreCountedByBoundaryLoops) {
+  const std::string two_holes =
+      replace_line(replace_line(octahedron_faces, "f 1/1 4/4 6/9\n", ""), "f 2/2 3/3 5/5\n", "");
+  const MeshReport r = check_text(octahedron_vertices + octahedron_uvs + two_holes);
+  EXPECT_EQ(r.holes, 2u);
+  const auto it = std::find_if(r.problems.begin(), r.problems.end(), [](const auto& p) { return p.rule == rule::holes; });
+  ASSERT_NE(it, r.problems.end());
+  EXPECT_EQ(it->value, 2.0);
+  EXPECT_NE(it->detail.find("6 border edges"), std::string::npos) << it->detail;
+  EXPECT_EQ(check_text(testing::octahedron).holes, 0u);
+}
+
+TEST(CheckMesh, TooManyTriangles) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write("m.obj", testing::octahedron));
+  CheckOptions options;
+  options.max_triangles = 7;
+  const MeshReport r = check_mesh(mesh, options);
+  EXPECT_EQ(faces_with(r, rule::too_many_triangles), (std::vector<std::int64_t>{-1}));
+  options.max_triangles = 8;
+  EXPECT_TRUE(check_mesh(mesh, options).usable());
 }
 
 TEST(CheckMesh, InconsistentAndInwardOrientation) {

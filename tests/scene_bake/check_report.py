@@ -3,7 +3,8 @@
 Checks a nanobake --report against expectations written from the biology (BIOLOGY.md), not from
 the baker: `represented_atoms=1.2e12:0.10` means within 10 % of 1.2e12; `copies.rbc.haemoglobin=2.7e8:0.10`
 reads compartment rbc's copies of haemoglobin; `lipids.virion.total` its membrane's lipids in both
-leaflets; `bilayer.virion.beside_proteins` the share of a real bilayer's lipids it holds beside its
+leaflets; `charts.virion.max_stretch` a field of the UV charts the baker made for its mesh;
+`bilayer.virion.beside_proteins` the share of a real bilayer's lipids it holds beside its
 proteins. Also checks the report's required keys and that every molecule type has beads.
 """
 import json
@@ -21,6 +22,8 @@ def lookup(report, key):
         return entry["represented_atoms"]
     if kind == "lipids" and name == "total":  # both leaflets, every species
         return sum(entry["membrane"]["lipids_by_leaflet"].values())
+    if kind == "charts":  # the UV charts the baker made: charts (their count), max_stretch, seam_length
+        return entry["charts"][name]
     if kind == "bilayer" and name == "beside_proteins":  # share of a real bilayer's lipids
         return entry["membrane"]["fraction_of_real_bilayer_beside_proteins"]
     raise KeyError(key)
