@@ -132,6 +132,7 @@ struct MeshSource {
   // volume, becomes this (Å, Å^3), after the units.
   std::optional<double> diameter, volume;
   Uv uv = Uv::automatic;
+  bool repair = false;  // mend what CGAL can (bake/mesh/mesh_repair.hpp) before the checks
   bool operator==(const MeshSource&) const = default;
 };
 

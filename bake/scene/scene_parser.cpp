@@ -211,9 +211,13 @@ double parse_unit(const JsonCursor& c) {
   c.fail("expected \"A\", \"nm\" or \"um\", got " + c.shown());
 }
 
-// Keys every mesh takes: its UV policy and a target size.
+// Keys every mesh takes: its UV policy, repair and a target size.
 void parse_mesh_size_and_uvs(const JsonCursor& c, MeshSource& mesh) {
   if (const auto uv = c.optional("uv")) mesh.uv = parse_uv_policy(*uv);
+  if (const auto repair = c.optional("repair")) {
+    mesh.repair = repair->boolean();
+    if (mesh.repair && mesh.uv == MeshSource::Uv::keep) repair->fail("a repaired mesh loses its UVs: not with \"uv\": \"keep\"");
+  }
   if (c.has("diameter") && c.has("volume")) c.fail("give \"diameter\" or \"volume\", not both");
   if (const auto d = c.optional("diameter")) mesh.diameter = d->number_greater_than(0.0);
   if (const auto v = c.optional("volume")) mesh.volume = v->number_greater_than(0.0);
@@ -224,7 +228,7 @@ MeshSource parse_mesh(const JsonCursor& c, const std::filesystem::path& folder) 
   if (from_file == generated) c.fail("expected exactly one of \"file\" and \"generate\"");
   MeshSource mesh;
   if (from_file) {
-    c.only_keys({"file", "units", "diameter", "volume", "uv"});
+    c.only_keys({"file", "units", "diameter", "volume", "uv", "repair"});
     mesh.file = resolve_path(c.required("file"), folder);
     if (const auto units = c.optional("units")) mesh.unit = parse_unit(*units);
     parse_mesh_size_and_uvs(c, mesh);
@@ -233,11 +237,11 @@ MeshSource parse_mesh(const JsonCursor& c, const std::filesystem::path& folder) 
   const JsonCursor kind = c.required("generate");
   const std::string name = kind.string();
   if (name == "sphere") {
-    c.only_keys({"generate", "triangles", "radius", "diameter", "volume", "uv"});
+    c.only_keys({"generate", "triangles", "radius", "diameter", "volume", "uv", "repair"});
     mesh.kind = MeshSource::Kind::sphere;
     mesh.radius = c.required("radius").number_greater_than(0.0);
   } else if (name == "rbc") {
-    c.only_keys({"generate", "triangles", "diameter", "volume", "uv"});
+    c.only_keys({"generate", "triangles", "diameter", "volume", "uv", "repair"});
     mesh.kind = MeshSource::Kind::rbc;
   } else {
     kind.fail("expected \"sphere\" or \"rbc\", got " + kind.shown());

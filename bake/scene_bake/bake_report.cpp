@@ -58,6 +58,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
     compartments.back()["mesh_scale"] = c.mesh_scale;
     compartments.back()["uvs"] = c.uv_origin;
     if (c.charts) compartments.back()["charts"] = mesh::to_json(*c.charts);
+    if (c.repair) compartments.back()["repair"] = mesh::to_json(*c.repair);
     if (c.membrane) compartments.back()["membrane"] = membrane_json(*c.membrane);
   }
   auto& instances = j["instances"] = nlohmann::ordered_json::array();
@@ -107,6 +108,7 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       out << line;
     }
     out << "\n";
+    if (c.repair) out << "  " << c.name << " mesh " << mesh::describe(*c.repair) << "\n";
     if (c.charts) {
       std::snprintf(line, sizeof line,
                     "  %s UVs %s: %zu charts, seam %.4g Å, stretch max %.3f (mean %.3f), %.0f%% of the UV square used, %.2f s\n",

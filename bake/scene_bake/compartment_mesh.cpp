@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -93,6 +94,13 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
     const double factor = std::cbrt(*source.volume / volume);
     scale_mesh(result.mesh, factor);
     result.scale *= factor;
+  }
+  if (source.repair) {
+    try {
+      result.repair = mesh::repair_mesh(result.mesh);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
+    }
   }
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
   bool uv_trouble = false;

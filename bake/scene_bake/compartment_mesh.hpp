@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bake/mesh/mesh_check.hpp"
+#include "bake/mesh/mesh_repair.hpp"
 #include "bake/mesh/uv_charts.hpp"
 #include "bake/mesh/proxy_mesh.hpp"
 #include "bake/scene/scene_description.hpp"
@@ -17,6 +18,7 @@ struct CompartmentMesh {
   std::string origin;       // file name or "generated sphere (N triangles, radius R)"
   double scale = 1.0;       // compartment space per mesh unit: units × scale, diameter or volume
   std::optional<mesh::ChartAtlas> charts;  // when the baker made the UVs
+  std::optional<mesh::RepairReport> repair;  // when the scene asked for "repair"
   std::string uv_origin;    // "from the mesh" or why the baker made them
 };
 

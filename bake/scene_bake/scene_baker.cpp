@@ -358,6 +358,7 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       summary.mesh_scale = bake.mesh.scale;
       summary.uv_origin = bake.mesh.uv_origin;
       summary.charts = bake.mesh.charts;
+      summary.repair = bake.mesh.repair;
       summary.triangles = static_cast<std::uint32_t>(bake.mesh.mesh.triangles.size());
       if (bake.membrane) {
         const BakedMembrane& m = *bake.membrane;

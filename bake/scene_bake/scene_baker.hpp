@@ -11,6 +11,7 @@
 #include "bake/scene/scene_description.hpp"
 #include "bake/scene_bake/package_content.hpp"
 
+#include "bake/mesh/mesh_repair.hpp"
 #include "bake/mesh/uv_charts.hpp"
 
 namespace nano::bake {
@@ -52,6 +53,7 @@ struct CompartmentSummary {
   double mesh_scale = 1.0;                      // compartment space per mesh unit
   std::string uv_origin;                        // from the mesh, or why the baker made them
   std::optional<mesh::ChartAtlas> charts;       // the charts the baker made
+  std::optional<mesh::RepairReport> repair;     // what "repair" changed
   std::uint32_t triangles = 0;
   std::uint64_t represented_atoms = 0;  // one copy of the compartment
   std::vector<std::pair<std::string, std::uint64_t>> copies;  // molecule name -> copies (one compartment)

@@ -180,6 +180,10 @@ TEST(SceneErrors, MeshUnitsSizeAndUvs) {
                      "expected a number > 0");
   EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"generate", "sphere"}, {"triangles", 100}, {"radius", 5}, {"units", "nm"}})),
                      "compartments.virion.mesh.units", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"repair", "yes"}})), "compartments.virion.mesh.repair",
+                     "expected");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"uv", "keep"}, {"repair", true}})),
+                     "compartments.virion.mesh.repair", "loses its UVs");
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
                        d["compartments"]["virion"]["mesh"] = Json{{"file", "c.obj"}, {"volume", 1e6}};
                        d["compartments"]["virion"]["scale"] = 2;

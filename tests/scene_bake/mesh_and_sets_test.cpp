@@ -128,6 +128,19 @@ TEST(CompartmentMesh, OpenMeshWithoutUvsIsRefusedForItsHole) {
   EXPECT_EQ(what.find("no UVs"), std::string::npos) << what;
 }
 
+// "repair": the open tetrahedron is closed by one triangle, then charted; the report says so.
+TEST(CompartmentMesh, RepairClosesTheHoleAndTheBakerChartsTheResult) {
+  scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_repair.obj", true));
+  c.mesh.repair = true;
+  const bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  ASSERT_TRUE(m.repair.has_value());
+  EXPECT_EQ(m.repair->holes_filled, 1u);
+  EXPECT_EQ(m.repair->triangles_added, 1u);
+  EXPECT_TRUE(m.report.usable());
+  EXPECT_TRUE(m.report.closed);
+  EXPECT_TRUE(m.charts.has_value());
+}
+
 // Units, then a target diameter (largest box side) or volume; the scale is reported.
 TEST(CompartmentMesh, UnitsDiameterAndVolumeScaleTheMesh) {
   scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_units.obj"));
