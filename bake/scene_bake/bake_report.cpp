@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "bake/mesh/draco_codec.hpp"
 #include "format/section_kind.hpp"
 
 namespace nano::bake {
@@ -36,6 +37,35 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams"},
           {"pruning_checked_copies", m.checked_copies},
           {"pruning_atom_tests", m.atom_tests}};
+}
+
+// The meshes as the package stores them (positions, normals, UVs and triangles, zstd where it pays)
+// against a Draco encoding of the same meshes at 20 bits per position and UV axis and 12 per
+// normal (0.07 Å on a red blood cell's 7.8 µm): what Draco mesh sections would save.
+nlohmann::ordered_json mesh_section_sizes(const format::Package& package) {
+  using format::SectionKind;
+  std::uint64_t stored = 0;
+  for (SectionKind k : {SectionKind::vertex_positions, SectionKind::vertex_normals, SectionKind::vertex_uvs, SectionKind::triangles})
+    if (const format::SectionEntry* e = package.entry(k)) stored += e->stored_size;
+  const auto meshes = package.records<SectionKind::meshes>();
+  const auto positions = package.records<SectionKind::vertex_positions>();
+  const auto normals = package.records<SectionKind::vertex_normals>();
+  const auto uvs = package.records<SectionKind::vertex_uvs>();
+  const auto triangles = package.records<SectionKind::triangles>();
+  std::uint64_t draco = 0;
+  for (const gpu::Mesh& m : meshes) {
+    mesh::ProxyMesh proxy;
+    for (std::uint32_t v = m.first_vertex; v < m.first_vertex + m.vertex_count; ++v) {
+      proxy.positions.emplace_back(glm::vec3(positions[v]));
+      proxy.normals.emplace_back(glm::vec3(normals[v]));
+      proxy.uvs.emplace_back(uvs[v]);
+    }
+    for (std::uint32_t t = m.first_triangle; t < m.first_triangle + m.triangle_count; ++t)
+      proxy.triangles.push_back({triangles[t].v0, triangles[t].v1, triangles[t].v2});
+    proxy.uv_triangles = proxy.normal_triangles = proxy.triangles;
+    draco += mesh::encode_draco_mesh(proxy, {.position_bits = 20, .uv_bits = 20, .normal_bits = 12}).size();
+  }
+  return {{"stored_bytes", stored}, {"draco_bytes", draco}, {"draco_bits", {{"position", 20}, {"uv", 20}, {"normal", 12}}}};
 }
 
 }  // namespace
@@ -84,6 +114,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
     const gpu::MoleculeType& m = molecules[t];
     lod[std::string(strings.data() + m.name_offset, m.name_length)] = {{"atoms", m.atom_count}, {"beads", ranges[t].count}};
   }
+  j["mesh_sections"] = mesh_section_sizes(package);
   auto& sections = j["sections"] = nlohmann::ordered_json::object();
   for (const format::SectionEntry& e : package.entries())
     sections[format::section_kind_name(e.kind)] = e.stored_size;
