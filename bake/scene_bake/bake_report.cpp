@@ -110,9 +110,14 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
   const auto molecules = package.records<format::SectionKind::molecules>();
   const auto ranges = package.records<format::SectionKind::bead_ranges>();
   const auto strings = package.records<format::SectionKind::strings>();
+  // Lipid conformers share their species' name: one entry per name, its types summed.
   for (std::size_t t = 0; t < molecules.size() && t < ranges.size(); ++t) {
     const gpu::MoleculeType& m = molecules[t];
-    lod[std::string(strings.data() + m.name_offset, m.name_length)] = {{"atoms", m.atom_count}, {"beads", ranges[t].count}};
+    auto& entry = lod[std::string(strings.data() + m.name_offset, m.name_length)];
+    if (entry.is_null()) entry = {{"types", 0}, {"atoms", 0}, {"beads", 0}};
+    entry["types"] = entry["types"].get<std::uint64_t>() + 1;
+    entry["atoms"] = entry["atoms"].get<std::uint64_t>() + m.atom_count;
+    entry["beads"] = entry["beads"].get<std::uint64_t>() + ranges[t].count;
   }
   j["mesh_sections"] = mesh_section_sizes(package);
   auto& sections = j["sections"] = nlohmann::ordered_json::object();

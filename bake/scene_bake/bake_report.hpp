@@ -10,8 +10,8 @@ namespace nano::bake {
 // Keys: represented_atoms, compartments [{name, mesh, triangles, represented_atoms, copies {type: n},
 // core_boxes {inside, boundary}, replication_area [W, H]}], instances [{compartment, aabb}],
 // densities [{set, molecule, requested, achieved}], membrane_surfaces {membrane: {chart_stretch,
-// curvature (rad/Å), normal_tilt (tan)} its tiles were packed to survive}, level_of_detail {type: {atoms,
-// beads}}, sections {kind: stored bytes}, package_bytes,
+// curvature (rad/Å), normal_tilt (tan)} its tiles were packed to survive}, level_of_detail {name: {types,
+// atoms, beads}} (conformers of one species summed), sections {kind: stored bytes}, package_bytes,
 // stages {stage: seconds}.
 nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Package& package);
 
