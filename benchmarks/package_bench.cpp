@@ -35,6 +35,7 @@ SampleScene scaled_sample(std::size_t atoms) {
   s.atoms.resize(atoms, s.atoms.back());
   s.atom_info.resize(atoms, s.atom_info.back());
   s.molecules[1].atom_count = static_cast<std::uint32_t>(atoms - 3);
+  s.beads.back().atom_count = static_cast<std::uint32_t>(atoms - 4);  // the copies of atom 4 join its bead
   return s;
 }
 
