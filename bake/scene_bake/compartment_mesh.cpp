@@ -82,6 +82,14 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
   CompartmentMesh result = read_or_generate(source);
   result.scale = source.unit * compartment.scale;
   scale_mesh(result.mesh, result.scale);
+  // Repair before a target size: a volume needs the holes closed.
+  if (source.repair) {
+    try {
+      result.repair = mesh::repair_mesh(result.mesh);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
+    }
+  }
   if (source.diameter) {
     const double factor = *source.diameter / largest_side(result.mesh);
     scale_mesh(result.mesh, factor);
@@ -94,13 +102,6 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
     const double factor = std::cbrt(*source.volume / volume);
     scale_mesh(result.mesh, factor);
     result.scale *= factor;
-  }
-  if (source.repair) {
-    try {
-      result.repair = mesh::repair_mesh(result.mesh);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
-    }
   }
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
   bool uv_trouble = false;

@@ -132,7 +132,10 @@ TEST(CompartmentMesh, OpenMeshWithoutUvsIsRefusedForItsHole) {
 TEST(CompartmentMesh, RepairClosesTheHoleAndTheBakerChartsTheResult) {
   scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_repair.obj", true));
   c.mesh.repair = true;
+  c.mesh.volume = 1000.0;  // measured on the closed, repaired surface
   const bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  ASSERT_TRUE(m.report.volume.has_value());
+  EXPECT_NEAR(*m.report.volume, 1000.0, 1e-6);
   ASSERT_TRUE(m.repair.has_value());
   EXPECT_EQ(m.repair->holes_filled, 1u);
   EXPECT_EQ(m.repair->triangles_added, 1u);
