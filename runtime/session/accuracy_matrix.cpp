@@ -37,6 +37,19 @@ std::string oracle_key(const render::EffectSettings& e) {
   return key;
 }
 
+// One frame of a variant and one of its reference, the order flipping per round, so both see the
+// same machine.
+void time_alternately(unsigned round, render::Renderer& variant, render::Renderer& reference, const gpu::Camera& camera,
+                      std::vector<double>& variant_seconds, std::vector<double>& reference_seconds) {
+  if (round % 2 == 0) {
+    variant_seconds.push_back(variant.render(camera).seconds);
+    reference_seconds.push_back(reference.render(camera).seconds);
+  } else {
+    reference_seconds.push_back(reference.render(camera).seconds);
+    variant_seconds.push_back(variant.render(camera).seconds);
+  }
+}
+
 }  // namespace
 
 std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package) {
@@ -162,15 +175,8 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
     std::vector<double> mine, theirs;
     for (unsigned round = 0; round < rounds; ++round)
       for (std::size_t k = 0; k < cameras.size(); ++k) {
-        const gpu::Camera& c = cameras[k];
         renderer.set_settings(per_view[k]);
-        if (round % 2 == 0) {
-          mine.push_back(renderer.render(c).seconds);
-          theirs.push_back(default_renderer.render(c).seconds);
-        } else {
-          theirs.push_back(default_renderer.render(c).seconds);
-          mine.push_back(renderer.render(c).seconds);
-        }
+        time_alternately(round, renderer, default_renderer, cameras[k], mine, theirs);
       }
     row.seconds_median = frame_stats(mine).median;
     row.default_seconds_median = frame_stats(theirs).median;
@@ -209,15 +215,8 @@ std::vector<LodFarRow> run_lod_far_views(const vk::Device& device, render::GpuSc
       row.ids_changed_percent = 100.0 * double(changed) / double(row.pixels);
       row.coverage_changed_percent = 100.0 * double(coverage) / double(row.pixels);
       std::vector<double> mine, theirs;
-      for (unsigned round = 0; round < rounds; ++round) {
-        if (round % 2 == 0) {
-          mine.push_back(renderer.render(view.camera).seconds);
-          theirs.push_back(full_renderer.render(view.camera).seconds);
-        } else {
-          theirs.push_back(full_renderer.render(view.camera).seconds);
-          mine.push_back(renderer.render(view.camera).seconds);
-        }
-      }
+      for (unsigned round = 0; round < rounds; ++round)
+        time_alternately(round, renderer, full_renderer, view.camera, mine, theirs);
       row.seconds_median = frame_stats(mine).median;
       row.full_seconds_median = frame_stats(theirs).median;
       row.time_ratio = row.seconds_median / row.full_seconds_median;
