@@ -10,7 +10,7 @@ namespace nano::format {
 
 inline constexpr std::array<unsigned char, 8> kMagic = {0x89, 'N', 'U', 'P', '\r', '\n', 0x1a, '\n'};
 inline constexpr std::uint16_t kVersionMajor = 2;
-inline constexpr std::uint16_t kVersionMinor = 5;
+inline constexpr std::uint16_t kVersionMinor = 6;
 // Written little-endian it reads 04 03 02 01; a big-endian writer would produce 01 02 03 04.
 inline constexpr std::uint32_t kEndianMark = 0x01020304u;
 inline constexpr std::uint64_t kHeaderSize = 64;
@@ -22,7 +22,9 @@ inline constexpr std::uint64_t kMaxRawSectionBytes = std::uint64_t{1} << 36;  //
 // A zstd block yields at most 128 KiB and costs at least 4 bytes, so no honest frame expands more.
 inline constexpr std::uint64_t kMaxZstdExpansion = 32768;
 
-enum class Codec : std::uint16_t { none = 0, zstd = 1 };
+// draco (format 2.6): the four mesh sections hold no bytes of their own; their raw bytes are decoded
+// from section "draco_meshes" (format/draco_mesh_sections.hpp), all four together.
+enum class Codec : std::uint16_t { none = 0, zstd = 1, draco = 2 };
 // Section flag: a reader that does not know the kind must refuse the package.
 inline constexpr std::uint16_t kSectionRequired = 1;
 inline constexpr std::uint16_t kKnownSectionFlags = kSectionRequired;

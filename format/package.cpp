@@ -4,6 +4,7 @@
 #include <array>
 #include <cerrno>
 #include <cstring>
+#include <deque>
 #include <fcntl.h>
 #include <new>
 #include <sys/mman.h>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "format/checked_math.hpp"
+#include "format/draco_mesh_sections.hpp"
 #include "format/zstd_bounded.hpp"
 
 namespace nano::format {
@@ -97,7 +99,7 @@ struct Package::Impl {
   // Raw bytes of each known kind present, indexed by kind value.
   std::array<std::span<const std::byte>, std::size(kAllSectionKinds) + 1> raw{};
   std::array<const SectionEntry*, std::size(kAllSectionKinds) + 1> entry_of{};
-  std::vector<std::vector<std::byte>> inflated;
+  std::deque<std::vector<std::byte>> inflated;  // a deque: spans into earlier ones stay valid
 };
 
 namespace {
@@ -115,6 +117,7 @@ public:
     read_table();
     check_regions();
     for (const SectionEntry& e : p_.entries) check_section(e);
+    decode_draco_sections();
   }
 
 private:
@@ -172,7 +175,7 @@ private:
     for (std::uint32_t i = 0; i < h.section_count; ++i) {
       const std::uint64_t at_entry = h.table_offset + i * kEntrySize;
       const SectionEntry e = decode_section_entry(file_.subspan(at_entry).first<kEntrySize>());
-      if (e.codec != static_cast<std::uint16_t>(Codec::none) && e.codec != static_cast<std::uint16_t>(Codec::zstd))
+      if (e.codec > static_cast<std::uint16_t>(Codec::draco))
         fail(Rule::unknown_codec, in(e, at_entry + entry_offset::codec), "codec " + std::to_string(e.codec) + " is unknown");
       if (e.flags & ~kKnownSectionFlags)
         fail(Rule::nonzero_reserved, in(e, at_entry + entry_offset::flags), "unknown section flag bits");
@@ -243,6 +246,14 @@ private:
       p_.raw[e.kind] = stored;
       return;
     }
+    if (e.codec == static_cast<std::uint16_t>(Codec::draco)) {
+      if (!is_draco_coded_kind(e.kind))
+        fail(Rule::mesh_codec, in(e, e.offset), "codec draco serves only vertex_positions, vertex_normals, vertex_uvs and triangles");
+      if (e.stored_size != 0) fail(Rule::mesh_codec, in(e, e.offset), "a Draco-coded section stores no bytes of its own");
+      if (e.raw_size > kMaxRawSectionBytes)
+        fail(Rule::raw_size_limit, in(e, e.offset), "claimed raw size " + std::to_string(e.raw_size) + " exceeds the cap (64 GiB)");
+      return;  // decoded with the others by decode_draco_sections
+    }
     if (e.raw_size > kMaxRawSectionBytes || e.raw_size / kMaxZstdExpansion > e.stored_size)
       fail(Rule::raw_size_limit, in(e, e.offset),
            "claimed raw size " + std::to_string(e.raw_size) + " exceeds the cap (64 GiB, and 32768x the stored size)");
@@ -254,6 +265,57 @@ private:
     }
     if (mismatch(xxh3(raw), e.raw_checksum)) fail(Rule::raw_checksum, in(e, e.offset), "checksum of decompressed bytes mismatch");
     p_.inflated.push_back(std::move(raw));
+    p_.raw[e.kind] = p_.inflated.back();
+  }
+
+  static bool is_draco_coded_kind(std::uint32_t kind) {
+    return std::find(std::begin(kDracoCodedKinds), std::end(kDracoCodedKinds), static_cast<SectionKind>(kind)) !=
+           std::end(kDracoCodedKinds);
+  }
+
+  // The four mesh sections are Draco-coded together or not at all, and "draco_meshes" exists exactly
+  // when they are. Their raw bytes are then decoded from it, sized against each entry and checked
+  // against its raw checksum like a zstd section's.
+  void decode_draco_sections() {
+    const SectionEntry* streams = p_.entry_of[static_cast<std::uint32_t>(SectionKind::draco_meshes)];
+    int coded = 0;
+    const SectionEntry* some_coded = nullptr;
+    for (const SectionKind k : kDracoCodedKinds) {
+      const SectionEntry* e = p_.entry_of[static_cast<std::uint32_t>(k)];
+      if (e && e->codec == static_cast<std::uint16_t>(Codec::draco)) ++coded, some_coded = e;
+    }
+    if (coded == 0 && !streams) return;
+    if (!streams)
+      fail(Rule::missing_section, in(*some_coded, some_coded->offset), "a mesh section is Draco-coded but section draco_meshes is absent");
+    if (coded != int(std::size(kDracoCodedKinds)))
+      fail(Rule::mesh_codec, in(*streams, streams->offset),
+           "section draco_meshes needs all four of vertex_positions, vertex_normals, vertex_uvs and triangles Draco-coded; " +
+               std::to_string(coded) + " are");
+    const SectionEntry* meshes = p_.entry_of[static_cast<std::uint32_t>(SectionKind::meshes)];
+    if (!meshes) fail(Rule::missing_section, in(*streams, streams->offset), "Draco-coded mesh sections need section meshes");
+    const std::span<const std::byte> mesh_bytes = p_.raw[static_cast<std::uint32_t>(SectionKind::meshes)];
+    const std::span<const gpu::Mesh> records(reinterpret_cast<const gpu::Mesh*>(mesh_bytes.data()), mesh_bytes.size() / sizeof(gpu::Mesh));
+    const auto raw_records = [&](SectionKind k) { return p_.entry_of[static_cast<std::uint32_t>(k)]->raw_size / record_size(k); };
+    MeshArrays decoded;
+    try {
+      decoded = decode_draco_meshes(p_.raw[static_cast<std::uint32_t>(SectionKind::draco_meshes)], records,
+                                    raw_records(SectionKind::vertex_positions), raw_records(SectionKind::triangles));
+    } catch (const DracoSectionError& d) {
+      fail(Rule::decompression, {streams->kind, d.offset(), streams->codec != static_cast<std::uint16_t>(Codec::none)}, d.what());
+    }
+    keep_decoded(SectionKind::vertex_positions, std::as_bytes(std::span(decoded.positions)));
+    keep_decoded(SectionKind::vertex_normals, std::as_bytes(std::span(decoded.normals)));
+    keep_decoded(SectionKind::vertex_uvs, std::as_bytes(std::span(decoded.uvs)));
+    keep_decoded(SectionKind::triangles, std::as_bytes(std::span(decoded.triangles)));
+  }
+
+  void keep_decoded(SectionKind kind, std::span<const std::byte> bytes) {
+    const SectionEntry& e = *p_.entry_of[static_cast<std::uint32_t>(kind)];
+    if (bytes.size() != e.raw_size)
+      fail(Rule::decompression, in(e, e.offset),
+           "decodes to " + std::to_string(bytes.size()) + " bytes, the table says " + std::to_string(e.raw_size));
+    if (mismatch(xxh3(bytes), e.raw_checksum)) fail(Rule::raw_checksum, in(e, e.offset), "checksum of decoded bytes mismatch");
+    p_.inflated.emplace_back(bytes.begin(), bytes.end());
     p_.raw[e.kind] = p_.inflated.back();
   }
 

@@ -31,6 +31,7 @@ const char* rule_name(Rule rule) {
     case Rule::non_finite: return "non-finite";
     case Rule::inverted_aabb: return "inverted-aabb";
     case Rule::bad_value: return "bad-value";
+    case Rule::mesh_codec: return "mesh-codec";
   }
   return "unknown-rule";
 }

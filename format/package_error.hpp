@@ -35,6 +35,7 @@ enum class Rule {
   non_finite,
   inverted_aabb,
   bad_value,              // a value outside its documented domain
+  mesh_codec,             // codec draco on a section it cannot serve, or on some mesh sections but not all
 };
 
 // "index-out-of-range" etc.: stable names used in messages and in `nanoview validate --json`.

@@ -44,6 +44,7 @@ constexpr std::array kKinds = {
     info<SectionKind::dropped_copies>("dropped_copies"),
     info<SectionKind::beads>("beads"),
     info<SectionKind::bead_ranges>("bead_ranges"),
+    info<SectionKind::draco_meshes>("draco_meshes"),
 };
 static_assert(kKinds.size() == std::size(kAllSectionKinds), "every kind has a name");
 

@@ -39,6 +39,7 @@ enum class SectionKind : std::uint32_t {
   dropped_copies = 26,   // format 2.2
   beads = 27,            // format 2.5
   bead_ranges = 28,      // format 2.5
+  draco_meshes = 29,     // format 2.6: the Draco streams the mesh sections of codec draco decode from
 };
 
 // Every kind this reader knows, in numeric order.
@@ -52,7 +53,7 @@ inline constexpr SectionKind kAllSectionKinds[] = {
     SectionKind::compartment_instances, SectionKind::provenance,  SectionKind::boundary_boxes,
     SectionKind::mask_words,      SectionKind::effects,         SectionKind::keyframes,
     SectionKind::triangle_drops,  SectionKind::dropped_copies,  SectionKind::beads,
-    SectionKind::bead_ranges,
+    SectionKind::bead_ranges,     SectionKind::draco_meshes,
 };
 
 bool is_known_section_kind(std::uint32_t kind);
@@ -93,6 +94,7 @@ template <> struct RecordOf<SectionKind::triangle_drops> { using type = gpu::Tri
 template <> struct RecordOf<SectionKind::dropped_copies> { using type = std::uint32_t; };
 template <> struct RecordOf<SectionKind::beads> { using type = gpu::Bead; };
 template <> struct RecordOf<SectionKind::bead_ranges> { using type = gpu::BeadRange; };
+template <> struct RecordOf<SectionKind::draco_meshes> { using type = std::uint8_t; };
 template <SectionKind K> using record_t = typename RecordOf<K>::type;
 
 }  // namespace nano::format

@@ -16,6 +16,7 @@ void add_bake_command(CLI::App& app) {
     std::string scene, output, report;
     std::uint64_t seed = 0;
     int jobs = 2;
+    MeshCodec mesh_codec = MeshCodec::automatic;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("bake", "Bake a scene description into a package (also: nanobake SCENE.json -o PKG)");
@@ -24,11 +25,17 @@ void add_bake_command(CLI::App& app) {
   CLI::Option* seed = cmd->add_option("--seed", options->seed, "overrides the scene's seed");
   cmd->add_option("--jobs", options->jobs, "worker threads")->check(CLI::Range(1, 256));
   cmd->add_option("--report", options->report, "write a JSON report of what was baked");
+  cmd->add_option("--mesh-codec", options->mesh_codec,
+                  "mesh sections: auto (Draco where smaller than zstd, meshes on Draco's exact grids), draco, or zstd "
+                  "(meshes exactly as read)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, MeshCodec>{
+          {"auto", MeshCodec::automatic}, {"draco", MeshCodec::draco}, {"zstd", MeshCodec::zstd}}));
   cmd->callback([options, seed] {
     const scene::SceneDescription scene = scene::load_scene_description(options->scene);
     BakeOptions bake_options;
     if (seed->count() > 0) bake_options.seed = options->seed;
     bake_options.jobs = options->jobs;
+    bake_options.mesh_codec = options->mesh_codec;
     bake_options.progress = [](const std::string& stage) { std::fprintf(stderr, "nanobake: %s...\n", stage.c_str()); };
     const BakedScene baked = bake_scene(scene, bake_options);
     const auto sections = baked.content.sections();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,7 +11,9 @@
 #include "bake/mesh/mesh_reader.hpp"
 #include "bake/mesh/rbc_mesh.hpp"
 #include "bake/mesh/sphere_mesh.hpp"
+#include "bake/scene_bake/mesh_packing.hpp"
 #include "common/error.hpp"
+#include "format/draco_mesh_sections.hpp"
 
 namespace nano::bake {
 namespace {
@@ -130,6 +133,26 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
   if (!result.report.usable()) refuse(result, compartment.name, result.report.problems);
   return result;
+}
+
+void put_on_storage_grids(CompartmentMesh& m) {
+  mesh::ProxyMesh moved = on_storage_grids(m.mesh);
+  const mesh::MeshReport report = mesh::check_mesh(moved, mesh::CheckOptions{});
+  if (!report.usable()) {
+    const mesh::MeshProblem& p = report.problems.front();
+    m.storage = "kept exact, stored with zstd: on Draco's grids it would fail " + p.rule +
+                (p.face >= 0 ? " at face " + std::to_string(p.face) : std::string());
+    return;
+  }
+  double largest = 0.0;
+  for (const glm::dvec3& p : m.mesh.positions) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  char step[32];
+  std::snprintf(step, sizeof step, "%g", double(format::storage_position_step(largest)));
+  m.storage = std::string("on Draco's grids: positions to multiples of ") + step +
+              " Å, normals to 16-bit octahedral pairs, UVs to multiples of 2^-24";
+  m.mesh = std::move(moved);
+  m.report = report;
+  m.on_storage_grids = true;
 }
 
 }  // namespace nano::bake

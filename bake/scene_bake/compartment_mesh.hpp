@@ -20,12 +20,18 @@ struct CompartmentMesh {
   std::optional<mesh::ChartAtlas> charts;  // when the baker made the UVs
   std::optional<mesh::RepairReport> repair;  // when the scene asked for "repair"
   std::string uv_origin;    // "from the mesh" or why the baker made them
+  bool on_storage_grids = false;  // put_on_storage_grids succeeded: Draco can store it exactly
+  std::string storage;      // what put_on_storage_grids did, or why it left the mesh exact
 };
 
 // Reads or generates the mesh, scales it (units, then the compartment's scale or the mesh's target
 // diameter or volume), makes UVs when the mesh has none usable (or the scene asks) and checks it.
 // Throws InputError naming the mesh (and the compartment) with all problems when unusable.
 CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment);
+
+// Moves the mesh onto the grids of Draco mesh sections (mesh_packing.hpp: on_storage_grids) if the
+// moved mesh still passes every check; otherwise leaves it exact (then zstd stores it) and says why.
+void put_on_storage_grids(CompartmentMesh& mesh);
 
 // Positions multiplied by `scale` (> 0); UVs and normals unchanged.
 void scale_mesh(mesh::ProxyMesh& mesh, double scale);

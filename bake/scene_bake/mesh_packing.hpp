@@ -24,4 +24,15 @@ struct PackedMesh {
 // Requires UVs and normals on every corner (a mesh that passed check-mesh has both).
 PackedMesh pack_mesh(const mesh::ProxyMesh& mesh);
 
+// The mesh on the exact grids of Draco mesh sections (format/draco_mesh_sections.hpp), in their
+// canonical order, so that what is baked is what a Draco package decodes to, bit for bit:
+// positions snapped to storage_position_step (2^-5 Å for any cell), normals to the octahedral grid,
+// UVs to the membrane's 2^-24 ownership grid (which the membrane bake snaps to anyway). Positions
+// that snapping makes identical are welded, so check the result before baking it.
+mesh::ProxyMesh on_storage_grids(const mesh::ProxyMesh& mesh);
+
+// pack_mesh in the canonical order, for a mesh from on_storage_grids (whose triangles are in that
+// order already: the shells baked per triangle stay parallel). Throws std::logic_error otherwise.
+PackedMesh pack_mesh_canonical(const mesh::ProxyMesh& mesh);
+
 }  // namespace nano::bake

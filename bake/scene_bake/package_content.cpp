@@ -203,10 +203,13 @@ std::vector<format::SectionSource> PackageContent::sections() const {
   add(SectionKind::recipes, std::span(recipes));
   add(SectionKind::recipe_indices, std::span(recipe_indices));
   add(SectionKind::meshes, std::span(meshes));
-  add(SectionKind::vertex_positions, std::span(vertex_positions));
-  add(SectionKind::vertex_normals, std::span(vertex_normals));
-  add(SectionKind::vertex_uvs, std::span(vertex_uvs));
-  add(SectionKind::triangles, std::span(triangles));
+  const auto add_mesh_data = [&](SectionKind kind, auto span) {
+    if (!span.empty()) s.push_back(section_source(kind, span, mesh_compression));
+  };
+  add_mesh_data(SectionKind::vertex_positions, std::span(vertex_positions));
+  add_mesh_data(SectionKind::vertex_normals, std::span(vertex_normals));
+  add_mesh_data(SectionKind::vertex_uvs, std::span(vertex_uvs));
+  add_mesh_data(SectionKind::triangles, std::span(triangles));
   add(SectionKind::triangle_shells, std::span(triangle_shells));
   // Required: a 2.1 reader that skipped them would render the copies that clash.
   if (!dropped_copies.empty()) {

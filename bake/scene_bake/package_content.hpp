@@ -48,6 +48,8 @@ struct PackageContent {
   std::vector<gpu::InstanceKeyframe> keyframes;     // ascending (instance, time)
   std::vector<gpu::CompartmentInstance> compartment_instances;
   std::string provenance;
+  // How the four mesh sections are stored (format/writer.hpp): zstd, or Draco where smaller, or Draco.
+  format::Compression mesh_compression = format::Compression::zstd_if_smaller;
 
   // Appends `text` to the string table; returns (offset, length).
   std::pair<std::uint32_t, std::uint32_t> add_string(const std::string& text);

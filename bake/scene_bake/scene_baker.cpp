@@ -16,6 +16,7 @@
 #include "bake/scene_bake/provenance.hpp"
 #include "bake/tiles/bilayer_footprint.hpp"
 #include "bake/tiles/tile_random.hpp"
+#include "common/error.hpp"
 #include "common/parallel_for.hpp"
 
 namespace nano::bake {
@@ -263,7 +264,14 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
 
   std::vector<CompartmentBake> compartments(scene.compartments.size());
   for (std::size_t c = 0; c < scene.compartments.size(); ++c)
-    compartments[c].mesh = clock.run("meshes", [&] { return load_compartment_mesh(scene.compartments[c]); });
+    compartments[c].mesh = clock.run("meshes", [&] {
+      CompartmentMesh loaded = load_compartment_mesh(scene.compartments[c]);
+      if (options.mesh_codec != MeshCodec::zstd) put_on_storage_grids(loaded);
+      else loaded.storage = "exact as read (--mesh-codec zstd)";
+      if (options.mesh_codec == MeshCodec::draco && !loaded.on_storage_grids)
+        throw InputError(loaded.origin, "", "--mesh-codec draco: " + loaded.storage);
+      return loaded;
+    });
 
   // A membrane's tiles must survive the most anisotropic chart, the most curved surface and the
   // most tilted normals among the meshes that wear it (5% on the curvature for what the
@@ -337,6 +345,9 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
 
   clock.run("package content", [&] {
     PackageContent& content = baked.content;
+    content.mesh_compression = options.mesh_codec == MeshCodec::zstd    ? format::Compression::zstd_if_smaller
+                               : options.mesh_codec == MeshCodec::draco ? format::Compression::draco
+                                                                        : format::Compression::draco_if_smaller;
     for (const BakedMolecule& m : library) content.add_molecule(m);
     std::vector<TileRange> membrane_ranges, soluble_ranges;
     for (const BakedWangSet& s : membrane_sets) membrane_ranges.push_back(content.add_wang_set(s, library));
@@ -347,7 +358,7 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       CompartmentBake& bake = compartments[c];
       gpu::Compartment record{};
       record.membrane_recipe = record.soluble_recipe = gpu::NANO_NO_INDEX;
-      const PackedMesh packed = pack_mesh(bake.mesh.mesh);
+      const PackedMesh packed = bake.mesh.on_storage_grids ? pack_mesh_canonical(bake.mesh.mesh) : pack_mesh(bake.mesh.mesh);
       record.mesh = bake.membrane ? content.add_mesh(packed, bake.membrane->shells, bake.membrane->dropped)
                                   : content.add_mesh(packed, empty_shells(bake.mesh.mesh));
       std::tie(record.name_offset, record.name_length) = content.add_string(description.name);
@@ -357,6 +368,7 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       summary.mesh_origin = bake.mesh.origin;
       summary.mesh_scale = bake.mesh.scale;
       summary.uv_origin = bake.mesh.uv_origin;
+      summary.mesh_storage = bake.mesh.storage;
       summary.charts = bake.mesh.charts;
       summary.repair = bake.mesh.repair;
       summary.triangles = static_cast<std::uint32_t>(bake.mesh.mesh.triangles.size());

@@ -16,8 +16,13 @@
 
 namespace nano::bake {
 
+// How the package stores its meshes: Draco where smaller than zstd (the meshes baked on Draco's exact
+// grids), Draco always (an error if it cannot), or zstd with the meshes exactly as read.
+enum class MeshCodec { automatic, draco, zstd };
+
 struct BakeOptions {
   std::optional<std::uint64_t> seed;  // overrides the scene's seed
+  MeshCodec mesh_codec = MeshCodec::automatic;
   int jobs = 1;                       // worker threads for the heavy stages
   std::function<void(const std::string&)> progress;  // stage announcements; may be empty
 };
@@ -52,6 +57,7 @@ struct CompartmentSummary {
   std::string mesh_origin;
   double mesh_scale = 1.0;                      // compartment space per mesh unit
   std::string uv_origin;                        // from the mesh, or why the baker made them
+  std::string mesh_storage;                     // on Draco's grids, or why exact (CompartmentMesh::storage)
   std::optional<mesh::ChartAtlas> charts;       // the charts the baker made
   std::optional<mesh::RepairReport> repair;     // what "repair" changed
   std::uint32_t triangles = 0;

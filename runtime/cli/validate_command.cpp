@@ -12,7 +12,14 @@ namespace {
 
 using format::SectionEntry;
 
-const char* codec_name(std::uint16_t codec) { return codec == static_cast<std::uint16_t>(format::Codec::zstd) ? "zstd" : "none"; }
+const char* codec_name(std::uint16_t codec) {
+  switch (static_cast<format::Codec>(codec)) {
+    case format::Codec::zstd: return "zstd";
+    case format::Codec::draco: return "draco";
+    case format::Codec::none: break;
+  }
+  return "none";
+}
 
 // Records in a section, or nothing for kinds this reader does not know.
 std::optional<std::uint64_t> record_count(const format::Package& p, const SectionEntry& e) {

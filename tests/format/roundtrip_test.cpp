@@ -99,7 +99,9 @@ void expect_scene(const Package& p, const SampleScene& s) {
 TEST(RoundTrip, EverySectionKindUncompressed) {
   const SampleScene s = make_sample_scene();
   const Package p = Package::from_bytes(build(s, Compression::none));
-  EXPECT_EQ(p.entries().size(), std::size(kAllSectionKinds));
+  // All but draco_meshes, which exists only when the mesh sections are Draco-coded (draco_mesh_sections_test).
+  EXPECT_EQ(p.entries().size(), std::size(kAllSectionKinds) - 1);
+  EXPECT_FALSE(p.has(SectionKind::draco_meshes));
   for (const SectionEntry& e : p.entries()) EXPECT_EQ(e.codec, static_cast<std::uint16_t>(Codec::none));
   expect_scene(p, s);
   EXPECT_NO_THROW(validate_semantics(p));
@@ -207,7 +209,8 @@ TEST(SectionKinds, NamesRoundTripAndRecordSizes) {
     EXPECT_EQ(section_kind_from_name(section_kind_name(k)), k);
   }
   EXPECT_FALSE(is_known_section_kind(0));
-  EXPECT_FALSE(is_known_section_kind(29));
+  EXPECT_FALSE(is_known_section_kind(30));
+  EXPECT_EQ(record_size(SectionKind::draco_meshes), 1u);
   EXPECT_EQ(record_size(SectionKind::triangle_drops), 8u);
   EXPECT_EQ(record_size(SectionKind::dropped_copies), 4u);
   EXPECT_EQ(record_size(SectionKind::beads), 32u);

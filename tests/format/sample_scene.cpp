@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "format/draco_mesh_sections.hpp"
+
 namespace nano::format::test {
 namespace {
 
@@ -53,10 +55,12 @@ SampleScene make_sample_scene() {
   s.recipes = {{uvec4(2, 2, 1, gpu::NANO_RECIPE_2D), 0, 4, 0, 0}, {uvec4(1, 1, 2, gpu::NANO_RECIPE_3D), 4, 2, 0, 0}};
   s.recipe_indices = {0, 1, 1, 0, 0, 0};
   s.meshes = {{vec4(0, 0, 0, 0), vec4(1, 1, 1, 0), 0, 4, 0, 4}};
-  s.vertex_positions = {vec4(0, 0, 0, 0), vec4(1, 0, 0, 0), vec4(0, 1, 0, 0), vec4(0, 0, 1, 0)};
-  s.vertex_normals = {vec4(-0.57735f, -0.57735f, -0.57735f, 0), vec4(1, 0, 0, 0), vec4(0, 1, 0, 0), vec4(0, 0, 1, 0)};
-  s.vertex_uvs = {vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(1, 1)};
-  s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  // A tetrahedron on the Draco sections' grids and in their canonical order (draco_mesh_sections.hpp),
+  // so the same scene can be written with Draco mesh sections.
+  s.vertex_positions = {vec4(0, 0, 0, 0), vec4(0, 0, 1, 0), vec4(0, 1, 0, 0), vec4(1, 0, 0, 0)};
+  s.vertex_normals = {snap_normal_to_grid(vec4(-1, -1, -1, 0)), vec4(0, 0, 1, 0), vec4(0, 1, 0, 0), vec4(1, 0, 0, 0)};
+  s.vertex_uvs = {vec2(0, 0), vec2(1, 1), vec2(0, 1), vec2(1, 0)};
+  s.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
   for (int t = 0; t < 4; ++t) s.triangle_shells.push_back({vec4(0, 0, 1, 1), 3.0f + t, 1.0f, 0.25f, 0});
   // An 8x8x8 core grid: mostly outside, so the occupancy section compresses.
   s.occupancy.assign(512, gpu::NANO_BOX_OUTSIDE);
@@ -98,8 +102,10 @@ SampleScene make_sample_scene() {
   return s;
 }
 
-std::vector<SectionSource> sections_of(const SampleScene& s, Compression c, std::optional<SectionKind> without) {
+std::vector<SectionSource> sections_of(const SampleScene& s, Compression mesh_c, std::optional<SectionKind> without) {
   using K = SectionKind;
+  // Draco serves the four mesh sections only; the others then take zstd where it pays.
+  const Compression c = mesh_c == Compression::draco || mesh_c == Compression::draco_if_smaller ? Compression::zstd_if_smaller : mesh_c;
   std::vector<SectionSource> all = {
       text_source(K::strings, s.strings, c),
       source(K::molecules, s.molecules, c),
@@ -111,10 +117,10 @@ std::vector<SectionSource> sections_of(const SampleScene& s, Compression c, std:
       source(K::recipes, s.recipes, c),
       source(K::recipe_indices, s.recipe_indices, c),
       source(K::meshes, s.meshes, c),
-      source(K::vertex_positions, s.vertex_positions, c),
-      source(K::vertex_normals, s.vertex_normals, c),
-      source(K::vertex_uvs, s.vertex_uvs, c),
-      source(K::triangles, s.triangles, c),
+      source(K::vertex_positions, s.vertex_positions, mesh_c),
+      source(K::vertex_normals, s.vertex_normals, mesh_c),
+      source(K::vertex_uvs, s.vertex_uvs, mesh_c),
+      source(K::triangles, s.triangles, mesh_c),
       source(K::triangle_shells, s.triangle_shells, c),
       source(K::compartments, s.compartments, c),
       source(K::occupancy, s.occupancy, c),
