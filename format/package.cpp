@@ -301,7 +301,9 @@ private:
       decoded = decode_draco_meshes(p_.raw[static_cast<std::uint32_t>(SectionKind::draco_meshes)], records,
                                     raw_records(SectionKind::vertex_positions), raw_records(SectionKind::triangles));
     } catch (const DracoSectionError& d) {
-      fail(Rule::decompression, {streams->kind, d.offset(), streams->codec != static_cast<std::uint16_t>(Codec::none)}, d.what());
+      // As everywhere: a file offset for a section stored raw, else an offset in its decompressed bytes.
+      const bool raw = streams->codec == static_cast<std::uint16_t>(Codec::none);
+      fail(Rule::decompression, {streams->kind, raw ? streams->offset + d.offset() : d.offset(), !raw}, d.what());
     }
     keep_decoded(SectionKind::vertex_positions, std::as_bytes(std::span(decoded.positions)));
     keep_decoded(SectionKind::vertex_normals, std::as_bytes(std::span(decoded.normals)));

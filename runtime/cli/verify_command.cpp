@@ -28,7 +28,7 @@ namespace {
 void print_view(const std::string& name, std::uint32_t w, std::uint32_t h, const ViewVerdict& v, double gpu_seconds) {
   const oracle::CompareResult& r = v.comparison;
   std::printf("%-24s %4ux%-4u agreement %.5f (%llu pixels hit; missed %llu, other atom %llu, other ids %llu, depth %llu, "
-              "bad depth %llu; %llu not explained by radii ±%g) gpu %.2f s, oracle %.2f s over %llu atoms\n",
+              "bad depth %llu; %llu not explained by radii ±%g or by float placement) gpu %.2f s, oracle %.2f s over %llu atoms\n",
               name.c_str(), w, h, r.agreement(), (unsigned long long)v.reference_hits, (unsigned long long)r.missed,
               (unsigned long long)r.different_atom, (unsigned long long)r.different_ids, (unsigned long long)r.depth_only,
               (unsigned long long)r.bad_depth, (unsigned long long)v.unexplained, kRadiusEpsilon, gpu_seconds,
@@ -117,7 +117,7 @@ void run_verify(const VerifyOptions& o) {
                      {"views", views},
                      {"validation_errors", session.validation_errors()}};
   if (o.json) std::printf("%s\n", out.dump(2).c_str());
-  else std::printf("agreement %.5f over %llu pixels on %s; %llu differences not explained by radii ±%g\n",
+  else std::printf("agreement %.5f over %llu pixels on %s; %llu differences not explained by radii ±%g or by float placement\n",
                    total.agreement(), (unsigned long long)total.pixels, session.device.description().c_str(),
                    (unsigned long long)total_unexplained, kRadiusEpsilon);
   if (session.validation_errors() != 0)

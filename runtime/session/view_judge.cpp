@@ -12,6 +12,10 @@ ViewJudge::ViewJudge(const format::Package& package, const oracle::ExplicitScene
   for (const gpu::Atom& a : package.records<format::SectionKind::atoms>())
     largest_atom_ = std::max(largest_atom_, double(a.centre_radius.w));
   grazing_slack_ = largest_atom_ * std::sqrt(2 * kRadiusEpsilon);
+  float largest = 0.f;
+  for (const gpu::Mesh& m : package.records<format::SectionKind::meshes>())
+    for (int a = 0; a < 3; ++a) largest = std::max({largest, std::abs(m.aabb_min[a]), std::abs(m.aabb_max[a])});
+  placement_slack_ = kPlacementUlps * double(std::nextafter(largest, INFINITY) - largest);
 }
 
 ViewVerdict ViewJudge::judge(const std::string& view_name, const gpu::Camera& camera, const std::vector<gpu::PixelHit>& hits,
@@ -50,6 +54,9 @@ std::uint64_t ViewJudge::unexplained_pixels(const oracle::OracleRenderOptions& o
   for (std::size_t i = 0; i < reference.size(); ++i) {
     if (oracle::classify(reference[i], hits[i]) == oracle::PixelDifference::none ||
         oracle::explained_by_radius_change(hits[i], reference[i], shrunk[i], grown[i], grazing_slack_))
+      continue;
+    if (oracle::classify(reference[i], hits[i]) == oracle::PixelDifference::depth_only &&
+        std::abs(double(hits[i].depth) - double(reference[i].depth)) <= placement_slack_ + oracle::depth_tolerance(reference[i].depth))
       continue;
     if (!clip_.empty() && (oracle::classify(clipped_more[i], hits[i]) == oracle::PixelDifference::none ||
                            oracle::classify(clipped_less[i], hits[i]) == oracle::PixelDifference::none))

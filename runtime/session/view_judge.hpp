@@ -1,7 +1,8 @@
 #pragma once
 // verify's judgement of one view: the device's hits against the CPU oracle's, pixel by pixel, and
 // which differences are only grazing touches, float ties at an atom's surface or at a clip plane
-// (they flip when every radius, one atom's radius or every clip plane moves by a hair).
+// (they flip when every radius, one atom's radius or every clip plane moves by a hair), or the same
+// atom of the same copy at a depth within the float resolution of compartment space.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,6 +24,11 @@ inline constexpr double kRadiusEpsilon = 1e-3;
 // Å by which clip planes move to tell float ties at a plane from real clipping errors: the device
 // tests atom centres in compartment space in float (~4e-3 Å ulp at 4·10^4 Å).
 inline constexpr double kClipEpsilon = 1e-2;
+// Float steps of compartment space by which a copy may stand apart in the device and the oracle:
+// both place a copy's origin in float at compartment-space magnitudes (4·10^4 Å on a red blood
+// cell's rim, a 0.004 Å step) but not through bit-identical operations (the device's fused and
+// approximate arithmetic), so the same atom of the same copy may lie that much nearer or farther.
+inline constexpr double kPlacementUlps = 4;
 
 struct ViewVerdict {
   oracle::CompareResult comparison;
@@ -50,6 +56,7 @@ private:
   std::vector<glm::dvec4> clip_;
   double largest_atom_ = 0;
   double grazing_slack_ = 0;
+  double placement_slack_ = 0;  // kPlacementUlps float steps at the meshes' largest coordinate, Å
   oracle::WorldBox bounds_;
 };
 

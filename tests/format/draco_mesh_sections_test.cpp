@@ -26,6 +26,7 @@ using test::entry_at;
 using test::entry_index;
 using test::get_le;
 using test::put_le;
+using test::resealed;
 
 constexpr float kPi = 3.14159265358979f;
 
@@ -266,18 +267,6 @@ TEST(DracoPackage, IfSmallerPicksWhicheverIsSmaller) {
   for (SectionSource& src : partial)
     if (src.kind == static_cast<std::uint32_t>(SectionKind::vertex_uvs)) src.compression = Compression::none;
   EXPECT_THROW(build_package(partial), std::invalid_argument);
-}
-
-// Patches a package and makes every checksum agree again, so the lie reaches the decoder.
-std::vector<std::byte> resealed(std::vector<std::byte> b) {
-  const std::size_t count = get_le(b, 32, 4);
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t at = entry_at(i);
-    const std::span<const std::byte> stored(b.data() + get_le(b, at + 8, 8), get_le(b, at + 16, 8));
-    put_le(b, at + 32, 8, xxh3(stored));
-  }
-  seal_header(b);
-  return b;
 }
 
 std::size_t draco_section_offset(std::span<const std::byte> b) {

@@ -1,5 +1,6 @@
 // Writes the packages the CLI tests run `nanoview validate` on (and the fuzz seeds):
-// valid.nup, valid-raw.nup, bad-checksum.nup, bad-atom-range.nup, empty.nup.
+// valid.nup, valid-raw.nup, valid-draco.nup, bad-checksum.nup, bad-draco-step.nup,
+// bad-atom-range.nup, empty.nup.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,13 @@ int main(int argc, char** argv) {
   test::SampleScene s = test::make_sample_scene();
   write_package(dir / "valid.nup", test::sections_of(s, Compression::zstd_if_smaller));
   write_package(dir / "valid-raw.nup", test::sections_of(s, Compression::none));
+  write_package(dir / "valid-draco.nup", test::sections_of(s, Compression::draco));
+
+  // Mesh 0's position step made 3: no power of two, so its floats would be no grid's.
+  std::vector<std::byte> draco = build_package(test::sections_of(s, Compression::draco));
+  const std::size_t streams = test::get_le(draco, test::entry_at(test::entry_index(draco, SectionKind::draco_meshes)) + 8, 8);
+  test::put_le(draco, streams + 16, 4, 0x40400000u);  // 3.0f
+  nano::write_file_atomically(dir / "bad-draco-step.nup", test::resealed(draco));
 
   std::vector<std::byte> flipped = test::build(s, Compression::none);
   const std::size_t atoms = test::entry_at(test::entry_index(flipped, SectionKind::atoms));

@@ -5,7 +5,8 @@ the baker: `represented_atoms=1.2e12:0.10` means within 10 % of 1.2e12; `copies.
 reads compartment rbc's copies of haemoglobin; `lipids.virion.total` its membrane's lipids in both
 leaflets; `charts.virion.max_stretch` a field of the UV charts the baker made for its mesh;
 `bilayer.virion.beside_proteins` the share of a real bilayer's lipids it holds beside its
-proteins. Also checks the report's required keys and that every molecule type has beads.
+proteins. Also checks the report's required keys, that every molecule type has beads, and that the
+mesh sections are stored the smaller way (Draco where its streams beat zstd) with consistent sizes.
 """
 import json
 import sys
@@ -50,6 +51,19 @@ def main():
     for name, lod in report.get("level_of_detail", {}).items():
         if not 1 <= lod["beads"] <= max(1, lod["atoms"] - 1):
             print(f"level of detail of {name}: {lod['beads']} beads for {lod['atoms']} atoms")
+            failures += 1
+    # The baker's default stores meshes as Draco exactly when that is smaller than zstd.
+    meshes = report.get("mesh_sections")
+    if meshes is None:
+        print("missing key mesh_sections")
+        failures += 1
+    else:
+        draco_smaller = "draco_bytes" in meshes and meshes["draco_bytes"] < meshes["zstd_bytes"]
+        chosen = meshes["draco_bytes"] if meshes["codec"] == "draco" else meshes["zstd_bytes"]
+        print(f"mesh sections: {meshes['codec']}, {meshes['stored_bytes']} bytes stored "
+              f"(zstd {meshes['zstd_bytes']}, Draco {meshes.get('draco_bytes', meshes.get('draco_unavailable'))})")
+        if (meshes["codec"] == "draco") != draco_smaller or meshes["stored_bytes"] != chosen:
+            print("mesh sections not stored the smaller way")
             failures += 1
     for spec in sys.argv[2:]:
         key, expectation = spec.split("=")

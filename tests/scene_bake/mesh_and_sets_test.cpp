@@ -12,6 +12,7 @@
 #include "bake/scene_bake/wang_bake.hpp"
 #include "bake/tiles/wang_colouring.hpp"
 #include "common/error.hpp"
+#include "format/draco_mesh_sections.hpp"
 
 namespace {
 
@@ -49,6 +50,96 @@ TEST(MeshPacking, RefusesAMeshWithoutUvs) {
   mesh::ProxyMesh sphere = mesh::make_sphere_mesh(48, 10.0);
   sphere.uv_triangles.clear();
   EXPECT_THROW(bake::pack_mesh(sphere), std::invalid_argument);
+}
+
+// On Draco's grids a mesh moves by at most half a grid step, keeps its topology and every corner's
+// attributes, and packs in canonical order to exactly what a Draco package decodes to.
+TEST(MeshPacking, StorageGridsMoveLittleAndPackToWhatDracoDecodes) {
+  const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(1200, 3000.0);
+  const mesh::ProxyMesh moved = bake::on_storage_grids(sphere);
+  ASSERT_EQ(moved.triangles.size(), sphere.triangles.size());
+  EXPECT_EQ(moved.positions.size(), sphere.positions.size());  // welded as before: nothing merged
+  const float step = format::storage_position_step(3000.0);
+  EXPECT_EQ(step, 1.f / 32);
+  // Triangles are reordered and rotated: each moved triangle is matched to the input triangle (and
+  // rotation) whose corners lie nearest, found through its centroid on a 1 Å grid.
+  const auto cell = [](const glm::dvec3& p) {
+    return std::array<std::int64_t, 3>{std::llround(std::floor(p.x)), std::llround(std::floor(p.y)), std::llround(std::floor(p.z))};
+  };
+  const auto centroid = [](const mesh::ProxyMesh& m, std::size_t t) {
+    return (m.corner_position(t, 0) + m.corner_position(t, 1) + m.corner_position(t, 2)) / 3.0;
+  };
+  std::map<std::array<std::int64_t, 3>, std::vector<std::size_t>> by_cell;
+  for (std::size_t t = 0; t < sphere.triangles.size(); ++t) by_cell[cell(centroid(sphere, t))].push_back(t);
+  double worst_move = 0.0, worst_uv = 0.0, worst_angle = 0.0;
+  std::set<std::size_t> matched;
+  for (std::size_t t = 0; t < moved.triangles.size(); ++t) {
+    const std::array<std::int64_t, 3> home = cell(centroid(moved, t));
+    double best = 1e300;
+    std::size_t best_t = 0;
+    int best_r = 0;
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = by_cell.find({home[0] + dx, home[1] + dy, home[2] + dz});
+          if (it == by_cell.end()) continue;
+          for (const std::size_t u : it->second)
+            for (int r = 0; r < 3; ++r) {
+              double d = 0.0;
+              for (int c = 0; c < 3; ++c) d = std::max(d, glm::length(moved.corner_position(t, c) - sphere.corner_position(u, (c + r) % 3)));
+              if (d < best) best = d, best_t = u, best_r = r;
+            }
+        }
+    matched.insert(best_t);
+    worst_move = std::max(worst_move, best);
+    for (int c = 0; c < 3; ++c) {
+      const int d = (c + best_r) % 3;
+      worst_uv = std::max(worst_uv, glm::length(moved.corner_uv(t, c) - sphere.corner_uv(best_t, d)));
+      const glm::dvec3 a = moved.corner_normal(t, c), b = sphere.corner_normal(best_t, d);
+      worst_angle = std::max(worst_angle, std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
+      for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(std::fmod(moved.corner_position(t, c)[axis], double(step)), 0.0);
+    }
+  }
+  EXPECT_EQ(matched.size(), sphere.triangles.size());  // one to one
+  EXPECT_LE(worst_move, std::sqrt(3.0) * step / 2);
+  EXPECT_LE(worst_uv, std::sqrt(2.0) * 0x1p-25 + 1e-12);
+  EXPECT_LT(worst_angle, 1e-4);
+  const mesh::MeshReport report = mesh::check_mesh(moved, mesh::CheckOptions{});
+  EXPECT_TRUE(report.usable());
+
+  // Packed canonically, the arrays are what Draco streams decode to, bit for bit.
+  const bake::PackedMesh packed = bake::pack_mesh_canonical(moved);
+  gpu::Mesh record{};
+  record.vertex_count = std::uint32_t(packed.positions.size());
+  record.triangle_count = std::uint32_t(packed.triangles.size());
+  const format::DracoEncoding draco =
+      format::encode_draco_meshes(std::span(&record, 1), packed.positions, packed.normals, packed.uvs, packed.triangles);
+  ASSERT_TRUE(draco.why.empty()) << draco.why;
+  const format::MeshArrays decoded = format::decode_draco_meshes(draco.section, std::span(&record, 1), 1u << 20, 1u << 20);
+  EXPECT_TRUE(format::same_bits(decoded, {packed.positions, packed.normals, packed.uvs, packed.triangles}));
+  // The exact input packs to arrays Draco cannot store exactly (floats off every coarse grid).
+  const bake::PackedMesh exact = bake::pack_mesh(sphere);
+  gpu::Mesh exact_record{};
+  exact_record.vertex_count = std::uint32_t(exact.positions.size());
+  exact_record.triangle_count = std::uint32_t(exact.triangles.size());
+  EXPECT_NE(format::encode_draco_meshes(std::span(&exact_record, 1), exact.positions, exact.normals, exact.uvs, exact.triangles).why, "");
+  // A mesh in another order is refused by pack_mesh_canonical (its shells would not be parallel).
+  EXPECT_THROW(bake::pack_mesh_canonical(sphere), std::logic_error);
+}
+
+TEST(CompartmentMesh, PutOnStorageGridsSaysWhatItDid) {
+  scene::CompartmentDescription c;
+  c.name = "virion";
+  c.mesh.kind = scene::MeshSource::Kind::sphere;
+  c.mesh.triangles = 300;
+  c.mesh.radius = 400.0;
+  bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  EXPECT_FALSE(m.on_storage_grids);
+  bake::put_on_storage_grids(m);
+  EXPECT_TRUE(m.on_storage_grids);
+  EXPECT_TRUE(m.report.usable());
+  EXPECT_NE(m.storage.find("0.03125 Å"), std::string::npos) << m.storage;
+  EXPECT_NO_THROW(bake::pack_mesh_canonical(m.mesh));
 }
 
 TEST(CompartmentMesh, ScalesPositionsOnly) {
