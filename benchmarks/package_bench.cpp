@@ -9,10 +9,14 @@
 //   BM_BundledOpen / BM_BundledValidate  Package::open, then validate_semantics alone, of a real
 //                          baked package given by NANO_BENCH_PACKAGE (skipped when unset), e.g.
 //                          NANO_BENCH_PACKAGE=out/virion.nup build/benchmarks/package_bench
+//   BM_OpenMeshSections    from_bytes of a package holding only a UV-sphere mesh (`triangles`) whose
+//                          four mesh sections are zstd (draco 0) or Draco streams (draco 1): what
+//                          decoding Draco at open costs against zstd
 // bytes/s counts the sections' decompressed (raw) bytes — the data actually checked — so raw and
 // zstd packages compare; file_bytes is the package's size on disk. The padded sample scene repeats
 // one atom, so it compresses far better than a real package: its zstd rows time the decompression
 // of highly redundant data.
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -77,6 +81,33 @@ void BM_OpenValidateMapped(benchmark::State& state) {
   std::filesystem::remove(path);
 }
 BENCHMARK(BM_OpenValidateMapped)->ArgName("atoms")->Arg(1000000)->Unit(benchmark::kMillisecond);
+
+void BM_OpenMeshSections(benchmark::State& state) {
+  // rings x 2·rings quads, two triangles each (one at the poles).
+  const int rings = static_cast<int>(std::sqrt(double(state.range(0)) / 4.0));
+  const format::MeshArrays mesh = format::test::grid_sphere(rings, 2 * rings, 40000.f);
+  gpu::Mesh record{};
+  record.vertex_count = static_cast<std::uint32_t>(mesh.positions.size());
+  record.triangle_count = static_cast<std::uint32_t>(mesh.triangles.size());
+  const format::Compression c = state.range(1) ? format::Compression::draco : format::Compression::zstd_if_smaller;
+  using format::SectionKind;
+  const std::vector<format::SectionSource> sections = {
+      format::section_source(SectionKind::meshes, std::span<const gpu::Mesh>(&record, 1)),
+      format::section_source(SectionKind::vertex_positions, std::span(mesh.positions), c),
+      format::section_source(SectionKind::vertex_normals, std::span(mesh.normals), c),
+      format::section_source(SectionKind::vertex_uvs, std::span(mesh.uvs), c),
+      format::section_source(SectionKind::triangles, std::span(mesh.triangles), c)};
+  const auto bytes = format::build_package(sections);
+  for (auto _ : state) {
+    const format::Package p = format::Package::from_bytes(bytes);
+    benchmark::DoNotOptimize(p.raw_bytes(SectionKind::triangles).data());
+    benchmark::ClobberMemory();
+  }
+  count_bytes(state, format::Package::from_bytes(bytes));
+  state.counters["triangles"] = static_cast<double>(mesh.triangles.size());
+}
+BENCHMARK(BM_OpenMeshSections)->ArgNames({"triangles", "draco"})
+    ->ArgsProduct({{20000, 200000}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 std::optional<std::filesystem::path> bundled_package(benchmark::State& state) {
   const char* env = std::getenv("NANO_BENCH_PACKAGE");

@@ -72,11 +72,15 @@ struct DracoEncoding {
   std::vector<std::byte> section;  // the whole "draco_meshes" section, empty when `why` is set
   std::string why;
 };
+// Draco's speed setting (0 smallest in general ... 10 fastest): 2 is smallest on these integer
+// attributes (red blood cell 68.3 kB at 2, 72.7 at 0, 71.0 at 5, 98.1 at 10; its mesh decodes in 4 ms).
+inline constexpr int kDefaultDracoSpeed = 2;
+
 // Encodes every mesh of the four sections (ranges from `meshes`, which must tile them in order) and
-// decodes the result again to prove it exact. `speed` is Draco's (0 smallest ... 10 fastest).
+// decodes the result again to prove it exact.
 DracoEncoding encode_draco_meshes(std::span<const gpu::Mesh> meshes, std::span<const glm::vec4> positions,
                                   std::span<const glm::vec4> normals, std::span<const glm::vec2> uvs,
-                                  std::span<const gpu::Triangle> triangles, int speed = 0);
+                                  std::span<const gpu::Triangle> triangles, int speed = kDefaultDracoSpeed);
 
 // A defect of a "draco_meshes" section: where (byte offset in its raw bytes) and what.
 class DracoSectionError : public std::runtime_error {

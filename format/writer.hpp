@@ -32,7 +32,6 @@ SectionSource section_source(SectionKind kind, std::span<const T> records,
 }
 
 inline constexpr int kDefaultZstdLevel = 9;
-inline constexpr int kDefaultDracoSpeed = 0;  // Draco's smallest; a proxy mesh decodes in milliseconds
 
 // What the section would take in the file stored as zstd_if_smaller.
 std::uint64_t zstd_stored_size(std::span<const std::byte> raw, int zstd_level = kDefaultZstdLevel);

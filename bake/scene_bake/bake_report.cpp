@@ -180,6 +180,15 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       out << line;
     }
   }
+  {
+    const format::SectionEntry* streams = package.entry(format::SectionKind::draco_meshes);
+    std::uint64_t stored = streams ? streams->stored_size : 0;
+    for (format::SectionKind k : format::kDracoCodedKinds)
+      if (const format::SectionEntry* e = package.entry(k)) stored += e->stored_size;
+    std::snprintf(line, sizeof line, "  meshes: %s, %.1f kB\n", streams ? "Draco streams (on Draco's exact grids)" : "zstd",
+                  stored / 1e3);
+    out << line;
+  }
   for (const WangSetSummary& s : scene.wang_sets) {
     if (s.surface) {
       std::snprintf(line, sizeof line,

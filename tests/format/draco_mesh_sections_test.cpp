@@ -28,31 +28,7 @@ using test::get_le;
 using test::put_le;
 using test::resealed;
 
-constexpr float kPi = 3.14159265358979f;
-
-// A UV sphere of `rings` x `segments` quads on the grids (positions in 1/32 Å, UVs in 2^-24),
-// with a seam: the vertices of segment 0 exist twice, at u = 0 and u = 1, as a baker's would.
-MeshArrays grid_sphere(int rings, int segments, float radius) {
-  MeshArrays m;
-  const auto vertex = [&](int r, int s) {
-    const float theta = kPi * float(r) / float(rings), phi = 2 * kPi * float(s % segments) / float(segments);
-    const glm::vec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-    const vec4 normal = snap_normal_to_grid(vec4(n, 0));
-    m.positions.push_back({snap_to_step(radius * n.x, 1.f / 32), snap_to_step(radius * n.y, 1.f / 32),
-                           snap_to_step(radius * n.z, 1.f / 32), 0.f});
-    m.normals.push_back(normal);
-    m.uvs.push_back({snap_to_step(float(s) / float(segments), 0x1p-24f), snap_to_step(float(r) / float(rings), 0x1p-24f)});
-  };
-  for (int r = 0; r <= rings; ++r)
-    for (int s = 0; s <= segments; ++s) vertex(r, s);
-  const auto at = [&](int r, int s) { return std::uint32_t(r * (segments + 1) + s); };
-  for (int r = 0; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      if (r > 0) m.triangles.push_back({at(r, s), at(r + 1, s), at(r, s + 1)});
-      if (r + 1 < rings) m.triangles.push_back({at(r, s + 1), at(r + 1, s), at(r + 1, s + 1)});
-    }
-  return canonical_mesh_order(m);
-}
+using test::grid_sphere;
 
 gpu::Mesh record_of(const MeshArrays& m, std::uint32_t first_vertex = 0, std::uint32_t first_triangle = 0) {
   gpu::Mesh r{};

@@ -1,6 +1,7 @@
 #include "tests/format/sample_scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "format/draco_mesh_sections.hpp"
@@ -140,6 +141,27 @@ std::vector<SectionSource> sections_of(const SampleScene& s, Compression mesh_c,
   for (const SectionSource& src : all)
     if (!without || src.kind != static_cast<std::uint32_t>(*without)) out.push_back(src);
   return out;
+}
+
+MeshArrays grid_sphere(int rings, int segments, float radius) {
+  constexpr float kPi = 3.14159265358979f;
+  MeshArrays m;
+  for (int r = 0; r <= rings; ++r)
+    for (int s = 0; s <= segments; ++s) {
+      const float theta = kPi * float(r) / float(rings), phi = 2 * kPi * float(s % segments) / float(segments);
+      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      m.positions.push_back({snap_to_step(radius * n.x, 1.f / 32), snap_to_step(radius * n.y, 1.f / 32),
+                             snap_to_step(radius * n.z, 1.f / 32), 0.f});
+      m.normals.push_back(snap_normal_to_grid(vec4(n, 0)));
+      m.uvs.push_back({snap_to_step(float(s) / float(segments), 0x1p-24f), snap_to_step(float(r) / float(rings), 0x1p-24f)});
+    }
+  const auto at = [&](int r, int s) { return std::uint32_t(r * (segments + 1) + s); };
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      if (r > 0) m.triangles.push_back({at(r, s), at(r + 1, s), at(r, s + 1)});
+      if (r + 1 < rings) m.triangles.push_back({at(r, s + 1), at(r + 1, s), at(r + 1, s + 1)});
+    }
+  return canonical_mesh_order(m);
 }
 
 std::vector<std::byte> build(const SampleScene& scene, Compression compression) {

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "format/draco_mesh_sections.hpp"
 #include "format/writer.hpp"
 
 namespace nano::format::test {
@@ -45,6 +46,11 @@ SampleScene make_sample_scene();
 // order, optionally leaving one kind out.
 std::vector<SectionSource> sections_of(const SampleScene& scene, Compression compression,
                                        std::optional<SectionKind> without = std::nullopt);
+
+// A UV sphere of `rings` x `segments` quads on the Draco sections' grids (positions in 1/32 Å,
+// UVs in 2^-24, octahedral normals) in canonical order, with a seam: the vertices of segment 0 exist
+// twice, at u = 0 and u = 1, as a baker's would.
+MeshArrays grid_sphere(int rings, int segments, float radius);
 
 std::vector<std::byte> build(const SampleScene& scene, Compression compression = Compression::zstd_if_smaller);
 
