@@ -162,6 +162,11 @@ TEST(DracoMeshSections, TwoMeshesFollowEachOther) {
   const DracoEncoding draco = encode_draco_meshes(records, both.positions, both.normals, both.uvs, both.triangles);
   ASSERT_TRUE(draco.why.empty()) << draco.why;
   EXPECT_TRUE(same_bits(decode_draco_meshes(draco.section, records, 1u << 20, 1u << 20), both));
+  // Each mesh's arrays come out of the sections by its record; a range past them is refused.
+  EXPECT_TRUE(same_bits(mesh_arrays(records, 1, both.positions, both.normals, both.uvs, both.triangles), b));
+  std::array<gpu::Mesh, 2> past = records;
+  past[1].vertex_count += 1;
+  EXPECT_THROW(mesh_arrays(past, 1, both.positions, both.normals, both.uvs, both.triangles), std::out_of_range);
   // Ranges that overlap or leave gaps are refused before anything is encoded.
   std::array<gpu::Mesh, 2> gap = records;
   gap[1].first_vertex += 1;

@@ -2,9 +2,10 @@
 
 The same scene baked twice: by default (meshes on Draco's grids, stored as Draco streams where those
 are smaller) and with --mesh-codec zstd (meshes exactly as read). The first must hold Draco mesh
-sections, the second none; the files must differ by what the report says the mesh sections save
-(up to the 256-byte alignment of the sections); and snapping the mesh by at most 1/64 Å per axis
-must not change what the cell holds: every molecule's copies within 1 %.
+sections, the second none, and the first's mesh sections must be the smaller; snapping the mesh by
+at most 1/64 Å per axis must not change what the cell holds: every molecule's copies within 1 %.
+(The rest of the two packages differs too, since the membrane is baked on the moved mesh: the
+file sizes are printed, not compared.)
 """
 import json
 import os
@@ -24,8 +25,8 @@ def main():
     print(f"package {size_a} bytes with Draco mesh sections ({ma['stored_bytes']} bytes of meshes), "
           f"{size_b} with zstd ({mb['stored_bytes']}): {size_b - size_a} bytes smaller, mesh sections x"
           f"{mb['stored_bytes'] / ma['stored_bytes']:.2f}")
-    if abs((size_b - size_a) - saved) > 256 * 8:
-        print(f"the files differ by {size_b - size_a} bytes, the mesh sections by {saved}")
+    if saved <= 0:
+        print(f"Draco mesh sections take {ma['stored_bytes']} bytes, zstd ones {mb['stored_bytes']}")
         failures += 1
     for ca, cb in zip(a["compartments"], b["compartments"]):
         for name, n in ca["copies"].items():

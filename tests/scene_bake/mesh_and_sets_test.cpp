@@ -127,13 +127,18 @@ TEST(MeshPacking, StorageGridsMoveLittleAndPackToWhatDracoDecodes) {
   EXPECT_THROW(bake::pack_mesh_canonical(sphere), std::logic_error);
 }
 
-TEST(CompartmentMesh, PutOnStorageGridsSaysWhatItDid) {
+// A generated 300-triangle sphere of radius 400 Å, as a virion's compartment.
+scene::CompartmentDescription sphere_compartment() {
   scene::CompartmentDescription c;
   c.name = "virion";
   c.mesh.kind = scene::MeshSource::Kind::sphere;
   c.mesh.triangles = 300;
   c.mesh.radius = 400.0;
-  bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  return c;
+}
+
+TEST(CompartmentMesh, PutOnStorageGridsSaysWhatItDid) {
+  bake::CompartmentMesh m = bake::load_compartment_mesh(sphere_compartment());
   EXPECT_FALSE(m.on_storage_grids);
   bake::put_on_storage_grids(m);
   EXPECT_TRUE(m.on_storage_grids);
@@ -154,11 +159,7 @@ TEST(CompartmentMesh, ScalesPositionsOnly) {
 }
 
 TEST(CompartmentMesh, GeneratedSphereIsScaledAndChecked) {
-  scene::CompartmentDescription c;
-  c.name = "virion";
-  c.mesh.kind = scene::MeshSource::Kind::sphere;
-  c.mesh.triangles = 300;
-  c.mesh.radius = 400.0;
+  scene::CompartmentDescription c = sphere_compartment();
   c.scale = 1.5;
   const bake::CompartmentMesh m = bake::load_compartment_mesh(c);
   EXPECT_TRUE(m.report.usable());
