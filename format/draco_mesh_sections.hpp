@@ -25,6 +25,11 @@ namespace nano::format {
 // The sections codec draco serves, always together.
 inline constexpr SectionKind kDracoCodedKinds[] = {SectionKind::vertex_positions, SectionKind::vertex_normals,
                                                    SectionKind::vertex_uvs, SectionKind::triangles};
+inline bool is_draco_coded_kind(std::uint32_t kind) {
+  for (const SectionKind k : kDracoCodedKinds)
+    if (static_cast<std::uint32_t>(k) == kind) return true;
+  return false;
+}
 
 // One mesh's arrays as the package stores them; triangle indices are local to the mesh.
 struct MeshArrays {
@@ -32,8 +37,6 @@ struct MeshArrays {
   std::vector<glm::vec4> normals;    // unit xyz, w = 0
   std::vector<glm::vec2> uvs;
   std::vector<gpu::Triangle> triangles;
-
-  bool operator==(const MeshArrays&) const = default;  // glm compares by value: test with same_bits
 };
 
 // Bit-for-bit equality (so -0 differs from +0 and NaN equals itself): what "decodes exactly" means.

@@ -268,11 +268,6 @@ private:
     p_.raw[e.kind] = p_.inflated.back();
   }
 
-  static bool is_draco_coded_kind(std::uint32_t kind) {
-    return std::find(std::begin(kDracoCodedKinds), std::end(kDracoCodedKinds), static_cast<SectionKind>(kind)) !=
-           std::end(kDracoCodedKinds);
-  }
-
   // The four mesh sections are Draco-coded together or not at all, and "draco_meshes" exists exactly
   // when they are. Their raw bytes are then decoded from it, sized against each entry and checked
   // against its raw checksum like a zstd section's.

@@ -90,9 +90,7 @@ std::vector<std::byte> draco_section_for(std::span<const SectionSource> sections
     throw std::invalid_argument("build_package: Draco asked for some mesh sections but not " + section_kind_name(kind));
   };
   for (const SectionSource* s : group)
-    if (std::find(std::begin(kDracoCodedKinds), std::end(kDracoCodedKinds), static_cast<SectionKind>(s->kind)) ==
-            std::end(kDracoCodedKinds) ||
-        s->compression != group.front()->compression)
+    if (!is_draco_coded_kind(s->kind) || s->compression != group.front()->compression)
       throw std::invalid_argument("build_package: Draco asked for " + section_kind_name(s->kind) +
                                   "; only the four mesh sections may, all alike");
   if (!meshes) throw std::invalid_argument("build_package: Draco mesh sections need section meshes");

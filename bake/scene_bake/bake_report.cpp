@@ -40,25 +40,30 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"pruning_atom_tests", m.atom_tests}};
 }
 
+// What the package's mesh data takes in the file: the four mesh sections plus any Draco streams.
+std::uint64_t mesh_stored_bytes(const format::Package& package) {
+  std::uint64_t stored = 0;
+  for (format::SectionKind k : format::kDracoCodedKinds)
+    if (const format::SectionEntry* e = package.entry(k)) stored += e->stored_size;
+  if (const format::SectionEntry* e = package.entry(format::SectionKind::draco_meshes)) stored += e->stored_size;
+  return stored;
+}
+
 // The mesh sections both ways, measured on this package: as zstd stores them (each section zstd
 // where that is smaller) and as Draco streams (format/draco_mesh_sections.hpp), and which one the
 // file holds. Draco is measured even when zstd won, unless the meshes are off Draco's grids.
 nlohmann::ordered_json mesh_section_sizes(const format::Package& package) {
   using format::SectionKind;
-  std::uint64_t stored = 0, zstd = 0;
-  bool draco_coded = false;
+  std::uint64_t zstd = 0, raw = 0;
   for (SectionKind k : format::kDracoCodedKinds) {
-    const format::SectionEntry* e = package.entry(k);
-    if (!e) continue;
-    stored += e->stored_size;
     zstd += format::zstd_stored_size(package.raw_bytes(k));
-    draco_coded = draco_coded || e->codec == static_cast<std::uint16_t>(format::Codec::draco);
+    raw += package.raw_bytes(k).size();
   }
   nlohmann::ordered_json j;
-  j["codec"] = draco_coded ? "draco" : "zstd";
-  if (const format::SectionEntry* e = package.entry(SectionKind::draco_meshes)) {
-    stored += e->stored_size;
-    j["draco_bytes"] = e->stored_size;
+  const format::SectionEntry* streams = package.entry(SectionKind::draco_meshes);
+  j["codec"] = streams ? "draco" : "zstd";  // the reader accepts the streams only with all four sections Draco-coded
+  if (streams) {
+    j["draco_bytes"] = streams->stored_size;
   } else {
     const format::DracoEncoding draco = format::encode_draco_meshes(
         package.records<SectionKind::meshes>(), package.records<SectionKind::vertex_positions>(),
@@ -68,9 +73,7 @@ nlohmann::ordered_json mesh_section_sizes(const format::Package& package) {
     else j["draco_unavailable"] = draco.why;
   }
   j["zstd_bytes"] = zstd;
-  j["stored_bytes"] = stored;
-  std::uint64_t raw = 0;
-  for (SectionKind k : format::kDracoCodedKinds) raw += package.raw_bytes(k).size();
+  j["stored_bytes"] = mesh_stored_bytes(package);
   j["raw_bytes"] = raw;
   return j;
 }
@@ -180,15 +183,10 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       out << line;
     }
   }
-  {
-    const format::SectionEntry* streams = package.entry(format::SectionKind::draco_meshes);
-    std::uint64_t stored = streams ? streams->stored_size : 0;
-    for (format::SectionKind k : format::kDracoCodedKinds)
-      if (const format::SectionEntry* e = package.entry(k)) stored += e->stored_size;
-    std::snprintf(line, sizeof line, "  meshes: %s, %.1f kB\n", streams ? "Draco streams (on Draco's exact grids)" : "zstd",
-                  stored / 1e3);
-    out << line;
-  }
+  std::snprintf(line, sizeof line, "  meshes: %s, %.1f kB\n",
+                package.has(format::SectionKind::draco_meshes) ? "Draco streams (on Draco's exact grids)" : "zstd",
+                mesh_stored_bytes(package) / 1e3);
+  out << line;
   for (const WangSetSummary& s : scene.wang_sets) {
     if (s.surface) {
       std::snprintf(line, sizeof line,

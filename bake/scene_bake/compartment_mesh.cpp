@@ -13,7 +13,6 @@
 #include "bake/mesh/sphere_mesh.hpp"
 #include "bake/scene_bake/mesh_packing.hpp"
 #include "common/error.hpp"
-#include "format/draco_mesh_sections.hpp"
 
 namespace nano::bake {
 namespace {
@@ -144,10 +143,8 @@ void put_on_storage_grids(CompartmentMesh& m) {
                 (p.face >= 0 ? " at face " + std::to_string(p.face) : std::string());
     return;
   }
-  double largest = 0.0;
-  for (const glm::dvec3& p : m.mesh.positions) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
   char step[32];
-  std::snprintf(step, sizeof step, "%g", double(format::storage_position_step(largest)));
+  std::snprintf(step, sizeof step, "%g", double(storage_position_step(m.mesh)));
   m.storage = std::string("on Draco's grids: positions to multiples of ") + step +
               " Å, normals to 16-bit octahedral pairs, UVs to multiples of 2^-24";
   m.mesh = std::move(moved);

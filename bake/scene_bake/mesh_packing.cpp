@@ -55,12 +55,15 @@ PackedMesh pack_mesh(const mesh::ProxyMesh& mesh) {
   return packed;
 }
 
+float storage_position_step(const mesh::ProxyMesh& mesh) {
+  double largest = 0.0;
+  for (const glm::dvec3& p : mesh.positions) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  return format::storage_position_step(largest);
+}
+
 mesh::ProxyMesh on_storage_grids(const mesh::ProxyMesh& input) {
   mesh::ProxyMesh snapped = input;
-  double largest = 0.0;
-  for (const glm::dvec3& p : input.positions)
-    largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  const float step = format::storage_position_step(largest);
+  const float step = storage_position_step(input);
   for (glm::dvec3& p : snapped.positions)
     p = {format::snap_to_step(p.x, step), format::snap_to_step(p.y, step), format::snap_to_step(p.z, step)};
   for (glm::dvec3& n : snapped.normals) n = glm::vec3(format::snap_normal_to_grid(glm::vec4(glm::vec3(n), 0.f)));

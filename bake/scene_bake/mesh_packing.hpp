@@ -30,6 +30,8 @@ PackedMesh pack_mesh(const mesh::ProxyMesh& mesh);
 // UVs to the membrane's 2^-24 ownership grid (which the membrane bake snaps to anyway). Positions
 // that snapping makes identical are welded, so check the result before baking it.
 mesh::ProxyMesh on_storage_grids(const mesh::ProxyMesh& mesh);
+// The position step on_storage_grids snaps `mesh` to (format::storage_position_step of its largest coordinate).
+float storage_position_step(const mesh::ProxyMesh& mesh);
 
 // pack_mesh in the canonical order, for a mesh from on_storage_grids (whose triangles are in that
 // order already: the shells baked per triangle stay parallel). Throws std::logic_error otherwise.
