@@ -285,68 +285,49 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
   return found;
 }
 
-// The membrane copies of replication slot `sxy` of triangle `tl` (local index in its mesh) on the
-// part [t_lo, t_hi] of the ray inside the triangle's prism, where every copy it owns lies.
-bool trace_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleChart chart, ivec2 origin, ivec2 sxy, vec3 o,
-                vec3 d, float t_lo, float t_hi) {
-  Compartment c = compartments[ci];
-  RenderCompartment rc = render_compartments[ci];
-  ivec2 cell = replication_tile_index(origin, sxy);
-  uint tile = recipe_cell(c.membrane_recipe, ivec3(cell, 0));
-  if (kTwoLevel) return trace_atom_tile(inst, ci, tl, mt, chart, cell, tile, uint(sxy.x) + c.replication_width * uint(sxy.y), o, d);
-  RenderLevel level = levels[frame.levels.x + tile];
-  if (level.count == 0u) return false;
-  float s_over_S = rc.membrane.y;
-  vec2 g = replication_tile_uv(cell, rc.membrane.x);
-  vec3 ot;
-  vec3 dt;
-  chart_tile_inverse_ray(chart, g, s_over_S, o, d, ot, dt);
-  uint first = squares[tile].first_instance;
-  bool found = false;
-  count_work(NANO_RC_MLAS_QUERIES);
-  rayQueryEXT q;
-  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, t_lo, dt, min(best_t, t_hi));
-  while (rayQueryProceedEXT(q)) {
-    count_work(NANO_RC_MLAS_CANDIDATES);
-    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
-    if (p >= level.count) continue;
-    uint m = orders[level.order_first + p];
-    MoleculeInstance mi = instances[first + m];
-    // Ownership and the seam rule first: they need only the copy's UV (the same chart_molecule_uv
-    // the placement computes, so bit-identical), and they reject most candidates before the
-    // placement's normal, frame and rotation are computed.
-    vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
-    if (!membrane_keeps_copy(mt, uv_m, chart_position(chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) {
-      count_work(NANO_RC_OWNERSHIP_REJECTS);
-      continue;
-    }
-    uint slot = uint(sxy.x) + c.replication_width * uint(sxy.y);
-    if (!membrane_copy_listed_shows(membrane_copy_listed(mt, membrane_copy_key(slot, m)), mi.flags)) {
-      count_work(NANO_RC_LISTED_REJECTS);
-      continue;
-    }
-    Affine3 placement = chart_membrane_molecule(chart, g, s_over_S, c.scales.w, mi.position.xyz, mi.rotation, uv_m);
-    // mLAS-level trivial reject: the copy's bounding sphere wholly clipped.
-    if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
-    uvec2 number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
-                                        slot, rc.counts.x, m);
-    if (kJitter) placement = jittered(placement, number);
-    if (!trace_molecule(mi.molecule_type, placement, o, d, t_lo)) continue;
-    found = true;
-    best.compartment_instance = inst;
-    best.element = meshes[c.mesh].first_triangle + tl;
-    best.kind = 0u;
-    best.cell = ivec4(cell, 0, 0);
-    best.instance = m;
-    best.copy_number_lo = number.x;
-    best.copy_number_hi = number.y;
-    if (best_t >= t_lo) rayQueryGenerateIntersectionEXT(q, best_t);
+uint occupancy_of(uint byte_index) { return (occupancy_words[byte_index >> 2] >> (8u * (byte_index & 3u))) & 0xFFu; }
+
+// First keep-mask word of BOUNDARY box `box` (binary search over the compartment's sorted records), or
+// NANO_NO_INDEX when the package lists none (the validator makes that impossible).
+uint keep_mask_first_word(Compartment c, uint box) {
+  uint lo = c.core_masks.x;
+  uint hi = c.core_masks.x + c.core_masks.y;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1;
+    if (boundary_boxes[mid].box < box) lo = mid + 1u; else hi = mid;
   }
-  return found;
+  if (lo < c.core_masks.x + c.core_masks.y && boundary_boxes[lo].box == box) return boundary_boxes[lo].first_word;
+  return NANO_NO_INDEX;
 }
 
-// The membrane copies of triangle `tl` (local index in the mesh) of compartment instance `inst`.
-bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
+// One µLAS candidate is a prism (its membrane copies, tile by tile of the triangle's replication area)
+// or a core grid (its soluble copies, box by box). Both are walked by one loop that yields elements —
+// a replication slot or a core-grid box — and every element is traced by the one mLAS query of
+// trace_element, which calls the one nLAS query of trace_molecule. Each ray-query loop thus appears
+// once in the shader: a driver inlines every call, and a traversal loop is the bulk of the compiled
+// code (issue #26: 11 to 22 inlined loops took 9–29 s to compile on lavapipe).
+const uint kWalkSlotBoxes = 0u;  // a small replication area: each slot's box by a slab test
+const uint kWalkRepLas = 1u;     // the slots the area's repLAS query meets
+const uint kWalkAllSlots = 2u;   // every slot (no repLAS: bench knob)
+const uint kWalkCore = 3u;       // 3D-DDA over the core grid, the boxes within one step of each cell
+
+// What a prism's slots share: the triangle, its chart, the ray's part inside the prism [t_lo, t_hi]
+// (where every copy the prism owns lies) and the replication area.
+struct ShellWalk {
+  MembraneTriangle mt;
+  TriangleChart chart;
+  float t_lo;
+  float t_hi;
+  ivec2 origin;  // the area's first tile
+  ivec2 extent;  // its slots, x by y
+  uint mode;     // kWalkSlotBoxes, kWalkRepLas or kWalkAllSlots
+  vec3 ot;       // the ray in the origin tile's space (slot boxes, repLAS)
+  vec3 dt;
+};
+
+// The prism of triangle `tl` (local index in the mesh) of compartment `ci`: false when the ray misses
+// it or clipping removes all it holds.
+bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
   Compartment c = compartments[ci];
   RenderCompartment rc = render_compartments[ci];
   Mesh mesh = meshes[c.mesh];
@@ -367,15 +348,15 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
   Prism pr = shell_prism_make(p0, p1, p2, n0, n1, n2, off);  // compiled out when neither test below is on
   count_work(NANO_RC_PRISM_TESTS);
   // The ray's part inside the prism, widened by a margin for rounding (jitter moves copies out).
-  float t_lo = 0.0;
-  float t_hi = best_t;
+  w.t_lo = 0.0;
+  w.t_hi = best_t;
   if (kExactPrism) {
     PrismInterval iv;
     if (!prism_intersect(pr, o, d, 0.0, best_t, iv)) return false;
     if (!kJitter && !kTwoLevel) {
       float margin = 0.05 + 1e-5 * iv.t_exit;
-      t_lo = max(iv.t_enter - margin, 0.0);
-      t_hi = iv.t_exit + margin;
+      w.t_lo = max(iv.t_enter - margin, 0.0);
+      w.t_hi = iv.t_exit + margin;
     }
   }
   count_work(NANO_RC_PRISMS_ENTERED);
@@ -390,177 +371,128 @@ bool trace_shell(uint inst, uint ci, uint tl, vec3 o, vec3 d) {
     }
     if (clip_removes_box(lo, hi)) return false;
   }
-  MembraneTriangle mt;
-  mt.p0 = p0;
-  mt.p1 = p1;
-  mt.p2 = p2;
-  mt.t0 = uvs[f + tri.v0];
-  mt.t1 = uvs[f + tri.v1];
-  mt.t2 = uvs[f + tri.v2];
-  mt.seam_edges = sh.seam_edges;
+  w.mt.p0 = p0;
+  w.mt.p1 = p1;
+  w.mt.p2 = p2;
+  w.mt.t0 = uvs[f + tri.v0];
+  w.mt.t1 = uvs[f + tri.v1];
+  w.mt.t2 = uvs[f + tri.v2];
+  w.mt.seam_edges = sh.seam_edges;
   // A package without drops gets a zero record per triangle from the loader (gpu_scene.cpp).
   TriangleDrops td = triangle_drops[t];
-  mt.drop_first = td.first;
-  mt.drop_count = td.count;
-  TriangleChart chart = chart_make(p0, p1, p2, mt.t0, mt.t1, mt.t2, n0, n1, n2);
+  w.mt.drop_first = td.first;
+  w.mt.drop_count = td.count;
+  w.chart = chart_make(p0, p1, p2, w.mt.t0, w.mt.t1, w.mt.t2, n0, n1, n2);
   float s = rc.membrane.x;
-  float s_over_S = rc.membrane.y;
-  vec2 uv_min = min(mt.t0, min(mt.t1, mt.t2));
-  vec2 uv_max = max(mt.t0, max(mt.t1, mt.t2));
-  ivec2 origin = replication_origin(uv_min, s);
-  ivec2 extent = min(replication_extent(uv_min, uv_max, s), ivec2(c.replication_width, c.replication_height));
-  bool found = false;
-  uint rep = rc.span.w;
-  if (kReplicationLas && rep != NANO_NO_INDEX && uint(extent.x * extent.y) <= NANO_DIRECT_SLOTS) {
-    // A small area: each slot's box (the repLAS's own, in the origin tile's space) by a slab test.
-    vec3 ot;
-    vec3 dt;
-    chart_tile_inverse_ray(chart, replication_tile_uv(origin, s), s_over_S, o, d, ot, dt);
-    float S = rc.slot_lo.w;
-    for (int sy = 0; sy < extent.y; ++sy)
-      for (int sx = 0; sx < extent.x; ++sx) {
-        vec3 shift = vec3(float(sx) * S, float(sy) * S, 0.0);
-        float tn;
-        float tf;
-        if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, ot, dt, t_lo, min(best_t, t_hi), tn, tf)) continue;
-        count_work(NANO_RC_SLOTS_TRIED);
-        if (trace_tile(inst, ci, tl, mt, chart, origin, ivec2(sx, sy), o, d, t_lo, t_hi)) found = true;
-      }
-    return found;
-  }
-  if (kReplicationLas && rep != NANO_NO_INDEX) {
-    // One query over the replication area's tile boxes (repLAS, in the space of the origin tile:
-    // every tile of the triangle shares M1's linear part), then the mLAS of the tiles it meets.
-    RenderLevel area = levels[rep];
-    vec3 ot;
-    vec3 dt;
-    chart_tile_inverse_ray(chart, replication_tile_uv(origin, s), s_over_S, o, d, ot, dt);
-    count_work(NANO_RC_REPLAS_QUERIES);
-    rayQueryEXT q;
-    rayQueryInitializeEXT(q, accelerationStructureEXT(area.address), gl_RayFlagsNoneEXT, 0xFF, ot, t_lo, dt, min(best_t, t_hi));
-    while (rayQueryProceedEXT(q)) {
-      uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
-      if (p >= area.count) continue;
-      uint slot = orders[area.order_first + p];
-      ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
-      if (sxy.x >= extent.x || sxy.y >= extent.y) continue;
-      count_work(NANO_RC_SLOTS_TRIED);
-      if (trace_tile(inst, ci, tl, mt, chart, origin, sxy, o, d, t_lo, t_hi)) {
-        found = true;
-        if (best_t >= t_lo) rayQueryGenerateIntersectionEXT(q, best_t);
-      }
-    }
-    return found;
-  }
-  for (int sy = 0; sy < extent.y; ++sy)
-    for (int sx = 0; sx < extent.x; ++sx) {
-      count_work(NANO_RC_SLOTS_TRIED);
-      if (trace_tile(inst, ci, tl, mt, chart, origin, ivec2(sx, sy), o, d, t_lo, t_hi)) found = true;
-    }
-  return found;
+  vec2 uv_min = min(w.mt.t0, min(w.mt.t1, w.mt.t2));
+  vec2 uv_max = max(w.mt.t0, max(w.mt.t1, w.mt.t2));
+  w.origin = replication_origin(uv_min, s);
+  w.extent = min(replication_extent(uv_min, uv_max, s), ivec2(c.replication_width, c.replication_height));
+  bool rep = kReplicationLas && rc.span.w != NANO_NO_INDEX;
+  w.mode = !rep ? kWalkAllSlots : uint(w.extent.x * w.extent.y) <= NANO_DIRECT_SLOTS ? kWalkSlotBoxes : kWalkRepLas;
+  // Every tile of the triangle shares M1's linear part: slot (i, j)'s box is the origin tile's moved
+  // by (i·S, j·S, 0) in the origin tile's space.
+  chart_tile_inverse_ray(w.chart, replication_tile_uv(w.origin, s), rc.membrane.y, o, d, w.ot, w.dt);
+  return true;
 }
 
-uint occupancy_of(uint byte_index) { return (occupancy_words[byte_index >> 2] >> (8u * (byte_index & 3u))) & 0xFFu; }
-
-// First keep-mask word of BOUNDARY box `box` (binary search over the compartment's sorted records), or
-// NANO_NO_INDEX when the package lists none (the validator makes that impossible).
-uint keep_mask_first_word(Compartment c, uint box) {
-  uint lo = c.core_masks.x;
-  uint hi = c.core_masks.x + c.core_masks.y;
-  while (lo < hi) {
-    uint mid = (lo + hi) >> 1;
-    if (boundary_boxes[mid].box < box) lo = mid + 1u; else hi = mid;
-  }
-  if (lo < c.core_masks.x + c.core_masks.y && boundary_boxes[lo].box == box) return boundary_boxes[lo].first_word;
-  return NANO_NO_INDEX;
-}
-
-// The soluble copies of core-grid box `ijk` of compartment instance `inst`.
-bool trace_box(uint inst, uint ci, ivec3 ijk, vec3 o, vec3 d) {
+// The copies of one element on the ray (o, d) (compartment space), placed on the fly: membrane copies
+// of replication slot `slot_or_box` (tile `cell.xy` of the area, on [w.t_lo, w.t_hi]) of triangle
+// `tl`, or soluble copies of core-grid box `slot_or_box` (grid cell `cell`). The element's mLAS
+// holds its Wang square's or cube's molecule boxes.
+bool trace_element(uint inst, uint ci, bool membrane, uint tl, ShellWalk w, uint slot_or_box, ivec3 cell, vec3 o, vec3 d) {
   Compartment c = compartments[ci];
   RenderCompartment rc = render_compartments[ci];
-  uvec3 dims = c.grid_dims.xyz;
-  uint box = uint(ijk.x) + dims.x * (uint(ijk.y) + dims.y * uint(ijk.z));
-  uint occ = occupancy_of(c.grid_dims.w + box);
-  if (occ == NANO_BOX_OUTSIDE) return false;
-  vec3 box_min = core_box_min(c.grid_min.xyz, vec3(c.grid_min.w), ijk);
-  float tn;
-  float tf;
-  if (!aabb_intersect(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
-  if (kClipping && clip_removes_box(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz)) return false;
-  uint mask = NANO_NO_INDEX;
-  if (occ == NANO_BOX_BOUNDARY) {
-    mask = keep_mask_first_word(c, box);
-    if (mask == NANO_NO_INDEX) return false;
+  uint entry;    // the element's mLAS in `levels`
+  uint first;    // its tile's first molecule instance
+  vec3 ot;       // the ray in the tile's space
+  vec3 dt;
+  float q_lo;    // the part of the ray the element's copies can be hit on
+  float q_hi;
+  vec2 g = vec2(0.0);                   // membrane: the tile's UV origin
+  vec3 box_min = vec3(0.0);             // core: the box's corner
+  uint mask = NANO_NO_INDEX;            // core: the boundary box's keep-mask
+  float s_over_S = rc.membrane.y;
+  if (membrane) {
+    uint tile = recipe_cell(c.membrane_recipe, ivec3(cell.xy, 0));
+    if (kTwoLevel) return trace_atom_tile(inst, ci, tl, w.mt, w.chart, cell.xy, tile, slot_or_box, o, d);
+    entry = frame.levels.x + tile;
+    first = squares[tile].first_instance;
+    g = replication_tile_uv(cell.xy, rc.membrane.x);
+    chart_tile_inverse_ray(w.chart, g, s_over_S, o, d, ot, dt);
+    q_lo = w.t_lo;
+    q_hi = min(best_t, w.t_hi);
+  } else {
+    uint occ = occupancy_of(c.grid_dims.w + slot_or_box);
+    if (occ == NANO_BOX_OUTSIDE) return false;
+    box_min = core_box_min(c.grid_min.xyz, vec3(c.grid_min.w), cell);
+    float tn;
+    float tf;
+    if (!aabb_intersect(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
+    if (kClipping && clip_removes_box(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz)) return false;
+    if (occ == NANO_BOX_BOUNDARY) {
+      mask = keep_mask_first_word(c, slot_or_box);
+      if (mask == NANO_NO_INDEX) return false;
+    }
+    uint cube = recipe_cell(c.soluble_recipe, cell);
+    entry = frame.levels.y + cube;
+    first = cubes[cube].first_instance;
+    ot = o - box_min;
+    dt = d;
+    q_lo = 0.0;
+    q_hi = best_t;
   }
-  uint cube = recipe_cell(c.soluble_recipe, ijk);
-  RenderLevel level = levels[frame.levels.y + cube];
+  RenderLevel level = levels[entry];
   if (level.count == 0u) return false;
-  uint first = cubes[cube].first_instance;
   bool found = false;
   count_work(NANO_RC_MLAS_QUERIES);
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, o - box_min, 0.0, d, best_t);
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, q_lo, dt, q_hi);
   while (rayQueryProceedEXT(q)) {
     count_work(NANO_RC_MLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     if (p >= level.count) continue;
     uint m = orders[level.order_first + p];
-    if (mask != NANO_NO_INDEX && ((mask_words[mask + m / 32u] >> (m % 32u)) & 1u) == 0u) {
+    if (!membrane && mask != NANO_NO_INDEX && ((mask_words[mask + m / 32u] >> (m % 32u)) & 1u) == 0u) {
       count_work(NANO_RC_MASK_REJECTS);
       continue;
     }
     MoleculeInstance mi = instances[first + m];
-    Affine3 placement = core_soluble_molecule(box_min, mi.position.xyz, mi.rotation);
+    Affine3 placement;
+    uvec2 number;
+    if (membrane) {
+      // Ownership and the seam rule first: they need only the copy's UV (the same chart_molecule_uv
+      // the placement computes, so bit-identical), and they reject most candidates before the
+      // placement's normal, frame and rotation are computed.
+      vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
+      if (!membrane_keeps_copy(w.mt, uv_m, chart_position(w.chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) {
+        count_work(NANO_RC_OWNERSHIP_REJECTS);
+        continue;
+      }
+      if (!membrane_copy_listed_shows(membrane_copy_listed(w.mt, membrane_copy_key(slot_or_box, m)), mi.flags)) {
+        count_work(NANO_RC_LISTED_REJECTS);
+        continue;
+      }
+      placement = chart_membrane_molecule(w.chart, g, s_over_S, c.scales.w, mi.position.xyz, mi.rotation, uv_m);
+      number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
+                                    slot_or_box, rc.counts.x, m);
+    } else {
+      placement = core_soluble_molecule(box_min, mi.position.xyz, mi.rotation);
+      number = copy_number_core(render_instances[inst].base.xy, rc.span.xy, slot_or_box, rc.counts.y, m);
+    }
+    // mLAS-level trivial reject: the copy's bounding sphere wholly clipped.
     if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
-    uvec2 number = copy_number_core(render_instances[inst].base.xy, rc.span.xy, box, rc.counts.y, m);
     if (kJitter) placement = jittered(placement, number);
-    if (!trace_molecule(mi.molecule_type, placement, o, d, 0.0)) continue;
+    if (!trace_molecule(mi.molecule_type, placement, o, d, q_lo)) continue;
     found = true;
     best.compartment_instance = inst;
-    best.element = box;
-    best.kind = 1u;
-    best.cell = ivec4(ijk, 0);
+    best.element = membrane ? meshes[c.mesh].first_triangle + tl : slot_or_box;
+    best.kind = membrane ? 0u : 1u;
+    best.cell = membrane ? ivec4(cell.xy, 0, 0) : ivec4(cell, 0);
     best.instance = m;
     best.copy_number_lo = number.x;
     best.copy_number_hi = number.y;
-    rayQueryGenerateIntersectionEXT(q, best_t);
-  }
-  return found;
-}
-
-// The soluble copies of compartment instance `inst`'s core grid: a 3D-DDA over the grid widened by
-// one box, in ray order; at every cell the boxes within one step. The walk stops once a cell starts
-// beyond the best hit.
-bool trace_core(uint inst, uint ci, vec3 o, vec3 d) {
-  Compartment c = compartments[ci];
-  float B = c.grid_min.w;
-  ivec3 dims = ivec3(c.grid_dims.xyz);
-  if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(dims + ivec3(1)) * B)) return false;
-  // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
-  // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
-  GridDda it;
-  dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), dims + ivec3(2), o, d, 0.0, best_t);
-  ivec3 cell;
-  float ta;
-  float tb;
-  ivec3 previous = ivec3(-1000000);
-  bool found = false;
-  while (dda_next(it, cell, ta, tb)) {
-    if (ta > best_t) break;
-    count_work(NANO_RC_CORE_STEPS);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
-          if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
-          // The previous cell's neighbourhood was traced already.
-          ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
-          if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
-          count_work(NANO_RC_CORE_BOXES);
-          if (trace_box(inst, ci, ijk, o, d)) found = true;
-        }
-    previous = cell;
+    if (best_t >= q_lo) rayQueryGenerateIntersectionEXT(q, best_t);  // a hit must lie in the query's range
   }
   return found;
 }
@@ -618,6 +550,7 @@ void trace_flat(vec3 o, vec3 d) {
   }
 }
 
+
 // Traces one ray through the whole scene: origin camera-relative world, unit direction d, hits in
 // [0, t_max]. Primary rays take each instance's eye from the host's double computation
 // (RenderInstance), not the hardware's float transform of the origin; secondary rays (AO, shadows)
@@ -658,13 +591,100 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
     if (kClipping) load_clip_half_spaces(rayQueryGetIntersectionObjectToWorldEXT(q, false));
     uint ci = render_instances[inst].base.z;
     RenderCompartment rc = render_compartments[ci];
-    bool found = false;
-    if (prim < rc.counts.z) {
-      uint tl = orders[rc.counts.w + prim];
+    Compartment c = compartments[ci];
+    bool membrane = prim < rc.counts.z;
+    uint tl = 0u;
+    ShellWalk w;
+    GridDda it;
+    if (membrane) {
+      tl = orders[rc.counts.w + prim];
       if (use_flat && triangle_flattened(render_instances[inst].base.w + tl)) continue;  // its copies are in the flat level
-      found = trace_shell(inst, ci, tl, o, od);
-    } else if (rc.span.z != 0u) {
-      found = trace_core(inst, ci, o, od);
+      if (!shell_walk_begin(ci, tl, o, od, w)) continue;
+    } else {
+      if (rc.span.z == 0u) continue;
+      float B = c.grid_min.w;
+      if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(ivec3(c.grid_dims.xyz) + ivec3(1)) * B)) continue;
+      // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
+      // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
+      dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), ivec3(c.grid_dims.xyz) + ivec3(2), o, od, 0.0, best_t);
+      w.mode = kWalkCore;
+    }
+    rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
+    if (w.mode == kWalkRepLas) {
+      RenderLevel a = levels[rc.span.w];
+      count_work(NANO_RC_REPLAS_QUERIES);
+      rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), gl_RayFlagsNoneEXT, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
+    }
+    uint step = 0u;                     // slots walked / the current cell's neighbours walked (of 27)
+    ivec3 cell = ivec3(0);              // kWalkCore: the DDA's cell (in the widened grid)
+    ivec3 previous = ivec3(-1000000);   // kWalkCore: the cell before, whose neighbourhood was traced
+    bool in_cell = false;
+    bool found = false;
+    ivec3 dims = ivec3(c.grid_dims.xyz);
+    while (true) {
+      // The next element: a slot (sxy, of the area) or a box (ijk, of the grid).
+      ivec3 element = ivec3(0);
+      bool next = false;
+      if (w.mode == kWalkCore) {
+        while (!next) {
+          if (!in_cell || step == 27u) {
+            if (in_cell) previous = cell;
+            float ta;
+            float tb;
+            if (!dda_next(it, cell, ta, tb) || ta > best_t) break;  // a cell beyond the best hit ends the walk
+            count_work(NANO_RC_CORE_STEPS);
+            in_cell = true;
+            step = 0u;
+          }
+          ivec3 ijk = cell - ivec3(2) + ivec3(int(step % 3u), int((step / 3u) % 3u), int(step / 9u));
+          ++step;
+          if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
+          // The previous cell's neighbourhood was traced already.
+          ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
+          if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
+          count_work(NANO_RC_CORE_BOXES);
+          element = ijk;
+          next = true;
+        }
+      } else if (w.mode == kWalkRepLas) {
+        while (!next && rayQueryProceedEXT(area)) {
+          uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
+          RenderLevel a = levels[rc.span.w];
+          if (p >= a.count) continue;
+          uint slot = orders[a.order_first + p];
+          ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
+          if (sxy.x >= w.extent.x || sxy.y >= w.extent.y) continue;
+          element = ivec3(sxy, 0);
+          next = true;
+        }
+      } else {
+        while (!next && step < uint(w.extent.x * w.extent.y)) {
+          ivec2 sxy = ivec2(int(step % uint(w.extent.x)), int(step / uint(w.extent.x)));
+          ++step;
+          if (w.mode == kWalkSlotBoxes) {
+            vec3 shift = vec3(float(sxy.x) * rc.slot_lo.w, float(sxy.y) * rc.slot_lo.w, 0.0);
+            float tn;
+            float tf;
+            if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, w.ot, w.dt, w.t_lo, min(best_t, w.t_hi), tn, tf)) continue;
+          }
+          element = ivec3(sxy, 0);
+          next = true;
+        }
+      }
+      if (!next) break;
+      uint slot_or_box;
+      ivec3 where;
+      if (membrane) {
+        count_work(NANO_RC_SLOTS_TRIED);
+        slot_or_box = uint(element.x) + c.replication_width * uint(element.y);
+        where = ivec3(replication_tile_index(w.origin, element.xy), 0);
+      } else {
+        slot_or_box = uint(element.x) + uint(dims.x) * (uint(element.y) + uint(dims.y) * uint(element.z));
+        where = element;
+      }
+      if (!trace_element(inst, ci, membrane, tl, w, slot_or_box, where, o, od)) continue;
+      found = true;
+      if (w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
     }
     if (found) {
       best_to_world = rayQueryGetIntersectionObjectToWorldEXT(q, false);
@@ -687,39 +707,60 @@ void main() {
   if (kCounters)
     for (uint k = 0u; k < NANO_RAY_COUNTER_COUNT; ++k) ray_counts[k] = 0u;
 
-  vec3 origin = kWorldSpaceUlas ? frame.camera.position.xyz : vec3(0.0);
-  trace_scene(origin, d, placement_inf(), true);
-
   uint index = px.y * cam.size.x + px.x;
+  vec3 origin = kWorldSpaceUlas ? frame.camera.position.xyz : vec3(0.0);
+  // Every ray of the pixel — primary, then the shadow ray, then the AO rays — goes through the one
+  // call of trace_scene below (one inlined traversal, not one per kind of ray).
+  uint shadow_rays = kShadows ? 1u : 0u;
+  uint ao_rays = kAmbientOcclusion ? max(frame.effects.y, 1u) : 0u;
+  uint ao_seed = kAmbientOcclusion ? effect_hash(index ^ effect_hash(frame.effects.z + 0x68bc21ebu)) : 0u;
+  PixelHit hit;
+  uint hit_type = 0u;
+  float t = 0.0;
+  vec3 n = vec3(0.0);
+  vec3 n_view = vec3(0.0);
+  vec3 p = vec3(0.0);
+  vec3 light = frame.light.xyz;
+  float lambert = 0.0;
+  uint open = 0u;
+  for (uint r = 0u; r < 1u + shadow_rays + ao_rays; ++r) {
+    vec3 ray_origin = origin;
+    vec3 ray_direction = d;
+    float t_max = placement_inf();
+    if (r > 0u) ray_origin = p;
+    if (r > 0u && r <= shadow_rays) {
+      if (!(lambert > 0.0)) continue;
+      ray_direction = light;
+    } else if (r > 0u) {
+      uint h = effect_hash(ao_seed + 2u * (r - 1u - shadow_rays));
+      ray_direction = cosine_hemisphere(n_view, effect_unit(h), effect_unit(effect_hash(h + 1u)));
+      t_max = frame.effect_parameters.x;
+    }
+    bool blocked = trace_scene(ray_origin, ray_direction, t_max, r == 0u);
+    if (r == 0u) {
+      hit = best;
+      hit_type = best_type;
+      if (!blocked) break;
+      t = best_t;
+      hit.depth = t;
+      n = normalize(mat3(best_to_world) * best_normal_c);
+      lambert = abs(dot(n, light));
+      // Secondary rays leave the side of the sphere the camera sees.
+      n_view = dot(n, d) > 0.0 ? -n : n;
+      p = offset_ray_origin(origin + t * d, n_view);
+      if (kShadows) lambert = max(dot(n_view, light), 0.0);
+    } else if (r <= shadow_rays) {
+      if (blocked) lambert = 0.0;
+    } else if (!blocked) {
+      ++open;
+    }
+  }
+
   vec3 colour = vec3(1.0);  // background
-  PixelHit hit = best;
   if (hit.atom != kNoHit) {
-    float t = best_t;
-    hit.depth = t;
-    vec3 n = normalize(mat3(best_to_world) * best_normal_c);
-    vec3 base = molecules[best_type].colour.rgb;
-    vec3 light = frame.light.xyz;
+    vec3 base = molecules[hit_type].colour.rgb;
     float facing = abs(dot(n, d));
-    float lambert = abs(dot(n, light));
-    float ambient = 1.0;
-    // Secondary rays leave the side of the sphere the camera sees.
-    vec3 n_view = dot(n, d) > 0.0 ? -n : n;
-    vec3 p = offset_ray_origin(origin + t * d, n_view);
-    if (kShadows) {
-      lambert = max(dot(n_view, light), 0.0);
-      if (lambert > 0.0 && trace_scene(p, light, placement_inf(), false)) lambert = 0.0;
-    }
-    if (kAmbientOcclusion) {
-      uint rays = max(frame.effects.y, 1u);
-      uint seed = effect_hash(index ^ effect_hash(frame.effects.z + 0x68bc21ebu));
-      uint open = 0u;
-      for (uint k = 0u; k < rays; ++k) {
-        uint h = effect_hash(seed + 2u * k);
-        vec3 dir = cosine_hemisphere(n_view, effect_unit(h), effect_unit(effect_hash(h + 1u)));
-        if (!trace_scene(p, dir, frame.effect_parameters.x, false)) ++open;
-      }
-      ambient = float(open) / float(rays);
-    }
+    float ambient = kAmbientOcclusion ? float(open) / float(ao_rays) : 1.0;
     vec3 lit = base * ((0.25 + 0.2 * facing) * ambient + 0.55 * lambert);
     float cue = frame.light.w > 0.0 ? exp(-t / frame.light.w) : 1.0;
     colour = mix(vec3(1.0), lit, 0.35 + 0.65 * cue);
