@@ -19,6 +19,7 @@
 // rayQueryGenerateIntersectionEXT. Hit rule (as the oracle): the smallest root t ≥ 0.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_ray_flags_primitive_culling : require
 #include "shared/bindings.h"
 #include "shared/package_records.h"
 #include "shared/render_scene.h"
@@ -30,6 +31,10 @@
 #include "shared/copy_number.h"
 #include "shared/effects.h"
 #include "shared/ray_counters.h"
+
+// Every acceleration structure here holds boxes only (atoms, molecules, tiles, prisms, copies): with
+// triangles skipped by a constant flag the driver compiles no triangle test into the traversals.
+const uint kAabbOnly = gl_RayFlagsSkipTrianglesEXT;
 
 layout(local_size_x = NANO_WORKGROUP_SIZE, local_size_y = NANO_WORKGROUP_SIZE) in;
 
@@ -177,7 +182,7 @@ bool trace_molecule(uint type, Affine3 m, vec3 o, vec3 d, float t_lo) {
   bool found = false;
   count_work(NANO_RC_NLAS_QUERIES);
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, om, t_lo, dm, best_t);
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), kAabbOnly, 0xFF, om, t_lo, dm, best_t);
   while (rayQueryProceedEXT(q)) {
     count_work(NANO_RC_NLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
@@ -240,7 +245,7 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
   bool found = false;
   count_work(NANO_RC_NLAS_QUERIES);
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, 0.0, dt, best_t);
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), kAabbOnly, 0xFF, ot, 0.0, dt, best_t);
   while (rayQueryProceedEXT(q)) {
     count_work(NANO_RC_NLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
@@ -447,7 +452,7 @@ bool trace_element(uint inst, uint ci, bool membrane, uint tl, ShellWalk w, uint
   bool found = false;
   count_work(NANO_RC_MLAS_QUERIES);
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), gl_RayFlagsNoneEXT, 0xFF, ot, q_lo, dt, q_hi);
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), kAabbOnly, 0xFF, ot, q_lo, dt, q_hi);
   while (rayQueryProceedEXT(q)) {
     count_work(NANO_RC_MLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
@@ -501,55 +506,43 @@ bool triangle_flattened(uint bit) {
   return (bit >> 5) < uint(flat_triangles.length()) && ((flat_triangles[bit >> 5] >> (bit & 31u)) & 1u) != 0u;
 }
 
-// The flat level's copies on the ray (o, d) (o camera-relative world) within [0, best_t]: one query
-// over a TLAS of copies, each an instance of its molecule type's nLAS BLAS, so every candidate is an
-// atom box in molecule space (the ray the hardware transformed) — as explicit instancing traces.
-// Every index read from the level is checked against the buffer it names.
-void trace_flat(vec3 o, vec3 d) {
-  // The level's space is camera-relative world moved by flat_eye: x_camera = x_level − flat_eye.
-  if (kClipping) load_clip_half_spaces(mat4x3(vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, 1.0), -frame.flat_eye.xyz));
-  count_work(NANO_RC_FLAT_QUERIES);
-  rayQueryEXT q;
-  rayQueryInitializeEXT(q, flat_tlas, gl_RayFlagsNoneEXT, 0xFF, o + frame.flat_eye.xyz, 0.0, d, best_t);
-  while (rayQueryProceedEXT(q)) {
-    if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
-    count_work(NANO_RC_FLAT_CANDIDATES);
-    uint c = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
-    if (c >= uint(flat_copies.length())) continue;
-    FlatCopy fc = flat_copies[c];
-    if (fc.molecule_type >= frame.levels.z) continue;
-    RenderLevel level = levels[fc.molecule_type];
-    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
-    if (p >= level.count) continue;
-    uint a = orders[level.order_first + p];
-    vec4 cr = atoms[a].centre_radius;
-    vec3 om = rayQueryGetIntersectionObjectRayOriginEXT(q, false);
-    vec3 dm = rayQueryGetIntersectionObjectRayDirectionEXT(q, false);
-    float tn;
-    float tf;
-    count_work(NANO_RC_SPHERE_TESTS);
-    if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) continue;
-    float t = tn >= 0.0 ? tn : tf;
-    if (!(t >= 0.0) || !(t < best_t)) continue;
-    // An atom is clipped whole, by its centre (clip_c is in the level's space: see above).
-    if (kClipping && clip_removes_point(rayQueryGetIntersectionObjectToWorldEXT(q, false) * vec4(cr.xyz, 1.0))) continue;
-    best_t = t;
-    best.compartment_instance = fc.compartment_instance;
-    best.element = fc.element;
-    best.kind = fc.kind;
-    best.cell = fc.cell;
-    best.instance = fc.instance;
-    best.atom = a;
-    best.copy_number_lo = fc.number_lo;
-    best.copy_number_hi = fc.number_hi;
-    best_type = fc.molecule_type;
-    // World normal by the inverse transpose (an instance may scale); the hit's "compartment" is the world.
-    best_normal_c = normalize(transpose(mat3(rayQueryGetIntersectionWorldToObjectEXT(q, false))) * (om + t * dm - cr.xyz));
-    best_to_world = mat4x3(1.0);
-    rayQueryGenerateIntersectionEXT(q, t);
-  }
+// A candidate of the flat level (a TLAS of copies, each an instance of its molecule type's nLAS BLAS,
+// so every candidate is an atom box in molecule space: the ray the hardware transformed, as explicit
+// instancing traces): copy `c`, primitive `p`, the molecule-space ray (om, dm) and the copy's
+// transforms. True iff it is the nearest hit so far (ids recorded). Every index read from the level is
+// checked against the buffer it names.
+bool flat_atom_hit(uint c, uint p, vec3 om, vec3 dm, mat4x3 object_to_world, mat4x3 world_to_object) {
+  count_work(NANO_RC_FLAT_CANDIDATES);
+  if (c >= uint(flat_copies.length())) return false;
+  FlatCopy fc = flat_copies[c];
+  if (fc.molecule_type >= frame.levels.z) return false;
+  RenderLevel level = levels[fc.molecule_type];
+  if (p >= level.count) return false;
+  uint a = orders[level.order_first + p];
+  vec4 cr = atoms[a].centre_radius;
+  float tn;
+  float tf;
+  count_work(NANO_RC_SPHERE_TESTS);
+  if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) return false;
+  float t = tn >= 0.0 ? tn : tf;
+  if (!(t >= 0.0) || !(t < best_t)) return false;
+  // An atom is clipped whole, by its centre (clip_c is in the level's space: see trace_scene).
+  if (kClipping && clip_removes_point(object_to_world * vec4(cr.xyz, 1.0))) return false;
+  best_t = t;
+  best.compartment_instance = fc.compartment_instance;
+  best.element = fc.element;
+  best.kind = fc.kind;
+  best.cell = fc.cell;
+  best.instance = fc.instance;
+  best.atom = a;
+  best.copy_number_lo = fc.number_lo;
+  best.copy_number_hi = fc.number_hi;
+  best_type = fc.molecule_type;
+  // World normal by the inverse transpose (an instance may scale); the hit's "compartment" is the world.
+  best_normal_c = normalize(transpose(mat3(world_to_object)) * (om + t * dm - cr.xyz));
+  best_to_world = mat4x3(1.0);
+  return true;
 }
-
 
 // Traces one ray through the whole scene: origin camera-relative world, unit direction d, hits in
 // [0, t_max]. Primary rays take each instance's eye from the host's double computation
@@ -570,12 +563,31 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
   best_type = 0u;
 
   bool use_flat = kFlat && frame.flat_eye.w != 0.0;
-  if (use_flat) trace_flat(origin, d);  // first: its hit bounds every µLAS candidate
-  count_work(NANO_RC_ULAS_QUERIES);
+  // Two passes of one query: the flat level first (its hit bounds every µLAS candidate), then the
+  // µLAS — one traversal in the compiled code, not two.
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, ulas, gl_RayFlagsNoneEXT, 0xFF, origin, 0.0, d, best_t);
+  for (bool flat_pass = use_flat;; flat_pass = false) {
+  if (flat_pass) {
+    // The level's space is camera-relative world moved by flat_eye: x_camera = x_level − flat_eye.
+    if (kClipping) load_clip_half_spaces(mat4x3(vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, 1.0), -frame.flat_eye.xyz));
+    count_work(NANO_RC_FLAT_QUERIES);
+    rayQueryInitializeEXT(q, flat_tlas, kAabbOnly, 0xFF, origin + frame.flat_eye.xyz, 0.0, d, best_t);
+  } else {
+    count_work(NANO_RC_ULAS_QUERIES);
+    rayQueryInitializeEXT(q, ulas, kAabbOnly, 0xFF, origin, 0.0, d, best_t);
+  }
   while (rayQueryProceedEXT(q)) {
     if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
+    if (flat_pass) {
+      if (flat_atom_hit(uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false)),
+                        uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false)),
+                        rayQueryGetIntersectionObjectRayOriginEXT(q, false),
+                        rayQueryGetIntersectionObjectRayDirectionEXT(q, false),
+                        rayQueryGetIntersectionObjectToWorldEXT(q, false),
+                        rayQueryGetIntersectionWorldToObjectEXT(q, false)))
+        rayQueryGenerateIntersectionEXT(q, best_t);
+      continue;
+    }
     count_work(NANO_RC_ULAS_CANDIDATES);
     uint inst = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
     uint prim = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
@@ -613,7 +625,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
     if (w.mode == kWalkRepLas) {
       RenderLevel a = levels[rc.span.w];
       count_work(NANO_RC_REPLAS_QUERIES);
-      rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), gl_RayFlagsNoneEXT, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
+      rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
     }
     uint step = 0u;                     // slots walked / the current cell's neighbours walked (of 27)
     ivec3 cell = ivec3(0);              // kWalkCore: the DDA's cell (in the widened grid)
@@ -690,6 +702,8 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
       best_to_world = rayQueryGetIntersectionObjectToWorldEXT(q, false);
       rayQueryGenerateIntersectionEXT(q, best_t);
     }
+  }
+  if (!flat_pass) break;
   }
   return best.atom != kNoHit;
 }
