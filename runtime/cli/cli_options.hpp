@@ -8,7 +8,7 @@ namespace nano::view {
 struct VariantOptions;
 struct EffectOptions;
 
-// --shell, --prism, --levels, --precision, --lod.
+// --shell, --prism, --levels, --precision, --lod, --flatten, --no-pipeline-cache.
 void add_variant_options(CLI::App& command, VariantOptions& options);
 // --clip-plane, --clip-box, --time, --effect, --no-effect, --no-scene-effects, --ao-rays, --ao-radius.
 void add_effect_options(CLI::App& command, EffectOptions& options);

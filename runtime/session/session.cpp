@@ -7,17 +7,19 @@
 #include "common/error.hpp"
 #include "format/validator.hpp"
 #include "runtime/render/animation.hpp"
+#include "runtime/vk/embedded_shaders.hpp"
 
 namespace nano::view {
 
-render::SceneOptions VariantOptions::scene_options() const {
-  render::SceneOptions o;
+SessionOptions VariantOptions::scene_options() const {
+  SessionOptions o;
   try {
-    o.shell = render::parse_shell_mode(shell);
+    o.scene.shell = render::parse_shell_mode(shell);
   } catch (const std::invalid_argument& e) {
     throw InputError("--shell", "", e.what());
   }
-  o.two_level_membranes = levels == "2";
+  o.scene.two_level_membranes = levels == "2";
+  o.persistent_pipeline_cache = !no_pipeline_cache;
   return o;
 }
 
@@ -127,6 +129,17 @@ format::Package open_timed(const std::filesystem::path& path, SessionTimings& t)
   return p;
 }
 
+// The window case adds `extensions` and a `surface` to present to.
+vk::DeviceOptions device_options(const SessionOptions& options, std::vector<std::string> extensions = {},
+                                 VkSurfaceKHR surface = VK_NULL_HANDLE) {
+  vk::DeviceOptions o;
+  o.extensions = std::move(extensions);
+  o.present_surface = surface;
+  o.persistent_pipeline_cache = options.persistent_pipeline_cache;
+  o.shader_hash = vk::embedded_shader_hash();
+  return o;
+}
+
 void build_scene(RenderSession& s, const render::SceneOptions& options) {
   s.timings.device = seconds_since(s.timings.mark);
   std::fprintf(stderr, "device: %s\n", s.device.description().c_str());
@@ -136,21 +149,21 @@ void build_scene(RenderSession& s, const render::SceneOptions& options) {
 
 }  // namespace
 
-RenderSession::RenderSession(const std::filesystem::path& path, const render::SceneOptions& options)
+RenderSession::RenderSession(const std::filesystem::path& path, const SessionOptions& options)
     : package(open_timed(path, timings)),
       instance(vk::InstanceOptions{.validation = vk::validation_requested_by_environment()}),
-      device(vk::open_ray_query_device(instance)) {
-  build_scene(*this, options);
+      device(vk::open_ray_query_device(instance, device_options(options))) {
+  build_scene(*this, options.scene);
 }
 
-RenderSession::RenderSession(const std::filesystem::path& path, const render::SceneOptions& options,
+RenderSession::RenderSession(const std::filesystem::path& path, const SessionOptions& options,
                              const PresentationOptions& presentation)
     : package(open_timed(path, timings)),
       instance(vk::InstanceOptions{.validation = vk::validation_requested_by_environment(),
                                    .extensions = presentation.instance_extensions}),
       surface(instance.handle(), presentation.create_surface(instance.handle())),
-      device(vk::open_ray_query_device(instance, vk::DeviceOptions{presentation.device_extensions, surface.handle()})) {
-  build_scene(*this, options);
+      device(vk::open_ray_query_device(instance, device_options(options, presentation.device_extensions, surface.handle()))) {
+  build_scene(*this, options.scene);
 }
 
 RenderSession::~RenderSession() { scene.reset(); }  // before the device goes

@@ -21,12 +21,23 @@
 
 namespace nano::view {
 
-// The variant options `render`, `verify` and `bench` share: --shell, --prism, --levels.
+// What opening a RenderSession takes besides the package: how the scene's acceleration structures
+// are built, and whether the device keeps compiled pipelines across runs (vk::DeviceOptions).
+struct SessionOptions {
+  render::SceneOptions scene;
+  bool persistent_pipeline_cache = true;
+};
+
+// The variant options `render`, `verify`, `pick`, `bench` and `view` share: --shell, --prism,
+// --levels, ..., and --no-pipeline-cache (a choice of how to run, like the others, though not of
+// what is drawn).
 struct VariantOptions {
   std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep", precision = "two-float-eye", lod = "off",
               flatten = "auto";
-  // Throw InputError naming the option whose value is not one of its choices.
-  render::SceneOptions scene_options() const;
+  bool no_pipeline_cache = false;
+  // Throw InputError naming the option whose value is not one of its choices. scene_options() is
+  // what RenderSession opens the scene (and its device) with.
+  SessionOptions scene_options() const;
   render::RenderSettings render_settings() const;
 };
 
@@ -91,9 +102,8 @@ struct RenderSession {
   std::unique_ptr<render::GpuScene> scene;
 
   // Throws InputError (bad package), DeviceSelectionError (no device with ray queries) or vk errors.
-  RenderSession(const std::filesystem::path& path, const render::SceneOptions& options);
-  RenderSession(const std::filesystem::path& path, const render::SceneOptions& options,
-                const PresentationOptions& presentation);
+  RenderSession(const std::filesystem::path& path, const SessionOptions& options);
+  RenderSession(const std::filesystem::path& path, const SessionOptions& options, const PresentationOptions& presentation);
   ~RenderSession();
 
   // Validation-layer errors so far (0 without NANO_VALIDATION); commands fail when it is non-zero.

@@ -90,8 +90,11 @@ ComputePipeline::ComputePipeline(const Device& device, const ComputePipelineDesc
   pipeline_info.stage.pSpecializationInfo = desc.specialization.empty() ? nullptr : &specialization;
   pipeline_info.layout = pipeline_layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  check(vkCreateComputePipelines(vk_device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline), "vkCreateComputePipelines");
+  check(vkCreateComputePipelines(vk_device, device.pipeline_cache(), 1, &pipeline_info, nullptr, &pipeline),
+        "vkCreateComputePipelines");
   pipeline_ = DeviceHandle<VkPipeline>(vk_device, pipeline, vkDestroyPipeline);
+  // Now rather than at exit: a run that is killed (or crashes) later still keeps what it compiled.
+  device.save_pipeline_cache();
 }
 
 DescriptorPool::DescriptorPool(const Device& device, const ComputePipeline& pipeline, std::uint32_t copies) {

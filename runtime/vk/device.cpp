@@ -8,6 +8,7 @@
 
 #include "runtime/vk/device_selection.hpp"
 #include "runtime/vk/error.hpp"
+#include "runtime/vk/pipeline_cache.hpp"
 
 namespace nano::vk {
 namespace {
@@ -119,7 +120,13 @@ Device::Device(VkPhysicalDevice physical_device, DeviceReport report, const Devi
     VkCommandPool pool = VK_NULL_HANDLE;
     check(vkCreateCommandPool(device_, &pool_info, nullptr, &pool), "vkCreateCommandPool");
     command_pool_ = DeviceHandle<VkCommandPool>(device_, pool, vkDestroyCommandPool);
+
+    if (options.persistent_pipeline_cache) {
+      const PipelineCacheKey key = pipeline_cache_key(physical_device_, options.shader_hash);
+      pipeline_cache_ = std::make_unique<PipelineCache>(device_, key, pipeline_cache_file(key));
+    }
   } catch (...) {
+    command_pool_.reset();
     vkDestroyDevice(device_, nullptr);
     throw;
   }
@@ -136,12 +143,14 @@ Device::Device(Device&& other) noexcept
       as_functions_(other.as_functions_),
       get_host_pointer_properties_(other.get_host_pointer_properties_),
       host_import_alignment_(other.host_import_alignment_),
-      command_pool_(std::move(other.command_pool_)) {}
+      command_pool_(std::move(other.command_pool_)),
+      pipeline_cache_(std::move(other.pipeline_cache_)) {}
 
 Device::~Device() {
   if (device_ == VK_NULL_HANDLE) return;
   // Destructors must not throw; a lost device here changes nothing for the caller.
   vkDeviceWaitIdle(device_);
+  pipeline_cache_.reset();  // saves what this run compiled
   command_pool_.reset();
   vkDestroyDevice(device_, nullptr);
 }
@@ -183,6 +192,12 @@ void Device::submit_once(const std::function<void(VkCommandBuffer)>& record) con
   submit.pCommandBuffers = &commands;
   check(vkQueueSubmit(queue_, 1, &submit, fence.get()), "vkQueueSubmit");
   check(vkWaitForFences(device_, 1, &raw_fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+}
+
+VkPipelineCache Device::pipeline_cache() const { return pipeline_cache_ ? pipeline_cache_->handle() : VK_NULL_HANDLE; }
+
+void Device::save_pipeline_cache() const {
+  if (pipeline_cache_) pipeline_cache_->save();
 }
 
 std::string Device::description() const {

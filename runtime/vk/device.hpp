@@ -3,6 +3,7 @@
 // loaded with vkGetDeviceProcAddr, and the limits later code needs (scratch alignment, ...).
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,8 @@
 #include "runtime/vk/instance.hpp"
 
 namespace nano::vk {
+
+class PipelineCache;  // runtime/vk/pipeline_cache.hpp
 
 // Extension entry points are not exported by the loader; they are fetched per device.
 struct AccelerationStructureFunctions {
@@ -29,6 +32,12 @@ struct AccelerationStructureFunctions {
 struct DeviceOptions {
   std::vector<std::string> extensions;             // extra device extensions (required, not optional)
   VkSurfaceKHR present_surface = VK_NULL_HANDLE;   // when set, the one queue must also present to it
+  // Keep compiled pipelines across runs in the user's cache directory (runtime/vk/pipeline_cache.hpp),
+  // in a file keyed by the device and `shader_hash` (embedded_shader_hash() for this program's
+  // shaders). Off by default so that tests and tools touch no files; the nanoview commands turn it
+  // on unless --no-pipeline-cache. Off, pipelines are created without a VkPipelineCache.
+  bool persistent_pipeline_cache = false;
+  std::uint64_t shader_hash = 0;
 };
 
 class Device {
@@ -64,6 +73,13 @@ public:
   // Records commands into a fresh primary command buffer, submits it and waits on a fence.
   void submit_once(const std::function<void(VkCommandBuffer)>& record) const;
 
+  // The cache pipelines are created with: VK_NULL_HANDLE unless DeviceOptions::persistent_pipeline_cache.
+  VkPipelineCache pipeline_cache() const;
+  // Writes the pipeline cache's file when it holds something new (the destructor does too), so a
+  // process killed later keeps what it compiled. Thread-safe; never throws (PipelineCache::save).
+  // const: saving changes the file, not what this device does.
+  void save_pipeline_cache() const;
+
   // "llvmpipe (LLVM 15.0.6, 256 bits) (llvmpipe, Mesa 25.0.7, API 1.3.296)"
   std::string description() const;
 
@@ -79,6 +95,7 @@ private:
   PFN_vkGetMemoryHostPointerPropertiesEXT get_host_pointer_properties_ = nullptr;
   VkDeviceSize host_import_alignment_ = 0;
   DeviceHandle<VkCommandPool> command_pool_;
+  std::unique_ptr<PipelineCache> pipeline_cache_;  // null without a persistent pipeline cache
 };
 
 // Surveys every physical device, applies the selection policy (NANO_DEVICE override unless
