@@ -10,10 +10,15 @@
 //               view, with what counting costs
 //   --matrix    every knob of DESIGN.md's accuracy/time table against the default: time ratio and
 //               pixels differing from the CPU oracle (JSON, Markdown table, SVG plot)
+//   --compile   every pipeline variant the package's effects and the command-line knobs can select,
+//               built cold (no Mesa shader cache, no pipeline cache of ours): SPIR-V size, traversal
+//               loops, vkCreateComputePipelines and first-dispatch time
 // Variants are always measured alternately in one run, so a noisy shared machine shifts them alike.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -37,6 +42,7 @@
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/renderer.hpp"
 #include "runtime/session/session.hpp"
+#include "shared/bindings.h"
 #include "runtime/viewer/progressive.hpp"
 
 namespace nano::view {
@@ -46,7 +52,7 @@ struct Options {
   std::string package, size, camera, path, json, markdown, plot;
   unsigned frames = 0;
   unsigned matrix_cameras = 4;
-  bool effects = false, matrix = false, explicit_instancing = false, counters = false;
+  bool effects = false, matrix = false, explicit_instancing = false, counters = false, compile = false;
   VariantOptions variant;
   EffectOptions effect_options;
 };
@@ -198,6 +204,92 @@ std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, c
   return v;
 }
 
+struct CompileRow {
+  std::string what;                // the effect or knob, as a user selects it
+  render::RenderSettings settings;
+};
+
+// Every variant a user can select from this package: the scene as `render` draws it, the build
+// without effect code, every effect alone, all of them, and every knob flipped from the command's.
+std::vector<CompileRow> compile_rows(const render::RenderSettings& command, const render::EffectSettings& scene,
+                                     const Camera& camera) {
+  std::vector<CompileRow> rows;
+  const auto add = [&](std::string what, render::RenderSettings s) { rows.push_back({std::move(what), s}); };
+  add("as render draws it", command);
+  render::RenderSettings off = command;
+  off.effects = render::EffectSettings{};
+  off.without_effect_code = true;
+  off.lod_pixels = 0;
+  add("no effect code", off);
+  off.without_effect_code = false;
+  add("every effect off", off);
+  const std::vector<EffectVariant> effects = effect_variants(off, scene, camera);
+  for (const EffectVariant& e : effects)
+    if (e.name != "no effect code" && e.name != "all off") add(e.name == "all on" ? "every effect on" : e.name, e.settings);
+  const auto knob = [&](std::string what, auto change) {
+    render::RenderSettings s = command;
+    change(s);
+    add(std::move(what), s);
+  };
+  knob(command.flatten_bytes ? "--flatten off" : "--flatten auto",
+       [&](render::RenderSettings& s) { s.flatten_bytes = command.flatten_bytes ? 0 : render::kFlattenAuto; });
+  knob("--lod auto", [](render::RenderSettings& s) { s.lod_pixels = 1; });
+  knob("--prism aabb", [](render::RenderSettings& s) { s.exact_prism = false; });
+  knob("--levels 3", [](render::RenderSettings& s) { s.replication_las = false; });
+  knob("--levels 2", [](render::RenderSettings& s) {
+    s.two_level = true;
+    s.effects.clipping_on = s.effects.jitter_on = false;
+  });
+  knob("--precision camera-relative", [](render::RenderSettings& s) { s.precision = render::Precision::camera_relative; });
+  knob("--precision world", [](render::RenderSettings& s) { s.precision = render::Precision::world; });
+  knob("bench --counters", [](render::RenderSettings& s) { s.counters = true; });
+  return rows;
+}
+
+// Each variant built on its own, cold, then dispatched once over one workgroup (8×8 pixels) of the
+// scene's view: a driver that compiles at first use (lavapipe: LLVM) does it there.
+void run_compile(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+  const Camera camera = camera_option(session.package, o.camera);
+  render::RenderSettings command = o.variant.render_settings();
+  command.effects = o.effect_options.settings(session.package);
+  command.depth_cue = render::depth_cue_for(camera);
+  const gpu::Camera tile = camera.to_gpu(gpu::NANO_WORKGROUP_SIZE, gpu::NANO_WORKGROUP_SIZE);
+  std::map<std::string, std::size_t> built;  // variant name → its row
+  std::printf("%-28s %9s %6s %9s %9s %9s  %s\n", "selected by", "SPIR-V kB", "loops", "create s", "dispatch s", "total s",
+              "pipeline (specialization constants on)");
+  for (const CompileRow& row : compile_rows(command, render::package_effects(session.package), camera)) {
+    nlohmann::ordered_json j{{"selected_by", row.what}};
+    const std::string name = render::Renderer::variant_name(row.settings);
+    j["pipeline"] = name;
+    if (const auto same = built.find(name); same != built.end()) {
+      j["same_pipeline_as"] = out["variants"][same->second]["selected_by"];
+      std::printf("%-28s %s\n", row.what.c_str(), ("same pipeline as \"" + std::string(j["same_pipeline_as"]) + "\"").c_str());
+      out["variants"].push_back(j);
+      continue;
+    }
+    try {
+      render::Renderer renderer(session.device, *session.scene, row.settings);
+      (void)renderer.render(tile);
+      const render::Renderer::PipelineBuild b = renderer.pipeline_build();
+      j["spirv_bytes"] = b.spirv_bytes;
+      j["ray_query_loops"] = b.ray_query_loops;
+      j["create_seconds"] = b.create_seconds;
+      j["first_dispatch_seconds"] = b.first_dispatch_seconds;
+      j["total_seconds"] = b.create_seconds + b.first_dispatch_seconds;
+      std::printf("%-28s %9.1f %6u %9.3f %9.3f %9.3f  %s\n", row.what.c_str(), b.spirv_bytes / 1e3, b.ray_query_loops,
+                  b.create_seconds, b.first_dispatch_seconds, b.create_seconds + b.first_dispatch_seconds, name.c_str());
+      built.emplace(name, out["variants"].size());
+    } catch (const std::invalid_argument& e) {  // a knob this package cannot take (no beads, no atom squares)
+      j["unavailable"] = e.what();
+      std::printf("%-28s unavailable: %s\n", row.what.c_str(), e.what());
+    }
+    out["variants"].push_back(j);
+  }
+  out["cold"] = "MESA_SHADER_CACHE_DISABLE=true, no pipeline cache";
+  std::printf("create: vkCreateComputePipelines (SPIR-V to the driver's IR, ray queries lowered); dispatch: the first "
+              "dispatch of one workgroup, where a driver that compiles lazily generates code (lavapipe: LLVM)\n");
+}
+
 void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
   const unsigned rounds = o.frames ? o.frames : 5;
@@ -341,6 +433,9 @@ void add_bench_command(CLI::App& app) {
                 "explicit instancing (one TLAS instance per molecule copy) against virtual instancing on the same frames");
   cmd->add_flag("--counters", o->counters,
                 "work per pixel at every traversal level, virtual beside explicit instancing (default 128x128, 3 timed rounds)");
+  cmd->add_flag("--compile", o->compile,
+                "every pipeline variant the package's effects and the knobs select, built cold: SPIR-V size, "
+                "traversal loops, create and first-dispatch time");
   cmd->add_flag("--matrix", o->matrix, "every accuracy knob against the default: time ratio and pixels differing from the oracle");
   cmd->add_option("--matrix-cameras", o->matrix_cameras, "verify views of the matrix")->capture_default_str()->check(CLI::Range(1u, 16u));
   cmd->add_option("--markdown", o->markdown, "with --matrix: write the table as Markdown");
@@ -348,20 +443,28 @@ void add_bench_command(CLI::App& app) {
   add_variant_options(*cmd, o->variant);
   add_effect_options(*cmd, o->effect_options);
   cmd->callback([o] {
-    if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) + int(o->counters) > 1)
-      throw InputError("--effects/--matrix/--explicit/--counters", "", "choose one mode");
+    if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) + int(o->counters) + int(o->compile) > 1)
+      throw InputError("--effects/--matrix/--explicit/--counters/--compile", "", "choose one mode");
     if ((!o->markdown.empty() || !o->plot.empty()) && !o->matrix) throw InputError("--markdown/--plot", "", "need --matrix");
-    RenderSession session(o->package, o->variant.scene_options());
+    SessionOptions session_options = o->variant.scene_options();
+    if (o->compile) {
+      // Cold: Mesa's disk cache off (read when the device opens) and no pipeline cache of ours.
+      setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
+      session_options.persistent_pipeline_cache = false;
+    }
+    RenderSession session(o->package, session_options);
     nlohmann::ordered_json out;
     out["package"] = o->package;
     out["package_bytes"] = session.package.file_size();
     out["device"] = session.device.description();
-    out["mode"] = o->effects ? "effects" : o->matrix ? "matrix" : o->explicit_instancing ? "explicit" : o->counters ? "counters" : "frames";
+    out["mode"] = o->effects ? "effects" : o->matrix ? "matrix" : o->explicit_instancing ? "explicit" : o->counters ? "counters"
+                  : o->compile ? "compile" : "frames";
     std::printf("%s on %s\n", o->package.c_str(), session.device.description().c_str());
     if (o->effects) run_effects(*o, session, out);
     else if (o->matrix) run_matrix(*o, session, out);
     else if (o->explicit_instancing) run_explicit(*o, session, out);
     else if (o->counters) run_counters(*o, session, out);
+    else if (o->compile) run_compile(*o, session, out);
     else run_frames(*o, session, out);
     out["validation_errors"] = session.validation_errors();
     if (!o->json.empty()) write_text(o->json, out.dump(2) + "\n");

@@ -45,10 +45,51 @@ Variant variant_of(const RenderSettings& s) {
           s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world};
 }
 
+std::string name_of(const Variant& v) {
+  std::string name;
+  const auto add = [&](bool on, const char* what) {
+    if (!on) return;
+    if (!name.empty()) name += ' ';
+    name += what;
+  };
+  add(v.no_effect_code, "no_effect_code");
+  add(v.exact_prism, "exact_prism");
+  add(v.replication_las, "replication_las");
+  add(v.two_level, "two_level");
+  add(v.eye_from_host, "eye_from_host");
+  add(v.world_space_ulas, "world_space_ulas");
+  add(v.flat, "flat");
+  add(v.clipping, "clipping");
+  add(v.jitter, "jitter");
+  add(v.ambient_occlusion, "ao");
+  add(v.shadows, "shadows");
+  add(v.counters, "counters");
+  add(v.lod, "lod");
+  return name;
+}
+
+vk::SpirvCode shader_code(const Variant& v) {
+  if (v.no_effect_code) return {nano_spv_render_nano_no_effects_comp, nano_spv_render_nano_no_effects_comp_words};
+  return {nano_spv_render_comp, nano_spv_render_comp_words};
+}
+
+// OpRayQueryProceedKHR instructions in a module (each word of an instruction's first word: count
+// << 16 | opcode; the header is 5 words).
+unsigned count_ray_query_loops(const vk::SpirvCode& code) {
+  constexpr std::uint32_t kOpRayQueryProceedKHR = 4477;
+  unsigned loops = 0;
+  for (std::size_t at = 5; at < code.word_count;) {
+    const std::uint32_t words = code.words[at] >> 16;
+    if ((code.words[at] & 0xFFFFu) == kOpRayQueryProceedKHR) ++loops;
+    if (words == 0) break;  // malformed: never loop forever
+    at += words;
+  }
+  return loops;
+}
+
 vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   vk::ComputePipelineDesc desc;
-  if (v.no_effect_code) desc.code = {nano_spv_render_nano_no_effects_comp, nano_spv_render_nano_no_effects_comp_words};
-  else desc.code = {nano_spv_render_comp, nano_spv_render_comp_words};
+  desc.code = shader_code(v);
   desc.sets = {ray_query_set({gpu::NANO_B_ULAS, gpu::NANO_B_FLAT_TLAS}, gpu::NANO_RENDER_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
   desc.push_constant_bytes = 2 * sizeof(std::uint32_t);  // the part's first pixel
   desc.specialization.set_bool(gpu::NANO_SPEC_EXACT_PRISM, v.exact_prism);
@@ -82,8 +123,15 @@ void check(const RenderSettings& s) {
   if (s.lod_pixels > 0 && s.without_effect_code) throw std::invalid_argument("the build without effect code has no level of detail");
 }
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 struct Pipeline {
+  std::chrono::steady_clock::time_point created_from = std::chrono::steady_clock::now();
   vk::ComputePipeline pipeline;
+  double create_seconds = seconds_since(created_from);
+  double first_dispatch_seconds = -1;
   vk::DescriptorPool pool;
   VkDescriptorSet set;
   Pipeline(const vk::Device& d, const Variant& v) : pipeline(d, pipeline_desc(v)), pool(d, pipeline), set(pool.allocate(pipeline.set_layout(0))) {}
@@ -214,7 +262,9 @@ struct Renderer::Impl {
       if (f.next_column >= f.width) f.next_column = 0, f.next_row += h;
     }
     Pipeline& p = *pipelines.at(f.variant);
+    const auto dispatched = std::chrono::steady_clock::now();
     vk::dispatch_region_and_wait(device, p.pipeline, p.set, x, y, w, h, std::uint32_t(wg));
+    if (p.first_dispatch_seconds < 0) p.first_dispatch_seconds = seconds_since(dispatched);
     f.traced_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return {std::uint64_t(w) * h, f.next_row >= f.height};
   }
@@ -256,6 +306,15 @@ Renderer::Part Renderer::trace_part(std::uint64_t pixels) { return impl_->trace_
 Frame Renderer::finish() { return impl_->finish(); }
 void Renderer::set_settings(const RenderSettings& settings) { impl_->set_settings(settings); }
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
+
+Renderer::PipelineBuild Renderer::pipeline_build() const {
+  const Variant v = variant_of(impl_->settings);
+  const Pipeline& p = *impl_->pipelines.at(v);
+  const vk::SpirvCode code = shader_code(v);
+  return {name_of(v), code.word_count * sizeof(std::uint32_t), count_ray_query_loops(code), p.create_seconds, p.first_dispatch_seconds};
+}
+
+std::string Renderer::variant_name(const RenderSettings& settings) { return name_of(variant_of(settings)); }
 
 std::uint64_t Renderer::rays_per_frame(const RenderSettings& settings, std::uint64_t pixels) {
   const Variant v = variant_of(settings);

@@ -3,6 +3,7 @@
 // the hit ids, depth and a shaded colour out.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -79,6 +80,20 @@ public:
   // Throws std::invalid_argument for more than 8 clip planes or effects the two-level path lacks.
   void set_settings(const RenderSettings& settings);
   const RenderSettings& settings() const;
+
+  // What the pipeline of the current settings cost to build (bench --compile): vkCreateComputePipelines
+  // and its first dispatch, where a driver that compiles lazily does its work (lavapipe: LLVM).
+  struct PipelineBuild {
+    std::string variant;                 // the shader build and specialization constants that select it
+    std::size_t spirv_bytes = 0;         // the SPIR-V module
+    unsigned ray_query_loops = 0;        // OpRayQueryProceedKHR in the module: each is a whole traversal once compiled
+    double create_seconds = 0;
+    double first_dispatch_seconds = -1;  // < 0: not dispatched yet
+  };
+  PipelineBuild pipeline_build() const;
+  // "exact_prism replication_las ..." — the specialization constants `settings` turn on (and
+  // "no_effect_code" for the build without effect code); equal names, one pipeline.
+  static std::string variant_name(const RenderSettings& settings);
 
   // Rays one frame of `pixels` pixels traces with these settings (primary + shadow + AO).
   static std::uint64_t rays_per_frame(const RenderSettings& settings, std::uint64_t pixels);

@@ -622,7 +622,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
       w.mode = kWalkCore;
     }
     rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
-    if (w.mode == kWalkRepLas) {
+    if (kReplicationLas && w.mode == kWalkRepLas) {
       RenderLevel a = levels[rc.span.w];
       count_work(NANO_RC_REPLAS_QUERIES);
       rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
@@ -658,7 +658,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
           element = ijk;
           next = true;
         }
-      } else if (w.mode == kWalkRepLas) {
+      } else if (kReplicationLas && w.mode == kWalkRepLas) {
         while (!next && rayQueryProceedEXT(area)) {
           uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
           RenderLevel a = levels[rc.span.w];
@@ -696,7 +696,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
       }
       if (!trace_element(inst, ci, membrane, tl, w, slot_or_box, where, o, od)) continue;
       found = true;
-      if (w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
+      if (kReplicationLas && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
     }
     if (found) {
       best_to_world = rayQueryGetIntersectionObjectToWorldEXT(q, false);
