@@ -1,6 +1,7 @@
 #include "runtime/render/renderer.hpp"
 
 #include <chrono>
+#include <future>
 #include <map>
 #include <optional>
 #include <string>
@@ -137,6 +138,36 @@ struct Pipeline {
   Pipeline(const vk::Device& d, const Variant& v) : pipeline(d, pipeline_desc(v)), pool(d, pipeline), set(pool.allocate(pipeline.set_layout(0))) {}
 };
 
+// Binds every binding of a pipeline's set to placeholders — one zeroed buffer (its RenderFrame has an
+// empty image, so every invocation returns at once) and an empty TLAS — and dispatches one workgroup:
+// the pipeline's first dispatch, without the scene.
+void warm_up(const vk::Device& device, Pipeline& p) {
+  vk::Buffer zeros(device, 64 * 1024, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
+  const std::vector<std::uint32_t> zero_words(16 * 1024, 0u);
+  zeros.write(std::as_bytes(std::span(zero_words)));
+  // A structure of one box, never traced (no buffer may be empty).
+  const VkAabbPositionsKHR box{0, 0, 0, 1, 1, 1};
+  const vk::Buffer input =
+      vk::Buffer::with_data(device, std::as_bytes(std::span(&box, 1)), vk::kBuildInputUsage, vk::MemoryUse::HostVisible);
+  const vk::AccelerationStructure blas = vk::build_bottom_level(device, vk::AabbGeometry{input.address(), 1});
+  const VkAccelerationStructureInstanceKHR instance = vk::make_instance(blas, glm::dmat4(1.0), 0);
+  const vk::AccelerationStructure tlas = vk::build_top_level(device, std::span(&instance, 1));
+  for (const vk::DescriptorBinding& b : p.pipeline.sets().front()) {
+    if (b.type == VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR) vk::write_acceleration_structure(device.handle(), p.set, b.binding, tlas);
+    else vk::write_storage_buffer(device.handle(), p.set, b.binding, zeros);
+  }
+  const auto dispatched = std::chrono::steady_clock::now();
+  vk::dispatch_region_and_wait(device, p.pipeline, p.set, 0, 0, gpu::NANO_WORKGROUP_SIZE, gpu::NANO_WORKGROUP_SIZE,
+                               gpu::NANO_WORKGROUP_SIZE);
+  p.first_dispatch_seconds = seconds_since(dispatched);
+}
+
+// A pipeline being built on a worker thread (Renderer::prepare).
+struct PendingBuild {
+  std::future<std::unique_ptr<Pipeline>> pipeline;
+  std::chrono::steady_clock::time_point started;
+};
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -144,6 +175,7 @@ struct Renderer::Impl {
   GpuScene& scene;
   RenderSettings settings;
   std::map<Variant, std::unique_ptr<Pipeline>> pipelines;  // built on first use, kept for toggling back
+  std::map<Variant, PendingBuild> building;                 // prepare()d, not yet taken into `pipelines`
   vk::Buffer frame_buffer;
   PixelOutputs outputs;
   // The frame begun and not yet finished.
@@ -166,7 +198,37 @@ struct Renderer::Impl {
                                   ": no beads (baked before format 2.5), so no level of detail: bake it again, or --lod off");
     settings = r;
     const Variant v = variant_of(r);
+    if (const auto b = building.find(v); b != building.end()) {
+      std::future<std::unique_ptr<Pipeline>> pending = std::move(b->second.pipeline);
+      building.erase(b);
+      pipelines.emplace(v, pending.get());  // waits; rethrows the worker's error (a later call builds it here)
+    }
     if (!pipelines.count(v)) pipelines.emplace(v, std::make_unique<Pipeline>(device, v));
+  }
+
+  void prepare(const RenderSettings& r) {
+    check(r);
+    const Variant v = variant_of(r);
+    if (pipelines.count(v) || building.count(v)) return;
+    const vk::Device& d = device;
+    building.emplace(v, PendingBuild{std::async(std::launch::async,
+                                                [&d, v] {
+                                                  auto p = std::make_unique<Pipeline>(d, v);
+                                                  warm_up(d, *p);
+                                                  return p;
+                                                }),
+                                     std::chrono::steady_clock::now()});
+  }
+
+  bool ready(const RenderSettings& r) {
+    const Variant v = variant_of(r);
+    if (pipelines.count(v)) return true;
+    const auto b = building.find(v);
+    if (b == building.end() || b->second.pipeline.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+    std::future<std::unique_ptr<Pipeline>> done = std::move(b->second.pipeline);
+    building.erase(b);
+    pipelines.emplace(v, done.get());  // rethrows the worker's error
+    return true;
   }
 
   gpu::RenderFrame frame_record(const gpu::Camera& camera) const {
@@ -305,6 +367,12 @@ void Renderer::begin(const gpu::Camera& camera) { impl_->begin(camera); }
 Renderer::Part Renderer::trace_part(std::uint64_t pixels) { return impl_->trace_part(pixels); }
 Frame Renderer::finish() { return impl_->finish(); }
 void Renderer::set_settings(const RenderSettings& settings) { impl_->set_settings(settings); }
+void Renderer::prepare(const RenderSettings& settings) { impl_->prepare(settings); }
+bool Renderer::ready(const RenderSettings& settings) { return impl_->ready(settings); }
+double Renderer::preparing_seconds(const RenderSettings& settings) const {
+  const auto b = impl_->building.find(variant_of(settings));
+  return b == impl_->building.end() ? 0.0 : seconds_since(b->second.started);
+}
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
 
 Renderer::PipelineBuild Renderer::pipeline_build() const {

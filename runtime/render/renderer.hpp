@@ -75,6 +75,16 @@ public:
   Part trace_part(std::uint64_t pixels);
   Frame finish();
 
+  // Builds the pipeline `settings` select on a worker thread — vkCreateComputePipelines, then one
+  // dispatch of one workgroup on placeholder resources, where a driver that compiles at first use
+  // (lavapipe: LLVM) compiles — unless it is built or being built; returns at once. Throws
+  // std::invalid_argument for settings set_settings would refuse. ready() says when it is done;
+  // set_settings() with them waits for it. A viewer switching an effect keeps showing what it has
+  // meanwhile instead of stalling.
+  void prepare(const RenderSettings& settings);
+  bool ready(const RenderSettings& settings);
+  double preparing_seconds(const RenderSettings& settings) const;  // since prepare(); 0 when not being built
+
   // Effects and knobs for the next frames. A change of what is compiled in (the specialization
   // constants) builds another pipeline, once; parameters (planes, time, AO radius) cost nothing.
   // Throws std::invalid_argument for more than 8 clip planes or effects the two-level path lacks.

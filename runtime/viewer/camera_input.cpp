@@ -52,6 +52,7 @@ InputResult handle_camera_input(Window& window, CameraController& camera, double
     if (pressed(GLFW_KEY_F12) || pressed(GLFW_KEY_P)) r.screenshot = true;
     r.add_keyframe = pressed(GLFW_KEY_K);
     r.toggle_path = pressed(GLFW_KEY_L);
+    r.toggle_ambient_occlusion = pressed(GLFW_KEY_O);
     if (camera.mode() == CameraController::Mode::fly) {
       // Held, or tapped during the last frame (then it moves for that frame's time, capped below).
       const auto down = [&](int key) { return window.key_down(key) || pressed(key) ? 1.0 : 0.0; };

@@ -20,6 +20,7 @@ struct InputResult {
   bool screenshot = false;
   bool add_keyframe = false;    // K
   bool toggle_path = false;     // L
+  bool toggle_ambient_occlusion = false;  // O
   std::vector<int> keys;        // every key pressed since the last call (GLFW codes), in order
 };
 

@@ -211,6 +211,7 @@ void draw_panel(ViewerState& s, const PanelContext& c) {
     pick_section(s);
     if (ImGui::Button("screenshot (F12, P)")) s.screenshot_requested = true;
     ImGui::EndDisabled();
+    if (!s.compiling.empty()) ImGui::Text("%s", s.compiling.c_str());
     if (!s.status.empty()) ImGui::Text("%s", s.status.c_str());
     ImGui::PopItemWidth();
   }

@@ -1,5 +1,7 @@
 #include "runtime/viewer/presenter.hpp"
 
+#include <mutex>
+
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
@@ -100,6 +102,7 @@ Presenter::Presenter(const vk::Device& device, VkSurfaceKHR surface, const Windo
 }
 
 Presenter::~Presenter() {
+  const std::lock_guard queue_lock(device_.queue_mutex());
   vkDeviceWaitIdle(device_.handle());
   destroy_swapchain_objects();
   if (swapchain_ != VK_NULL_HANDLE) vkDestroySwapchainKHR(device_.handle(), swapchain_, nullptr);
@@ -135,7 +138,10 @@ bool Presenter::recreate() {
   if (fw == 0 || fh == 0) return false;
   const VkDevice d = device_.handle();
   const VkPhysicalDevice physical = device_.physical_device();
-  check(vkDeviceWaitIdle(d), "vkDeviceWaitIdle");
+  {
+    const std::lock_guard queue_lock(device_.queue_mutex());
+    check(vkDeviceWaitIdle(d), "vkDeviceWaitIdle");
+  }
 
   VkSurfaceCapabilitiesKHR caps{};
   check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(physical, surface_, &caps), "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
@@ -223,6 +229,11 @@ bool Presenter::present(std::span<const std::uint32_t> rgba, std::uint32_t width
   const VkDevice d = device_.handle();
   const auto [fw, fh] = window_.framebuffer_size();
   if (fw == 0 || fh == 0) return false;  // minimised: nothing to show, keep the swapchain
+  // The queue may be busy with a pipeline's first dispatch on a worker thread (a driver that compiles
+  // at first use compiles there): then this present is skipped, the window keeps its last image and
+  // the caller goes on handling input, rather than waiting for the compiler.
+  const std::unique_lock queue_lock(device_.queue_mutex(), std::try_to_lock);
+  if (!queue_lock.owns_lock()) return false;
   if (stale_ || fw != extent_.width || fh != extent_.height) {
     if (!recreate()) return false;
   }

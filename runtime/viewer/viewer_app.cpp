@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <thread>
 #include <cstdlib>
 #include <optional>
 #include <cmath>
@@ -231,14 +232,33 @@ private:
 
   void render_full() { render_now(1); }
 
-  // Starts a banded frame of the current state at 1/scale (nothing traced yet).
+  // Starts a banded frame of the current state at 1/scale (nothing traced yet) — unless the pipeline
+  // its settings select is not built yet: then it is built on a worker thread (Renderer::prepare),
+  // the window keeps what it shows and input goes on; a later call starts the frame once it is ready.
   void start_job(std::uint32_t scale) {
-    job_ = make_job(scale);
+    const Job next = make_job(scale);
+    if (!renderer_->ready(next.settings)) {
+      const std::string name = render::Renderer::variant_name(next.settings);
+      if (compiling_ != name) {
+        renderer_->prepare(next.settings);
+        compiling_ = name;
+        std::fprintf(stderr, "view: compiling the pipeline %s on a worker thread at %.3f\n", name.c_str(), wall_seconds());
+      }
+      state_.compiling = "compiling " + name + "… " + std::to_string(int(renderer_->preparing_seconds(next.settings))) + " s";
+      return;
+    }
+    if (!compiling_.empty()) {
+      std::fprintf(stderr, "view: pipeline %s ready at %.3f\n", compiling_.c_str(), wall_seconds());
+      compiling_.clear();
+      state_.compiling.clear();
+    }
+    job_ = next;
     part_seconds_per_pixel_ = 0;
     renderer_->set_settings(job_->settings);
     renderer_->begin(job_camera(*job_));
     if (input_log_ && scale == 1)
-      std::fprintf(stderr, "view: full %ux%u frame begun at %.3f\n", job_->size.first, job_->size.second, wall_seconds());
+      std::fprintf(stderr, "view: full %ux%u frame begun at %.3f (%s)\n", job_->size.first, job_->size.second, wall_seconds(),
+                   render::Renderer::variant_name(job_->settings).c_str());
   }
 
   // Traces the next part of the frame in progress, sized to kPartSeconds by the dearest cost per
@@ -339,8 +359,17 @@ private:
       const bool busy = active || job_ || shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples() ||
                         state_.playing || state_.path.play_time;
       // At rest with every sample in, sleep until something happens: no frame, no CPU.
-      if (busy) window_.poll_events();
-      else window_.wait_events(0.5);
+      // While a pipeline builds on a worker thread there is nothing to trace: wait for input a little
+      // rather than spin on the core the compiler needs, and look at the build ~20 times a second.
+      if (!compiling_.empty()) {
+        // (Under Xvfb the wait returns at once, events or not: a short sleep keeps the core free.)
+        std::this_thread::sleep_for(std::chrono::milliseconds(15));
+        window_.wait_events(0.035);
+      } else if (busy) {
+        window_.poll_events();
+      } else {
+        window_.wait_events(0.5);
+      }
       const auto now = Clock::now();
       const double dt = std::chrono::duration<double>(now - last).count();
       last = now;
@@ -374,6 +403,10 @@ private:
       if (input.toggle_path) {
         toggle_playback(state_);
         log_status();
+      }
+      if (input.toggle_ambient_occlusion) {
+        state_.settings.effects.ambient_occlusion_on = !state_.settings.effects.ambient_occlusion_on;
+        state_.touch();
       }
       if (state_.playing && !state_.path.play_time) {  // while a path plays, it drives the time
         state_.settings.effects.time += dt * state_.play_speed;
@@ -456,6 +489,7 @@ private:
   Clock::time_point last_present_{};
   const bool input_log_ = std::getenv("NANO_VIEW_INPUT_LOG") != nullptr;  // tests: input and full-frame times
   std::string logged_status_;
+  std::string compiling_;  // the pipeline being built on a worker thread (its variant name), if any
   std::uint64_t rendered_ = 0, presented_ = 0;
 };
 

@@ -41,6 +41,7 @@ struct ViewerState {
   FrameStats stats;
   std::optional<nlohmann::json> last_pick;  // describe_hit + "x", "y"
   std::string status;                       // one line: last screenshot written, last error
+  std::string compiling;                    // "compiling ao… 3 s" while a pipeline is built off the frame path
   bool screenshot_requested = false;
 };
 

@@ -144,6 +144,7 @@ Device::Device(Device&& other) noexcept
       get_host_pointer_properties_(other.get_host_pointer_properties_),
       host_import_alignment_(other.host_import_alignment_),
       command_pool_(std::move(other.command_pool_)),
+      queue_mutex_(std::move(other.queue_mutex_)),
       pipeline_cache_(std::move(other.pipeline_cache_)) {}
 
 Device::~Device() {
@@ -163,6 +164,7 @@ std::uint32_t Device::find_memory_type(std::uint32_t type_bits, VkMemoryProperty
 }
 
 void Device::submit_once(const std::function<void(VkCommandBuffer)>& record) const {
+  const std::lock_guard queue_lock(*queue_mutex_);
   VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   allocate.commandPool = command_pool_.get();
   allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;

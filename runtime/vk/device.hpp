@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,8 +71,13 @@ public:
   // First memory type allowed by `type_bits` that has all of `required`; throws if none.
   std::uint32_t find_memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
 
-  // Records commands into a fresh primary command buffer, submits it and waits on a fence.
+  // Records commands into a fresh primary command buffer, submits it and waits on a fence, holding
+  // queue_mutex() throughout (the command pool and the queue are externally synchronized).
   void submit_once(const std::function<void(VkCommandBuffer)>& record) const;
+
+  // Held by whoever uses the one queue (submit_once, a presenter's submit and present): pipelines
+  // may be built, and first dispatched, on a worker thread while the main thread renders.
+  std::recursive_mutex& queue_mutex() const { return *queue_mutex_; }
 
   // The cache pipelines are created with: VK_NULL_HANDLE unless DeviceOptions::persistent_pipeline_cache.
   VkPipelineCache pipeline_cache() const;
@@ -95,6 +101,7 @@ private:
   PFN_vkGetMemoryHostPointerPropertiesEXT get_host_pointer_properties_ = nullptr;
   VkDeviceSize host_import_alignment_ = 0;
   DeviceHandle<VkCommandPool> command_pool_;
+  std::unique_ptr<std::recursive_mutex> queue_mutex_ = std::make_unique<std::recursive_mutex>();
   std::unique_ptr<PipelineCache> pipeline_cache_;  // null without a persistent pipeline cache
 };
 
