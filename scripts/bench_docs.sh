@@ -26,6 +26,8 @@ for scene in virion rbc blood blood-large; do
   "$nanoview" bench "$pkgs/$scene.nup" --matrix --size 96x96 --frames 3 --matrix-cameras 4 \
     --json "$out/matrix-$scene.json" --markdown "$out/matrix-$scene.md" --plot "$out/matrix-$scene.svg"
 done
+# Every pipeline variant built cold (bench --compile turns Mesa's shader cache and ours off itself).
+"$nanoview" bench "$pkgs/virion.nup" --compile --json "$out/compile-virion.json"
 for scene in virion rbc; do
   "$nanoview" bench "$pkgs/$scene.nup" --effects --size 192x192 --frames 5 --json "$out/effects-$scene.json"
 done

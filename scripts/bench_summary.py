@@ -103,6 +103,24 @@ if x:
             "The red blood cell has 2.8·10⁸ haemoglobin copies: explicitly instanced at ~256 bytes each it would need "
             "~70 GB, and the renderer refuses it.", ""]
 
+compile_path = os.path.join(d, "compile-virion.json")
+if os.path.exists(compile_path):
+    c = json.load(open(compile_path))
+    out += ["## Pipeline compilation, cold (virion)", "",
+            "`nanoview bench --compile`: every pipeline variant the scene's effects and the knobs select, built once with "
+            "Mesa's shader cache and our pipeline cache off; create is vkCreateComputePipelines, dispatch the first dispatch "
+            "(where lavapipe compiles). Before/after and where the time goes: [compile.md](compile.md).", "",
+            "| selected by | SPIR-V | ray-query loops in the module | create | first dispatch | total |", "|---|---|---|---|---|---|"]
+    for v in c["variants"]:
+        if "total_seconds" in v:
+            out.append(f"| {v['selected_by']} | {v['spirv_bytes'] / 1e3:.0f} kB | {v['ray_query_loops']} | "
+                       f"{v['create_seconds']:.2f} s | {v['first_dispatch_seconds']:.2f} s | {v['total_seconds']:.2f} s |")
+        elif "same_pipeline_as" in v:
+            out.append(f"| {v['selected_by']} | same pipeline as “{v['same_pipeline_as']}” | | | | |")
+        else:
+            out.append(f"| {v['selected_by']} | unavailable: {v.get('unavailable', '')} | | | | |")
+    out.append("")
+
 out += ["## Accuracy against time", ""]
 for s in scenes:
     path = os.path.join(d, f"matrix-{s}.md")

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Checks a `nanoview bench --json` file holds every key the README promises for its mode, with
-values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit|counters"""
+values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit|counters|compile"""
 import json, math, sys
 
 path, mode = sys.argv[1], sys.argv[2]
@@ -119,6 +119,36 @@ elif mode == "counters":
     fs = need(work, "frame_seconds_median", "work", dict) or {}
     for k in ("virtual_without_counter_code", "virtual", "virtual_counting", "explicit", "explicit_counting"):
         need(fs, k, "frame_seconds_median", positive=True)
+elif mode == "compile":
+    need(d, "cold", "top", str)
+    rows = need(d, "variants", "top", list) or []
+    built = {}  # pipeline name -> the row that built it
+    for i, v in enumerate(rows):
+        where = f"variants[{i}]"
+        what = need(v, "selected_by", where, str)
+        name = need(v, "pipeline", where, str)
+        if "same_pipeline_as" in v:
+            if built.get(name) != v["same_pipeline_as"]:
+                problems.append(f"{where}: same pipeline as {v['same_pipeline_as']!r}, but that row did not build {name!r}")
+        elif "unavailable" not in v:
+            if name in built:
+                problems.append(f"{where}: pipeline {name!r} built twice")
+            built[name] = what
+            need(v, "spirv_bytes", where, int, positive=True)
+            need(v, "ray_query_loops", where, int, positive=True)
+            for k in ("create_seconds", "first_dispatch_seconds", "total_seconds"):
+                need(v, k, where, positive=True)
+            if "total_seconds" in v and abs(v["total_seconds"] - v.get("create_seconds", 0) - v.get("first_dispatch_seconds", 0)) > 1e-9:
+                problems.append(f"{where}: total_seconds is not create + first dispatch")
+    by_what = {v.get("selected_by"): v for v in rows}
+    for what in ("as render draws it", "no effect code", "every effect off", "ao", "shadows", "clipping", "jitter"):
+        if what not in by_what:
+            problems.append(f"no row for {what!r}")
+    # Animation moves instances on the host: it selects no shader code of its own.
+    if "same_pipeline_as" not in by_what.get("animation", {}):
+        problems.append("animation built a pipeline of its own")
+    if "no_effect_code" not in by_what.get("no effect code", {}).get("pipeline", ""):
+        problems.append("'no effect code' is not the build without effect code")
 else:
     problems.append(f"unknown mode {mode}")
 if problems:
