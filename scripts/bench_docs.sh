@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates docs/bench/: every number the README's bench summary quotes, with the commands that
+# Regenerates docs/bench/: every number docs/benchmarks.md quotes, with the commands that
 # made them (this file). Run on a quiet machine after scripts/setup.sh (or scripts/test.sh) built
 # the project; about an hour on 2 cores with lavapipe. Each step writes JSON, and the matrix also
 # Markdown and SVG.

@@ -1,7 +1,7 @@
 // `nanoview render PKG -o out.png [--size WxH] [--camera SPEC] [--depth out.pfm] [--ids out.bin]
 //  [--shell MODE] [--prism exact|aabb] [--levels 3+rep|3|2] [--repeat N] [effect options, --time S]`:
 //  one frame of the ray-query renderer; `--path cam.json [--frames A:B] -o frames/%05d.png`: frames
-//  of a camera path (README "Movies"). Every file is written atomically.
+//  of a camera path (docs/rendering.md, "Movies"). Every file is written atomically.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -144,10 +144,10 @@ void add_render_command(CLI::App& app) {
   auto* camera_flag = cmd->add_option(
       "--camera", o->camera, "\"pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG\" (world Å, vertical fov); keys left out keep the scene's camera");
   cmd->add_option("--depth", o->depth, "depth along the unit ray in Å as PFM (+inf: background); a pattern with --path");
-  cmd->add_option("--ids", o->ids, "per-pixel hit ids (see README); a pattern with --path");
+  cmd->add_option("--ids", o->ids, "per-pixel hit ids (docs/rendering.md, \"Ids\"); a pattern with --path");
   add_variant_options(*cmd, o->variant);
   add_effect_options(*cmd, o->effects);  // --time among them: with --path also the camera's time (-o is then one file)
-  auto* path_option = cmd->add_option("--path", o->path, "camera path (.json, README \"Movies\"): render its frames")
+  auto* path_option = cmd->add_option("--path", o->path, "camera path (.json, docs/rendering.md \"Movies\"): render its frames")
                           ->excludes(camera_flag);
   auto* frames_option =
       cmd->add_option("--frames", o->frames, "A:B: frames A to B inclusive of --path, frame k at time k / fps (default: all)")

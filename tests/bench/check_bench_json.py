@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks a `nanoview bench --json` file holds every key the README promises for its mode, with
+"""Checks a `nanoview bench --json` file holds every key docs/benchmarks.md promises for its mode, with
 values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit|counters|compile"""
 import json, math, sys
 

@@ -5,7 +5,7 @@ molecule's source structure file.
 A package holds each molecule type's atoms in file order after nanobake's selection policy (first
 model, waters removed, one atom per (chain, residue number, insertion code, atom name): highest
 occupancy, first in file on ties, kept at the place of the key's first atom), centred on their mean
-(README "Structure reading policy"); a lipid patch gives one molecule type per residue, each centred
+(docs/scenes.md, "Structure reading policy"); a lipid patch gives one molecule type per residue, each centred
 on its own mean. So for a pick naming atom i of a molecule type from file F, some residue group G of
 F (the whole selection for a protein) must hold, at its index i, an atom with the same name,
 element, chain, residue, insertion code and alternate location, at `position` + mean(G) in the

@@ -40,7 +40,7 @@ INNER
 xvfb-run -a -s "-screen 0 800x600x24" bash inner.sh "$nanoview" "$package"
 sent=$(cat sent.txt)
 handled=$(sed -n 's/^view: key 75 handled at \([0-9.]*\)$/\1/p' view.err | head -n1)
-began=$(sed -n 's/^view: full 640x480 frame begun at \([0-9.]*\)$/\1/p' view.err | tail -n1)
+began=$(sed -n 's/^view: full 640x480 frame begun at \([0-9.]*\).*$/\1/p' view.err | tail -n1)
 finished=$(sed -n 's/^view: full frame finished at \([0-9.]*\)$/\1/p' view.err | tail -n1)
 [ -n "$handled" ] || { echo "FAIL: the key was not handled within 2.5 s"; cat view.err; exit 1; }
 /usr/bin/python3 - "$sent" "$handled" "$began" "$finished" <<'PY'
