@@ -405,9 +405,10 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
 // of replication slot `slot_or_box` (tile `cell.xy` of the area, on [w.t_lo, w.t_hi]) of triangle
 // `tl`, or soluble copies of core-grid box `slot_or_box` (grid cell `cell`). The element's mLAS
 // holds its Wang square's or cube's molecule boxes.
-bool trace_element(uint inst, uint ci, bool membrane, uint tl, ShellWalk w, uint slot_or_box, ivec3 cell, vec3 o, vec3 d) {
-  Compartment c = compartments[ci];
-  RenderCompartment rc = render_compartments[ci];
+// `c` and `rc` are compartment `ci`'s records, read once per µLAS candidate by the caller rather than
+// once per element (the core walk meets ~150 boxes a pixel).
+bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool membrane, uint tl, ShellWalk w,
+                   uint slot_or_box, ivec3 cell, vec3 o, vec3 d) {
   uint entry;    // the element's mLAS in `levels`
   uint first;    // its tile's first molecule instance
   vec3 ot;       // the ray in the tile's space
@@ -694,7 +695,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
         slot_or_box = uint(element.x) + uint(dims.x) * (uint(element.y) + uint(dims.y) * uint(element.z));
         where = element;
       }
-      if (!trace_element(inst, ci, membrane, tl, w, slot_or_box, where, o, od)) continue;
+      if (!trace_element(inst, ci, c, rc, membrane, tl, w, slot_or_box, where, o, od)) continue;
       found = true;
       if (kReplicationLas && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
     }
