@@ -314,7 +314,6 @@ uint keep_mask_first_word(Compartment c, uint box) {
 const uint kWalkSlotBoxes = 0u;  // a small replication area: each slot's box by a slab test
 const uint kWalkRepLas = 1u;     // the slots the area's repLAS query meets
 const uint kWalkAllSlots = 2u;   // every slot (no repLAS: bench knob)
-const uint kWalkCore = 3u;       // 3D-DDA over the core grid, the boxes within one step of each cell
 
 // What a prism's slots share: the triangle, its chart, the ray's part inside the prism [t_lo, t_hi]
 // (where every copy the prism owns lies) and the replication area.
@@ -404,9 +403,11 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
 // The copies of one element on the ray (o, d) (compartment space), placed on the fly: membrane copies
 // of replication slot `slot_or_box` (tile `cell.xy` of the area, on [w.t_lo, w.t_hi]) of triangle
 // `tl`, or soluble copies of core-grid box `slot_or_box` (grid cell `cell`). The element's mLAS
-// holds its Wang square's or cube's molecule boxes.
-// `c` and `rc` are compartment `ci`'s records, read once per µLAS candidate by the caller rather than
-// once per element (the core walk meets ~150 boxes a pixel).
+// holds its Wang square's or cube's molecule boxes. Called twice, `membrane` constant at each call:
+// the membrane slots and the core boxes each get their own mLAS and nLAS loops once compiled. One
+// shared call compiled 20 % faster but traced 8–13 % slower on lavapipe with the same work per pixel
+// (docs/bench/compile.md): the core walk, ~150 boxes a pixel on a cell, then paid for the membrane's
+// state. `c` and `rc` are compartment `ci`'s records, read once per µLAS candidate by the caller.
 bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool membrane, uint tl, ShellWalk w,
                    uint slot_or_box, ivec3 cell, vec3 o, vec3 d) {
   uint entry;    // the element's mLAS in `levels`
@@ -620,84 +621,76 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
       // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
       // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
       dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), ivec3(c.grid_dims.xyz) + ivec3(2), o, od, 0.0, best_t);
-      w.mode = kWalkCore;
     }
-    rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
-    if (kReplicationLas && w.mode == kWalkRepLas) {
-      RenderLevel a = levels[rc.span.w];
-      count_work(NANO_RC_REPLAS_QUERIES);
-      rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
-    }
-    uint step = 0u;                     // slots walked / the current cell's neighbours walked (of 27)
-    ivec3 cell = ivec3(0);              // kWalkCore: the DDA's cell (in the widened grid)
-    ivec3 previous = ivec3(-1000000);   // kWalkCore: the cell before, whose neighbourhood was traced
-    bool in_cell = false;
     bool found = false;
-    ivec3 dims = ivec3(c.grid_dims.xyz);
-    while (true) {
-      // The next element: a slot (sxy, of the area) or a box (ijk, of the grid).
-      ivec3 element = ivec3(0);
-      bool next = false;
-      if (w.mode == kWalkCore) {
-        while (!next) {
-          if (!in_cell || step == 27u) {
-            if (in_cell) previous = cell;
-            float ta;
-            float tb;
-            if (!dda_next(it, cell, ta, tb) || ta > best_t) break;  // a cell beyond the best hit ends the walk
-            count_work(NANO_RC_CORE_STEPS);
-            in_cell = true;
-            step = 0u;
-          }
-          ivec3 ijk = cell - ivec3(2) + ivec3(int(step % 3u), int((step / 3u) % 3u), int(step / 9u));
-          ++step;
-          if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
-          // The previous cell's neighbourhood was traced already.
-          ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
-          if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
-          count_work(NANO_RC_CORE_BOXES);
-          element = ijk;
-          next = true;
-        }
-      } else if (kReplicationLas && w.mode == kWalkRepLas) {
-        while (!next && rayQueryProceedEXT(area)) {
-          uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
-          RenderLevel a = levels[rc.span.w];
-          if (p >= a.count) continue;
-          uint slot = orders[a.order_first + p];
-          ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
-          if (sxy.x >= w.extent.x || sxy.y >= w.extent.y) continue;
-          element = ivec3(sxy, 0);
-          next = true;
-        }
-      } else {
-        while (!next && step < uint(w.extent.x * w.extent.y)) {
-          ivec2 sxy = ivec2(int(step % uint(w.extent.x)), int(step / uint(w.extent.x)));
-          ++step;
-          if (w.mode == kWalkSlotBoxes) {
-            vec3 shift = vec3(float(sxy.x) * rc.slot_lo.w, float(sxy.y) * rc.slot_lo.w, 0.0);
-            float tn;
-            float tf;
-            if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, w.ot, w.dt, w.t_lo, min(best_t, w.t_hi), tn, tf)) continue;
-          }
-          element = ivec3(sxy, 0);
-          next = true;
-        }
+    if (!membrane) {
+      // The core grid's own walk (its own mLAS and nLAS loops once compiled): cells in ray order, at
+      // each the boxes within one step not traced at the cell before.
+      ivec3 dims = ivec3(c.grid_dims.xyz);
+      ivec3 cell;
+      float ta;
+      float tb;
+      ivec3 previous = ivec3(-1000000);
+      while (dda_next(it, cell, ta, tb)) {
+        if (ta > best_t) break;  // a cell beyond the best hit ends the walk
+        count_work(NANO_RC_CORE_STEPS);
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
+              if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
+              ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
+              if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
+              count_work(NANO_RC_CORE_BOXES);
+              uint box = uint(ijk.x) + uint(dims.x) * (uint(ijk.y) + uint(dims.y) * uint(ijk.z));
+              if (trace_element(inst, ci, c, rc, false, 0u, w, box, ijk, o, od)) found = true;
+            }
+        previous = cell;
       }
-      if (!next) break;
-      uint slot_or_box;
-      ivec3 where;
-      if (membrane) {
+    } else {
+      rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
+      if (kReplicationLas && w.mode == kWalkRepLas) {
+        RenderLevel a = levels[rc.span.w];
+        count_work(NANO_RC_REPLAS_QUERIES);
+        rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
+      }
+      uint step = 0u;  // slots walked
+      while (true) {
+        // The next slot of the area.
+        ivec2 element = ivec2(0);
+        bool next = false;
+        if (kReplicationLas && w.mode == kWalkRepLas) {
+          while (!next && rayQueryProceedEXT(area)) {
+            uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
+            RenderLevel a = levels[rc.span.w];
+            if (p >= a.count) continue;
+            uint slot = orders[a.order_first + p];
+            ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
+            if (sxy.x >= w.extent.x || sxy.y >= w.extent.y) continue;
+            element = sxy;
+            next = true;
+          }
+        } else {
+          while (!next && step < uint(w.extent.x * w.extent.y)) {
+            ivec2 sxy = ivec2(int(step % uint(w.extent.x)), int(step / uint(w.extent.x)));
+            ++step;
+            if (w.mode == kWalkSlotBoxes) {
+              vec3 shift = vec3(float(sxy.x) * rc.slot_lo.w, float(sxy.y) * rc.slot_lo.w, 0.0);
+              float tn;
+              float tf;
+              if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, w.ot, w.dt, w.t_lo, min(best_t, w.t_hi), tn, tf)) continue;
+            }
+            element = sxy;
+            next = true;
+          }
+        }
+        if (!next) break;
         count_work(NANO_RC_SLOTS_TRIED);
-        slot_or_box = uint(element.x) + c.replication_width * uint(element.y);
-        where = ivec3(replication_tile_index(w.origin, element.xy), 0);
-      } else {
-        slot_or_box = uint(element.x) + uint(dims.x) * (uint(element.y) + uint(dims.y) * uint(element.z));
-        where = element;
+        uint slot = uint(element.x) + c.replication_width * uint(element.y);
+        if (!trace_element(inst, ci, c, rc, true, tl, w, slot, ivec3(replication_tile_index(w.origin, element), 0), o, od)) continue;
+        found = true;
+        if (kReplicationLas && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
       }
-      if (!trace_element(inst, ci, c, rc, membrane, tl, w, slot_or_box, where, o, od)) continue;
-      found = true;
-      if (kReplicationLas && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
     }
     if (found) {
       best_to_world = rayQueryGetIntersectionObjectToWorldEXT(q, false);
