@@ -86,6 +86,15 @@ MembraneMapping::MembraneMapping(const mesh::ProxyMesh& mesh, const tiles::WangS
                " Å about the origin); the seam rule needs it");
   }
 
+  tile_extent_.reserve(set.tiles.size());
+  for (const tiles::WangTile& tile : set.tiles) {
+    glm::vec4 extent(INFINITY, INFINITY, -INFINITY, -INFINITY);
+    for (const tiles::Instance& in : tile.instances)
+      extent = glm::vec4(glm::min(glm::vec2(extent), glm::vec2(in.position)),
+                         glm::max(glm::vec2(extent.z, extent.w), glm::vec2(in.position)));
+    tile_extent_.push_back(extent);
+  }
+
   triangles_.resize(mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     TriangleMapping& tm = triangles_[t];
@@ -141,10 +150,38 @@ std::size_t MembraneMapping::seam_dropped_count() const {
   std::size_t all = 0, kept = 0;
   for (std::size_t t = 0; t < triangles_.size(); ++t) {
     if (triangles_[t].seam_edges == 0) continue;
-    for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++all; }, SeamRule::ignore);
-    for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++kept; });
+    for_each_owned_membrane_place(t, [&](const OwnedPlace&) { ++all; }, SeamRule::ignore);
+    for_each_owned_membrane_place(t, [&](const OwnedPlace&) { ++kept; });
   }
   return all - kept;
+}
+
+MembraneMapping::OwnershipCorners::OwnershipCorners(const TriangleMapping& tm)
+    : q{gpu::own_quantize(tm.uv[0]), gpu::own_quantize(tm.uv[1]), gpu::own_quantize(tm.uv[2])} {}
+
+MembraneMapping::TileCover MembraneMapping::tile_cover(const OwnershipCorners& corners, glm::vec2 g,
+                                                       std::uint32_t tile) const {
+  const glm::vec4 extent = tile_extent_[tile];
+  if (!(extent.x <= extent.z)) return TileCover::none;  // a tile without copies
+  // chart_molecule_uv and own_quantize never decrease as a position grows (float rounding is
+  // monotone, s/S > 0), so the quantised UVs of the tile's copies lie in this integer box.
+  const glm::ivec2 lo = gpu::own_quantize(gpu::chart_molecule_uv(g, s_over_S_, glm::vec3(extent.x, extent.y, 0.f)));
+  const glm::ivec2 hi = gpu::own_quantize(gpu::chart_molecule_uv(g, s_over_S_, glm::vec3(extent.z, extent.w, 0.f)));
+  const std::array<glm::ivec2, 4> box = {lo, glm::ivec2(hi.x, lo.y), glm::ivec2(lo.x, hi.y), hi};
+  // An edge's test (own_edge_side_q against the interior's side) holds on a half-plane, exactly:
+  // if it fails at every corner of the box it fails on the whole box, and if it holds at every
+  // corner it holds on the whole box.
+  bool everywhere = true;
+  for (int e = 0; e < 3; ++e) {
+    const glm::ivec2& a = corners.q[e];
+    const glm::ivec2& b = corners.q[(e + 1) % 3];
+    const int inner = gpu::own_edge_inner_q(a, b, corners.q[(e + 2) % 3]);
+    int inside = 0;
+    for (const glm::ivec2& p : box) inside += gpu::own_edge_side_q(a, b, p) == inner;
+    if (inside == 0) return TileCover::none;
+    everywhere = everywhere && inside == 4;
+  }
+  return everywhere ? TileCover::all : TileCover::some;
 }
 
 std::uint32_t MembraneMapping::tile_at(glm::ivec2 cell) const {

@@ -47,15 +47,26 @@ struct TriangleMapping {
 // ownership partition (every molecule of the chart exactly once).
 enum class SeamRule { apply, ignore };
 
-// One membrane molecule as the triangle that owns it sees it.
-struct OwnedMolecule {
+// One membrane molecule as ownership sees it: which copy, and the UV point that decided.
+struct OwnedPlace {
   glm::ivec2 cell{0};         // UV tile cell (a, b), not wrapped; its tile origin is g = cell·s
   std::uint32_t tile = 0;     // index into the Wang set: recipe.at(a mod X, b mod Y)
   std::uint32_t instance = 0; // index into that tile's instances
   std::uint32_t type = 0;     // molecule type of the instance
   glm::vec2 uv{0.f};          // uv_m, the point ownership decided on
+};
+
+// One membrane molecule as the triangle that owns it sees it.
+struct OwnedMolecule : OwnedPlace {
   gpu::Affine3 transform;     // compartment space (chart_membrane_molecule)
 };
+
+// The translation chart_membrane_molecule gives a copy at tile-space height z whose UV point is
+// uv_m, without the frame it also builds (an atan, a sine and a cosine per copy), which callers
+// that need only centres (the shell offsets) skip. Same operations in the same order: bit-equal.
+inline glm::vec3 membrane_molecule_centre(const gpu::TriangleChart& chart, glm::vec2 uv_m, float smooth, float z) {
+  return gpu::chart_smooth_position(chart, uv_m, smooth) + z * gpu::chart_normal(chart, uv_m);
+}
 
 class MembraneMapping {
 public:
@@ -110,36 +121,75 @@ public:
   // the triangle's UV box (replication slack), which the tests check.
   template <class F>
   void for_each_owned_membrane_molecule(std::size_t t, F&& f, SeamRule rule = SeamRule::apply) const {
+    for_each_owned_membrane_place(t, [&](const OwnedPlace& place) {
+      OwnedMolecule m;
+      static_cast<OwnedPlace&>(m) = place;
+      m.transform = transform_of(t, place);
+      f(static_cast<const OwnedMolecule&>(m));
+    }, rule);
+  }
+
+  // The same molecules in the same order as f(const OwnedPlace&), not yet placed: callers that keep
+  // only some of them, or need only their centres, place those with transform_of or centre_of.
+  // A tile whose copies the triangle owns all or none of (tile_cover, exact) skips the per-copy
+  // ownership test: most tiles of a large triangle lie wholly inside or outside it.
+  template <class F>
+  void for_each_owned_membrane_place(std::size_t t, F&& f, SeamRule rule = SeamRule::apply) const {
     const TriangleMapping& tm = triangles_[t];
     if (!tm.valid) return;
+    const OwnershipCorners corners(tm);
+    if (corners.degenerate()) return;  // own_triangle_owns is false everywhere
     for (int j = 0; j < tm.extent.y; ++j)
       for (int i = 0; i < tm.extent.x; ++i) {
-        const glm::ivec2 cell = gpu::replication_tile_index(tm.origin, glm::ivec2(i, j));
-        const glm::vec2 g = gpu::replication_tile_uv(cell, s_);
-        const std::uint32_t tile = tile_at(cell);
-        const std::vector<tiles::Instance>& instances = set_->tiles[tile].instances;
+        OwnedPlace place;
+        place.cell = gpu::replication_tile_index(tm.origin, glm::ivec2(i, j));
+        const glm::vec2 g = gpu::replication_tile_uv(place.cell, s_);
+        place.tile = tile_at(place.cell);
+        const TileCover cover = tile_cover(corners, g, place.tile);
+        if (cover == TileCover::none) continue;
+        const std::vector<tiles::Instance>& instances = set_->tiles[place.tile].instances;
         for (std::size_t k = 0; k < instances.size(); ++k) {
           const tiles::Instance& in = instances[k];
-          // Ownership first on the uv alone: most candidates of the box are not owned.
-          if (!gpu::own_triangle_owns(tm.uv[0], tm.uv[1], tm.uv[2], gpu::chart_molecule_uv(g, s_over_S_, in.position)))
-            continue;
-          OwnedMolecule m;
-          m.cell = cell;
-          m.tile = tile;
-          m.instance = static_cast<std::uint32_t>(k);
-          m.type = in.type;
-          const glm::vec4 q(in.rotation.x, in.rotation.y, in.rotation.z, in.rotation.w);  // glm quat is (w,x,y,z)
-          m.transform = gpu::chart_membrane_molecule(tm.chart, g, s_over_S_, smooth_, in.position, q, m.uv);
+          // chart_membrane_molecule's uv_m: the point ownership and the seam rule decide on.
+          place.uv = gpu::chart_molecule_uv(g, s_over_S_, in.position);
+          if (cover == TileCover::some && !corners.owns(place.uv)) continue;
           if (rule == SeamRule::apply && seam_rule_ == SeamRule::apply &&
               gpu::seam_drops(tm.seam_edges, tm.position[0], tm.position[1], tm.position[2],
-                              gpu::chart_position(tm.chart, m.uv), type_radius_[in.type]))
+                              gpu::chart_position(tm.chart, place.uv), type_radius_[in.type]))
             continue;
-          f(static_cast<const OwnedMolecule&>(m));
+          place.instance = static_cast<std::uint32_t>(k);
+          place.type = in.type;
+          f(static_cast<const OwnedPlace&>(place));
         }
       }
   }
 
+  // Compartment-space transform of a copy triangle t owns (chart_membrane_molecule).
+  gpu::Affine3 transform_of(std::size_t t, const OwnedPlace& place) const {
+    const tiles::Instance& in = set_->tiles[place.tile].instances[place.instance];
+    const glm::vec4 q(in.rotation.x, in.rotation.y, in.rotation.z, in.rotation.w);  // glm quat is (w,x,y,z)
+    glm::vec2 uv;
+    return gpu::chart_membrane_molecule(triangles_[t].chart, gpu::replication_tile_uv(place.cell, s_), s_over_S_,
+                                        smooth_, in.position, q, uv);
+  }
+  // Its translation alone, bit for bit (membrane_molecule_centre).
+  glm::vec3 centre_of(std::size_t t, const OwnedPlace& place) const {
+    const float z = set_->tiles[place.tile].instances[place.instance].position.z;
+    return membrane_molecule_centre(triangles_[t].chart, place.uv, smooth_, z);
+  }
+
 private:
+  // own_triangle_owns of one triangle with its corners quantised once, not per molecule.
+  struct OwnershipCorners {
+    explicit OwnershipCorners(const TriangleMapping& tm);
+    bool degenerate() const { return gpu::own_edge_inner_q(q[0], q[1], q[2]) == 0; }
+    bool owns(glm::vec2 uv) const { return gpu::own_triangle_owns_q(q[0], q[1], q[2], gpu::own_quantize(uv)); }
+    std::array<glm::ivec2, 3> q;
+  };
+  // Which of a tile's copies the triangle can own, decided on the box of their quantised UVs.
+  enum class TileCover { none, some, all };
+  TileCover tile_cover(const OwnershipCorners& corners, glm::vec2 g, std::uint32_t tile) const;
+
   const tiles::WangSet* set_;
   const tiles::TilingRecipe* recipe_;
   SeamRule seam_rule_ = SeamRule::apply;
@@ -148,6 +198,7 @@ private:
   float smooth_ = 0.f;
   glm::ivec2 area_{0};
   std::vector<float> type_radius_;
+  std::vector<glm::vec4> tile_extent_;  // per Wang tile: min x, min y, max x, max y of its copies
   std::vector<glm::vec2> snapped_uvs_;
   std::vector<TriangleMapping> triangles_;
 };

@@ -135,7 +135,7 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   } else {
     std::vector<std::uint64_t> owned(triangles, 0);
     parallel_for(triangles, threads, [&](std::size_t t) {
-      mapping.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule&) { ++owned[t]; }, SeamRule::ignore);
+      mapping.for_each_owned_membrane_place(t, [&](const OwnedPlace&) { ++owned[t]; }, SeamRule::ignore);
     });
     out.owned_copies = std::accumulate(owned.begin(), owned.end(), std::uint64_t{0});
   }
@@ -172,9 +172,10 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   parallel_for(triangles, threads, [&](std::size_t t) {
     if (!out.whole_surface && near_seams[t].empty()) return;
     const TriangleMapping& tm = mapping.triangle(t);
-    mapping.for_each_owned_membrane_molecule(
+    // Placed only once kept: most copies of a triangle near a seam stand too far from it.
+    mapping.for_each_owned_membrane_place(
         t,
-        [&](const OwnedMolecule& m) {
+        [&](const OwnedPlace& m) {
           const tiles::Instance& in = set.tiles[m.tile].instances[m.instance];
           const glm::ivec2 slot = m.cell - tm.origin;
           const std::uint32_t key =
@@ -185,9 +186,8 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
           if (!out.whole_surface) {
             const dvec3 surface(gpu::chart_position(tm.chart, m.uv));
             const double reach = radius[m.type] + std::abs(double(in.position.z)) + reach_other;
-            bool near = false;
-            for (const std::uint32_t s : near_seams[t]) near = near || point_segment_distance(surface, seams[s]) < reach;
-            if (!near) return;
+            const auto near = [&](std::uint32_t s) { return point_segment_distance(surface, seams[s]) < reach; };
+            if (std::none_of(near_seams[t].begin(), near_seams[t].end(), near)) return;
           }
           Placed p;
           p.triangle = static_cast<std::uint32_t>(t);
@@ -198,13 +198,17 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
           p.has_alternate = in.has_alternate;
           p.flat = dvec3(m.cell.x * S + in.position.x, m.cell.y * S + in.position.y, in.position.z);
           p.flat_rotation = dmat3(glm::mat3_cast(in.rotation));
-          p.centre = dvec3(m.transform.translation);
-          p.rotation = dmat3(m.transform.linear);
+          const gpu::Affine3 transform = mapping.transform_of(t, m);
+          p.centre = dvec3(transform.translation);
+          p.rotation = dmat3(transform.linear);
           per_triangle[t].push_back(p);
         },
         SeamRule::ignore);
   });
   std::vector<Placed> copies;
+  std::size_t placed = 0;
+  for (const auto& v : per_triangle) placed += v.size();
+  copies.reserve(placed);  // one allocation: growing it copy by copy costs page faults and moves
   for (auto& v : per_triangle) copies.insert(copies.end(), v.begin(), v.end());
   per_triangle = {};
   out.checked_copies = copies.size();
@@ -343,15 +347,15 @@ std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& prune
   for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
     const glm::ivec2 origin = mapping.triangle(t).origin;
     const std::vector<std::uint32_t>& dropped = pruned.dropped[t];
-    mapping.for_each_owned_membrane_molecule(
+    mapping.for_each_owned_membrane_place(
         t,
-        [&](const OwnedMolecule& m) {
+        [&](const OwnedPlace& m) {
           if (m.type != type || mapping.set().tiles[m.tile].instances[m.instance].alternate) return;
           const glm::ivec2 slot = m.cell - origin;
           const std::uint32_t key =
               gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + W * static_cast<std::uint32_t>(slot.y), m.instance);
           if (std::binary_search(dropped.begin(), dropped.end(), key)) return;
-          copies.push_back({static_cast<std::uint32_t>(t), key, dvec3(m.transform.translation)});
+          copies.push_back({static_cast<std::uint32_t>(t), key, dvec3(mapping.centre_of(t, m))});
         },
         SeamRule::ignore);
   }

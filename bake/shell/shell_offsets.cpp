@@ -120,13 +120,13 @@ void shell_block(const MembraneMapping& mapping, const std::vector<double>& radi
   std::vector<Sphere> spheres;
   for (std::size_t t = begin; t < end; ++t) {
     spheres.clear();
-    mapping.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule& m) {
+    mapping.for_each_owned_membrane_place(t, [&](const OwnedPlace& m) {
       if (m.type >= type_count)
         throw InputError("shell", "tile " + std::to_string(m.tile) + " instance " + std::to_string(m.instance),
                          "molecule type " + std::to_string(m.type) + " is not among the " +
                              std::to_string(type_count) + " types given");
       if (!mapping.set().tiles[m.tile].instances[m.instance].alternate) ++totals.owned_by_type[m.type];
-      spheres.push_back({glm::dvec3(m.transform.translation), radius[m.type],
+      spheres.push_back({glm::dvec3(mapping.centre_of(t, m)), radius[m.type],
                          glm::dvec3(gpu::chart_barycentric(mapping.triangle(t).chart, m.uv))});
     });
     if (spheres.empty()) continue;  // offsets stay zero: a flat prism the runtime can skip
@@ -144,15 +144,17 @@ void shell_block(const MembraneMapping& mapping, const std::vector<double>& radi
     const double area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
     const glm::dvec3 alt(area2 / glm::length(p2 - p1), area2 / glm::length(p0 - p2), area2 / glm::length(p1 - p0));
 
+    // Maxima of the numerators, divided once: a rounded division by cmin > 0 never decreases as
+    // its numerator grows, so this is bit for bit the maximum of the quotients.
     double hp = 0.0, hm = 0.0, side = 0.0;
     for (const Sphere& s : spheres) {
       const double z = glm::dot(s.centre - p0, face);
-      hp = std::max(hp, (z + s.radius) / cmin);
-      hm = std::max(hm, (s.radius - z) / cmin);
-      for (int k = 0; k < 3; ++k) side = std::max(side, (s.radius - s.bary[k] * alt[k]) / cmin);
+      hp = std::max(hp, z + s.radius);
+      hm = std::max(hm, s.radius - z);
+      for (int k = 0; k < 3; ++k) side = std::max(side, s.radius - s.bary[k] * alt[k]);
     }
 
-    gpu::ShellOffsets off{float(hp), float(hm), float(side)};
+    gpu::ShellOffsets off{float(hp / cmin), float(hm / cmin), float(side / cmin)};
     int iterations = 0;
     bool contained = false;
     for (; iterations <= kMaxGrowIterations; ++iterations) {

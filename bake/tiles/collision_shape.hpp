@@ -1,7 +1,9 @@
 #pragma once
 // Atom-level collision test between two rigid copies of molecules: each type keeps its atoms in a
 // dense local grid, so a pair test visits only the atoms of one copy that lie inside the other's
-// bounding sphere, and only the grid cells around each of them.
+// bounding sphere, and only the grid cells around each of them. The walked copy goes block by block
+// (atoms of a coarser grid, each with a bounding sphere), so whole blocks that cannot reach the
+// other copy's atoms are passed over without transforming their atoms.
 #include "bake/tiles/molecule_type.hpp"
 
 #include <glm/glm.hpp>
@@ -31,10 +33,25 @@ public:
   // True when some atom is closer to `point` (local frame) than clearance * (radius + atom radius).
   bool touches(glm::vec3 point, float radius, float clearance) const;
 
+  // Atoms of a coarse grid cell, bounded by a sphere about `centre` (atom centres within `spread`).
+  struct Block {
+    glm::vec3 centre{0.f};
+    float spread = 0.f;
+    float max_atom_radius = 0.f;
+    uint32_t begin = 0, end = 0;  // range of block_atoms()
+  };
+  const std::vector<Block>& blocks() const { return blocks_; }
+  const std::vector<AtomSphere>& block_atoms() const { return block_atoms_; }
+  // The box of the atom centres (local frame): touches is false `reach` beyond it.
+  glm::vec3 centre_min() const { return grid_min_; }
+  glm::vec3 centre_max() const { return centre_max_; }
+
 private:
   std::vector<AtomSphere> atoms_;  // sorted by grid cell
   std::vector<uint32_t> cell_start_;
-  glm::vec3 grid_min_{0.f};
+  std::vector<Block> blocks_;
+  std::vector<AtomSphere> block_atoms_;  // the atoms again, sorted by block
+  glm::vec3 grid_min_{0.f}, centre_max_{0.f};
   glm::ivec3 dims_{1};
   float cell_ = 1.f, radius_ = 0.f, max_atom_radius_ = 0.f;
 };

@@ -2,6 +2,7 @@
 // prism, by an independent double ray oracle (14 directions per atom centre: odd crossing count and
 // nearest crossing ≥ radius). Negative control: the no-overlap prisms (side 0) must fail it.
 #include <cstdio>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -139,6 +140,57 @@ TEST(ShellOffsets, ThreadCountDoesNotChangeTheResult) {
   EXPECT_EQ(one.owned_by_type, enumerated);
   EXPECT_EQ(three.owned_by_type, enumerated);
   EXPECT_GT(one.stats.triangles_with_molecules, 0u);
+}
+
+// The shell offsets take their centres from centre_of, which skips the rotation, on the copies of
+// for_each_owned_membrane_place: the same copies in the same order as the full enumerator, with
+// bit-equal centres, on a smooth surface (both terms of the translation), with and without the seam rule.
+TEST(MembraneMapping, CentreEnumerationMatchesTheFullTransformBitForBit) {
+  const auto sc = rbc_scene();
+  const nano::shell::MembraneMapping smooth(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "membrane",
+                                            nano::shell::SeamRule::apply, 0.5f);
+  using Seen = std::tuple<int, int, unsigned, unsigned, float, float, float>;
+  for (const auto rule : {nano::shell::SeamRule::apply, nano::shell::SeamRule::ignore}) {
+    std::vector<Seen> full, centres;
+    for (size_t t = 0; t < smooth.triangle_count(); ++t) {
+      smooth.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule& m) {
+        const glm::vec3 c = m.transform.translation;
+        full.emplace_back(m.cell.x, m.cell.y, m.instance, m.tile, c.x, c.y, c.z);
+      }, rule);
+      smooth.for_each_owned_membrane_place(t, [&](const nano::shell::OwnedPlace& m) {
+        const glm::vec3 c = smooth.centre_of(t, m);
+        centres.emplace_back(m.cell.x, m.cell.y, m.instance, m.tile, c.x, c.y, c.z);
+      }, rule);
+    }
+    EXPECT_GT(full.size(), 0u);
+    EXPECT_TRUE(full == centres);
+  }
+}
+
+// The enumerator decides whole tiles at once where it can: it must pick exactly the copies that
+// own_triangle_owns picks one by one.
+TEST(MembraneMapping, WholeTileDecisionsAgreeWithPerCopyOwnership) {
+  const auto sc = rbc_scene();
+  const auto& map = *sc->mapping;
+  using Copy = std::tuple<int, int, std::uint32_t>;
+  for (size_t t = 0; t < map.triangle_count(); ++t) {
+    const auto& tm = map.triangle(t);
+    std::vector<Copy> per_copy, enumerated;
+    for (int j = 0; tm.valid && j < tm.extent.y; ++j)
+      for (int i = 0; i < tm.extent.x; ++i) {
+        const glm::ivec2 cell = tm.origin + glm::ivec2(i, j);
+        const glm::vec2 g = g::replication_tile_uv(cell, map.tile_uv_size());
+        const auto& instances = map.set().tiles[map.tile_at(cell)].instances;
+        for (std::uint32_t k = 0; k < instances.size(); ++k)
+          if (g::own_triangle_owns(tm.uv[0], tm.uv[1], tm.uv[2],
+                                   g::chart_molecule_uv(g, map.s_over_S(), instances[k].position)))
+            per_copy.emplace_back(cell.x, cell.y, k);
+      }
+    map.for_each_owned_membrane_place(t, [&](const nano::shell::OwnedPlace& m) {
+      enumerated.emplace_back(m.cell.x, m.cell.y, m.instance);
+    }, nano::shell::SeamRule::ignore);
+    ASSERT_TRUE(per_copy == enumerated) << "triangle " << t;
+  }
 }
 
 TEST(ShellOffsets, FaceParallelTriangleGetsTheMoleculeReachAndEmptyTrianglesStayFlat) {
