@@ -54,6 +54,7 @@ struct Options {
   unsigned frames = 0;
   unsigned matrix_cameras = 4;
   bool effects = false, matrix = false, explicit_instancing = false, counters = false, compile = false;
+  bool warm = false;  // with --compile: the caches as they are (the rows checked, not measured cold)
   VariantOptions variant;
   EffectOptions effect_options;
 };
@@ -297,7 +298,7 @@ void run_compile(const Options& o, RenderSession& session, nlohmann::ordered_jso
     }
     out["variants"].push_back(j);
   }
-  out["cold"] = "MESA_SHADER_CACHE_DISABLE=true, no pipeline cache";
+  out["cold"] = o.warm ? "no: --warm, the driver's and our caches as they were" : "MESA_SHADER_CACHE_DISABLE=true, no pipeline cache";
   std::printf("create: vkCreateComputePipelines (SPIR-V to the driver's IR, ray queries lowered); dispatch: the first "
               "dispatch of one workgroup, where a driver that compiles lazily generates code (lavapipe: LLVM)\n");
 }
@@ -448,6 +449,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--compile", o->compile,
                 "every pipeline variant the package's effects and the knobs select, built cold: SPIR-V size, "
                 "traversal loops, create and first-dispatch time");
+  cmd->add_flag("--warm", o->warm,
+                "with --compile: leave the driver's shader cache and ours as they are (lists and builds the rows; "
+                "the times are then not cold)");
   cmd->add_flag("--matrix", o->matrix, "every accuracy knob against the default: time ratio and pixels differing from the oracle");
   cmd->add_option("--matrix-cameras", o->matrix_cameras, "verify views of the matrix")->capture_default_str()->check(CLI::Range(1u, 16u));
   cmd->add_option("--markdown", o->markdown, "with --matrix: write the table as Markdown");
@@ -459,7 +463,8 @@ void add_bench_command(CLI::App& app) {
       throw InputError("--effects/--matrix/--explicit/--counters/--compile", "", "choose one mode");
     if ((!o->markdown.empty() || !o->plot.empty()) && !o->matrix) throw InputError("--markdown/--plot", "", "need --matrix");
     SessionOptions session_options = o->variant.scene_options();
-    if (o->compile) {
+    if (o->warm && !o->compile) throw InputError("--warm", "", "needs --compile");
+    if (o->compile && !o->warm) {
       // Cold: Mesa's disk cache off (read when the device opens) and no pipeline cache of ours.
       setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
       session_options.persistent_pipeline_cache = false;
