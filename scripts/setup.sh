@@ -5,7 +5,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${NANO_BUILD_DIR:-$here/build}
-build_type=${NANO_BUILD_TYPE:-RelWithDebInfo}
+build_type=${NANO_BUILD_TYPE:-Release}
 
 packages=(
   build-essential cmake ninja-build pkg-config clang-14 libclang-rt-14-dev lld-14
