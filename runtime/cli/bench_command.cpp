@@ -141,8 +141,8 @@ void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json
   // which a cold measurement sets.
   const render::Renderer::PipelineBuild build = renderer.pipeline_build();
   out["open_to_first_image_seconds"] = t.map + t.validate + t.device + t.scene + build.create_seconds + first.seconds;
-  const bool driver_cache_off = std::getenv("MESA_SHADER_CACHE_DISABLE") != nullptr &&
-                                std::string_view(std::getenv("MESA_SHADER_CACHE_DISABLE")) == "true";
+  const char* mesa_cache_disable = std::getenv("MESA_SHADER_CACHE_DISABLE");
+  const bool driver_cache_off = mesa_cache_disable != nullptr && std::string_view(mesa_cache_disable) == "true";
   out["first_image_pipeline_seconds"] = build.create_seconds + std::max(build.first_dispatch_seconds, 0.0);
   out["first_image_shader_cache"] = driver_cache_off ? "off (cold)" : "driver default (warm once this pipeline was built before)";
   out["load_stages_seconds"] = {{"map", t.map},           {"validate", t.validate},      {"device", t.device},
