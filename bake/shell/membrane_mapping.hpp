@@ -61,13 +61,6 @@ struct OwnedMolecule : OwnedPlace {
   gpu::Affine3 transform;     // compartment space (chart_membrane_molecule)
 };
 
-// The translation chart_membrane_molecule gives a copy at tile-space height z whose UV point is
-// uv_m, without the frame it also builds (an atan, a sine and a cosine per copy), which callers
-// that need only centres (the shell offsets) skip. Same operations in the same order: bit-equal.
-inline glm::vec3 membrane_molecule_centre(const gpu::TriangleChart& chart, glm::vec2 uv_m, float smooth, float z) {
-  return gpu::chart_smooth_position(chart, uv_m, smooth) + z * gpu::chart_normal(chart, uv_m);
-}
-
 class MembraneMapping {
 public:
   // `mesh` in compartment space with per-corner UVs and unit normals; `set` a Wang square set
@@ -172,10 +165,12 @@ public:
     return gpu::chart_membrane_molecule(triangles_[t].chart, gpu::replication_tile_uv(place.cell, s_), s_over_S_,
                                         smooth_, in.position, q, uv);
   }
-  // Its translation alone, bit for bit (membrane_molecule_centre).
+  // Its translation alone, bit for bit (chart_membrane_centre, the translation chart_membrane_molecule
+  // computes), without the frame (an atan, a sine and a cosine per copy): the shell offsets need only centres.
   glm::vec3 centre_of(std::size_t t, const OwnedPlace& place) const {
+    const gpu::TriangleChart& chart = triangles_[t].chart;
     const float z = set_->tiles[place.tile].instances[place.instance].position.z;
-    return membrane_molecule_centre(triangles_[t].chart, place.uv, smooth_, z);
+    return gpu::chart_membrane_centre(chart, place.uv, smooth_, z, gpu::chart_normal(chart, place.uv));
   }
 
 private:

@@ -187,12 +187,18 @@ NANO_FN mat3 chart_frame(NANO_IN(vec3) n, NANO_IN(vec3) tangent) {
 // `smoothness` (Compartment.scales.w, see chart_smooth_position):
 //   uv_m = g + (s/S)(x, y); position = X_smooth(uv_m) + z·n(uv_m); rotation = frame(n(uv_m), Ju)·R(q).
 // The rotation is proper (det +1) in every chart, mirrored or not. Returns uv_m for ownership.
+// Its translation alone, X_smooth(uv_m) + z·n(uv_m): the baker's shell offsets need only centres.
+NANO_FN vec3 chart_membrane_centre(NANO_IN(TriangleChart) c, NANO_IN(vec2) uv_m, float smoothness, float z,
+                                   NANO_IN(vec3) n) {
+  return chart_smooth_position(c, uv_m, smoothness) + z * n;
+}
+
 NANO_FN Affine3 chart_membrane_molecule(NANO_IN(TriangleChart) c, NANO_IN(vec2) g, float s_over_S, float smoothness,
                                 NANO_IN(vec3) pos_tile, NANO_IN(vec4) q, NANO_OUT(vec2) uv_m) {
   uv_m = chart_molecule_uv(g, s_over_S, pos_tile);
   vec3 n = chart_normal(c, uv_m);
   Affine3 m;
-  m.translation = chart_smooth_position(c, uv_m, smoothness) + pos_tile.z * n;
+  m.translation = chart_membrane_centre(c, uv_m, smoothness, pos_tile.z, n);
   mat3 f = chart_frame(n, c.ju);
   // Turn the frame by the rotation part of the chart's in-plane map G = [x y]ᵀ·J (polar
   // decomposition G = R·P): copies then see only the symmetric stretch P of their tile-space
