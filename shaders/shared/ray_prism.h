@@ -71,14 +71,17 @@ NANO_FN int prism_ray_patch(NANO_IN(vec3) o, NANO_IN(vec3) d, NANO_IN(vec3) p00,
   if (disc < 0.0f) return 0;
   float sq = sqrt(disc);
   float q = -0.5f * (qb + (qb >= 0.0f ? sq : -sq));
-  float roots[2];
-  int nroots = 0;
-  if (qa != 0.0f) { roots[nroots] = q / qa; nroots += 1; }
-  if (q != 0.0f) { roots[nroots] = qc / q; nroots += 1; }
-  else if (qa == 0.0f && qb == 0.0f) return 0;  // degenerate: no isolated solution
+  // The two roots in a fixed order (q/A, then C/q), each with its own validity: no array indexed by
+  // a count, which a SIMD driver turns into scratch memory or if-ladders.
+  bool has_root0 = qa != 0.0f;
+  bool has_root1 = q != 0.0f;
+  if (!has_root1 && qa == 0.0f && qb == 0.0f) return 0;  // degenerate: no isolated solution
+  float root0 = q / (has_root0 ? qa : 1.0f);
+  float root1 = qc / (has_root1 ? q : 1.0f);
   int count = 0;
-  for (int k = 0; k < nroots; ++k) {
-    float u = roots[k];
+  for (int k = 0; k < 2; ++k) {
+    if (!(k == 0 ? has_root0 : has_root1)) continue;
+    float u = k == 0 ? root0 : root1;
     if (!(u >= -eps && u <= 1.0f + eps)) continue;
     vec3 pa = mix(q00, q10, u);   // bottom point (relative to o)
     vec3 pb = mix(e00, e11, u);  // segment direction at u: lerp(p01−p00, p11−p10, u)
@@ -114,12 +117,20 @@ struct PrismInterval {
 // OUTSIDE an edge may hit a single widened face; if that hit is an exit the origin is wrongly taken
 // as inside, giving a too-long (conservative) interval — never a too-short one.
 NANO_CONST float kPrismClusterEps = 1e-4f;
+// At most two caps and two hits on each of three walls.
+NANO_CONST int kPrismMaxHits = 8;
 
 NANO_FN bool prism_intersect(NANO_IN(Prism) pr, NANO_IN(vec3) o, NANO_IN(vec3) d, float t_min, float t_max,
                      NANO_OUT(PrismInterval) r) {
-  float ht[8];  // hit t
-  float hs[8];  // +1 exit, −1 entry
-  int count = 0;
+  // One slot per possible face hit — caps 0 and 1, wall w's hits 2 + 2w and 3 + 2w — so every index
+  // is a constant once the loops are unrolled (no sort of a runtime-length list: on a SIMD driver that
+  // is scratch memory and much of the shader's compile time). Sign 0 marks an empty slot.
+  float ht[kPrismMaxHits];  // hit t
+  float hs[kPrismMaxHits];  // +1 exit, −1 entry, 0 none
+  for (int k = 0; k < kPrismMaxHits; ++k) {
+    ht[k] = 0.0f;
+    hs[k] = 0.0f;
+  }
   vec3 nb = cross(pr.v[1] - pr.v[0], pr.v[2] - pr.v[0]);
   vec3 nt = cross(pr.v[4] - pr.v[3], pr.v[5] - pr.v[3]);
   vec3 up = (pr.v[3] + pr.v[4] + pr.v[5]) - (pr.v[0] + pr.v[1] + pr.v[2]);
@@ -135,9 +146,8 @@ NANO_FN bool prism_intersect(NANO_IN(Prism) pr, NANO_IN(vec3) o, NANO_IN(vec3) d
     int i = cap * 3;
     if (prism_ray_triangle(o, d, pr.v[i], pr.v[i + 1], pr.v[i + 2], kPrismParamEps, t, bu, bv) && t > t_min) {
       vec3 outward = cap == 0 ? -orient * nb : orient * nt;
-      ht[count] = t;
-      hs[count] = dot(outward, d) > 0.0f ? 1.0f : -1.0f;
-      count += 1;
+      ht[cap] = t;
+      hs[cap] = dot(outward, d) > 0.0f ? 1.0f : -1.0f;
     }
   }
   for (int w = 0; w < 3; ++w) {
@@ -145,39 +155,47 @@ NANO_FN bool prism_intersect(NANO_IN(Prism) pr, NANO_IN(vec3) o, NANO_IN(vec3) d
     vec3 p00 = pr.v[w]; vec3 p10 = pr.v[j]; vec3 p01 = pr.v[w + 3]; vec3 p11 = pr.v[j + 3];
     vec3 h0; vec3 h1;
     int n = prism_ray_patch(o, d, p00, p10, p01, p11, kPrismParamEps, h0, h1);
-    for (int k = 0; k < n; ++k) {
+    for (int k = 0; k < 2; ++k) {
       vec3 h = k == 0 ? h0 : h1;
-      if (!(h.x > t_min)) continue;
+      if (k >= n || !(h.x > t_min) || !(abs(h.x) <= placement_flt_max())) continue;
       // ∂X/∂u × ∂X/∂v points outward for a counter-clockwise base seen from the top.
       vec3 du = mix(p10 - p00, p11 - p01, h.z);
       vec3 dv = mix(p01 - p00, p11 - p10, h.y);
-      ht[count] = h.x;
-      hs[count] = orient * dot(cross(du, dv), d) > 0.0f ? 1.0f : -1.0f;
-      count += 1;
+      ht[2 + 2 * w + k] = h.x;
+      hs[2 + 2 * w + k] = orient * dot(cross(du, dv), d) > 0.0f ? 1.0f : -1.0f;
     }
   }
-  // insertion sort by t (at most 8 hits)
-  for (int i = 1; i < count; ++i) {
-    float tk = ht[i];
-    float sk = hs[i];
-    int j = i - 1;
-    while (j >= 0 && ht[j] > tk) { ht[j + 1] = ht[j]; hs[j + 1] = hs[j]; j -= 1; }
-    ht[j + 1] = tk;
-    hs[j + 1] = sk;
+  int count = 0;
+  float t_first = placement_inf();
+  float t_last = -placement_inf();
+  for (int k = 0; k < kPrismMaxHits; ++k) {
+    if (hs[k] == 0.0f) continue;
+    count += 1;
+    t_first = min(t_first, ht[k]);
+    t_last = max(t_last, ht[k]);
   }
+  // Clusters in order of t: all hits within eps_t of the nearest one not yet seen; the first whose
+  // signs do not cancel decides. Each round moves past at least one hit, so kPrismMaxHits bound it.
   bool inside = false;
-  int i = 0;
-  while (i < count) {
+  float start = t_first;
+  for (int round = 0; round < kPrismMaxHits && start <= t_last; ++round) {
     float sum = 0.0f;
-    int j = i;
-    while (j < count && ht[j] - ht[i] <= eps_t) { sum += hs[j]; j += 1; }
-    if (sum != 0.0f) { inside = sum > 0.0f; break; }
-    i = j;
+    float next = placement_inf();
+    for (int k = 0; k < kPrismMaxHits; ++k) {
+      if (hs[k] == 0.0f || ht[k] < start) continue;
+      if (ht[k] - start <= eps_t) sum += hs[k];
+      else next = min(next, ht[k]);
+    }
+    if (sum != 0.0f) {
+      inside = sum > 0.0f;
+      break;
+    }
+    start = next;
   }
   r.hit_count = count;
   r.origin_inside = inside;
-  r.t_enter = count == 0 ? t_max : (inside ? t_min : max(ht[0], t_min));
-  r.t_exit = count == 0 ? t_min : min(ht[count > 0 ? count - 1 : 0], t_max);
+  r.t_enter = count == 0 ? t_max : (inside ? t_min : max(t_first, t_min));
+  r.t_exit = count == 0 ? t_min : min(t_last, t_max);
   return count > 0 && r.t_enter <= r.t_exit;
 }
 
