@@ -133,6 +133,11 @@ struct MeshSource {
   std::optional<double> diameter, volume;
   Uv uv = Uv::automatic;
   bool repair = false;  // mend what CGAL can (bake/mesh/mesh_repair.hpp) before the checks
+  // Remeshing for a membrane (bake/mesh/mesh_remesh.hpp): when creases need it (automatic), never
+  // (off), or always to the scene's edge (Å).
+  enum class Remesh { automatic, off, edge };
+  Remesh remesh = Remesh::automatic;
+  double remesh_edge = 0.0;  // Remesh::edge
   bool operator==(const MeshSource&) const = default;
 };
 

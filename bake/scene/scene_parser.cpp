@@ -211,9 +211,29 @@ double parse_unit(const JsonCursor& c) {
   c.fail("expected \"A\", \"nm\" or \"um\", got " + c.shown());
 }
 
-// Keys every mesh takes: its UV policy, repair and a target size.
+// "remesh": "auto" | "off" | {"edge": Å}.
+void parse_remesh(const JsonCursor& c, MeshSource& mesh) {
+  if (c.json().is_object()) {
+    c.only_keys({"edge"});
+    mesh.remesh = MeshSource::Remesh::edge;
+    mesh.remesh_edge = c.required("edge").number_greater_than(0.0);
+    return;
+  }
+  if (!c.json().is_string()) c.fail("expected \"auto\", \"off\" or {\"edge\": Å}, got " + c.shown());
+  const std::string text = c.string();
+  if (text == "auto") mesh.remesh = MeshSource::Remesh::automatic;
+  else if (text == "off") mesh.remesh = MeshSource::Remesh::off;
+  else c.fail("expected \"auto\", \"off\" or {\"edge\": Å}, got " + c.shown());
+}
+
+// Keys every mesh takes: its UV policy, repair, remeshing and a target size.
 void parse_mesh_size_and_uvs(const JsonCursor& c, MeshSource& mesh) {
   if (const auto uv = c.optional("uv")) mesh.uv = parse_uv_policy(*uv);
+  if (const auto remesh = c.optional("remesh")) {
+    parse_remesh(*remesh, mesh);
+    if (mesh.remesh == MeshSource::Remesh::edge && mesh.uv == MeshSource::Uv::keep)
+      remesh->fail("a remeshed mesh loses its UVs: not with \"uv\": \"keep\"");
+  }
   if (const auto repair = c.optional("repair")) {
     mesh.repair = repair->boolean();
     if (mesh.repair && mesh.uv == MeshSource::Uv::keep) repair->fail("a repaired mesh loses its UVs: not with \"uv\": \"keep\"");
@@ -228,7 +248,7 @@ MeshSource parse_mesh(const JsonCursor& c, const std::filesystem::path& folder) 
   if (from_file == generated) c.fail("expected exactly one of \"file\" and \"generate\"");
   MeshSource mesh;
   if (from_file) {
-    c.only_keys({"file", "units", "diameter", "volume", "uv", "repair"});
+    c.only_keys({"file", "units", "diameter", "volume", "uv", "repair", "remesh"});
     mesh.file = resolve_path(c.required("file"), folder);
     if (const auto units = c.optional("units")) mesh.unit = parse_unit(*units);
     parse_mesh_size_and_uvs(c, mesh);
@@ -237,11 +257,11 @@ MeshSource parse_mesh(const JsonCursor& c, const std::filesystem::path& folder) 
   const JsonCursor kind = c.required("generate");
   const std::string name = kind.string();
   if (name == "sphere") {
-    c.only_keys({"generate", "triangles", "radius", "diameter", "volume", "uv", "repair"});
+    c.only_keys({"generate", "triangles", "radius", "diameter", "volume", "uv", "repair", "remesh"});
     mesh.kind = MeshSource::Kind::sphere;
     mesh.radius = c.required("radius").number_greater_than(0.0);
   } else if (name == "rbc") {
-    c.only_keys({"generate", "triangles", "diameter", "volume", "uv", "repair"});
+    c.only_keys({"generate", "triangles", "diameter", "volume", "uv", "repair", "remesh"});
     mesh.kind = MeshSource::Kind::rbc;
   } else {
     kind.fail("expected \"sphere\" or \"rbc\", got " + kind.shown());

@@ -24,6 +24,8 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
   for (const auto& [name, n] : m.dropped) dropped[name] = n;
   nlohmann::ordered_json alternates = nlohmann::ordered_json::object();
   for (const auto& [name, n] : m.alternates) alternates[name] = n;
+  nlohmann::ordered_json unfit = nlohmann::ordered_json::object();
+  for (const auto& [name, n] : m.unfit) unfit[name] = n;
   const double lipids = total(m.lipids) / m.area_um2;
   return {{"area_um2", m.area_um2},
           {"lipids_per_um2", per_species},
@@ -34,6 +36,7 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"protein_area_um2", {{"outer", m.outer_protein_um2}, {"inner", m.inner_protein_um2}}},
           {"fraction_of_real_bilayer_beside_proteins", m.fraction_of_real_bilayer_beside_proteins()},
           {"dropped", dropped},
+          {"dropped_where_no_prism_fits", unfit},
           {"alternates_shown", alternates},
           {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams"},
           {"pruning_checked_copies", m.checked_copies},
@@ -100,6 +103,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
     compartments.back()["mesh_storage"] = c.mesh_storage;
     if (c.charts) compartments.back()["charts"] = mesh::to_json(*c.charts);
     if (c.repair) compartments.back()["repair"] = mesh::to_json(*c.repair);
+    if (c.remesh) compartments.back()["remesh"] = mesh::to_json(*c.remesh);
     if (c.membrane) compartments.back()["membrane"] = membrane_json(*c.membrane);
   }
   auto& instances = j["instances"] = nlohmann::ordered_json::array();
@@ -156,6 +160,7 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
     }
     out << "\n";
     if (c.repair) out << "  " << c.name << " mesh " << mesh::describe(*c.repair) << "\n";
+    if (c.remesh) out << "  " << c.name << " mesh " << mesh::describe(*c.remesh) << "\n";
     if (c.charts) {
       std::snprintf(line, sizeof line,
                     "  %s UVs %s: %zu charts, seam %.4g Å, stretch max %.3f (mean %.3f), %.0f%% of the UV square used, %.2f s\n",
@@ -181,6 +186,11 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
                     static_cast<double>(total(m.dropped)),
                     m.pruned_everywhere ? "everywhere" : "along UV seams", static_cast<double>(total(m.alternates)));
       out << line;
+      for (const auto& [name, n] : m.unfit) {
+        std::snprintf(line, sizeof line, "    %.3g %s left out where the surface folds too tightly for it (placed elsewhere if counted per compartment)\n",
+                      static_cast<double>(n), name.c_str());
+        out << line;
+      }
     }
   }
   std::snprintf(line, sizeof line, "  meshes: %s, %.1f kB\n",

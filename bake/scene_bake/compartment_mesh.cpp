@@ -77,9 +77,45 @@ double largest_side(const mesh::ProxyMesh& m) {
   return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
 }
 
+// Remeshes for the membrane when the scene asks, or (auto) when creases are too sharp for its shells
+// or slivers would be refused; the mesh must be sound otherwise (remeshing does not guess at a shape).
+void remesh_if_needed(CompartmentMesh& result, const scene::CompartmentDescription& compartment, double thickness) {
+  const scene::MeshSource& source = compartment.mesh;
+  if (source.remesh == scene::MeshSource::Remesh::off || source.uv == scene::MeshSource::Uv::keep) return;
+  std::vector<mesh::MeshProblem> other_problems;
+  std::size_t slivers = 0;
+  for (const mesh::MeshProblem& p : result.report.problems) {
+    if (p.rule == mesh::rule::sliver) ++slivers;
+    else if (!mesh::is_uv_rule(p.rule)) other_problems.push_back(p);
+  }
+  mesh::RemeshOptions options = mesh::membrane_remesh_options(result.mesh, thickness);
+  std::optional<std::string> reason;
+  if (source.remesh == scene::MeshSource::Remesh::edge) {
+    options.edge = source.remesh_edge;
+    options.max_distance = std::max(0.5 * thickness, options.edge);
+    options.crease_radius = std::max(thickness, options.edge);
+    char text[64];
+    std::snprintf(text, sizeof text, "the scene asks for edges of %.4g Å", options.edge);
+    reason = text;
+  } else if (slivers > 0) {
+    reason = std::to_string(slivers) + " sliver triangles";
+  } else {
+    reason = mesh::remesh_reason(result.mesh);
+  }
+  if (!reason) return;
+  if (!other_problems.empty()) refuse(result, compartment.name, other_problems);
+  try {
+    result.remesh = mesh::remesh_for_membrane(result.mesh, options, *reason);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
+  }
+  result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
+}
+
 }  // namespace
 
-CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment) {
+CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment,
+                                      std::optional<double> bilayer_thickness) {
   const scene::MeshSource& source = compartment.mesh;
   CompartmentMesh result = read_or_generate(source);
   result.scale = source.unit * compartment.scale;
@@ -106,6 +142,7 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
     result.scale *= factor;
   }
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
+  if (bilayer_thickness) remesh_if_needed(result, compartment, *bilayer_thickness);
   bool uv_trouble = false;
   std::vector<mesh::MeshProblem> shape_problems;
   for (const mesh::MeshProblem& p : result.report.problems) {
@@ -123,6 +160,7 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
   if (!shape_problems.empty()) refuse(result, compartment.name, shape_problems);
   result.uv_origin = source.uv == scene::MeshSource::Uv::generate ? "made by the baker (the scene asks \"uv\": \"generate\")"
                      : result.mesh.has_uvs()                       ? "made by the baker (the mesh's own UVs fail the checks)"
+                     : result.remesh                               ? "made by the baker (the mesh was remeshed)"
                                                                    : "made by the baker (the mesh has none)";
   try {
     result.charts = mesh::generate_uv_charts(result.mesh);

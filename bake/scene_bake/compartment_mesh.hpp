@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bake/mesh/mesh_check.hpp"
+#include "bake/mesh/mesh_remesh.hpp"
 #include "bake/mesh/mesh_repair.hpp"
 #include "bake/mesh/uv_charts.hpp"
 #include "bake/mesh/proxy_mesh.hpp"
@@ -19,15 +20,19 @@ struct CompartmentMesh {
   double scale = 1.0;       // compartment space per mesh unit: units × scale, diameter or volume
   std::optional<mesh::ChartAtlas> charts;  // when the baker made the UVs
   std::optional<mesh::RepairReport> repair;  // when the scene asked for "repair"
+  std::optional<mesh::RemeshReport> remesh;  // when the baker remeshed it for its membrane
   std::string uv_origin;    // "from the mesh" or why the baker made them
   bool on_storage_grids = false;  // put_on_storage_grids succeeded: Draco can store it exactly
   std::string storage;      // what put_on_storage_grids did, or why it left the mesh exact
 };
 
 // Reads or generates the mesh, scales it (units, then the compartment's scale or the mesh's target
-// diameter or volume), makes UVs when the mesh has none usable (or the scene asks) and checks it.
-// Throws InputError naming the mesh (and the compartment) with all problems when unusable.
-CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment);
+// diameter or volume), remeshes it for a membrane `bilayer_thickness` Å thick when its creases or
+// slivers need it or the scene asks (not for a compartment without membrane: nullopt), makes UVs when
+// the mesh has none usable (or the scene asks) and checks it. Throws InputError naming the mesh (and
+// the compartment) with all problems when unusable.
+CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment,
+                                      std::optional<double> bilayer_thickness = std::nullopt);
 
 // Moves the mesh onto the grids of Draco mesh sections (mesh_packing.hpp: on_storage_grids) if the
 // moved mesh still passes every check; otherwise leaves it exact (then zstd stores it) and says why.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "bake/mesh/uv_distortion.hpp"
 #include "bake/shell/membrane_mapping.hpp"
@@ -27,6 +28,28 @@ float stored_uv_scale(float tile_size, float tile_uv_size) {
     throw InputError("", "membrane", "no float UV scale reproduces the tile UV size " + std::to_string(tile_uv_size));
   return k;
 }
+
+namespace {
+
+// The triangles no prism fits even without their proteins, named with where they are.
+InputError unshellable(const shell::MembraneMapping& mapping, const shell::ShellResult& shells) {
+  std::string text = std::to_string(shells.uncontained.size()) +
+                     " triangles could not be given a prism that contains their lipids (the surface folds tighter than "
+                     "the bilayer can follow there):";
+  const std::size_t shown = std::min<std::size_t>(shells.uncontained.size(), 5);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const std::uint32_t t = shells.uncontained[i];
+    const shell::TriangleMapping& tm = mapping.triangle(t);
+    const glm::dvec3 c = (glm::dvec3(tm.position[0]) + glm::dvec3(tm.position[1]) + glm::dvec3(tm.position[2])) / 3.0;
+    char line[160];
+    std::snprintf(line, sizeof line, "\n  triangle %u at (%.1f, %.1f, %.1f) Å", t, c.x, c.y, c.z);
+    text += line;
+  }
+  if (shown < shells.uncontained.size()) text += "\n  ...";
+  return InputError("", "membrane", text);
+}
+
+}  // namespace
 
 BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
                             std::uint64_t seed, int threads,
@@ -60,22 +83,26 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();
   for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = glm::dvec2(snapped[i]);
 
-  const shell::ShellResult shells = shell::compute_shell_offsets(mapping, types, threads);
-  if (shells.stats.uncontained_triangles > 0)
-    throw InputError("", "membrane", std::to_string(shells.stats.uncontained_triangles) +
-                                         " triangles could not be given a prism that contains their molecules");
+  std::vector<bool> droppable(types.size(), false);
+  for (const std::uint32_t t : tiles.protein_types) droppable.at(t) = true;
+  shell::ShellResult shells = shell::compute_shell_offsets(mapping, types, threads, droppable);
+  if (shells.stats.uncontained_triangles > 0) throw unshellable(mapping, shells);
 
   shell::PruningSettings pruning;
   pruning.flat_clearance = tiles.flat_clearance;
   pruning.whole_surface = tiles.packed_rigid;
   pruning.owned_copies = shells.stats.owned_molecules;  // the same mapping, the same ownership
   pruning.always_tested = tiles.laid_through;
-  // Per-compartment counts are settled first, on the whole surface: the copies dropped then take no
-  // lipid with them (the patch was laid through them), and the pruning below removes the lipids that
-  // the kept ones displace.
+  // Proteins no prism could hold where they were are dropped first; per-compartment counts are settled
+  // next, on the whole surface and among the copies left, so a dropped spike is placed elsewhere: the
+  // copies dropped then take no lipid with them (the patch was laid through them), and the pruning
+  // below removes the lipids that the kept ones displace.
   shell::PrunedMembrane limited;
-  limited.dropped.assign(mapping.triangle_count(), {});
+  limited.dropped = std::move(shells.dropped);
   limited.dropped_by_type.assign(types.size(), 0);
+  for (std::size_t i = 0; i < types.size(); ++i) limited.dropped_by_type[i] = shells.dropped_by_type[i];
+  baked.unfit_by_molecule.assign(library.size(), 0);
+  for (std::size_t i = 0; i < types.size(); ++i) baked.unfit_by_molecule[tiles.molecule_of_type[i]] += shells.dropped_by_type[i];
   if (!per_compartment.empty()) {
     if (!tiles.packed_rigid && shells.stats.owned_molecules > pruning.whole_surface_budget)
       throw InputError("", "membrane", library[per_compartment.front().first].name +
@@ -84,8 +111,8 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
     for (const auto& [molecule, count] : per_compartment)
       for (std::uint32_t i = 0; i < tiles.molecule_of_type.size(); ++i)
         if (tiles.molecule_of_type[i] == molecule) shell::limit_copies(mapping, limited, i, count);
-    pruning.dropped_before = limited.dropped;
   }
+  if (shells.stats.unfit_triangles > 0 || !per_compartment.empty()) pruning.dropped_before = limited.dropped;
   baked.pruning = shell::prune_membrane(mapping, mesh, types, pruning, threads);
   for (std::size_t i = 0; i < types.size(); ++i) baked.pruning.dropped_by_type[i] += limited.dropped_by_type[i];
   baked.dropped = std::move(baked.pruning.dropped);

@@ -30,6 +30,7 @@ struct BakedMembrane {
   std::vector<std::uint64_t> copies_by_molecule;  // kept copies, indexed like the molecule library
   std::vector<std::uint64_t> dropped_by_molecule;  // copies dropped because they clash on the surface
   std::vector<std::uint64_t> alternates_by_molecule;  // alternates shown in place of dropped copies
+  std::vector<std::uint64_t> unfit_by_molecule;  // proteins left out where no prism could hold them (counted in dropped too)
   double inner_height = 0.0;                      // largest h₋: how deep the shell reaches
   shell::PrunedMembrane pruning;                  // what the clash pruning looked at (dropped moved out)
 };

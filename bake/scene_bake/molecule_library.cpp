@@ -1,5 +1,6 @@
 #include "bake/scene_bake/molecule_library.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -126,6 +127,21 @@ std::vector<BakedMolecule> load_molecule_library(const scene::SceneDescription& 
   for (std::size_t i = 0; i < scene.molecules.size(); ++i)
     library.push_back(load_baked_molecule(scene.molecules[i], i));
   return library;
+}
+
+double bilayer_thickness(const BakedLipidPatch& patch, const std::vector<BakedMolecule>& library) {
+  double lo = INFINITY, hi = -INFINITY;
+  auto extend = [&](const BakedLipidPatch& species) {
+    for (std::size_t i = 0; i < species.molecules.size(); ++i)
+      for (const structure::Atom& a : library.at(species.molecules[i]).atoms) {
+        const double z = species.positions[i].z + a.position.z;
+        lo = std::min(lo, z - a.radius);
+        hi = std::max(hi, z + a.radius);
+      }
+  };
+  extend(patch);
+  for (const BakedLipidPatch& species : patch.mix) extend(species);
+  return hi > lo ? hi - lo : 0.0;
 }
 
 }  // namespace nano::bake

@@ -53,4 +53,8 @@ BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& patch, std:
 // One molecule from its description (exposed for tests).
 BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description, std::size_t index);
 
+// The bilayer's thickness (Å): from its lowest to its highest atom surface across the patch and its
+// mixed species, as laid (z from the mid-plane).
+double bilayer_thickness(const BakedLipidPatch& patch, const std::vector<BakedMolecule>& library);
+
 }  // namespace nano::bake

@@ -22,6 +22,9 @@
 namespace nano::bake {
 namespace {
 
+// A membrane of proteins alone still lines its surface about as thick as a lipid bilayer (Å).
+constexpr double kBilayerThicknessWithoutPatch = 40.0;
+
 // Every random choice of the bake derives from the scene seed and a tag naming what it seeds.
 enum class SeedTag : std::uint64_t { membrane_tiles = 1, soluble_cubes, membrane_recipe, soluble_recipe };
 
@@ -117,6 +120,7 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
     }
     if (m.dropped_by_molecule[i] > 0) add_named(s.dropped, library[i].name, m.dropped_by_molecule[i]);
     if (m.alternates_by_molecule[i] > 0) add_named(s.alternates, library[i].name, m.alternates_by_molecule[i]);
+    if (m.unfit_by_molecule[i] > 0) add_named(s.unfit, library[i].name, m.unfit_by_molecule[i]);
   }
   if (membrane.lipids) {  // one pose in both leaflets: split evenly
     s.inner_lipids += s.outer_lipids / 2;
@@ -265,7 +269,12 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
   std::vector<CompartmentBake> compartments(scene.compartments.size());
   for (std::size_t c = 0; c < scene.compartments.size(); ++c)
     compartments[c].mesh = clock.run("meshes", [&] {
-      CompartmentMesh loaded = load_compartment_mesh(scene.compartments[c]);
+      std::optional<double> thickness;
+      if (const auto& membrane = scene.compartments[c].membrane) {
+        const auto& patch = patches[membrane->index];
+        thickness = patch ? bilayer_thickness(*patch, library) : kBilayerThicknessWithoutPatch;
+      }
+      CompartmentMesh loaded = load_compartment_mesh(scene.compartments[c], thickness);
       if (options.mesh_codec != MeshCodec::zstd) put_on_storage_grids(loaded);
       else loaded.storage = "exact as read (--mesh-codec zstd)";
       if (options.mesh_codec == MeshCodec::draco && !loaded.on_storage_grids)
@@ -322,8 +331,14 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
         std::vector<std::pair<std::uint32_t, std::uint64_t>> per_compartment;
         for (const scene::MembraneProtein& p : scene.membranes[description.membrane->index].proteins)
           if (p.per_compartment) per_compartment.emplace_back(static_cast<std::uint32_t>(p.molecule.index), *p.per_compartment);
-        return bake_membrane(bake.mesh.mesh, membrane_sets[description.membrane->index], library,
-                             derive_seed(seed, SeedTag::membrane_recipe, c), threads, per_compartment);
+        try {
+          return bake_membrane(bake.mesh.mesh, membrane_sets[description.membrane->index], library,
+                               derive_seed(seed, SeedTag::membrane_recipe, c), threads, per_compartment);
+        } catch (const InputError& e) {
+          // What the membrane cannot do on this mesh is the mesh's file's business, not an anonymous input's.
+          if (!e.file().empty()) throw;
+          throw InputError(bake.mesh.origin, "compartment '" + description.name + "' " + e.where(), e.rule());
+        }
       });
       for (const gpu::TriangleShell& s : bake.membrane->shells)
         bake.shell_margin = std::max({bake.shell_margin, double(s.h_plus), double(s.side_offset)});
@@ -371,6 +386,7 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       summary.mesh_storage = bake.mesh.storage;
       summary.charts = bake.mesh.charts;
       summary.repair = bake.mesh.repair;
+      summary.remesh = bake.mesh.remesh;
       summary.triangles = static_cast<std::uint32_t>(bake.mesh.mesh.triangles.size());
       if (bake.membrane) {
         const BakedMembrane& m = *bake.membrane;

@@ -11,6 +11,7 @@
 #include "bake/scene/scene_description.hpp"
 #include "bake/scene_bake/package_content.hpp"
 
+#include "bake/mesh/mesh_remesh.hpp"
 #include "bake/mesh/mesh_repair.hpp"
 #include "bake/mesh/uv_charts.hpp"
 
@@ -37,6 +38,7 @@ struct MembraneSummary {
   std::vector<std::pair<std::string, std::uint64_t>> lipids;           // species -> kept copies
   std::vector<std::pair<std::string, std::uint64_t>> dropped;          // molecule -> copies dropped (clashing, or beyond a count)
   std::vector<std::pair<std::string, std::uint64_t>> alternates;       // molecule -> alternates shown where a copy was dropped
+  std::vector<std::pair<std::string, std::uint64_t>> unfit;            // molecule -> proteins left out where no prism held them
   bool pruned_everywhere = false;                                      // else along UV seams only
   std::uint64_t checked_copies = 0, atom_tests = 0;
   std::uint64_t outer_lipids = 0, inner_lipids = 0;  // by leaflet (the outer one faces the mesh normals)
@@ -60,6 +62,7 @@ struct CompartmentSummary {
   std::string mesh_storage;                     // on Draco's grids, or why exact (CompartmentMesh::storage)
   std::optional<mesh::ChartAtlas> charts;       // the charts the baker made
   std::optional<mesh::RepairReport> repair;     // what "repair" changed
+  std::optional<mesh::RemeshReport> remesh;     // what remeshing for the membrane changed
   std::uint32_t triangles = 0;
   std::uint64_t represented_atoms = 0;  // one copy of the compartment
   std::vector<std::pair<std::string, std::uint64_t>> copies;  // molecule name -> copies (one compartment)

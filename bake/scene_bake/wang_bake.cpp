@@ -82,6 +82,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
                            : copies_per_um2_from_per_tile(protein.abundance.value, membrane.tile_size);
     m.depth = static_cast<float>(protein.depth);
     m.lipids_displaced_on_surface = protein.per_compartment.has_value();
+    baked.protein_types.push_back(m.type);
     if (m.lipids_displaced_on_surface && patch) baked.laid_through.push_back(m.type);
     request.molecules.push_back(m);
   }

@@ -24,6 +24,8 @@ struct BakedWangSet {
   // Set types the lipid patch was laid through (proteins kept per compartment): flat_clearance does
   // not hold between them and the lipids, so the pruning tests their pairs atom by atom.
   std::vector<std::uint32_t> laid_through;
+  // Set types of the membrane's proteins (not its lipids): dropped where no prism fits them.
+  std::vector<std::uint32_t> protein_types;
 };
 
 // A 2D recipe axis never needs more cells than this: beyond it the periodic recipe repeats.

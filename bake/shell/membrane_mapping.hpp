@@ -18,6 +18,7 @@
 #include "bake/tiles/tiling_recipe.hpp"
 #include "bake/tiles/wang_set.hpp"
 #include "shared/ownership.h"
+#include "shared/render_membrane_filter.h"
 #include "shared/seam.h"
 #include "shared/tile_mapper.h"
 
@@ -157,6 +158,14 @@ public:
       }
   }
 
+  // The key triangle t's drop list knows the copy by: membrane_copy_key(its slot in t's replication
+  // area, its instance), as the shader looks it up.
+  std::uint32_t copy_key(std::size_t t, const OwnedPlace& place) const {
+    const glm::ivec2 slot = place.cell - triangles_[t].origin;
+    return gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + static_cast<std::uint32_t>(area_.x) *
+                                                                           static_cast<std::uint32_t>(slot.y),
+                                  place.instance);
+  }
   // Compartment-space transform of a copy triangle t owns (chart_membrane_molecule).
   gpu::Affine3 transform_of(std::size_t t, const OwnedPlace& place) const {
     const tiles::Instance& in = set_->tiles[place.tile].instances[place.instance];

@@ -177,9 +177,7 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
         t,
         [&](const OwnedPlace& m) {
           const tiles::Instance& in = set.tiles[m.tile].instances[m.instance];
-          const glm::ivec2 slot = m.cell - tm.origin;
-          const std::uint32_t key =
-              gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + W * static_cast<std::uint32_t>(slot.y), m.instance);
+          const std::uint32_t key = mapping.copy_key(t, m);
           if (!settings.dropped_before.empty() &&
               std::binary_search(settings.dropped_before[t].begin(), settings.dropped_before[t].end(), key))
             return;
@@ -343,17 +341,13 @@ std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& prune
     dvec3 centre;
   };
   std::vector<Copy> copies;
-  const std::uint32_t W = static_cast<std::uint32_t>(mapping.replication_area().x);
   for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
-    const glm::ivec2 origin = mapping.triangle(t).origin;
     const std::vector<std::uint32_t>& dropped = pruned.dropped[t];
     mapping.for_each_owned_membrane_place(
         t,
         [&](const OwnedPlace& m) {
           if (m.type != type || mapping.set().tiles[m.tile].instances[m.instance].alternate) return;
-          const glm::ivec2 slot = m.cell - origin;
-          const std::uint32_t key =
-              gpu::membrane_copy_key(static_cast<std::uint32_t>(slot.x) + W * static_cast<std::uint32_t>(slot.y), m.instance);
+          const std::uint32_t key = mapping.copy_key(t, m);
           if (std::binary_search(dropped.begin(), dropped.end(), key)) return;
           copies.push_back({static_cast<std::uint32_t>(t), key, dvec3(mapping.centre_of(t, m))});
         },

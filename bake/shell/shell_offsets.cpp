@@ -21,6 +21,9 @@ struct Sphere {
   glm::dvec3 centre;
   double radius;
   glm::dvec3 bary;  // barycentrics of uv_m
+  std::uint32_t type;
+  std::uint32_t key;  // MembraneMapping::copy_key
+  bool alternate;     // listed means shown for an alternate (membrane_copy_listed_shows): never dropped here
 };
 
 struct Plane {  // inside: dot(normal, x) <= offset
@@ -99,6 +102,8 @@ namespace {
 struct BlockTotals {
   ShellStats stats;
   std::vector<std::size_t> owned_by_type;
+  std::vector<std::size_t> dropped_by_type;
+  std::vector<std::uint32_t> uncontained;
 };
 
 void merge(ShellStats& into, const ShellStats& s) {
@@ -107,16 +112,90 @@ void merge(ShellStats& into, const ShellStats& s) {
   into.grown_triangles += s.grown_triangles;
   into.max_grow_iterations = std::max(into.max_grow_iterations, s.max_grow_iterations);
   into.uncontained_triangles += s.uncontained_triangles;
+  into.unfit_triangles += s.unfit_triangles;
   into.inverted_caps += s.inverted_caps;
   into.min_vertex_normal_cos = std::min(into.min_vertex_normal_cos, s.min_vertex_normal_cos);
 }
 
+struct PrismFit {
+  gpu::ShellOffsets offsets{0.f, 0.f, 0.f};
+  int iterations = 0;
+  bool contained = false;
+};
+
+// Offsets of triangle t's prism that contain `spheres`: estimated, then verified and grown.
+PrismFit fit_prism(const MembraneMapping& mapping, std::size_t t, const std::vector<Sphere>& spheres, double cmin) {
+  const TriangleMapping& tm = mapping.triangle(t);
+  const glm::dvec3 p0(tm.position[0]), p1(tm.position[1]), p2(tm.position[2]);
+  const glm::dvec3 face = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  // Altitude onto the edge opposite corner k: 2·area / |edge|.
+  const double area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
+  const glm::dvec3 alt(area2 / glm::length(p2 - p1), area2 / glm::length(p0 - p2), area2 / glm::length(p1 - p0));
+
+  // Maxima of the numerators, divided once: a rounded division by cmin > 0 never decreases as
+  // its numerator grows, so this is bit for bit the maximum of the quotients.
+  double hp = 0.0, hm = 0.0, side = 0.0;
+  for (const Sphere& s : spheres) {
+    const double z = glm::dot(s.centre - p0, face);
+    hp = std::max(hp, z + s.radius);
+    hm = std::max(hm, s.radius - z);
+    for (int k = 0; k < 3; ++k) side = std::max(side, s.radius - s.bary[k] * alt[k]);
+  }
+
+  PrismFit fit;
+  gpu::ShellOffsets& off = fit.offsets;
+  off = {float(hp / cmin), float(hm / cmin), float(side / cmin)};
+  for (; fit.iterations <= kMaxGrowIterations; ++fit.iterations) {
+    const gpu::Prism pr = triangle_prism(mapping, t, off);
+    const std::array<Plane, 5> hs = prism_half_spaces(pr);
+    double deficit[5] = {0, 0, 0, 0, 0};
+    for (const Sphere& s : spheres)
+      for (int f = 0; f < 5; ++f)
+        deficit[f] = std::max(deficit[f], s.radius + kShellContainmentMargin - hs[f].margin(s.centre));
+    const double wall = std::max(deficit[2], std::max(deficit[3], deficit[4]));
+    if (deficit[0] <= 0.0 && deficit[1] <= 0.0 && wall <= 0.0) {
+      fit.contained = point_inside(pr, spheres.front().centre);
+      break;
+    }
+    if (deficit[0] > 0.0) off.h_minus = float(off.h_minus + deficit[0] / cmin + kGrowSlack);
+    if (deficit[1] > 0.0) off.h_plus = float(off.h_plus + deficit[1] / cmin + kGrowSlack);
+    if (wall > 0.0) off.side = float(off.side + wall / cmin + kGrowSlack);
+  }
+  return fit;
+}
+
+// Drops droppable copies from `spheres`, largest first, until a prism contains the rest (or none is
+// left to drop); the keys of those dropped go to `dropped` in ascending order.
+PrismFit fit_without_unfit(const MembraneMapping& mapping, std::size_t t, std::vector<Sphere>& spheres, double cmin,
+                           const std::vector<bool>& droppable, std::vector<std::uint32_t>& dropped,
+                           std::vector<std::size_t>& dropped_by_type) {
+  PrismFit fit;
+  for (;;) {
+    std::size_t largest = spheres.size();
+    for (std::size_t i = 0; i < spheres.size(); ++i)
+      if (!spheres[i].alternate && spheres[i].type < droppable.size() && droppable[spheres[i].type] &&
+          (largest == spheres.size() || spheres[i].radius > spheres[largest].radius))
+        largest = i;
+    if (largest == spheres.size() || spheres.size() == 1) return fit;
+    dropped.push_back(spheres[largest].key);
+    ++dropped_by_type[spheres[largest].type];
+    spheres.erase(spheres.begin() + std::ptrdiff_t(largest));
+    fit = fit_prism(mapping, t, spheres, cmin);
+    if (fit.contained) {
+      std::sort(dropped.begin(), dropped.end());
+      return fit;
+    }
+  }
+}
+
 // Triangles [begin, end): their offsets into `offsets`, the rest into `totals`.
-void shell_block(const MembraneMapping& mapping, const std::vector<double>& radius, std::size_t begin,
-                 std::size_t end, std::vector<gpu::ShellOffsets>& offsets, BlockTotals& totals) {
+void shell_block(const MembraneMapping& mapping, const std::vector<double>& radius, const std::vector<bool>& droppable,
+                 std::size_t begin, std::size_t end, std::vector<gpu::ShellOffsets>& offsets,
+                 std::vector<std::vector<std::uint32_t>>& dropped, BlockTotals& totals) {
   const std::size_t type_count = radius.size();
   ShellStats& stats = totals.stats;
   totals.owned_by_type.assign(type_count, 0);
+  totals.dropped_by_type.assign(type_count, 0);
   std::vector<Sphere> spheres;
   for (std::size_t t = begin; t < end; ++t) {
     spheres.clear();
@@ -125,9 +204,11 @@ void shell_block(const MembraneMapping& mapping, const std::vector<double>& radi
         throw InputError("shell", "tile " + std::to_string(m.tile) + " instance " + std::to_string(m.instance),
                          "molecule type " + std::to_string(m.type) + " is not among the " +
                              std::to_string(type_count) + " types given");
-      if (!mapping.set().tiles[m.tile].instances[m.instance].alternate) ++totals.owned_by_type[m.type];
+      const bool alternate = mapping.set().tiles[m.tile].instances[m.instance].alternate;
+      if (!alternate) ++totals.owned_by_type[m.type];
       spheres.push_back({glm::dvec3(mapping.centre_of(t, m)), radius[m.type],
-                         glm::dvec3(gpu::chart_barycentric(mapping.triangle(t).chart, m.uv))});
+                         glm::dvec3(gpu::chart_barycentric(mapping.triangle(t).chart, m.uv)), m.type,
+                         mapping.copy_key(t, m), alternate});
     });
     if (spheres.empty()) continue;  // offsets stay zero: a flat prism the runtime can skip
     stats.owned_molecules += spheres.size();
@@ -140,73 +221,58 @@ void shell_block(const MembraneMapping& mapping, const std::vector<double>& radi
     for (int c = 0; c < 3; ++c) cmin = std::min(cmin, glm::dot(glm::dvec3(tm.normal[c]), face));
     stats.min_vertex_normal_cos = std::min(stats.min_vertex_normal_cos, cmin);
     cmin = std::max(cmin, kMinNormalCos);
-    // Altitude onto the edge opposite corner k: 2·area / |edge|.
-    const double area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
-    const glm::dvec3 alt(area2 / glm::length(p2 - p1), area2 / glm::length(p0 - p2), area2 / glm::length(p1 - p0));
 
-    // Maxima of the numerators, divided once: a rounded division by cmin > 0 never decreases as
-    // its numerator grows, so this is bit for bit the maximum of the quotients.
-    double hp = 0.0, hm = 0.0, side = 0.0;
-    for (const Sphere& s : spheres) {
-      const double z = glm::dot(s.centre - p0, face);
-      hp = std::max(hp, z + s.radius);
-      hm = std::max(hm, s.radius - z);
-      for (int k = 0; k < 3; ++k) side = std::max(side, s.radius - s.bary[k] * alt[k]);
-    }
-
-    gpu::ShellOffsets off{float(hp / cmin), float(hm / cmin), float(side / cmin)};
-    int iterations = 0;
-    bool contained = false;
-    for (; iterations <= kMaxGrowIterations; ++iterations) {
-      const gpu::Prism pr = triangle_prism(mapping, t, off);
-      const std::array<Plane, 5> hs = prism_half_spaces(pr);
-      double deficit[5] = {0, 0, 0, 0, 0};
-      for (const Sphere& s : spheres)
-        for (int f = 0; f < 5; ++f)
-          deficit[f] = std::max(deficit[f], s.radius + kShellContainmentMargin - hs[f].margin(s.centre));
-      const double wall = std::max(deficit[2], std::max(deficit[3], deficit[4]));
-      if (deficit[0] <= 0.0 && deficit[1] <= 0.0 && wall <= 0.0) {
-        contained = point_inside(pr, spheres.front().centre);
-        break;
+    PrismFit fit = fit_prism(mapping, t, spheres, cmin);
+    if (!fit.contained && !droppable.empty()) {
+      const PrismFit without = fit_without_unfit(mapping, t, spheres, cmin, droppable, dropped[t], totals.dropped_by_type);
+      if (without.contained) {
+        fit = without;
+        stats.unfit_triangles += 1;
       }
-      if (deficit[0] > 0.0) off.h_minus = float(off.h_minus + deficit[0] / cmin + kGrowSlack);
-      if (deficit[1] > 0.0) off.h_plus = float(off.h_plus + deficit[1] / cmin + kGrowSlack);
-      if (wall > 0.0) off.side = float(off.side + wall / cmin + kGrowSlack);
     }
-    if (iterations > 0) stats.grown_triangles += 1;
-    stats.max_grow_iterations = std::max(stats.max_grow_iterations, iterations);
-    if (!contained) stats.uncontained_triangles += 1;
+    if (fit.iterations > 0) stats.grown_triangles += 1;
+    stats.max_grow_iterations = std::max(stats.max_grow_iterations, fit.iterations);
+    if (!fit.contained) {
+      stats.uncontained_triangles += 1;
+      totals.uncontained.push_back(static_cast<std::uint32_t>(t));
+    }
 
     // The prism contract of ray_prism.h: neither cap may face against the face normal.
-    const gpu::Prism pr = triangle_prism(mapping, t, off);
+    const gpu::Prism pr = triangle_prism(mapping, t, fit.offsets);
     const glm::dvec3 nb = glm::cross(glm::dvec3(pr.v[1] - pr.v[0]), glm::dvec3(pr.v[2] - pr.v[0]));
     const glm::dvec3 nt = glm::cross(glm::dvec3(pr.v[4] - pr.v[3]), glm::dvec3(pr.v[5] - pr.v[3]));
     if (!(glm::dot(nb, face) > 0.0) || !(glm::dot(nt, face) > 0.0)) stats.inverted_caps += 1;
-    offsets[t] = off;
+    offsets[t] = fit.offsets;
   }
 }
 
 }  // namespace
 
 ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vector<tiles::MoleculeType>& types,
-                                  int threads) {
+                                  int threads, const std::vector<bool>& droppable) {
   std::vector<double> radius(types.size());
   for (std::size_t i = 0; i < types.size(); ++i) radius[i] = molecule_origin_radius(types[i]);
 
   ShellResult out;
   const std::size_t n = mapping.triangle_count();
   out.offsets.assign(n, gpu::ShellOffsets{0.f, 0.f, 0.f});
+  out.dropped.assign(n, {});
   const std::size_t blocks =
       std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), 1, std::max<std::size_t>(n, 1));
   std::vector<BlockTotals> totals(blocks);
   // A block stops at its first failing triangle; parallel_for rethrows the lowest block's error.
   parallel_for(blocks, threads, [&](std::size_t b) {
-    shell_block(mapping, radius, n * b / blocks, n * (b + 1) / blocks, out.offsets, totals[b]);
+    shell_block(mapping, radius, droppable, n * b / blocks, n * (b + 1) / blocks, out.offsets, out.dropped, totals[b]);
   });
   out.owned_by_type.assign(types.size(), 0);
+  out.dropped_by_type.assign(types.size(), 0);
   for (const BlockTotals& block : totals) {
     merge(out.stats, block.stats);
-    for (std::size_t i = 0; i < types.size(); ++i) out.owned_by_type[i] += block.owned_by_type[i];
+    for (std::size_t i = 0; i < types.size(); ++i) {
+      out.owned_by_type[i] += block.owned_by_type[i];
+      out.dropped_by_type[i] += block.dropped_by_type[i];
+    }
+    out.uncontained.insert(out.uncontained.end(), block.uncontained.begin(), block.uncontained.end());
   }
   out.fixed = fixed_offsets(out.offsets);
   return out;

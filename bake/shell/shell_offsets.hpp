@@ -26,7 +26,8 @@ struct ShellStats {
   std::size_t triangles_with_molecules = 0;
   std::size_t grown_triangles = 0;           // the estimate failed verification and was grown
   int max_grow_iterations = 0;
-  std::size_t uncontained_triangles = 0;     // still failing after the iteration bound (expected 0)
+  std::size_t uncontained_triangles = 0;     // still failing after the iteration bound without droppable copies
+  std::size_t unfit_triangles = 0;           // contained only once droppable copies were dropped
   std::size_t inverted_caps = 0;             // triangles whose cap faces against the face normal
   double min_vertex_normal_cos = 1.0;        // smallest cos(n_i, face normal) among used triangles
 };
@@ -39,6 +40,13 @@ struct ShellResult {
   // counted (they show only where the pruning lists them), so a caller counting copies need not
   // enumerate the membrane a second time.
   std::vector<std::size_t> owned_by_type;
+  // Copies of droppable types left out because their triangle's prism could not contain them (a
+  // spike in a narrow fold): per triangle, ascending membrane copy keys (MembraneMapping::copy_key),
+  // and their count per type. They count in owned_by_type; the caller drops them.
+  std::vector<std::vector<std::uint32_t>> dropped;
+  std::vector<std::size_t> dropped_by_type;
+  // Triangles that no prism fits even without droppable copies (uncontained_triangles of them).
+  std::vector<std::uint32_t> uncontained;
 };
 
 // Fixed-height alternative: componentwise maximum over triangles (the runtime can derive it from
@@ -60,12 +68,15 @@ gpu::Prism triangle_prism(const MembraneMapping& mapping, std::size_t t, const g
 // meets no face, so it lies wholly inside or outside the prism, decided once per triangle by
 // prism_intersect parity from one molecule's centre (3 directions agree). A failing triangle grows
 // the offending offset(s) by the deficit / c_min and retries (at most 64 times).
+// A triangle whose molecules no prism contains leaves out copies of `droppable` types (indexed like
+// `types`; empty: none), largest first, until one does: a protein too tall for a fold is dropped
+// there rather than the bake; the lipids decide the shell.
 // Throws InputError("shell", ...) when an instance's type is not in `types` (with several threads:
 // the error of the lowest such triangle, as with one).
 // threads ≥ 1 splits the triangles into contiguous blocks run by parallel_for; every triangle is
 // computed alone and the statistics are order-free sums, minima and maxima, so the result does not
 // depend on `threads`.
 ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vector<tiles::MoleculeType>& types,
-                                  int threads = 1);
+                                  int threads = 1, const std::vector<bool>& droppable = {});
 
 }  // namespace nano::shell

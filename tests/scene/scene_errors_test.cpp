@@ -191,6 +191,20 @@ TEST(SceneErrors, MeshUnitsSizeAndUvs) {
                      "compartments.virion.scale", "not both");
 }
 
+TEST(SceneErrors, Remesh) {
+  const auto with_mesh = [](Json mesh) { return [mesh](Json& d) { d["compartments"]["virion"]["mesh"] = mesh; }; };
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"remesh", "always"}})), "compartments.virion.mesh.remesh",
+                     "expected \"auto\", \"off\" or {\"edge\": Å}, got \"always\"");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"remesh", true}})), "compartments.virion.mesh.remesh",
+                     "expected \"auto\", \"off\"");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"remesh", Json{{"edge", 0}}}})),
+                     "compartments.virion.mesh.remesh.edge", "expected a number > 0");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"remesh", Json{{"egde", 20}}}})),
+                     "compartments.virion.mesh.remesh.egde", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified(with_mesh(Json{{"file", "c.obj"}, {"uv", "keep"}, {"remesh", Json{{"edge", 20}}}})),
+                     "compartments.virion.mesh.remesh", "loses its UVs");
+}
+
 TEST(SceneErrors, StructuralRules) {
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
                        d["membranes"]["envelope"].erase("proteins");

@@ -216,3 +216,29 @@ TEST(SceneParser, DocumentationExampleParses) {
 
 }  // namespace
 }  // namespace nano::scene
+
+namespace nano::scene {
+namespace {
+
+MeshSource mesh_with(const std::string& remesh_member) {
+  const std::string text = R"({
+    "format": "nanouniverse-scene", "version": 1,
+    "molecules": {"hb": {"file": "hb.pdb"}},
+    "solubles": {"inside": {"cube_size": 80, "molecules": [{"molecule": "hb", "copies_per_um3": 1}]}},
+    "compartments": {"c": {"mesh": {"file": "c.obj")" + remesh_member + R"(}, "soluble": "inside"}},
+    "instances": [{"compartment": "c"}]
+  })";
+  return parse_scene_description(parse_json_text(text, "s.json"), "s.json").compartments[0].mesh;
+}
+
+TEST(SceneParser, RemeshIsAutomaticUnlessTheSceneSaysOffOrAnEdge) {
+  EXPECT_EQ(mesh_with("").remesh, MeshSource::Remesh::automatic);
+  EXPECT_EQ(mesh_with(R"(, "remesh": "auto")").remesh, MeshSource::Remesh::automatic);
+  EXPECT_EQ(mesh_with(R"(, "remesh": "off")").remesh, MeshSource::Remesh::off);
+  const MeshSource edge = mesh_with(R"(, "remesh": {"edge": 25.5})");
+  EXPECT_EQ(edge.remesh, MeshSource::Remesh::edge);
+  EXPECT_EQ(edge.remesh_edge, 25.5);
+}
+
+}  // namespace
+}  // namespace nano::scene

@@ -1,0 +1,70 @@
+#pragma once
+// Prepares a user's closed, manifold, outward mesh for shelling: a membrane is a rigid bilayer laid
+// along the surface's normals, so a crease sharper than the bilayer can follow, or triangles coarse
+// against the surface's curvature, leave molecules no prism that contains them. The baker remeshes
+// such a mesh itself — isotropic remeshing (CGAL Polygon Mesh Processing) to an edge derived from the
+// membrane, then non-shrinking (Taubin) smoothing that rounds creases while every vertex is held
+// within a stated distance of the user's surface — and reports what it changed. No CGAL type crosses
+// this header.
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/mesh/proxy_mesh.hpp"
+
+namespace nano::mesh {
+
+// Creases the shells take without remeshing: neighbouring faces' normals at most this far apart.
+inline constexpr double kRemeshCreaseDegrees = 20.0;
+// The remeshed surface never has more triangles than this (the edge grows instead).
+inline constexpr std::size_t kRemeshMaxTriangles = 400000;
+
+struct RemeshOptions {
+  double edge = 0.0;          // target edge length, Å (> 0)
+  double max_distance = 0.0;  // Å: every remeshed vertex stays this close to the input surface (> 0)
+  double crease_radius = 0.0; // Å: creases are rounded over about this radius (0: not smoothed)
+};
+
+// The options the baker derives for a membrane `bilayer_thickness` Å thick on `mesh`: creases rounded
+// over one thickness (so the bilayer's inner leaflet, half a thickness deep, never meets itself
+// inside a convex crease, nor the outer one outside a concave crease), an edge of half the thickness,
+// grown so that the mesh stays under kRemeshMaxTriangles, and a distance bound of half a thickness
+// (or one edge, if larger): a plate one bilayer thick keeps a lumen.
+RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thickness);
+
+// The largest angle (degrees) between the normals of two faces sharing an edge; 0 without interior
+// edges. Degenerate faces are skipped.
+double largest_crease_degrees(const ProxyMesh& mesh);
+
+// Why a mesh needs remeshing for a membrane, or nothing: creases above kRemeshCreaseDegrees.
+std::optional<std::string> remesh_reason(const ProxyMesh& mesh);
+
+struct RemeshReport {
+  std::string reason;                      // why the baker remeshed (the scene's edge, or a crease)
+  std::size_t triangles_in = 0, triangles_out = 0;
+  double edge = 0.0;                       // target edge, Å
+  double distance_bound = 0.0;             // Å
+  double largest_crease_in = 0.0;          // degrees between neighbouring faces
+  double largest_crease_out = 0.0;
+  double largest_normal_deviation = 0.0;   // degrees: a remeshed face against the input face nearest it
+  double max_distance = 0.0;               // Å: remeshed vertices, edge midpoints and centroids to the input
+  double area_in = 0.0, area_out = 0.0;    // Å²
+  double volume_in = 0.0, volume_out = 0.0;  // Å³
+  int smoothing_steps = 0;
+};
+
+// Remeshes `mesh` (closed, manifold, outward) in place: isotropic remeshing to options.edge, then
+// umbrella (Laplacian) smoothing of the vertices within crease_radius of an edge sharper than
+// kRemeshCreaseDegrees — 2·(crease_radius / edge)² steps, a diffusion over about that radius — every
+// vertex pulled back to within options.max_distance of the input surface after each step, and one
+// more remeshing pass to even the triangles. UVs are dropped (the
+// baker makes charts for the new surface) and normals recomputed. Throws std::invalid_argument when
+// the triangles do not form a closed polygon mesh or the options are not positive.
+RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason);
+
+nlohmann::json to_json(const RemeshReport& report);
+std::string describe(const RemeshReport& report);
+
+}  // namespace nano::mesh

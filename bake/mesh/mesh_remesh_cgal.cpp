@@ -1,0 +1,214 @@
+// CGAL's isotropic remeshing and AABB distance queries, in their own translation unit (template-heavy).
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+#include <cstdio>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include "bake/mesh/mesh_remesh.hpp"
+#include "bake/mesh/vertex_normals.hpp"
+
+namespace nano::mesh {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Vector = Kernel::Vector_3;
+using SurfaceMesh = CGAL::Surface_mesh<Point>;
+using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+constexpr double kDegreesPerRadian = 57.29577951308232;
+constexpr double kSmoothingWeight = 0.5;
+constexpr int kMaxSmoothingSteps = 200;
+constexpr int kRemeshIterations = 3;
+
+SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
+  std::vector<Point> points;
+  points.reserve(mesh.positions.size());
+  for (const glm::dvec3& p : mesh.positions) points.emplace_back(p.x, p.y, p.z);
+  std::vector<std::vector<std::size_t>> polygons;
+  polygons.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles) polygons.push_back({t[0], t[1], t[2]});
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons))
+    throw std::invalid_argument("cannot remesh: the faces do not form an oriented 2-manifold");
+  SurfaceMesh sm;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
+  if (!CGAL::is_closed(sm)) throw std::invalid_argument("cannot remesh: the mesh has holes");
+  return sm;
+}
+
+ProxyMesh to_proxy_mesh(SurfaceMesh& sm) {
+  sm.collect_garbage();
+  ProxyMesh mesh;
+  mesh.positions.reserve(sm.number_of_vertices());
+  for (SurfaceMesh::Vertex_index v : sm.vertices()) {
+    const Point& p = sm.point(v);
+    mesh.positions.emplace_back(p.x(), p.y(), p.z());
+  }
+  for (SurfaceMesh::Face_index f : sm.faces()) {
+    Triangle t{};
+    int k = 0;
+    for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = std::uint32_t(v);
+    mesh.triangles.push_back(t);
+  }
+  compute_angle_weighted_normals(mesh);
+  return mesh;
+}
+
+// Face normal angle across edge e, degrees (0 on a border).
+double crease_degrees(const SurfaceMesh& sm, SurfaceMesh::Edge_index e) {
+  if (sm.is_border(e)) return 0.0;
+  const SurfaceMesh::Halfedge_index h = sm.halfedge(e);
+  const Vector a = PMP::compute_face_normal(sm.face(h), sm);
+  const Vector b = PMP::compute_face_normal(sm.face(sm.opposite(h)), sm);
+  return std::acos(std::clamp(a * b, -1.0, 1.0)) * kDegreesPerRadian;
+}
+
+// The vertices within `rings` edges of an edge sharper than `degrees`: only they are smoothed,
+// so smooth parts of the user's surface (a sphere's cap) do not shrink.
+std::vector<bool> near_creases(const SurfaceMesh& sm, double degrees, int rings) {
+  std::vector<bool> marked(sm.number_of_vertices(), false);
+  for (SurfaceMesh::Edge_index e : sm.edges())
+    if (crease_degrees(sm, e) > degrees) {
+      marked[std::size_t(sm.vertex(e, 0))] = true;
+      marked[std::size_t(sm.vertex(e, 1))] = true;
+    }
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<bool> grown = marked;
+    for (SurfaceMesh::Edge_index e : sm.edges()) {
+      const std::size_t a = std::size_t(sm.vertex(e, 0)), b = std::size_t(sm.vertex(e, 1));
+      if (marked[a] || marked[b]) grown[a] = grown[b] = true;
+    }
+    marked = std::move(grown);
+  }
+  return marked;
+}
+
+// One umbrella step of the marked vertices: each moves by w·(mean of its neighbours − itself).
+void umbrella_step(SurfaceMesh& sm, const std::vector<bool>& marked, double w, std::vector<Point>& scratch) {
+  scratch.assign(sm.number_of_vertices(), CGAL::ORIGIN);
+  for (SurfaceMesh::Vertex_index v : sm.vertices()) {
+    const Point& p = sm.point(v);
+    scratch[std::size_t(v)] = p;
+    if (!marked[std::size_t(v)]) continue;
+    Vector sum(0, 0, 0);
+    int n = 0;
+    for (SurfaceMesh::Vertex_index u : CGAL::vertices_around_target(sm.halfedge(v), sm)) {
+      sum = sum + (sm.point(u) - CGAL::ORIGIN);
+      ++n;
+    }
+    if (n > 0) scratch[std::size_t(v)] = p + w * (CGAL::ORIGIN + sum / double(n) - p);
+  }
+  for (SurfaceMesh::Vertex_index v : sm.vertices()) sm.point(v) = scratch[std::size_t(v)];
+}
+
+// Vertices are held a quarter edge inside the bound: a chord or a face between two vertices on a
+// rounded crease lies farther from the input than its corners.
+double vertex_bound(const RemeshOptions& options) {
+  return std::max(options.max_distance - 0.25 * options.edge, 0.5 * options.max_distance);
+}
+
+// Every vertex farther than `bound` from the input surface moves back along its offset to `bound`.
+void hold_near(SurfaceMesh& sm, const Tree& input, double bound) {
+  for (SurfaceMesh::Vertex_index v : sm.vertices()) {
+    const Point p = sm.point(v);
+    const Point q = input.closest_point(p);
+    const double d = std::sqrt(CGAL::squared_distance(p, q));
+    if (d > bound) sm.point(v) = q + (p - q) * (bound / d);
+  }
+}
+
+double largest_crease(const SurfaceMesh& sm) {
+  double largest = 0.0;
+  for (SurfaceMesh::Edge_index e : sm.edges()) largest = std::max(largest, crease_degrees(sm, e));
+  return largest;
+}
+
+// One remeshing pass (it projects onto the surface it is given, the smoothed one), then the vertices
+// held near the input again.
+void even_triangles(SurfaceMesh& sm, const Tree& input, const RemeshOptions& options) {
+  PMP::isotropic_remeshing(faces(sm), options.edge, sm, CGAL::parameters::number_of_iterations(1));
+  sm.collect_garbage();
+  hold_near(sm, input, vertex_bound(options));
+}
+
+}  // namespace
+
+RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason) {
+  if (!(options.edge > 0.0) || !(options.max_distance > 0.0))
+    throw std::invalid_argument("cannot remesh: the target edge and the distance bound must be positive");
+  RemeshReport report;
+  report.reason = reason;
+  report.edge = options.edge;
+  report.distance_bound = options.max_distance;
+  report.triangles_in = mesh.triangles.size();
+  const SurfaceMesh input = to_surface_mesh(mesh);
+  report.largest_crease_in = largest_crease(input);
+  report.area_in = PMP::area(input);
+  report.volume_in = PMP::volume(input);
+  Tree tree(faces(input).first, faces(input).second, input);
+  tree.accelerate_distance_queries();
+
+  SurfaceMesh work = input;
+  PMP::isotropic_remeshing(faces(work), options.edge, work, CGAL::parameters::number_of_iterations(kRemeshIterations));
+  work.collect_garbage();
+  // A diffusion over the crease radius: the umbrella operator spreads a crease by about one edge per
+  // two steps of weight ½ (its variance grows by w·edge² per step). Smoothing alone leaves a dimple
+  // at a vertex of valence 3 (a box's corner), so every two steps a remeshing pass evens the
+  // triangles and valences; it ends early once no crease is left sharper than the shells take.
+  std::vector<Point> scratch;
+  const double rings = options.crease_radius / options.edge;
+  const int steps = std::min(kMaxSmoothingSteps, int(std::ceil(2.0 * rings * rings)));
+  while (report.smoothing_steps < steps) {
+    const std::vector<bool> marked = near_creases(work, kRemeshCreaseDegrees, 2 * int(std::ceil(rings)));
+    if (std::find(marked.begin(), marked.end(), true) == marked.end()) break;
+    for (int k = 0; k < 2; ++k) {
+      umbrella_step(work, marked, kSmoothingWeight, scratch);
+      hold_near(work, tree, vertex_bound(options));
+    }
+    report.smoothing_steps += 2;
+    even_triangles(work, tree, options);
+  }
+  even_triangles(work, tree, options);
+  report.largest_crease_out = largest_crease(work);
+  report.area_out = PMP::area(work);
+  report.volume_out = PMP::volume(work);
+
+  // Distance and normal deviation at vertices, edge midpoints and face centroids of the new surface.
+  auto measure = [&](const Point& p, const Vector* normal) {
+    const auto [q, face] = tree.closest_point_and_primitive(p);
+    report.max_distance = std::max(report.max_distance, std::sqrt(CGAL::squared_distance(p, q)));
+    if (normal) {
+      const Vector n = PMP::compute_face_normal(face, input);
+      report.largest_normal_deviation =
+          std::max(report.largest_normal_deviation, std::acos(std::clamp(n * *normal, -1.0, 1.0)) * kDegreesPerRadian);
+    }
+  };
+  for (SurfaceMesh::Vertex_index v : work.vertices()) measure(work.point(v), nullptr);
+  for (SurfaceMesh::Edge_index e : work.edges())
+    measure(CGAL::midpoint(work.point(work.source(work.halfedge(e))), work.point(work.target(work.halfedge(e)))), nullptr);
+  for (SurfaceMesh::Face_index f : work.faces()) {
+    const SurfaceMesh::Halfedge_index h = work.halfedge(f);
+    const Point c = CGAL::centroid(work.point(work.source(h)), work.point(work.target(h)),
+                                   work.point(work.target(work.next(h))));
+    const Vector n = PMP::compute_face_normal(f, work);
+    measure(c, &n);
+  }
+  mesh = to_proxy_mesh(work);
+  report.triangles_out = mesh.triangles.size();
+  return report;
+}
+
+}  // namespace nano::mesh
