@@ -1,21 +1,27 @@
 #pragma once
-// Loads a proxy mesh from OBJ, PLY, OFF, STL (parsed by OpenMesh) or Draco .drc (draco_codec.hpp).
-// The OpenMesh formats are parsed by OpenMesh (confined to
-// mesh_reader_openmesh.cpp); this layer keeps the raw face list as written, so check-mesh can
-// still see what OpenMesh's half-edge builder would silently repair (non-manifold edges, faces
-// with repeated vertices) and report it against the face index of the file.
+// Loads a proxy mesh from OBJ, PLY, OFF, STL or Draco .drc. The four text-or-binary formats have
+// readers of our own (one file each, sharing polygon_soup.hpp), written to accept what the
+// formats allow (comments anywhere, every PLY encoding and type, n-gons, negative OBJ indices)
+// and to keep the face list as written: check-mesh then sees every defect (non-manifold edges,
+// degenerate triangles) at the face index of the file, where a half-edge builder would quietly
+// repair it. Draco goes through libdraco (draco_codec.hpp).
 #include <filesystem>
 
 #include "bake/mesh/proxy_mesh.hpp"
 
 namespace nano::mesh {
 
-// Polygons are split into triangle fans, in file order, so triangle i of an all-triangle file is
-// face i (0-based). Bit-identical positions are welded. Normals are taken from the file when every
-// corner has one, otherwise computed (angle-weighted). Throws nano::InputError naming the file on:
-// a missing or unreadable file, an unknown extension, a parse failure, a face that references a
-// missing vertex, non-finite coordinates, or a file with no triangles. A mesh without UVs loads
-// (has_uvs() is false) so that check-mesh can report it as a problem.
+// Faces are triangulated in file order, so triangle i of an all-triangle file is face i (0-based).
+// A quad is cut along its shorter diagonal (a tie: the 0–2 one); a larger polygon becomes a fan
+// from its first corner; a corner repeated in a row ("4 a b c c") counts once. Coordinates are read
+// as doubles, exactly as written. Bit-identical positions are welded. Normals are taken from the
+// file when every corner has one, otherwise computed (angle-weighted); UVs are kept per corner when
+// every corner has one. Throws nano::InputError naming the file and, where one helps, the line and
+// the face or vertex (0-based) on: a missing or unreadable file, an unknown extension, a parse
+// failure, a truncated file or counts larger than it could hold, a face that references a missing
+// vertex, UV or normal, a face with fewer than 3 distinct vertices or through one vertex twice,
+// non-finite coordinates, or a file with no faces. A mesh without UVs loads (has_uvs() is false) so
+// that check-mesh can report it as a problem.
 ProxyMesh read_proxy_mesh(const std::filesystem::path& path);
 
 }  // namespace nano::mesh

@@ -89,7 +89,7 @@ elseif(CASE STREQUAL "check_missing_file")
 elseif(CASE STREQUAL "check_garbled")
   file(WRITE "${WORK}/garbled.obj" "%PDF-1.4 this is not a mesh\nf 1 2 3\n")
   run(1 check-mesh "${WORK}/garbled.obj")
-  expect_match("${err}" "nanobake: error: .*garbled.obj:face 0: references a vertex that does not exist")
+  expect_match("${err}" "nanobake: error: .*garbled.obj:line 2, face 0: references a vertex that does not exist")
 
 elseif(CASE STREQUAL "unwritable_output")
   # Parent is a regular file, then a missing directory: an error naming the path, nothing left.

@@ -1,11 +1,15 @@
 #pragma once
 // Hand-built OBJ meshes for the tests: an octahedron with an octahedral UV map, whose every
-// property is known by construction, plus helpers to write planted-defect variants to disk.
+// property is known by construction, plus helpers to write planted-defect variants to disk and to
+// expect the reader's refusal of them.
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "bake/mesh/mesh_reader.hpp"
+#include "common/error.hpp"
 
 namespace nano::mesh::testing {
 
@@ -43,5 +47,18 @@ public:
 private:
   std::filesystem::path path_;
 };
+
+// read_proxy_mesh(file) throws an InputError naming the file, at `where`, whose rule contains `rule_part`.
+inline void expect_input_error(const std::filesystem::path& file, const std::string& where, const std::string& rule_part) {
+  try {
+    read_proxy_mesh(file);
+    ADD_FAILURE() << "no InputError for " << file;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), file.string());
+    EXPECT_NE(std::string(e.what()).find(file.filename().string()), std::string::npos) << e.what();
+    EXPECT_EQ(e.where(), where) << e.what();
+    EXPECT_NE(e.rule().find(rule_part), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace nano::mesh::testing

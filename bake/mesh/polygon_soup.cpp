@@ -1,0 +1,161 @@
+#include "bake/mesh/polygon_soup.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "bake/mesh/mesh_parse.hpp"
+#include "bake/mesh/vertex_normals.hpp"
+#include "common/error.hpp"
+
+namespace nano::mesh {
+
+namespace {
+
+// Assigns one index per distinct value (bit-exact), in order of first appearance.
+template <typename Value>
+class Deduplicator {
+public:
+  std::uint32_t index_of(const Value& v) {
+    Key key;
+    std::memcpy(key.data(), &v, sizeof(Value));
+    auto [it, inserted] = index_.try_emplace(key, static_cast<std::uint32_t>(values.size()));
+    if (inserted) values.push_back(v);
+    return it->second;
+  }
+  std::vector<Value> values;
+
+private:
+  static_assert(sizeof(Value) % sizeof(std::uint64_t) == 0);
+  using Key = std::array<std::uint64_t, sizeof(Value) / sizeof(std::uint64_t)>;
+  struct Hash {
+    std::size_t operator()(const Key& key) const {
+      std::uint64_t h = 0;
+      for (std::uint64_t word : key) {  // splitmix64's finaliser: coordinates differ in their high bits
+        h ^= word + 0x9E3779B97F4A7C15ull;
+        h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+        h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+        h ^= h >> 31;
+      }
+      return static_cast<std::size_t>(h);
+    }
+  };
+  std::unordered_map<Key, std::uint32_t, Hash> index_;
+};
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::dvec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+std::string place(const char* what, std::size_t index, std::size_t line) {
+  std::string s = what + (" " + std::to_string(index));
+  return line > 0 ? parse::at_line(line) + ", " + s : s;
+}
+
+bool in_range(std::int64_t index, std::size_t size) {
+  return index >= 0 && static_cast<std::uint64_t>(index) < size;
+}
+
+}  // namespace
+
+ProxyMesh assemble_proxy_mesh(const PolygonSoup& soup, const std::string& file) {
+  for (std::size_t v = 0; v < soup.positions.size(); ++v)
+    if (!finite(soup.positions[v]))
+      throw InputError(file, place("vertex", v, soup.position_lines[v]), "coordinate is not a finite number");
+
+  Deduplicator<glm::dvec3> welded_positions;
+  Deduplicator<glm::dvec2> uvs;
+  Deduplicator<glm::dvec3> normals;
+  ProxyMesh mesh;
+  bool every_corner_has_uv = true;
+  bool every_corner_has_normal = true;
+  std::size_t face = 0;
+  const auto emit = [&](std::array<const PolygonSoup::Corner*, 3> corners) {
+    Triangle t{}, uv_t{}, normal_t{};
+    for (int k = 0; k < 3; ++k) {
+      const PolygonSoup::Corner& corner = *corners[k];
+      t[k] = welded_positions.index_of(soup.positions[corner.position]);
+      if (corner.uv >= 0) {
+        const glm::dvec2& uv = soup.uvs[corner.uv];
+        if (!finite(uv))
+          throw InputError(file, place("face", face, soup.face_lines[face]), "texture coordinate is not a finite number");
+        uv_t[k] = uvs.index_of(uv);
+      } else {
+        every_corner_has_uv = false;
+      }
+      if (corner.normal >= 0) {
+        normal_t[k] = normals.index_of(soup.normals[corner.normal]);
+      } else {
+        every_corner_has_normal = false;
+      }
+    }
+    mesh.triangles.push_back(t);
+    mesh.uv_triangles.push_back(uv_t);
+    mesh.normal_triangles.push_back(normal_t);
+  };
+
+  std::vector<const PolygonSoup::Corner*> polygon;  // the face's corners, a vertex repeated in a row once
+  std::vector<std::int64_t> sorted;
+  for (std::size_t begin = 0; face < soup.face_ends.size(); begin = soup.face_ends[face++]) {
+    const auto where = [&] { return place("face", face, soup.face_lines[face]); };
+    polygon.clear();
+    for (std::size_t c = begin; c < soup.face_ends[face]; ++c) {
+      const PolygonSoup::Corner& corner = soup.corners[c];
+      if (!in_range(corner.position, soup.positions.size()))
+        throw InputError(file, where(), "references a vertex that does not exist");
+      if (corner.uv >= 0 && !in_range(corner.uv, soup.uvs.size()))
+        throw InputError(file, where(), "references a texture coordinate that does not exist");
+      if (corner.normal >= 0 && !in_range(corner.normal, soup.normals.size()))
+        throw InputError(file, where(), "references a normal that does not exist");
+      if (polygon.empty() || polygon.back()->position != corner.position) polygon.push_back(&corner);
+    }
+    // Some writers pad a triangle to a quad by repeating a corner ("4 a b c c"): such a face is
+    // that triangle, as nobody could mean anything else by it.
+    while (polygon.size() > 1 && polygon.back()->position == polygon.front()->position) polygon.pop_back();
+    if (soup.face_ends[face] - begin < 3) throw InputError(file, where(), "face has fewer than 3 vertices");
+    if (polygon.size() < 3)
+      throw InputError(file, where(), "degenerate face: fewer than 3 distinct vertices (repeated vertex index)");
+    sorted.clear();
+    for (const PolygonSoup::Corner* corner : polygon) sorted.push_back(corner->position);
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+      throw InputError(file, where(),
+                       "face passes through vertex " + std::to_string(*twice) + " twice (repeated vertex index)");
+
+    const auto position = [&](std::size_t k) { return soup.positions[polygon[k]->position]; };
+    if (polygon.size() == 4 && glm::length(position(3) - position(1)) < glm::length(position(2) - position(0))) {
+      // A quad is cut along its shorter diagonal: the two triangles are then the least skewed, and
+      // a bent quad gets the fold that bulges least. A tie keeps the fan's diagonal 0–2.
+      emit({polygon[0], polygon[1], polygon[3]});
+      emit({polygon[1], polygon[2], polygon[3]});
+    } else {
+      // Larger polygons become a fan from their first corner, right for the convex ones writers emit.
+      for (std::size_t k = 2; k < polygon.size(); ++k) emit({polygon[0], polygon[k - 1], polygon[k]});
+    }
+  }
+  if (mesh.triangles.empty()) throw InputError(file, "", "mesh has no faces");
+
+  mesh.positions = std::move(welded_positions.values);
+  if (every_corner_has_uv) {
+    mesh.uvs = std::move(uvs.values);
+  } else {
+    mesh.uv_triangles.clear();
+  }
+  bool normals_usable = every_corner_has_normal;
+  for (glm::dvec3& normal : normals.values) {
+    const double length = std::sqrt(normal.x * normal.x + normal.y * normal.y + normal.z * normal.z);
+    if (!(length > 0.0) || !std::isfinite(length)) normals_usable = false;
+    else normal /= length;
+  }
+  if (normals_usable) {
+    mesh.normals = std::move(normals.values);
+  } else {
+    compute_angle_weighted_normals(mesh);
+  }
+  return mesh;
+}
+
+}  // namespace nano::mesh
