@@ -1,17 +1,64 @@
 // nanobake check-mesh MESH [--json] [--tile-size S] [--make-uvs OUT.obj]
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "bake/commands.hpp"
+#include "bake/mesh/membrane_fit.hpp"
 #include "bake/mesh/mesh_check.hpp"
 #include "bake/mesh/mesh_reader.hpp"
 #include "bake/mesh/obj_writer.hpp"
 #include "bake/mesh/uv_charts.hpp"
 
 namespace nano::bake {
+
+namespace {
+
+// What a scene's membrane without a patch of its own measures, and a POPC bilayer's headgroup to headgroup.
+constexpr double kDefaultBilayerThickness = 40.0;
+
+
+// check-mesh --diameter/--scale: the baker's verdict (mesh::fit_membrane) without baking.
+template <class Arguments>
+void judge_membrane_fit(mesh::ProxyMesh& proxy, mesh::MeshReport& report, const Arguments& args) {
+  const double factor = args.diameter ? *args.diameter / mesh::largest_side(proxy) : *args.scale;
+  for (glm::dvec3& p : proxy.positions) p *= factor;
+  report = mesh::check_mesh(proxy, mesh::CheckOptions{});
+  mesh::MembraneFit fit;
+  try {
+    fit = mesh::fit_membrane(proxy, report, args.bilayer, mesh::RemeshPolicy{});
+  } catch (const std::invalid_argument& e) {
+    std::fputs(mesh::report_to_text(report, args.mesh).c_str(), stdout);
+    throw CLI::RuntimeError(1);
+  }
+  std::string text;
+  if (fit.remesh) text += args.mesh + ": " + mesh::describe(*fit.remesh) + "\n";
+  if (!fit.fits()) {
+    text += args.mesh + ": " + mesh::describe_tight_features(fit, args.bilayer, args.diameter) + "\n";
+    if (!args.diameter)
+      text += args.mesh + ": that is \"scale\": " + std::to_string(*args.scale * fit.scale_needed) + " or more\n";
+  } else {
+    char line[200];
+    std::snprintf(line, sizeof line, ": a bilayer %.1f Å thick fits (thinnest wall %.1f Å, narrowest gap %.1f Å)\n", args.bilayer,
+                  fit.thinnest_wall, fit.narrowest_gap);
+    text += args.mesh + line;
+  }
+  const std::vector<mesh::MeshProblem> shape = [&] {
+    std::vector<mesh::MeshProblem> list;
+    for (const mesh::MeshProblem& p : report.problems)
+      if (!mesh::is_uv_rule(p.rule)) list.push_back(p);
+    return list;
+  }();
+  if (!shape.empty()) text += mesh::report_to_text(report, args.mesh);
+  std::fputs(text.c_str(), stdout);
+  std::fflush(stdout);
+  if (!fit.fits() || !shape.empty()) throw CLI::RuntimeError(1);
+}
+
+}  // namespace
 
 void add_check_mesh_command(CLI::App& app) {
   struct Arguments {
@@ -20,6 +67,8 @@ void add_check_mesh_command(CLI::App& app) {
     std::optional<double> tile_size;
     std::string make_uvs;
     std::size_t max_triangles = mesh::CheckOptions{}.max_triangles;
+    std::optional<double> diameter, scale;
+    double bilayer = kDefaultBilayerThickness;
   };
   auto args = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
@@ -36,12 +85,27 @@ void add_check_mesh_command(CLI::App& app) {
   command->add_option("--tile-size", args->tile_size,
                       "world size S of one Wang tile (default k/20: 20 tiles across the unit UV square)")
       ->check(CLI::PositiveNumber);
+  auto* diameter = command->add_option("--diameter", args->diameter,
+                                       "size the mesh as a scene's \"diameter\" does (Å: its largest bounding-box side) and "
+                                       "judge whether a bilayer fits it, as the baker would (remeshing it if needed)")
+                       ->check(CLI::PositiveNumber);
+  command->add_option("--scale", args->scale, "the same with a scene's \"scale\" (Å per mesh unit)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(diameter);
+  command->add_option("--bilayer", args->bilayer,
+                      "with --diameter or --scale: the membrane's thickness, Å (the bake report's bilayer_thickness_A)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command->callback([args] {
     mesh::ProxyMesh proxy = mesh::read_proxy_mesh(args->mesh);
     mesh::CheckOptions options;
     options.tile_size = args->tile_size;
     options.max_triangles = args->max_triangles;
     mesh::MeshReport report = mesh::check_mesh(proxy, options);
+    if (args->diameter || args->scale) {
+      judge_membrane_fit(proxy, report, *args);
+      return;
+    }
     // The charts a scene would get ("uv": "auto"), when nothing but the UVs is wrong, or those
     // --make-uvs asks for.
     const bool surface_sound = std::all_of(report.problems.begin(), report.problems.end(),

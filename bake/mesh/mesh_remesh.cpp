@@ -34,7 +34,7 @@ RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thic
   RemeshOptions options;
   options.edge = std::max(0.5 * bilayer_thickness, edge_for_count);
   options.max_distance = std::max(1.0 * bilayer_thickness, options.edge);
-  options.crease_radius = 1.5 * bilayer_thickness;
+  options.crease_radius = kCreaseRadiusBilayers * bilayer_thickness;
   return options;
 }
 

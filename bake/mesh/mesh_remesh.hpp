@@ -20,6 +20,8 @@ namespace nano::mesh {
 inline constexpr double kRemeshCreaseDegrees = 20.0;
 // The remeshed surface never has more triangles than this (the edge grows instead).
 inline constexpr std::size_t kRemeshMaxTriangles = 400000;
+// Creases are rounded over this many bilayer thicknesses.
+inline constexpr double kCreaseRadiusBilayers = 1.5;
 
 struct RemeshOptions {
   double edge = 0.0;          // target edge length, Å (> 0)

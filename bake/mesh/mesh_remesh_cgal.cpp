@@ -32,6 +32,7 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 constexpr double kDegreesPerRadian = 57.29577951308232;
 constexpr double kSmoothingWeight = 0.5;
 constexpr int kMaxSmoothingSteps = 200;
+constexpr int kMaxExtraSteps = 40;
 constexpr int kRemeshIterations = 3;
 
 SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
@@ -171,8 +172,12 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   std::vector<Point> scratch;
   const double rings = options.crease_radius / options.edge;
   const int steps = std::min(kMaxSmoothingSteps, int(std::ceil(2.0 * rings * rings)));
-  while (report.smoothing_steps < steps) {
-    const std::vector<bool> marked = near_creases(work, kRemeshCreaseDegrees, 2 * int(std::ceil(rings)));
+  // Past the diffusion over the radius, only what is still sharper than the shells take (a saddle
+  // where a hole meets a face) is smoothed on, up to kMaxExtraSteps more.
+  while (report.smoothing_steps < steps + kMaxExtraSteps) {
+    const bool extra = report.smoothing_steps >= steps;
+    const std::vector<bool> marked =
+        extra ? near_creases(work, kRemeshCreaseDegrees, 1) : near_creases(work, kRemeshCreaseDegrees, 2 * int(std::ceil(rings)));
     if (std::find(marked.begin(), marked.end(), true) == marked.end()) break;
     for (int k = 0; k < 2; ++k) {
       umbrella_step(work, marked, kSmoothingWeight, scratch);

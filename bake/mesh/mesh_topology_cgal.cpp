@@ -1,7 +1,12 @@
 // The only translation unit that includes CGAL (see mesh_topology_cgal.hpp).
 #include "bake/mesh/mesh_topology_cgal.hpp"
 
+#include <cmath>
 #include <iterator>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -57,6 +62,34 @@ SolidProperties analyse_solid(const ProxyMesh& mesh, bool check_intersections) {
       result.self_intersections.emplace_back(static_cast<std::uint32_t>(f.idx()), static_cast<std::uint32_t>(g.idx()));
   }
   return result;
+}
+
+std::vector<double> distances_along_normals(const ProxyMesh& mesh, bool inward) {
+  using Triangle3 = Kernel::Triangle_3;
+  using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle3>::const_iterator>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+  std::vector<Triangle3> triangles;
+  triangles.reserve(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    triangles.emplace_back(to_cgal(mesh.corner_position(t, 0)), to_cgal(mesh.corner_position(t, 1)),
+                           to_cgal(mesh.corner_position(t, 2)));
+  std::vector<double> distances(triangles.size(), 0.0);
+  if (triangles.empty()) return distances;
+  const Tree tree(triangles.begin(), triangles.end());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (triangles[t].is_degenerate()) continue;
+    const Kernel::Vector_3 n = triangles[t].supporting_plane().orthogonal_vector();
+    const Point3 centre = CGAL::centroid(triangles[t]);
+    const Kernel::Ray_3 ray(centre, inward ? -n : n);
+    const auto self = triangles.begin() + std::ptrdiff_t(t);
+    const auto hit = tree.first_intersection(ray, [&](std::vector<Triangle3>::const_iterator id) { return id == self; });
+    distances[t] = INFINITY;
+    if (!hit) continue;
+    if (const Point3* p = boost::get<Point3>(&hit->first)) distances[t] = std::sqrt(CGAL::squared_distance(centre, *p));
+    else if (const Kernel::Segment_3* s = boost::get<Kernel::Segment_3>(&hit->first))
+      distances[t] = std::sqrt(std::min(CGAL::squared_distance(centre, s->source()), CGAL::squared_distance(centre, s->target())));
+  }
+  return distances;
 }
 
 }  // namespace nano::mesh

@@ -5,10 +5,12 @@
 // special case uv_triangles == triangles. Positions are welded: no two entries are bit-identical,
 // so topology (borders, non-manifold edges) can be read off the position indices.
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -33,5 +35,13 @@ struct ProxyMesh {
   glm::dvec2 corner_uv(std::size_t t, int c) const { return uvs[uv_triangles[t][c]]; }
   glm::dvec3 corner_normal(std::size_t t, int c) const { return normals[normal_triangles[t][c]]; }
 };
+
+// The largest side of the mesh's axis-aligned bounding box: what a scene's "diameter" sets.
+inline double largest_side(const ProxyMesh& m) {
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::dvec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::dvec3 size = hi - lo;
+  return size.x > size.y ? (size.x > size.z ? size.x : size.z) : (size.y > size.z ? size.y : size.z);
+}
 
 }  // namespace nano::mesh

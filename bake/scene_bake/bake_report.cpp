@@ -1,5 +1,6 @@
 #include "bake/scene_bake/bake_report.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -101,6 +102,9 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
     compartments.back()["mesh_scale"] = c.mesh_scale;
     compartments.back()["uvs"] = c.uv_origin;
     compartments.back()["mesh_storage"] = c.mesh_storage;
+    if (c.bilayer_thickness > 0.0)
+      compartments.back()["membrane_fit"] = {{"bilayer_thickness_A", c.bilayer_thickness},
+                                             {"thinnest_wall_A", std::isfinite(c.thinnest_wall) ? nlohmann::ordered_json(c.thinnest_wall) : nlohmann::ordered_json(nullptr)}};
     if (c.charts) compartments.back()["charts"] = mesh::to_json(*c.charts);
     if (c.repair) compartments.back()["repair"] = mesh::to_json(*c.repair);
     if (c.remesh) compartments.back()["remesh"] = mesh::to_json(*c.remesh);

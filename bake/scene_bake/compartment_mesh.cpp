@@ -71,45 +71,34 @@ double enclosed_volume(const mesh::ProxyMesh& m) {
   return v;
 }
 
-double largest_side(const mesh::ProxyMesh& m) {
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::dvec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-}
 
-// Remeshes for the membrane when the scene asks, or (auto) when creases are too sharp for its shells
-// or slivers would be refused; the mesh must be sound otherwise (remeshing does not guess at a shape).
-void remesh_if_needed(CompartmentMesh& result, const scene::CompartmentDescription& compartment, double thickness) {
+// Prepares the mesh for its membrane (bake/mesh/membrane_fit.hpp): remeshed when needed, refused
+// with every place a bilayer cannot follow named, and the size at which it would.
+void fit_for_membrane(CompartmentMesh& result, const scene::CompartmentDescription& compartment, double thickness) {
   const scene::MeshSource& source = compartment.mesh;
-  if (source.remesh == scene::MeshSource::Remesh::off || source.uv == scene::MeshSource::Uv::keep) return;
-  std::vector<mesh::MeshProblem> other_problems;
-  std::size_t slivers = 0;
-  for (const mesh::MeshProblem& p : result.report.problems) {
-    if (p.rule == mesh::rule::sliver) ++slivers;
-    else if (!mesh::is_uv_rule(p.rule)) other_problems.push_back(p);
-  }
-  mesh::RemeshOptions options = mesh::membrane_remesh_options(result.mesh, thickness);
-  std::optional<std::string> reason;
-  if (source.remesh == scene::MeshSource::Remesh::edge) {
-    options.edge = source.remesh_edge;
-    options.max_distance = std::max(0.5 * thickness, options.edge);
-    options.crease_radius = std::max(thickness, options.edge);
-    char text[64];
-    std::snprintf(text, sizeof text, "the scene asks for edges of %.4g Å", options.edge);
-    reason = text;
-  } else if (slivers > 0) {
-    reason = std::to_string(slivers) + " sliver triangles";
-  } else {
-    reason = mesh::remesh_reason(result.mesh);
-  }
-  if (!reason) return;
-  if (!other_problems.empty()) refuse(result, compartment.name, other_problems);
+  mesh::RemeshPolicy policy;
+  policy.mode = source.remesh == scene::MeshSource::Remesh::off     ? mesh::RemeshPolicy::Mode::off
+                : source.remesh == scene::MeshSource::Remesh::edge ? mesh::RemeshPolicy::Mode::edge
+                                                                   : mesh::RemeshPolicy::Mode::automatic;
+  // The mesh's own UVs, kept as the scene asks, are not remeshed away.
+  if (source.uv == scene::MeshSource::Uv::keep) policy.mode = mesh::RemeshPolicy::Mode::off;
+  policy.edge = source.remesh_edge;
+  mesh::MembraneFit fit;
   try {
-    result.remesh = mesh::remesh_for_membrane(result.mesh, options, *reason);
+    fit = mesh::fit_membrane(result.mesh, result.report, thickness, policy);
   } catch (const std::invalid_argument& e) {
+    std::vector<mesh::MeshProblem> shape_problems;
+    for (const mesh::MeshProblem& p : result.report.problems)
+      if (!mesh::is_uv_rule(p.rule) && p.rule != mesh::rule::sliver) shape_problems.push_back(p);
+    if (!shape_problems.empty()) refuse(result, compartment.name, shape_problems);
     throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
   }
-  result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
+  result.remesh = fit.remesh;
+  result.thinnest_wall = fit.thinnest_wall;
+  result.bilayer_thickness = thickness;
+  if (!fit.fits())
+    throw InputError(result.origin, "compartment '" + compartment.name + "' membrane",
+                     mesh::describe_tight_features(fit, thickness, source.diameter));
 }
 
 }  // namespace
@@ -129,7 +118,7 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
     }
   }
   if (source.diameter) {
-    const double factor = *source.diameter / largest_side(result.mesh);
+    const double factor = *source.diameter / mesh::largest_side(result.mesh);
     scale_mesh(result.mesh, factor);
     result.scale *= factor;
   } else if (source.volume) {
@@ -142,7 +131,7 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
     result.scale *= factor;
   }
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
-  if (bilayer_thickness) remesh_if_needed(result, compartment, *bilayer_thickness);
+  if (bilayer_thickness) fit_for_membrane(result, compartment, *bilayer_thickness);
   bool uv_trouble = false;
   std::vector<mesh::MeshProblem> shape_problems;
   for (const mesh::MeshProblem& p : result.report.problems) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bake/mesh/mesh_check.hpp"
+#include "bake/mesh/membrane_fit.hpp"
 #include "bake/mesh/mesh_remesh.hpp"
 #include "bake/mesh/mesh_repair.hpp"
 #include "bake/mesh/uv_charts.hpp"
@@ -21,6 +22,8 @@ struct CompartmentMesh {
   std::optional<mesh::ChartAtlas> charts;  // when the baker made the UVs
   std::optional<mesh::RepairReport> repair;  // when the scene asked for "repair"
   std::optional<mesh::RemeshReport> remesh;  // when the baker remeshed it for its membrane
+  double bilayer_thickness = 0.0;           // Å, of the membrane that lines it (0: none)
+  double thinnest_wall = 0.0;               // Å, where a membrane lines it (mesh::MembraneFit)
   std::string uv_origin;    // "from the mesh" or why the baker made them
   bool on_storage_grids = false;  // put_on_storage_grids succeeded: Draco can store it exactly
   std::string storage;      // what put_on_storage_grids did, or why it left the mesh exact

@@ -384,6 +384,8 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
       summary.mesh_scale = bake.mesh.scale;
       summary.uv_origin = bake.mesh.uv_origin;
       summary.mesh_storage = bake.mesh.storage;
+      summary.bilayer_thickness = bake.mesh.bilayer_thickness;
+      summary.thinnest_wall = bake.mesh.thinnest_wall;
       summary.charts = bake.mesh.charts;
       summary.repair = bake.mesh.repair;
       summary.remesh = bake.mesh.remesh;

@@ -60,6 +60,8 @@ struct CompartmentSummary {
   double mesh_scale = 1.0;                      // compartment space per mesh unit
   std::string uv_origin;                        // from the mesh, or why the baker made them
   std::string mesh_storage;                     // on Draco's grids, or why exact (CompartmentMesh::storage)
+  double bilayer_thickness = 0.0;               // Å, the membrane's (0: no membrane); check-mesh --bilayer
+  double thinnest_wall = 0.0;                   // Å, the mesh's, where the membrane lines it
   std::optional<mesh::ChartAtlas> charts;       // the charts the baker made
   std::optional<mesh::RepairReport> repair;     // what "repair" changed
   std::optional<mesh::RemeshReport> remesh;     // what remeshing for the membrane changed

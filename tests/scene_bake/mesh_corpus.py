@@ -1,0 +1,301 @@
+#!/usr/bin/env python3
+"""mesh_corpus.py CASE WORK NANOBAKE NANOVIEW BOX_CLASHES DATA_DIR
+
+Meshes as users have them (issue #27): each CASE writes its mesh itself — in the format and the
+style another tool would (OFF with comments, OBJ quads, binary PLY and STL), coarse, creased, of
+genus 0 to 3, thin, inside out, non-manifold — wraps it in a scene with a POPC bilayer and a few
+spikes (data/), and says what it expects and why:
+  bakes:   nanobake succeeds; nanoview validate passes; a membrane box is clash-free (box_clashes,
+           explicit instancing, 0.6·(r1+r2)); nanoview verify agrees with explicit instancing on
+           >= 99.9 % of pixels over 2 views with no unexplained pixel.
+  refused: nanobake exits 1 within seconds, naming the mesh file and the rule (a substring), and
+           leaves no package.
+Either way `nanobake check-mesh MESH --diameter D` (or --scale 1) with the bake's bilayer thickness
+must give the same verdict without baking, and the same smallest diameter when it refuses.
+"""
+import re
+import json
+import math
+import os
+import random
+import struct
+import subprocess
+import sys
+import time
+
+
+# ---- meshes, each written as another tool would ------------------------------------------------
+
+def voxel_surface(voxels):
+    """The boundary of a set of unit voxels as outward quads (vertex tuples)."""
+    quads = []
+    for v in sorted(voxels):
+        for axis in range(3):
+            for sign in (1, -1):
+                n = list(v)
+                n[axis] += sign
+                if tuple(n) in voxels:
+                    continue
+                a, b = [i for i in range(3) if i != axis]
+                base = list(v)
+                if sign > 0:
+                    base[axis] += 1
+                corners = []
+                for da, db in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                    p = list(base)
+                    p[a] += da
+                    p[b] += db
+                    corners.append(tuple(p))
+                # e_a × e_b points along +axis when (a, b) is cyclic after axis.
+                if ((axis + 1) % 3 == a) != (sign > 0):
+                    corners.reverse()
+                quads.append(corners)
+    return quads
+
+
+def plate(holes):
+    cells = {(x, y, 0) for x in range(3 * holes + 1) for y in range(3)}
+    for h in range(holes):
+        cells.discard((3 * h + 1, 1, 0))
+    return voxel_surface(cells)
+
+
+def indexed(polygons):
+    index, points, faces = {}, [], []
+    for poly in polygons:
+        face = []
+        for p in poly:
+            if p not in index:
+                index[p] = len(points)
+                points.append(p)
+            face.append(index[p])
+        faces.append(face)
+    return points, faces
+
+
+def torus(R, r, nu, nv):
+    points = [((R + r * math.cos(2 * math.pi * j / nv)) * math.cos(2 * math.pi * i / nu),
+               (R + r * math.cos(2 * math.pi * j / nv)) * math.sin(2 * math.pi * i / nu),
+               r * math.sin(2 * math.pi * j / nv)) for i in range(nu) for j in range(nv)]
+    faces = [[i * nv + j, ((i + 1) % nu) * nv + j, ((i + 1) % nu) * nv + (j + 1) % nv, i * nv + (j + 1) % nv]
+             for i in range(nu) for j in range(nv)]
+    return points, faces
+
+
+def uv_sphere(radius, nu, nv, squash=1.0):
+    points = [(0.0, 0.0, radius * squash)]
+    for j in range(1, nv):
+        th = math.pi * j / nv
+        for i in range(nu):
+            ph = 2 * math.pi * i / nu
+            points.append((radius * math.sin(th) * math.cos(ph), radius * math.sin(th) * math.sin(ph),
+                           radius * squash * math.cos(th)))
+    points.append((0.0, 0.0, -radius * squash))
+    south = len(points) - 1
+    ring = lambda j, i: 1 + (j - 1) * nu + i % nu
+    faces = [[0, ring(1, i), ring(1, i + 1)] for i in range(nu)]
+    for j in range(1, nv - 1):
+        faces += [[ring(j, i), ring(j + 1, i), ring(j + 1, i + 1), ring(j, i + 1)] for i in range(nu)]
+    faces += [[ring(nv - 1, i), south, ring(nv - 1, i + 1)] for i in range(nu)]
+    return points, faces
+
+
+def capsule(radius, length, nu, nv):
+    """A rod: a sphere stretched along z by `length` between its hemispheres."""
+    points, faces = uv_sphere(radius, nu, nv)
+    return [(x, y, z + (length / 2 if z > 0 else -length / 2 if z < 0 else 0)) for x, y, z in points], faces
+
+
+def triangles(faces):
+    return [[f[0], f[k], f[k + 1]] for f in faces for k in range(1, len(f) - 1)]
+
+
+def write_obj(path, points, faces, header="# written by a modelling tool\no shape\ng body\ns off\nusemtl default\n"):
+    with open(path, "w") as f:
+        f.write(header)
+        for p in points:
+            f.write("v %.6f %.6f %.6f\n" % p)
+        for face in faces:  # negative (relative) indices, as some exporters write them
+            f.write("f " + " ".join(str(i - len(points)) for i in face) + "\n")
+
+
+def write_off(path, points, faces):
+    with open(path, "w") as f:
+        f.write("# Generated by CGAL's tools\n# a comment before the header\n\nOFF\n# counts next\n")
+        f.write("%d %d 0\n\n" % (len(points), len(faces)))
+        for p in points:
+            f.write("%.17g %.17g %.17g\n" % p)
+        for face in faces:
+            f.write("%d %s\n" % (len(face), " ".join(map(str, face))))
+
+
+def write_ply_binary(path, points, faces):
+    with open(path, "wb") as f:
+        f.write(("ply\nformat binary_big_endian 1.0\ncomment scanned\nelement vertex %d\n"
+                 "property float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\n"
+                 "property uchar blue\nproperty float confidence\nelement face %d\n"
+                 "property list uchar int vertex_indices\nend_header\n" % (len(points), len(faces))).encode())
+        for p in points:
+            f.write(struct.pack(">fffBBBf", p[0], p[1], p[2], 200, 180, 160, 0.9))
+        for face in faces:
+            f.write(struct.pack(">B%di" % len(face), len(face), *face))
+
+
+def write_stl_binary(path, points, faces):
+    tris = triangles(faces)
+    with open(path, "wb") as f:
+        f.write(b"solid exported by a scanner".ljust(80, b" "))
+        f.write(struct.pack("<I", len(tris)))
+        for t in tris:
+            f.write(struct.pack("<3f", 0, 0, 0))
+            for i in t:
+                f.write(struct.pack("<3f", *points[i]))
+            f.write(b"\0\0")
+
+
+def scan_like_sphere(radius, seed):
+    """A decimated-scan look: jittered vertices on bands so long and thin that their triangles are
+    slivers (angles < 1°), creased 36° between bands."""
+    rng = random.Random(seed)
+    points, faces = uv_sphere(radius, 720, 5)
+    points = [tuple(c * (1 + rng.uniform(-0.0005, 0.0005)) for c in p) for p in points]
+    return points, triangles(faces)
+
+
+# ---- cases ----------------------------------------------------------------------------------------
+
+def cube():
+    return indexed(voxel_surface({(0, 0, 0)}))
+
+
+CASES = {
+    # name: (make(path) -> None, extension, mesh keys, expectation, why)
+    "genus1_coarse_torus_obj_quads": (lambda p: write_obj(p, *torus(3.0, 1.4, 12, 8)), "obj", {"diameter": 2200},
+                                      ("bakes",), "a 96-quad torus: creases of 45°, remeshed and rounded"),
+    "genus2_plate_off_comments": (lambda p: write_off(p, *indexed(plate(2))), "off", {"diameter": 3000},
+                                  ("bakes",), "the voxel plate with two holes: 90° edges everywhere, walls 430 Å"),
+    "genus3_plate_ply_binary": (lambda p: write_ply_binary(p, *indexed(plate(3))), "ply", {"diameter": 4000},
+                                ("bakes",), "three holes, binary big-endian PLY with colours and confidence"),
+    "cube_six_quads": (lambda p: write_obj(p, *cube()), "obj", {"diameter": 1500},
+                       ("bakes",), "6 quads, 90° edges and valence-3 corners"),
+    "scan_like_sphere_stl": (lambda p: write_stl_binary(p, *scan_like_sphere(1.0, 7)), "stl", {"diameter": 1200},
+                             ("bakes",), "7,200 jittered slivers in binary STL whose header starts with 'solid'"),
+    "thin_torus_tube_3_bilayers": (lambda p: write_obj(p, *torus(450.0, 93.0, 96, 32)), "obj", {},
+                                   ("bakes",), "a smooth torus whose tube is 186 Å across: three bilayers"),
+    "inside_out_repaired": (lambda p: write_obj(p, uv_sphere(500.0, 48, 24)[0],
+                                                [list(reversed(f)) for f in uv_sphere(500.0, 48, 24)[1]]),
+                            "obj", {"repair": True}, ("bakes",), "every face turned inward; \"repair\" turns it out"),
+    "long_thin_rod": (lambda p: write_obj(p, *capsule(20.0, 800.0, 24, 12)), "obj", {},
+                      ("refused", "a wall ", "would take the bilayer"),
+                      "a rod 40 Å across cannot hold a bilayer inside it"),
+    "genus2_plate_too_small": (lambda p: write_off(p, *indexed(plate(2))), "off", {"diameter": 900},
+                               ("refused", "crease on a wall", "would take the bilayer at \"diameter\""),
+                               "walls of 128 Å cannot round a 90° crease for a 62 Å bilayer"),
+    "non_manifold_two_cubes": (lambda p: write_obj(p, *indexed(voxel_surface({(0, 0, 0), (1, 1, 0)}))), "obj",
+                               {"diameter": 2000}, ("refused", "non-manifold"),
+                               "two cubes sharing one edge: which faces belong together is the user's call"),
+}
+
+
+def scene(mesh_file, mesh_keys, data):
+    structures = os.path.join(os.path.abspath(data), "structures")
+    mesh = {"file": mesh_file}
+    mesh.update(mesh_keys)
+    return {
+        "format": "nanouniverse-scene", "version": 1, "seed": 11,
+        "molecules": {"spike": {"file": os.path.join(structures, "6vxx.pdb.gz"), "up": [0, 0, 1]}},
+        "membranes": {"bilayer": {
+            "tile_size": 191.1,
+            "proteins": [{"molecule": "spike", "density_per_um2": 800, "depth": 115, "per_compartment": 4}],
+            "lipid_patch": {"file": os.path.join(structures, "popc_bilayer.pdb.gz"), "name": "POPC"}}},
+        "compartments": {"cell": {"mesh": mesh, "membrane": "bilayer"}},
+        "instances": [{"compartment": "cell"}],
+    }
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, **kw)
+
+
+def smallest_diameter(text):
+    m = re.search(r'would take the bilayer at "diameter": (\d+) Å', text)
+    return float(m.group(1)) if m else None
+
+
+def check_mesh_agrees(nanobake, mesh, keys, thickness, baked, bake_text):
+    """check-mesh's verdict on the mesh sized as the scene sizes it, against the bake's."""
+    if keys.get("repair"):
+        return True  # check-mesh judges the file as it is; only the bake mends it first
+    size = ["--diameter", str(keys["diameter"])] if "diameter" in keys else ["--scale", "1"]
+    r = run([nanobake, "check-mesh", mesh] + size + ["--bilayer", "%.4f" % thickness])
+    print("check-mesh:", r.stdout[-1500:])
+    if (r.returncode == 0) != baked:
+        print("FAIL: check-mesh says %s, the bake %s" % ("fits" if r.returncode == 0 else "refused",
+                                                        "baked" if baked else "refused"))
+        return False
+    predicted, found = smallest_diameter(r.stdout), smallest_diameter(bake_text)
+    if (predicted is None) != (found is None) or (found and abs(predicted - found) > 0.02 * found):
+        print("FAIL: check-mesh predicts a smallest diameter of %s, the bake %s" % (predicted, found))
+        return False
+    return True
+
+
+def main():
+    name, work, nanobake, nanoview, box_clashes, data = sys.argv[1:7]
+    make, ext, keys, expect, why = CASES[name]
+    os.makedirs(work, exist_ok=True)
+    work = os.path.abspath(work)
+    mesh = os.path.join(work, name + "." + ext)
+    make(mesh)
+    scene_file = os.path.join(work, name + ".json")
+    with open(scene_file, "w") as f:
+        json.dump(scene(mesh, keys, data), f, indent=1)
+    package = os.path.join(work, name + ".nup")
+    report = os.path.join(work, name + "-report.json")
+    for stale in (package, report):
+        if os.path.exists(stale):
+            os.remove(stale)
+    print("%s: expect %s: %s" % (name, expect[0], why))
+    start = time.monotonic()
+    bake = run([nanobake, scene_file, "-o", package, "--report", report, "--jobs", "2"])
+    seconds = time.monotonic() - start
+    print(bake.stdout[-3000:])
+    if expect[0] == "refused":
+        ok = bake.returncode == 1 and mesh in bake.stdout and all(s in bake.stdout for s in expect[1:])
+        ok = ok and not os.path.exists(package) and seconds < 60
+        print("refused in %.1f s" % seconds if ok else "FAIL: expected a refusal naming %s and %s" % (mesh, expect[1:]))
+        m = re.search(r"a bilayer ([0-9.]+) Å thick", bake.stdout)
+        ok = ok and check_mesh_agrees(nanobake, mesh, keys, float(m.group(1)) if m else 40.0, False, bake.stdout)
+        return 0 if ok else 1
+    if bake.returncode != 0:
+        print("FAIL: the bake failed")
+        return 1
+    with open(report) as f:
+        cell = json.load(f)["compartments"][0]
+    print("remesh:", json.dumps(cell.get("remesh")))
+    if not check_mesh_agrees(nanobake, mesh, keys, cell["membrane_fit"]["bilayer_thickness_A"], True, ""):
+        return 1
+    print("copies:", json.dumps(cell["copies"]), "dropped where no prism fits:",
+          json.dumps(cell["membrane"]["dropped_where_no_prism_fits"]))
+    checks = [
+        [nanoview, "validate", package],
+        [box_clashes, package, "membrane", "0", "100", "10"],
+        [nanoview, "verify", package, "--size", "64x64", "--cameras", "2", "--require", "0.999"],
+    ]
+    for cmd in checks:
+        r = run(cmd)
+        print(r.stdout[-1500:])
+        if r.returncode != 0:
+            print("FAIL:", " ".join(os.path.basename(c) for c in cmd[:2]))
+            return 1
+        if cmd[1] == "verify" and " 0 differences not explained" not in r.stdout:
+            print("FAIL: verify left pixels unexplained")
+            return 1
+    if cell["copies"].get("spike", 0) != 4:
+        print("FAIL: the spikes' per-compartment count of 4 was not kept (placed elsewhere when dropped)")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
