@@ -55,6 +55,7 @@ void judge_membrane_fit(mesh::ProxyMesh& proxy, mesh::MeshReport& report, const 
   if (!shape.empty()) text += mesh::report_to_text(report, args.mesh);
   std::fputs(text.c_str(), stdout);
   std::fflush(stdout);
+  if (!args.write_prepared.empty() && fit.fits() && shape.empty()) mesh::write_obj(args.write_prepared, proxy);
   if (!fit.fits() || !shape.empty()) throw CLI::RuntimeError(1);
 }
 
@@ -69,6 +70,7 @@ void add_check_mesh_command(CLI::App& app) {
     std::size_t max_triangles = mesh::CheckOptions{}.max_triangles;
     std::optional<double> diameter, scale;
     double bilayer = kDefaultBilayerThickness;
+    std::string write_prepared;
   };
   auto args = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
@@ -96,6 +98,8 @@ void add_check_mesh_command(CLI::App& app) {
                       "with --diameter or --scale: the membrane's thickness, Å (the bake report's bilayer_thickness_A)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  command->add_option("--write-prepared", args->write_prepared,
+                      "with --diameter or --scale: write the mesh as the baker would shell it (sized, remeshed if needed) as OBJ");
   command->callback([args] {
     mesh::ProxyMesh proxy = mesh::read_proxy_mesh(args->mesh);
     mesh::CheckOptions options;

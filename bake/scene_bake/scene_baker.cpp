@@ -242,9 +242,23 @@ gpu::SceneSettings scene_settings(const scene::SceneDescription& scene, const st
   return settings;
 }
 
+BakedScene bake_described_scene(const scene::SceneDescription& scene, const BakeOptions& options);
+
 }  // namespace
 
 BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& options) {
+  try {
+    return bake_described_scene(scene, options);
+  } catch (const InputError& e) {
+    // A rule about a scene key (a Wang set's tiles, a core grid's cubes) is the scene file's.
+    if (!e.file().empty() || scene.source.empty()) throw;
+    throw InputError(scene.source.string(), e.where(), e.rule());
+  }
+}
+
+namespace {
+
+BakedScene bake_described_scene(const scene::SceneDescription& scene, const BakeOptions& options) {
   BakedScene baked;
   StageClock clock(baked, options);
   const std::uint64_t seed = options.seed.value_or(scene.seed);
@@ -464,6 +478,8 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
   });
   return baked;
 }
+
+}  // namespace
 
 double MembraneSummary::fraction_of_real_bilayer_beside_proteins() const {
   const double room = std::max(0.0, 2.0 * area_um2 - outer_protein_um2 - inner_protein_um2);  // both leaflets

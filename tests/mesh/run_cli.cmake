@@ -18,6 +18,13 @@ function(expect_match text regex)
   endif()
 endfunction()
 
+function(expect_empty_dir_but dir only)
+  file(GLOB left RELATIVE "${dir}" "${dir}/*")
+  if(NOT left STREQUAL "${only}")
+    message(FATAL_ERROR "expected only ${only} in ${dir}, found: ${left}")
+  endif()
+endfunction()
+
 function(expect_empty_dir dir)
   file(GLOB left "${dir}/*")
   if(left)
@@ -44,6 +51,25 @@ elseif(CASE STREQUAL "make_and_check_rbc_json")
   if(NOT usable OR NOT problems EQUAL 0 OR triangles LESS 1500 OR triangles GREATER 2500 OR width LESS 2)
     message(FATAL_ERROR "unexpected report:\n${out}")
   endif()
+
+elseif(CASE STREQUAL "check_membrane_fit")
+  # A unit cube: at 150 Å its 90° creases stand on walls too thin to round for a 40 Å bilayer
+  # (5 bilayers of wall needed: 200 Å); at 400 Å it fits, remeshed, and --write-prepared writes that mesh.
+  file(WRITE "${WORK}/cube.obj" "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
+  run(1 check-mesh "${WORK}/cube.obj" --diameter 150 --bilayer 40 --write-prepared "${WORK}/small.obj")
+  expect_match("${out}" "cube.obj: 12 triangles where a bilayer 40.0 Å thick cannot follow the surface")
+  expect_match("${out}" "a 90° crease on a wall 150.0 Å thick")
+  expect_match("${out}" "would take the bilayer at \"diameter\": 200 Å or more")
+  expect_empty_dir_but("${WORK}" "cube.obj")
+  run(0 check-mesh "${WORK}/cube.obj" --diameter 400 --bilayer 40 --write-prepared "${WORK}/prepared.obj")
+  expect_match("${out}" "remeshed \\(neighbouring faces turn by up to 90.0°")
+  expect_match("${out}" "a bilayer 40.0 Å thick fits")
+  run(1 check-mesh "${WORK}/prepared.obj")  # its one problem: no UVs yet (the baker makes charts next)
+  expect_match("${out}" "closed yes, manifold yes, oriented yes, outward yes")
+  expect_match("${out}" "NOT usable: 1 problem")
+  run(108 check-mesh "${WORK}/cube.obj" --diameter 400 --scale 2)  # CLI11: an option excludes another
+  expect_match("${err}" "--diameter excludes --scale")
 
 elseif(CASE STREQUAL "check_without_uvs")
   file(WRITE "${WORK}/tet.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
