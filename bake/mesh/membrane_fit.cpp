@@ -97,7 +97,7 @@ MembraneFit fit_membrane(ProxyMesh& mesh, MeshReport& report, double thickness, 
   RemeshOptions options = membrane_remesh_options(mesh, thickness);
   if (policy.mode == RemeshPolicy::Mode::edge) {
     options.edge = policy.edge;
-    options.max_distance = std::max(thickness, policy.edge);
+    options.max_distance = std::max(thickness, policy.edge) + 0.25 * policy.edge;
     options.crease_radius = std::max(kCreaseRadiusBilayers * thickness, policy.edge);
   }
   fit.remesh = remesh_for_membrane(mesh, options, *reason);

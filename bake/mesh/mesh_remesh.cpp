@@ -33,7 +33,7 @@ RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thic
   const double edge_for_count = std::sqrt(area / (kEquilateralAreaFactor * double(kRemeshMaxTriangles)));
   RemeshOptions options;
   options.edge = std::max(0.5 * bilayer_thickness, edge_for_count);
-  options.max_distance = std::max(1.0 * bilayer_thickness, options.edge);
+  options.max_distance = std::max(bilayer_thickness, options.edge) + 0.25 * options.edge;
   options.crease_radius = kCreaseRadiusBilayers * bilayer_thickness;
   return options;
 }

@@ -25,15 +25,16 @@ inline constexpr double kCreaseRadiusBilayers = 1.5;
 
 struct RemeshOptions {
   double edge = 0.0;          // target edge length, Å (> 0)
-  double max_distance = 0.0;  // Å: every remeshed vertex stays this close to the input surface (> 0)
+  double max_distance = 0.0;  // Å: the remeshed surface (vertices, edge midpoints, centroids) stays this close to the input (> 0)
   double crease_radius = 0.0; // Å: creases are rounded over about this radius (0: not smoothed)
 };
 
 // The options the baker derives for a membrane `bilayer_thickness` Å thick on `mesh`: creases rounded
 // over one thickness (so the bilayer's inner leaflet, half a thickness deep, never meets itself
 // inside a convex crease, nor the outer one outside a concave crease), an edge of half the thickness,
-// grown so that the mesh stays under kRemeshMaxTriangles, and a distance bound of half a thickness
-// (or one edge, if larger): a plate one bilayer thick keeps a lumen.
+// grown so that the mesh stays under kRemeshMaxTriangles, and a distance bound of one thickness (or
+// one edge, if larger) plus a quarter edge: a chord across a rounded crease lies farther from the input
+// than its vertices, which are held half an edge inside the bound.
 RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thickness);
 
 // The largest angle (degrees) between the normals of two faces sharing an edge; 0 without interior

@@ -33,6 +33,9 @@ constexpr double kDegreesPerRadian = 57.29577951308232;
 constexpr double kSmoothingWeight = 0.5;
 constexpr int kMaxSmoothingSteps = 200;
 constexpr int kMaxExtraSteps = 40;
+constexpr int kHoldRounds = 6;
+constexpr double kHoldOvershoot = 1.5;  // pull a little past the excess: neighbours move too
+constexpr double kExtraStepGainDegrees = 0.5;  // per two extra steps
 constexpr int kRemeshIterations = 3;
 
 SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
@@ -115,10 +118,10 @@ void umbrella_step(SurfaceMesh& sm, const std::vector<bool>& marked, double w, s
   for (SurfaceMesh::Vertex_index v : sm.vertices()) sm.point(v) = scratch[std::size_t(v)];
 }
 
-// Vertices are held a quarter edge inside the bound: a chord or a face between two vertices on a
+// Vertices are held half an edge inside the bound: a chord or a face between two vertices on a
 // rounded crease lies farther from the input than its corners.
 double vertex_bound(const RemeshOptions& options) {
-  return std::max(options.max_distance - 0.25 * options.edge, 0.5 * options.max_distance);
+  return std::max(options.max_distance - 0.5 * options.edge, 0.5 * options.max_distance);
 }
 
 // Every vertex farther than `bound` from the input surface moves back along its offset to `bound`.
@@ -143,6 +146,36 @@ void even_triangles(SurfaceMesh& sm, const Tree& input, const RemeshOptions& opt
   PMP::isotropic_remeshing(faces(sm), options.edge, sm, CGAL::parameters::number_of_iterations(1));
   sm.collect_garbage();
   hold_near(sm, input, vertex_bound(options));
+}
+
+// Faces and edges of a coarse remeshing can bulge past the bound between vertices that keep it (a
+// chord across a rounded crease): their vertices move towards the input by the excess, a few rounds.
+void hold_faces_near(SurfaceMesh& sm, const Tree& input, double bound) {
+  for (int round = 0; round < kHoldRounds; ++round) {
+    std::vector<double> pull(sm.number_of_vertices(), 0.0);
+    bool beyond = false;
+    const auto sample = [&](const Point& p, std::initializer_list<SurfaceMesh::Vertex_index> corners) {
+      const double d = std::sqrt(CGAL::squared_distance(p, input.closest_point(p)));
+      if (d <= bound) return;
+      beyond = true;
+      for (SurfaceMesh::Vertex_index v : corners) pull[std::size_t(v)] = std::max(pull[std::size_t(v)], d - bound);
+    };
+    for (SurfaceMesh::Face_index f : sm.faces()) {
+      const SurfaceMesh::Halfedge_index h = sm.halfedge(f);
+      const SurfaceMesh::Vertex_index a = sm.source(h), b = sm.target(h), c = sm.target(sm.next(h));
+      sample(CGAL::centroid(sm.point(a), sm.point(b), sm.point(c)), {a, b, c});
+      sample(CGAL::midpoint(sm.point(a), sm.point(b)), {a, b});
+    }
+    if (!beyond) return;
+    for (SurfaceMesh::Vertex_index v : sm.vertices()) {
+      const double amount = kHoldOvershoot * pull[std::size_t(v)];
+      if (!(amount > 0.0)) continue;
+      const Point p = sm.point(v);
+      const Point q = input.closest_point(p);
+      const double d = std::sqrt(CGAL::squared_distance(p, q));
+      sm.point(v) = d > amount ? p + (q - p) * (amount / d) : q;
+    }
+  }
 }
 
 }  // namespace
@@ -174,8 +207,16 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   const int steps = std::min(kMaxSmoothingSteps, int(std::ceil(2.0 * rings * rings)));
   // Past the diffusion over the radius, only what is still sharper than the shells take (a saddle
   // where a hole meets a face) is smoothed on, up to kMaxExtraSteps more.
+  double crease_before = INFINITY;
   while (report.smoothing_steps < steps + kMaxExtraSteps) {
     const bool extra = report.smoothing_steps >= steps;
+    // Past the diffusion, smoothing on pays only while the sharpest crease keeps easing (edges coarse
+    // against the radius never get under 20°; the surface would only shrink to the bound).
+    if (extra) {
+      const double crease = largest_crease(work);
+      if (crease > crease_before - kExtraStepGainDegrees) break;
+      crease_before = crease;
+    }
     const std::vector<bool> marked =
         extra ? near_creases(work, kRemeshCreaseDegrees, 1) : near_creases(work, kRemeshCreaseDegrees, 2 * int(std::ceil(rings)));
     if (std::find(marked.begin(), marked.end(), true) == marked.end()) break;
@@ -187,6 +228,7 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
     even_triangles(work, tree, options);
   }
   even_triangles(work, tree, options);
+  hold_faces_near(work, tree, options.max_distance);
   report.largest_crease_out = largest_crease(work);
   report.area_out = PMP::area(work);
   report.volume_out = PMP::volume(work);

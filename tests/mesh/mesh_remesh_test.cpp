@@ -64,12 +64,12 @@ TEST(MeshRemesh, CreasesOfABoxAndOfAFineSphere) {
 TEST(MeshRemesh, OptionsFollowTheBilayerAndCapTheTriangleCount) {
   const RemeshOptions small = membrane_remesh_options(box(1000.0), 40.0);
   EXPECT_DOUBLE_EQ(small.edge, 20.0);
-  EXPECT_DOUBLE_EQ(small.max_distance, 40.0);
+  EXPECT_DOUBLE_EQ(small.max_distance, 45.0);  // a thickness and a quarter edge
   EXPECT_DOUBLE_EQ(small.crease_radius, 60.0);
   // A box of 10^6 Å: 6·10^12 Å² in at most kRemeshMaxTriangles equilateral triangles.
   const RemeshOptions large = membrane_remesh_options(box(1e6), 40.0);
   EXPECT_NEAR(large.edge, std::sqrt(6e12 / (std::sqrt(3.0) / 4.0 * double(kRemeshMaxTriangles))), 1e-6 * large.edge);
-  EXPECT_DOUBLE_EQ(large.max_distance, large.edge);
+  EXPECT_DOUBLE_EQ(large.max_distance, 1.25 * large.edge);
 }
 
 TEST(MeshRemesh, ABoxIsRoundedWithinTheBoundAndStaysSound) {

@@ -174,8 +174,10 @@ CASES = {
                                       ("bakes",), "a 96-quad torus: creases of 45°, remeshed and rounded"),
     "genus2_plate_off_comments": (lambda p: write_off(p, *indexed(plate(2))), "off", {"diameter": 3000},
                                   ("bakes",), "the voxel plate with two holes: 90° edges everywhere, walls 430 Å"),
-    "genus3_plate_ply_binary": (lambda p: write_ply_binary(p, *indexed(plate(3))), "ply", {"diameter": 4000},
-                                ("bakes",), "three holes, binary big-endian PLY with colours and confidence"),
+    "genus3_plate_ply_binary": (lambda p: write_ply_binary(p, *indexed(plate(3))), "ply",
+                                {"diameter": 4000, "remesh": {"edge": 60}}, ("bakes",),
+                                "three holes, binary big-endian PLY with colours and confidence, remeshed to the "
+                                "scene's 60 Å edge"),
     "cube_six_quads": (lambda p: write_obj(p, *cube()), "obj", {"diameter": 1500},
                        ("bakes",), "6 quads, 90° edges and valence-3 corners"),
     "scan_like_sphere_stl": (lambda p: write_stl_binary(p, *scan_like_sphere(1.0, 7)), "stl", {"diameter": 1200},
@@ -273,6 +275,11 @@ def main():
     with open(report) as f:
         cell = json.load(f)["compartments"][0]
     print("remesh:", json.dumps(cell.get("remesh")))
+    remesh = cell.get("remesh")
+    if remesh and not remesh["max_distance_A"] <= remesh["distance_bound_A"]:
+        print("FAIL: the remeshed surface strays %.1f Å from the input, beyond the bound of %.1f Å"
+              % (remesh["max_distance_A"], remesh["distance_bound_A"]))
+        return 1
     if not check_mesh_agrees(nanobake, mesh, keys, cell["membrane_fit"]["bilayer_thickness_A"], True, ""):
         return 1
     print("copies:", json.dumps(cell["copies"]), "dropped where no prism fits:",

@@ -156,6 +156,15 @@ TEST(LipidPatch, EachResidueIsATypeAtItsCentroidAboveTheMidPlane) {
   EXPECT_DOUBLE_EQ(first.linear_colour.y, 0.0);
 }
 
+TEST(LipidPatch, BilayerThicknessRunsFromTheLowestToTheHighestAtomSurface) {
+  std::vector<nano::bake::BakedMolecule> library;
+  const auto patch = load_lipid_patch(patch_description(write_temp("nano_two_lipids_thickness.pdb", kTwoLipidPatch)), 0, library);
+  // Atoms at z = 15 and 6 about the mid-plane z = 10: from 6 − r to 15 + r, r the carbon radius.
+  const double r = library.at(0).atoms.at(0).radius;
+  ASSERT_GT(r, 1.0);
+  EXPECT_DOUBLE_EQ(nano::bake::bilayer_thickness(patch, library), 9.0 + 2.0 * r);
+}
+
 TEST(LipidPatch, BundledPopcBilayerHas128LipidsInTwoLeaflets) {
   std::vector<nano::bake::BakedMolecule> library;
   const auto patch = load_lipid_patch(
