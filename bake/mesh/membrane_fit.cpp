@@ -7,25 +7,18 @@
 
 #include <glm/geometric.hpp>
 
-#include "bake/mesh/mesh_edges.hpp"
+#include "bake/mesh/number_text.hpp"
 #include "bake/mesh/mesh_topology_cgal.hpp"
 
 namespace nano::mesh {
 
 namespace {
 
-constexpr double kDegreesPerRadian = 57.29577951308232;
 constexpr double kQuarterTurn = 1.5707963267948966;
-
-std::string format(const char* pattern, double value) {
-  char text[96];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
 
 std::optional<std::string> remesh_needed(const ProxyMesh& mesh, const MeshReport& report, const RemeshPolicy& policy) {
   if (policy.mode == RemeshPolicy::Mode::off) return std::nullopt;
-  if (policy.mode == RemeshPolicy::Mode::edge) return format("the scene asks for edges of %.4g Å", policy.edge);
+  if (policy.mode == RemeshPolicy::Mode::edge) return number_text("the scene asks for edges of %.4g Å", policy.edge);
   const std::size_t slivers = std::size_t(std::count_if(report.problems.begin(), report.problems.end(),
                                                         [](const MeshProblem& p) { return p.rule == rule::sliver; }));
   if (slivers > 0) return std::to_string(slivers) + " sliver triangles";
@@ -34,25 +27,6 @@ std::optional<std::string> remesh_needed(const ProxyMesh& mesh, const MeshReport
 
 glm::dvec3 centroid(const ProxyMesh& mesh, std::size_t t) {
   return (mesh.corner_position(t, 0) + mesh.corner_position(t, 1) + mesh.corner_position(t, 2)) / 3.0;
-}
-
-// Per triangle, the largest crease of its three edges (degrees).
-std::vector<double> triangle_creases(const ProxyMesh& mesh) {
-  std::vector<glm::dvec3> normals(mesh.triangles.size(), glm::dvec3(0.0));
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const glm::dvec3 p0 = mesh.corner_position(t, 0);
-    const glm::dvec3 n = glm::cross(mesh.corner_position(t, 1) - p0, mesh.corner_position(t, 2) - p0);
-    if (glm::length(n) > 0.0) normals[t] = glm::normalize(n);
-  }
-  std::vector<double> crease(mesh.triangles.size(), 0.0);
-  for (const MeshEdge& e : collect_edges(mesh)) {
-    if (e.uses.size() != 2) continue;
-    const std::uint32_t a = e.uses[0].face, b = e.uses[1].face;
-    const double degrees = std::acos(std::clamp(glm::dot(normals[a], normals[b]), -1.0, 1.0)) * kDegreesPerRadian;
-    crease[a] = std::max(crease[a], degrees);
-    crease[b] = std::max(crease[b], degrees);
-  }
-  return crease;
 }
 
 }  // namespace
@@ -107,7 +81,7 @@ MembraneFit fit_membrane(ProxyMesh& mesh, MeshReport& report, double thickness, 
 
 std::string describe_tight_features(const MembraneFit& fit, double thickness, std::optional<double> diameter,
                                     std::size_t shown) {
-  std::string text = std::to_string(fit.tight.size()) + format(" triangles where a bilayer %.1f Å thick cannot follow the surface", thickness) +
+  std::string text = std::to_string(fit.tight.size()) + number_text(" triangles where a bilayer %.1f Å thick cannot follow the surface", thickness) +
                      ":";
   for (std::size_t i = 0; i < std::min(shown, fit.tight.size()); ++i) {
     const TightFeature& f = fit.tight[i];
@@ -124,8 +98,8 @@ std::string describe_tight_features(const MembraneFit& fit, double thickness, st
     text += line;
   }
   if (fit.tight.size() > shown) text += "\n  ...";
-  if (diameter) text += format("\n  the mesh would take the bilayer at \"diameter\": %.0f Å or more", std::ceil(*diameter * fit.scale_needed));
-  else text += format("\n  the mesh would take the bilayer scaled by %.3g or more (\"scale\")", fit.scale_needed);
+  if (diameter) text += number_text("\n  the mesh would take the bilayer at \"diameter\": %.0f Å or more", std::ceil(*diameter * fit.scale_needed));
+  else text += number_text("\n  the mesh would take the bilayer scaled by %.3g or more (\"scale\")", fit.scale_needed);
   return text;
 }
 

@@ -3,27 +3,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include <glm/geometric.hpp>
 
 #include "bake/mesh/mesh_edges.hpp"
+#include "bake/mesh/number_text.hpp"
 #include "bake/mesh/uv_distortion.hpp"
 
 namespace nano::mesh {
 
 namespace {
 
-constexpr double kDegreesPerRadian = 57.29577951308232;
-
 // An equilateral triangle of edge L has area √3/4·L².
 constexpr double kEquilateralAreaFactor = 0.4330127018922193;
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
 
 }  // namespace
 
@@ -38,30 +30,36 @@ RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thic
   return options;
 }
 
-double largest_crease_degrees(const ProxyMesh& mesh) {
-  std::vector<glm::dvec3> normals(mesh.triangles.size());
+std::vector<double> triangle_creases(const ProxyMesh& mesh) {
+  std::vector<glm::dvec3> normals(mesh.triangles.size(), glm::dvec3(0.0));
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const glm::dvec3 p0 = mesh.corner_position(t, 0);
     const glm::dvec3 n = glm::cross(mesh.corner_position(t, 1) - p0, mesh.corner_position(t, 2) - p0);
     const double length = glm::length(n);
-    normals[t] = length > 0.0 ? n / length : glm::dvec3(0.0);
+    if (length > 0.0) normals[t] = n / length;
   }
-  double largest = 0.0;
+  std::vector<double> crease(mesh.triangles.size(), 0.0);
   for (const MeshEdge& e : collect_edges(mesh)) {
     if (e.uses.size() != 2) continue;
-    const glm::dvec3& a = normals[e.uses[0].face];
-    const glm::dvec3& b = normals[e.uses[1].face];
-    if (a == glm::dvec3(0.0) || b == glm::dvec3(0.0)) continue;
-    largest = std::max(largest, std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * kDegreesPerRadian);
+    const std::uint32_t a = e.uses[0].face, b = e.uses[1].face;
+    if (normals[a] == glm::dvec3(0.0) || normals[b] == glm::dvec3(0.0)) continue;
+    const double degrees = std::acos(std::clamp(glm::dot(normals[a], normals[b]), -1.0, 1.0)) * kDegreesPerRadian;
+    crease[a] = std::max(crease[a], degrees);
+    crease[b] = std::max(crease[b], degrees);
   }
-  return largest;
+  return crease;
+}
+
+double largest_crease_degrees(const ProxyMesh& mesh) {
+  const std::vector<double> crease = triangle_creases(mesh);
+  return crease.empty() ? 0.0 : *std::max_element(crease.begin(), crease.end());
 }
 
 std::optional<std::string> remesh_reason(const ProxyMesh& mesh) {
   const double crease = largest_crease_degrees(mesh);
   if (crease <= kRemeshCreaseDegrees) return std::nullopt;
-  return format("neighbouring faces turn by up to %.1f°", crease) +
-         format(" (a bilayer's shells follow at most %.0f°)", kRemeshCreaseDegrees);
+  return number_text("neighbouring faces turn by up to %.1f°", crease) +
+         number_text(" (a bilayer's shells follow at most %.0f°)", kRemeshCreaseDegrees);
 }
 
 nlohmann::json to_json(const RemeshReport& r) {
@@ -83,12 +81,12 @@ nlohmann::json to_json(const RemeshReport& r) {
 
 std::string describe(const RemeshReport& r) {
   std::string s = "remeshed (" + r.reason + "): " + std::to_string(r.triangles_in) + " -> " +
-                  std::to_string(r.triangles_out) + " triangles" + format(", edge %.1f Å", r.edge);
-  s += format("; creases %.1f°", r.largest_crease_in) + format(" -> %.1f°", r.largest_crease_out);
-  s += format("; within %.1f Å", r.max_distance) + format(" of the input (bound %.1f Å)", r.distance_bound);
-  s += format("; normals turned by up to %.1f°", r.largest_normal_deviation);
-  if (r.area_in > 0.0) s += format("; area %+.2f %%", 100.0 * (r.area_out / r.area_in - 1.0));
-  if (r.volume_in > 0.0) s += format(", volume %+.2f %%", 100.0 * (r.volume_out / r.volume_in - 1.0));
+                  std::to_string(r.triangles_out) + " triangles" + number_text(", edge %.1f Å", r.edge);
+  s += number_text("; creases %.1f°", r.largest_crease_in) + number_text(" -> %.1f°", r.largest_crease_out);
+  s += number_text("; within %.1f Å", r.max_distance) + number_text(" of the input (bound %.1f Å)", r.distance_bound);
+  s += number_text("; normals turned by up to %.1f°", r.largest_normal_deviation);
+  if (r.area_in > 0.0) s += number_text("; area %+.2f %%", 100.0 * (r.area_out / r.area_in - 1.0));
+  if (r.volume_in > 0.0) s += number_text(", volume %+.2f %%", 100.0 * (r.volume_out / r.volume_in - 1.0));
   return s;
 }
 

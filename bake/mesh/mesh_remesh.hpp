@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -37,8 +38,10 @@ struct RemeshOptions {
 // than its vertices, which are held half an edge inside the bound.
 RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thickness);
 
-// The largest angle (degrees) between the normals of two faces sharing an edge; 0 without interior
-// edges. Degenerate faces are skipped.
+// Per triangle, the largest angle (degrees) between its normal and a neighbour's across one of its
+// edges; 0 without interior edges. Degenerate faces are skipped.
+std::vector<double> triangle_creases(const ProxyMesh& mesh);
+// The largest of them over the mesh.
 double largest_crease_degrees(const ProxyMesh& mesh);
 
 // Why a mesh needs remeshing for a membrane, or nothing: creases above kRemeshCreaseDegrees.

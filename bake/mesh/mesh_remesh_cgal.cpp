@@ -16,6 +16,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include "bake/mesh/mesh_remesh.hpp"
+#include "bake/mesh/number_text.hpp"
 #include "bake/mesh/vertex_normals.hpp"
 
 namespace nano::mesh {
@@ -29,7 +30,6 @@ using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-constexpr double kDegreesPerRadian = 57.29577951308232;
 constexpr double kSmoothingWeight = 0.5;
 constexpr int kMaxSmoothingSteps = 200;
 constexpr int kMaxExtraSteps = 40;
