@@ -31,7 +31,7 @@ void judge_membrane_fit(mesh::ProxyMesh& proxy, mesh::MeshReport& report, const 
   try {
     fit = mesh::fit_membrane(proxy, report, args.bilayer, mesh::RemeshPolicy{});
   } catch (const std::invalid_argument& e) {
-    std::fputs(mesh::report_to_text(report, args.mesh).c_str(), stdout);
+    std::fputs((args.mesh + ": " + e.what() + "\n" + mesh::report_to_text(report, args.mesh)).c_str(), stdout);
     throw CLI::RuntimeError(1);
   }
   std::string text;

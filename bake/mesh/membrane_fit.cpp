@@ -68,12 +68,8 @@ MembraneFit fit_membrane(ProxyMesh& mesh, MeshReport& report, double thickness, 
   for (const TightFeature& f : fit.tight) fit.scale_needed = std::max(fit.scale_needed, f.needed / f.found);
   if (!fit.fits() || !reason) return fit;
 
-  RemeshOptions options = membrane_remesh_options(mesh, thickness);
-  if (policy.mode == RemeshPolicy::Mode::edge) {
-    options.edge = policy.edge;
-    options.max_distance = std::max(thickness, policy.edge) + 0.25 * policy.edge;
-    options.crease_radius = std::max(kCreaseRadiusBilayers * thickness, policy.edge);
-  }
+  const RemeshOptions options = membrane_remesh_options(
+      mesh, thickness, policy.mode == RemeshPolicy::Mode::edge ? std::optional<double>(policy.edge) : std::nullopt);
   fit.remesh = remesh_for_membrane(mesh, options, *reason);
   report = check_mesh(mesh, CheckOptions{});
   return fit;

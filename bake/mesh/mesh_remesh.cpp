@@ -19,14 +19,18 @@ constexpr double kEquilateralAreaFactor = 0.4330127018922193;
 
 }  // namespace
 
-RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thickness) {
-  double area = 0.0;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) area += world_area(mesh, t);
-  const double edge_for_count = std::sqrt(area / (kEquilateralAreaFactor * double(kRemeshMaxTriangles)));
+RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thickness, std::optional<double> edge) {
   RemeshOptions options;
-  options.edge = std::max(0.5 * bilayer_thickness, edge_for_count);
+  if (edge) {
+    options.edge = *edge;
+  } else {
+    double area = 0.0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) area += world_area(mesh, t);
+    const double edge_for_count = std::sqrt(area / (kEquilateralAreaFactor * double(kRemeshMaxTriangles)));
+    options.edge = std::max(0.5 * bilayer_thickness, edge_for_count);
+  }
   options.max_distance = std::max(bilayer_thickness, options.edge) + 0.25 * options.edge;
-  options.crease_radius = kCreaseRadiusBilayers * bilayer_thickness;
+  options.crease_radius = std::max(kCreaseRadiusBilayers * bilayer_thickness, options.edge);
   return options;
 }
 

@@ -36,7 +36,9 @@ struct RemeshOptions {
 // grown so that the mesh stays under kRemeshMaxTriangles, and a distance bound of one thickness (or
 // one edge, if larger) plus a quarter edge: a chord across a rounded crease lies farther from the input
 // than its vertices, which are held half an edge inside the bound.
-RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thickness);
+// `edge`: the scene's own edge instead of the derived one (the bound and radius follow it).
+RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thickness,
+                                      std::optional<double> edge = std::nullopt);
 
 // Per triangle, the largest angle (degrees) between its normal and a neighbour's across one of its
 // edges; 0 without interior edges. Degenerate faces are skipped.

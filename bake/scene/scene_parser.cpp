@@ -219,8 +219,7 @@ void parse_remesh(const JsonCursor& c, MeshSource& mesh) {
     mesh.remesh_edge = c.required("edge").number_greater_than(0.0);
     return;
   }
-  if (!c.json().is_string()) c.fail("expected \"auto\", \"off\" or {\"edge\": Å}, got " + c.shown());
-  const std::string text = c.string();
+  const std::string text = c.json().is_string() ? c.string() : std::string();
   if (text == "auto") mesh.remesh = MeshSource::Remesh::automatic;
   else if (text == "off") mesh.remesh = MeshSource::Remesh::off;
   else c.fail("expected \"auto\", \"off\" or {\"edge\": Å}, got " + c.shown());

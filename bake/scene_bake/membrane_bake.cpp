@@ -99,8 +99,7 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   // below removes the lipids that the kept ones displace.
   shell::PrunedMembrane limited;
   limited.dropped = std::move(shells.dropped);
-  limited.dropped_by_type.assign(types.size(), 0);
-  for (std::size_t i = 0; i < types.size(); ++i) limited.dropped_by_type[i] = shells.dropped_by_type[i];
+  limited.dropped_by_type.assign(shells.dropped_by_type.begin(), shells.dropped_by_type.end());
   baked.unfit_by_molecule.assign(library.size(), 0);
   for (std::size_t i = 0; i < types.size(); ++i) baked.unfit_by_molecule[tiles.molecule_of_type[i]] += shells.dropped_by_type[i];
   if (!per_compartment.empty()) {

@@ -164,27 +164,29 @@ PrismFit fit_prism(const MembraneMapping& mapping, std::size_t t, const std::vec
   return fit;
 }
 
-// Drops droppable copies from `spheres`, largest first, until a prism contains the rest (or none is
-// left to drop); the keys of those dropped go to `dropped` in ascending order.
-PrismFit fit_without_unfit(const MembraneMapping& mapping, std::size_t t, std::vector<Sphere>& spheres, double cmin,
+// Drops droppable copies from `spheres`, largest first, until a prism contains the rest; only then are
+// their keys added to `dropped` (ascending) and counted. Not contained when none is left to drop.
+PrismFit fit_without_unfit(const MembraneMapping& mapping, std::size_t t, std::vector<Sphere> spheres, double cmin,
                            const std::vector<bool>& droppable, std::vector<std::uint32_t>& dropped,
                            std::vector<std::size_t>& dropped_by_type) {
-  PrismFit fit;
+  std::vector<Sphere> left_out;
   for (;;) {
     std::size_t largest = spheres.size();
     for (std::size_t i = 0; i < spheres.size(); ++i)
       if (!spheres[i].alternate && spheres[i].type < droppable.size() && droppable[spheres[i].type] &&
           (largest == spheres.size() || spheres[i].radius > spheres[largest].radius))
         largest = i;
-    if (largest == spheres.size() || spheres.size() == 1) return fit;
-    dropped.push_back(spheres[largest].key);
-    ++dropped_by_type[spheres[largest].type];
+    if (largest == spheres.size() || spheres.size() == 1) return PrismFit{};
+    left_out.push_back(spheres[largest]);
     spheres.erase(spheres.begin() + std::ptrdiff_t(largest));
-    fit = fit_prism(mapping, t, spheres, cmin);
-    if (fit.contained) {
-      std::sort(dropped.begin(), dropped.end());
-      return fit;
+    const PrismFit fit = fit_prism(mapping, t, spheres, cmin);
+    if (!fit.contained) continue;
+    for (const Sphere& s : left_out) {
+      dropped.push_back(s.key);
+      ++dropped_by_type[s.type];
     }
+    std::sort(dropped.begin(), dropped.end());
+    return fit;
   }
 }
 
