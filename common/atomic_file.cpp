@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <csignal>
 #include <random>
 #include <unistd.h>
 
@@ -10,6 +11,32 @@
 
 namespace nano {
 namespace {
+
+// The temporary file being written, for the signal handler: a fixed buffer, as a handler may
+// only touch what is async-signal-safe.
+char pending_temporary[4096];
+volatile std::sig_atomic_t has_pending_temporary = 0;
+
+extern "C" void remove_pending_and_reraise(int signal_number) {
+  if (has_pending_temporary) unlink(pending_temporary);
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+// Registers `tmp` as the file to remove on an interrupt for as long as it lives.
+class PendingTemporary {
+public:
+  explicit PendingTemporary(const std::filesystem::path& tmp) {
+    const std::string text = tmp.string();
+    if (text.size() >= sizeof pending_temporary) return;
+    has_pending_temporary = 0;
+    std::memcpy(pending_temporary, text.c_str(), text.size() + 1);
+    has_pending_temporary = 1;
+  }
+  ~PendingTemporary() { has_pending_temporary = 0; }
+  PendingTemporary(const PendingTemporary&) = delete;
+  PendingTemporary& operator=(const PendingTemporary&) = delete;
+};
 
 std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
   std::random_device rd;
@@ -29,6 +56,7 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::FILE*)>& fill) {
   const auto tmp = temporary_sibling(path);
+  const PendingTemporary pending(tmp);
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) fail(path, "cannot create temporary file " + tmp.string());
   try {
@@ -48,6 +76,11 @@ void write_file_atomically(const std::filesystem::path& path,
     std::remove(tmp.c_str());
     fail(path, "cannot rename temporary file into place");
   }
+}
+
+void remove_temporaries_on_interrupt() {
+  std::signal(SIGINT, remove_pending_and_reraise);
+  std::signal(SIGTERM, remove_pending_and_reraise);
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::byte> bytes) {

@@ -18,4 +18,8 @@ void write_file_atomically(const std::filesystem::path& path, std::span<const st
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::FILE*)>& fill);
 
+// Makes SIGINT and SIGTERM remove the temporary file a write_file_atomically is filling before the
+// signal ends the process as it would have, so an interrupted command leaves no file behind.
+void remove_temporaries_on_interrupt();
+
 }  // namespace nano

@@ -8,16 +8,19 @@
 #include <thread>
 #include <vector>
 
+#include "common/progress.hpp"
+
 namespace nano {
 
 // Calls task(i) for every i in [0, count) on up to `threads` threads, the caller's among them,
 // handing out indices one at a time (uneven tasks balance themselves). Once every task has run or
 // thrown, the exception of the lowest index that threw is rethrown, so which error the caller sees
-// does not depend on scheduling.
+// does not depend on scheduling. Each task counts as one step of progress (common/progress.hpp).
 template <class Task>
 void parallel_for(std::size_t count, int threads, const Task& task) {
   std::vector<std::exception_ptr> errors(count);
   std::atomic<std::size_t> next{0};
+  progress::add_work(count);
   const auto worker = [&] {
     for (std::size_t i = next++; i < count; i = next++) {
       try {
@@ -25,6 +28,7 @@ void parallel_for(std::size_t count, int threads, const Task& task) {
       } catch (...) {
         errors[i] = std::current_exception();
       }
+      progress::advance();
     }
   };
   {

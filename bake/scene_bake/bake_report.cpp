@@ -145,6 +145,21 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
   j["package_bytes"] = package.file_size();
   auto& stages = j["stages"] = nlohmann::ordered_json::object();
   for (const auto& [name, seconds] : scene.stage_seconds) stages[name] = seconds;
+  auto& stages_cpu = j["stages_cpu"] = nlohmann::ordered_json::object();
+  for (const auto& [name, seconds] : scene.stage_cpu_seconds) stages_cpu[name] = seconds;
+  auto& stages_peak = j["stages_peak_memory_bytes"] = nlohmann::ordered_json::object();
+  for (const auto& [name, bytes] : scene.stage_peak_bytes) stages_peak[name] = bytes;
+  // The estimate made before the heavy stages beside what they then took (bake_estimate.hpp).
+  auto& estimate = j["estimate"];
+  estimate["cpu_seconds"] = scene.estimate.cpu_seconds;
+  estimate["wall_seconds"] = scene.estimate.wall_seconds;
+  estimate["peak_memory_bytes"] = scene.estimate.peak_bytes;
+  for (const StageEstimate& s : scene.estimate.stages) estimate["stages"][s.stage] = {{"work", s.work}, {"cpu_seconds", s.cpu_seconds}};
+  for (const MemoryTerm& t : scene.estimate.memory) estimate["memory"][t.what] = t.bytes;
+  for (const CompartmentEstimate& c : scene.estimate.compartments)
+    for (const auto& [name, copies] : c.copies) estimate["copies"][c.name][name] = copies;
+  j["measured"] = {{"cpu_seconds_after_estimate", process_cpu_seconds() - scene.cpu_seconds_at_estimate},
+                   {"peak_memory_bytes", peak_resident_bytes()}};
   return j;
 }
 

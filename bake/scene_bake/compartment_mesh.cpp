@@ -11,6 +11,7 @@
 #include "bake/mesh/mesh_reader.hpp"
 #include "bake/mesh/rbc_mesh.hpp"
 #include "bake/mesh/sphere_mesh.hpp"
+#include "bake/mesh/uv_distortion.hpp"
 #include "bake/scene_bake/mesh_packing.hpp"
 #include "common/error.hpp"
 
@@ -104,7 +105,8 @@ void fit_for_membrane(CompartmentMesh& result, const scene::CompartmentDescripti
 }  // namespace
 
 CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment,
-                                      std::optional<double> bilayer_thickness) {
+                                      std::optional<double> bilayer_thickness,
+                                      const std::function<void(const mesh::ProxyMesh&)>& check_size) {
   const scene::MeshSource& source = compartment.mesh;
   CompartmentMesh result = read_or_generate(source);
   result.scale = source.unit * compartment.scale;
@@ -130,6 +132,7 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
     scale_mesh(result.mesh, factor);
     result.scale *= factor;
   }
+  if (check_size) check_size(result.mesh);
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
   if (bilayer_thickness) fit_for_membrane(result, compartment, *bilayer_thickness);
   bool uv_trouble = false;
@@ -159,6 +162,15 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
   if (!result.report.usable()) refuse(result, compartment.name, result.report.problems);
   return result;
+}
+
+scene::CompartmentMeasure measure_compartment(const mesh::ProxyMesh& mesh) {
+  scene::CompartmentMeasure m;
+  for (const glm::dvec3& p : mesh.positions) m.extent = std::max(m.extent, glm::length(p));
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) m.area += mesh::world_area(mesh, t);
+  m.volume = enclosed_volume(mesh);
+  m.triangles = mesh.triangles.size();
+  return m;
 }
 
 void put_on_storage_grids(CompartmentMesh& m) {

@@ -1,6 +1,7 @@
 #pragma once
 // A compartment's proxy mesh in compartment space: read or generated as the scene says, scaled,
 // and checked — an unusable mesh stops the bake with every problem listed, naming the file.
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "bake/mesh/uv_charts.hpp"
 #include "bake/mesh/proxy_mesh.hpp"
 #include "bake/scene/scene_description.hpp"
+#include "bake/scene/scene_feasibility.hpp"
 
 namespace nano::bake {
 
@@ -34,8 +36,14 @@ struct CompartmentMesh {
 // slivers need it or the scene asks (not for a compartment without membrane: nullopt), makes UVs when
 // the mesh has none usable (or the scene asks) and checks it. Throws InputError naming the mesh (and
 // the compartment) with all problems when unusable.
+// `check_size`, when given, sees the mesh at its final size before any heavy work on it (repair
+// excepted): the baker's feasibility checks refuse a mesh too large for float coordinates there.
 CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment,
-                                      std::optional<double> bilayer_thickness = std::nullopt);
+                                      std::optional<double> bilayer_thickness = std::nullopt,
+                                      const std::function<void(const mesh::ProxyMesh&)>& check_size = {});
+
+// Area, enclosed volume and reach from the origin of a mesh, for the feasibility checks.
+scene::CompartmentMeasure measure_compartment(const mesh::ProxyMesh& mesh);
 
 // Moves the mesh onto the grids of Draco mesh sections (mesh_packing.hpp: on_storage_grids) if the
 // moved mesh still passes every check; otherwise leaves it exact (then zstd stores it) and says why.

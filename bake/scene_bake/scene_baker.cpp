@@ -13,11 +13,13 @@
 #include "bake/scene_bake/compartment_mesh.hpp"
 #include "bake/scene_bake/core_bake.hpp"
 #include "bake/scene_bake/membrane_bake.hpp"
+#include "bake/scene_bake/molecule_measures.hpp"
 #include "bake/scene_bake/provenance.hpp"
 #include "bake/tiles/bilayer_footprint.hpp"
 #include "bake/tiles/tile_random.hpp"
 #include "common/error.hpp"
 #include "common/parallel_for.hpp"
+#include "common/progress.hpp"
 
 namespace nano::bake {
 namespace {
@@ -38,25 +40,35 @@ public:
 
   template <class F>
   auto run(const std::string& stage, F&& work) {
-    if (options_.progress) options_.progress(stage);
+    progress::reset();
+    if (options_.on_stage_begin) options_.on_stage_begin(stage);
     const auto start = std::chrono::steady_clock::now();
     struct Record {
       StageClock& clock;
       const std::string& stage;
       std::chrono::steady_clock::time_point start;
-      ~Record() { clock.add(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()); }
-    } record{*this, stage, start};
+      double cpu_start;
+      ~Record() {
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        clock.add(clock.scene_.stage_seconds, stage, seconds);
+        clock.add(clock.scene_.stage_cpu_seconds, stage, process_cpu_seconds() - cpu_start);
+        auto& peaks = clock.scene_.stage_peak_bytes;  // the process's peak so far, at the stage's end
+        if (peaks.empty() || peaks.back().first != stage) peaks.emplace_back(stage, 0.0);
+        peaks.back().second = peak_resident_bytes();
+        if (clock.options_.on_stage_end) clock.options_.on_stage_end(stage, seconds);
+      }
+    } record{*this, stage, start, process_cpu_seconds()};
     return work();
   }
 
 private:
-  void add(const std::string& stage, double seconds) {
-    for (auto& [name, total] : scene_.stage_seconds)
+  static void add(std::vector<std::pair<std::string, double>>& list, const std::string& stage, double seconds) {
+    for (auto& [name, total] : list)
       if (name == stage) {
         total += seconds;
         return;
       }
-    scene_.stage_seconds.emplace_back(stage, seconds);
+    list.emplace_back(stage, seconds);
   }
   BakedScene& scene_;
   const BakeOptions& options_;
@@ -68,12 +80,6 @@ struct CompartmentBake {
   std::optional<BakedCore> core;
   double shell_margin = 0.0;  // how far copies reach outside the mesh (Å)
 };
-
-double mesh_bounding_radius(const mesh::ProxyMesh& mesh) {
-  double r2 = 0.0;
-  for (const glm::dvec3& p : mesh.positions) r2 = std::max(r2, glm::dot(p, p));
-  return std::sqrt(r2);
-}
 
 // Copies a membrane puts on a mesh, estimated from the mesh area and the requested densities (a
 // lipid patch at its own density), to choose between pruning everywhere and along seams only.
@@ -264,7 +270,10 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   const std::uint64_t seed = options.seed.value_or(scene.seed);
   const int threads = std::max(1, options.jobs);
 
+  // What the scene asks must fit before anything is read or packed (scene_feasibility.hpp).
+  scene::check_scene_amounts(scene);
   std::vector<std::optional<BakedLipidPatch>> patches(scene.membranes.size());
+  std::vector<scene::MoleculeMeasure> measures;
   const std::vector<BakedMolecule> library = clock.run("molecules", [&] {
     std::vector<BakedMolecule> molecules = load_molecule_library(scene);
     for (std::size_t i = 0; i < scene.membranes.size(); ++i)
@@ -277,6 +286,8 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
           patches[i]->mix.push_back(std::move(mixed));
         }
       }
+    measures = measure_molecules(scene, molecules);
+    scene::check_molecule_amounts(scene, measures);
     return molecules;
   });
 
@@ -288,13 +299,30 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
         const auto& patch = patches[membrane->index];
         thickness = patch ? bilayer_thickness(*patch, library) : kBilayerThicknessWithoutPatch;
       }
-      CompartmentMesh loaded = load_compartment_mesh(scene.compartments[c], thickness);
+      CompartmentMesh loaded = load_compartment_mesh(scene.compartments[c], thickness, [&](const mesh::ProxyMesh& m) {
+        scene::CompartmentMeasure measure = measure_compartment(m);
+        measure.bilayer_thickness = thickness.value_or(0.0);
+        scene::check_compartment_amounts(scene, c, measure, measures);
+      });
       if (options.mesh_codec != MeshCodec::zstd) put_on_storage_grids(loaded);
       else loaded.storage = "exact as read (--mesh-codec zstd)";
       if (options.mesh_codec == MeshCodec::draco && !loaded.on_storage_grids)
         throw InputError(loaded.origin, "", "--mesh-codec draco: " + loaded.storage);
       return loaded;
     });
+
+  std::vector<double> mesh_radii;
+  for (const CompartmentBake& c : compartments) mesh_radii.push_back(measure_compartment(c.mesh.mesh).extent);
+  scene::check_placement_amounts(scene, mesh_radii);
+
+  std::vector<EstimatedMesh> meshes;
+  for (const CompartmentBake& c : compartments)
+    meshes.push_back({&c.mesh.mesh, c.mesh.report.seam_length, c.mesh.bilayer_thickness});
+  baked.estimate = estimate_bake(scene, library, patches, meshes, threads);
+  baked.cpu_seconds_at_estimate = process_cpu_seconds();
+  if (options.max_memory && baked.estimate.peak_bytes > *options.max_memory)
+    throw InputError(scene.source.string(), "", over_memory_budget(baked.estimate, *options.max_memory));
+  if (options.estimate_only) return baked;
 
   // A membrane's tiles must survive the most anisotropic chart, the most curved surface and the
   // most tilted normals among the meshes that wear it (5% on the curvature for what the
@@ -368,7 +396,7 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
 
   const std::vector<scene::PlacedInstance> placed = clock.run("instances", [&] {
     std::vector<double> radii;
-    for (const CompartmentBake& c : compartments) radii.push_back(mesh_bounding_radius(c.mesh.mesh) + c.shell_margin);
+    for (std::size_t c = 0; c < compartments.size(); ++c) radii.push_back(mesh_radii[c] + compartments[c].shell_margin);
     return scene::expand_random_instances(scene, radii);
   });
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bake/scene/scene_description.hpp"
+#include "bake/scene_bake/bake_estimate.hpp"
 #include "bake/scene_bake/package_content.hpp"
 
 #include "bake/mesh/mesh_remesh.hpp"
@@ -25,7 +26,12 @@ struct BakeOptions {
   std::optional<std::uint64_t> seed;  // overrides the scene's seed
   MeshCodec mesh_codec = MeshCodec::automatic;
   int jobs = 1;                       // worker threads for the heavy stages
-  std::function<void(const std::string&)> progress;  // stage announcements; may be empty
+  // Stage announcements (each may be empty): a stage begins; it ended after `seconds`.
+  std::function<void(const std::string& stage)> on_stage_begin;
+  std::function<void(const std::string& stage, double seconds)> on_stage_end;
+  // Refuse, before the heavy stages, a bake whose estimated peak memory passes this (bytes).
+  std::optional<double> max_memory;
+  bool estimate_only = false;  // stop after the estimate (--dry-run): BakedScene holds only it
 };
 
 // A real bilayer's lipids per µm² of membrane: two leaflets of one lipid per ~0.66 nm²
@@ -90,6 +96,10 @@ struct BakedScene {
   std::vector<WangSetSummary> wang_sets;
   std::uint64_t represented_atoms = 0;  // the whole scene
   std::vector<std::pair<std::string, double>> stage_seconds;
+  std::vector<std::pair<std::string, double>> stage_cpu_seconds;  // every thread's
+  std::vector<std::pair<std::string, double>> stage_peak_bytes;   // the process's peak memory when each ended
+  BakeEstimate estimate;  // made before the heavy stages
+  double cpu_seconds_at_estimate = 0.0;  // process_cpu_seconds() then: what came after is what was estimated
 };
 
 BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& options);

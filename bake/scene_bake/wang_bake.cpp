@@ -124,6 +124,14 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
                   " (tiles packed to survive chart stretch %.3g, normals turning %.3g rad/Å and tilting %.3g "
                   "from their faces: a finer mesh lowers the tilt, a more even UV layout the stretch)",
                   1.0 + surface.lateral_stretch, surface.curvature, surface.tilt);
+    // The packer names the molecule; the user wrote a key.
+    for (std::size_t i = 0; i < membrane.proteins.size(); ++i)
+      if (e.where() == membrane.proteins[i].molecule.name)
+        throw InputError("", "membranes." + membrane.name + ".proteins[" + std::to_string(i) + "]." +
+                                 (membrane.proteins[i].abundance.unit == scene::SurfaceAbundance::Unit::per_um2
+                                      ? "density_per_um2"
+                                      : "copies_per_tile"),
+                         e.rule() + bounds);
     throw InputError(e.file(), e.where(), e.rule() + bounds);
   }
   merge_densities_by_name(baked.set.densities);
@@ -152,7 +160,18 @@ BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
                            : molecule.abundance.value;
     request.molecules.push_back(m);
   }
-  baked.set = tiles::make_soluble_cubes(request);
+  try {
+    baked.set = tiles::make_soluble_cubes(request);
+  } catch (const InputError& e) {
+    for (std::size_t i = 0; i < soluble.molecules.size(); ++i)
+      if (e.where() == soluble.molecules[i].molecule.name)
+        throw InputError("", "solubles." + soluble.name + ".molecules[" + std::to_string(i) + "]." +
+                                 (soluble.molecules[i].abundance.unit == scene::VolumeAbundance::Unit::millimolar
+                                      ? "concentration_mM"
+                                      : "copies_per_um3"),
+                         e.rule());
+    throw;
+  }
   baked.flat_clearance = request.budget.clearance;
   return baked;
 }

@@ -2,6 +2,7 @@
 
 #include "bake/tiles/copy_neighbourhood.hpp"
 #include "bake/tiles/rotation_sampling.hpp"
+#include "common/progress.hpp"
 #include "bake/tiles/tile_random.hpp"
 
 #include <algorithm>
@@ -170,7 +171,13 @@ public:
   void run(std::vector<double>& achieved_per_tile, SplitMix64& rng) {
     const double measure = std::pow(static_cast<double>(S_), D_);
     int stale = 0;
-    for (int round = 0; round < settings_.relaxation_rounds && stale < kStaleRounds; ++round) {
+    int round = 0;
+    struct RoundsDone {  // every announced round counts as done, however the loop ends
+      const int& round;
+      int rounds;
+      ~RoundsDone() { progress::advance(static_cast<std::uint64_t>(std::max(0, rounds - round))); }
+    } rounds_done{round, settings_.relaxation_rounds};
+    for (; round < settings_.relaxation_rounds && stale < kStaleRounds; ++round, progress::advance()) {
       bool short_any = false;
       for (size_t si = 0; si < specs_.size(); ++si)
         short_any |= specs_[si].densify && achieved_per_tile[si] < specs_[si].copies_per_volume * measure - 1e-9;
@@ -426,8 +433,12 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
 
   SplitMix64 rng(mix64(settings.seed ^ 0xA5A5F00Dull));
   std::vector<double> carry(specs.size(), 0.0), achieved(specs.size(), 0.0);
+  // Progress counts units packed, then relaxation rounds (all announced; those an early stop skips
+  // are marked done when it stops).
+  progress::add_work(units.size() + static_cast<std::uint64_t>(std::max(settings.relaxation_rounds, 0)));
 
   for (size_t ui = 0; ui < units.size(); ++ui) {
+    progress::advance();
     Unit& u = units[ui];
     CopyNeighbourhood context(shapes, 2.f * largest);
     for (size_t vi = 0; vi < ui; ++vi)

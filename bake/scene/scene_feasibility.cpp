@@ -1,0 +1,324 @@
+#include "bake/scene/scene_feasibility.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "common/error.hpp"
+
+namespace nano::scene {
+namespace {
+
+constexpr double kA2PerUm2 = 1e8;
+constexpr double kA3PerUm3 = 1e12;
+constexpr double kA2PerNm2 = 100.0;
+// mM -> copies per Å³: 1e-3 mol/L · N_A / 1e27 Å³/L.
+constexpr double kCopiesPerA3PerMillimolar = 1e-3 * 6.02214076e23 / 1e27;
+// Random sequential addition of equal spheres jams at a volume fraction of 0.38; no placement of
+// bounding spheres gets past close packing (0.74).
+constexpr double kMaxSphereFraction = 0.74;
+
+// "7.1e4", "0.0365", "1e12": three significant digits, exponents without '+' and leading zeros;
+// whole numbers below 10^7 (counts) in full.
+std::string short_number(double v) {
+  char text[64];
+  if (v == std::floor(v) && std::fabs(v) < 1e7) {
+    std::snprintf(text, sizeof text, "%.0f", v);
+    return text;
+  }
+  std::snprintf(text, sizeof text, "%.3g", v);
+  std::string s = text;
+  const std::size_t e = s.find('e');
+  if (e == std::string::npos) return s;
+  std::string mantissa = s.substr(0, e), exponent = s.substr(e + 1);
+  if (!exponent.empty() && exponent[0] == '+') exponent.erase(0, 1);
+  const bool negative = !exponent.empty() && exponent[0] == '-';
+  if (negative) exponent.erase(0, 1);
+  exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+  return mantissa + "e" + (negative ? "-" : "") + exponent;
+}
+
+[[noreturn]] void refuse(const SceneDescription& scene, const std::string& key, const std::string& rule) {
+  throw InputError(scene.source.string(), key, rule);
+}
+
+std::string membrane_key(const MembraneDescription& m) { return "membranes." + m.name; }
+std::string soluble_key(const SolubleDescription& s) { return "solubles." + s.name; }
+
+std::string protein_amount_key(const MembraneDescription& m, std::size_t i) {
+  return membrane_key(m) + ".proteins[" + std::to_string(i) + "]." +
+         (m.proteins[i].abundance.unit == SurfaceAbundance::Unit::per_um2 ? "density_per_um2" : "copies_per_tile");
+}
+
+std::string soluble_amount_key(const SolubleDescription& s, std::size_t i) {
+  return soluble_key(s) + ".molecules[" + std::to_string(i) + "]." +
+         (s.molecules[i].abundance.unit == VolumeAbundance::Unit::millimolar ? "concentration_mM" : "copies_per_um3");
+}
+
+// Copies per Å² of membrane, and back in the scene's own unit.
+double per_a2(const MembraneDescription& m, const SurfaceAbundance& a) {
+  return a.unit == SurfaceAbundance::Unit::per_um2 ? a.value / kA2PerUm2 : a.value / (m.tile_size * m.tile_size);
+}
+std::string surface_amount_text(const MembraneDescription& m, const SurfaceAbundance& a, double copies_per_a2) {
+  return a.unit == SurfaceAbundance::Unit::per_um2 ? short_number(copies_per_a2 * kA2PerUm2) + " per µm²"
+                                                   : short_number(copies_per_a2 * m.tile_size * m.tile_size) + " per tile";
+}
+
+// Copies per Å³, and back in the scene's own unit.
+double per_a3(const VolumeAbundance& a) {
+  return a.unit == VolumeAbundance::Unit::millimolar ? a.value * kCopiesPerA3PerMillimolar : a.value / kA3PerUm3;
+}
+std::string volume_amount_text(const VolumeAbundance& a, double copies_per_a3) {
+  return a.unit == VolumeAbundance::Unit::millimolar ? short_number(copies_per_a3 / kCopiesPerA3PerMillimolar) + " mM"
+                                                     : short_number(copies_per_a3 * kA3PerUm3) + " per µm³";
+}
+
+void check_edge(const SceneDescription& scene, const std::string& key, double edge, const char* what) {
+  if (edge < kMinTileSize)
+    refuse(scene, key,
+           short_number(edge) + " Å: a " + what + " must hold at least one molecule (a lipid is about 8 Å across); at least " +
+               short_number(kMinTileSize) + " Å");
+  if (edge > kMaxTileSize)
+    refuse(scene, key,
+           short_number(edge) + " Å: one " + what + " would hold more copies than a machine stores (a 100 µm² square of membrane is 1.5e8 lipids); at most " +
+               short_number(kMaxTileSize) + " Å");
+}
+
+// The key a compartment's size comes from, and the factor by which that value must shrink.
+std::string size_key(const CompartmentDescription& c) {
+  const std::string mesh = "compartments." + c.name + ".mesh.";
+  if (c.mesh.diameter) return mesh + "diameter";
+  if (c.mesh.volume) return mesh + "volume";
+  if (c.scale != 1.0) return "compartments." + c.name + ".scale";
+  if (c.mesh.kind == MeshSource::Kind::sphere) return mesh + "radius";
+  if (c.mesh.kind == MeshSource::Kind::file) return mesh + (c.mesh.unit != 1.0 ? "units" : "file");
+  return "compartments." + c.name + ".mesh";
+}
+// The unit the size key's value is written in.
+const char* size_unit(const CompartmentDescription& c) {
+  if (c.mesh.diameter) return " Å";
+  if (c.mesh.volume) return " Å³";
+  if (c.scale != 1.0) return "";
+  return c.mesh.kind == MeshSource::Kind::sphere ? " Å" : "";
+}
+
+double size_value(const CompartmentDescription& c) {
+  if (c.mesh.diameter) return *c.mesh.diameter;
+  if (c.mesh.volume) return *c.mesh.volume;
+  if (c.scale != 1.0) return c.scale;
+  if (c.mesh.kind == MeshSource::Kind::sphere) return c.mesh.radius;
+  return 0.0;
+}
+
+[[noreturn]] void refuse_extent(const SceneDescription& scene, const CompartmentDescription& c, double extent) {
+  const double shrink = kMaxCompartmentExtent / extent;
+  const bool by_volume = c.mesh.volume && !c.mesh.diameter;
+  const double value = size_value(c);
+  std::string rule = "the mesh reaches " + short_number(extent) +
+                     " Å from the compartment's origin; compartment coordinates are float32 on the GPU, coarser than "
+                     "1/8 Å beyond " + short_number(kMaxCompartmentExtent) + " Å (105 µm), too coarse for atoms";
+  if (value > 0.0) rule += "; at most " + short_number(value * (by_volume ? shrink * shrink * shrink : shrink)) + size_unit(c);
+  refuse(scene, size_key(c), rule);
+}
+
+// A nonzero amount so small that the whole tile set holds no copy: the scene would lose the
+// molecule without a word.
+void check_membrane_places_some(const SceneDescription& scene, const MembraneDescription& m) {
+    const double set_area = m.tiles * m.tile_size * m.tile_size;  // Å²
+    for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+      const double expected = per_a2(m, m.proteins[i].abundance) * set_area;
+      if (m.proteins[i].abundance.value > 0.0 && expected < 1.0)
+        refuse(scene, protein_amount_key(m, i),
+               short_number(m.proteins[i].abundance.value) + " places no copy: the " + std::to_string(m.tiles) +
+                   " tiles of " + short_number(m.tile_size) + " Å hold " + short_number(set_area / kA2PerUm2) +
+                   " µm² of membrane, so at least " + surface_amount_text(m, m.proteins[i].abundance, 1.0 / set_area) +
+                   " (or 0 for none)");
+    }
+}
+
+void check_soluble_places_some(const SceneDescription& scene, const SolubleDescription& s) {
+    const double set_volume = s.cubes * s.cube_size * s.cube_size * s.cube_size;  // Å³
+    for (std::size_t i = 0; i < s.molecules.size(); ++i) {
+      const double expected = per_a3(s.molecules[i].abundance) * set_volume;
+      if (s.molecules[i].abundance.value > 0.0 && expected < 1.0)
+        refuse(scene, soluble_amount_key(s, i),
+               short_number(s.molecules[i].abundance.value) + " places no copy: the " + std::to_string(s.cubes) +
+                   " cubes of " + short_number(s.cube_size) + " Å hold " + short_number(set_volume / kA3PerUm3) +
+                   " µm³, so at least " + volume_amount_text(s.molecules[i].abundance, 1.0 / set_volume) +
+                   " (or 0 for none; more or larger cubes hold rarer molecules)");
+    }
+}
+
+std::string too_many_triangles(double triangles) {
+  return short_number(triangles) + " triangles: a proxy mesh is low-poly (the membrane's remeshing makes at most 4e5), "
+         "and its shells and UV charts grow with every triangle; at most " + short_number(kMaxMeshTriangles);
+}
+
+}  // namespace
+
+void check_scene_amounts(const SceneDescription& scene) {
+  for (const MembraneDescription& m : scene.membranes) check_edge(scene, membrane_key(m) + ".tile_size", m.tile_size, "Wang square");
+  for (const SolubleDescription& s : scene.solubles) check_edge(scene, soluble_key(s) + ".cube_size", s.cube_size, "Wang cube");
+  // Sizes known before the mesh is read: a generated sphere's radius, a target diameter or volume.
+  for (const CompartmentDescription& c : scene.compartments) {
+    double reach = 0.0;  // a lower bound on how far the mesh reaches from its origin
+    if (c.mesh.diameter) reach = 0.5 * *c.mesh.diameter;
+    else if (c.mesh.volume) reach = std::cbrt(*c.mesh.volume * 3.0 / (4.0 * std::numbers::pi));
+    else if (c.mesh.kind == MeshSource::Kind::sphere) reach = c.mesh.radius * c.scale;
+    if (reach > kMaxCompartmentExtent) refuse_extent(scene, c, reach);
+    if (c.mesh.kind != MeshSource::Kind::file && c.mesh.triangles > kMaxMeshTriangles)
+      refuse(scene, "compartments." + c.name + ".mesh.triangles", too_many_triangles(c.mesh.triangles));
+  }
+}
+
+void check_molecule_amounts(const SceneDescription& scene, std::span<const MoleculeMeasure> molecules) {
+  if (molecules.size() != scene.molecules.size())
+    throw std::invalid_argument("check_molecule_amounts: one measure per molecule is needed");
+  for (const MembraneDescription& m : scene.membranes) {
+    const std::string key = membrane_key(m);
+    for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+      const MoleculeMeasure& p = molecules[m.proteins[i].molecule.index];
+      if (2.0 * p.lateral_radius > m.tile_size)
+        refuse(scene, key + ".tile_size",
+               short_number(m.tile_size) + " Å: '" + m.proteins[i].molecule.name + "' spans " +
+                   short_number(2.0 * p.lateral_radius) + " Å across the membrane, more than a tile; at least " +
+                   short_number(2.0 * p.lateral_radius) + " Å");
+    }
+    check_membrane_places_some(scene, m);
+    if (m.lipids) {
+      const MoleculeMeasure& l = molecules[m.lipids->molecule.index];
+      if (2.0 * l.lateral_radius > m.tile_size)
+        refuse(scene, key + ".tile_size",
+               short_number(m.tile_size) + " Å: lipid '" + m.lipids->molecule.name + "' spans " +
+                   short_number(2.0 * l.lateral_radius) + " Å, more than a tile; at least " +
+                   short_number(2.0 * l.lateral_radius) + " Å");
+      // Copies standing side by side in one leaflet fill a slab as thick as one of them is long.
+      const double least = l.height > 0.0 ? l.volume / l.height : 0.0;
+      if (m.lipids->area_per_lipid < least)
+        refuse(scene, key + ".lipids.area_per_lipid",
+               short_number(m.lipids->area_per_lipid) + " Å² cannot fit: lipid '" + m.lipids->molecule.name + "' takes " +
+                   short_number(l.volume) + " Å³ over its " + short_number(l.height) +
+                   " Å length, so at least " + short_number(least) + " Å² per lipid (a real bilayer: 55-75 Å²)");
+    }
+    // Proteins share each leaflet: their footprints add up to at most the whole leaflet.
+    double outer = 0.0, inner = 0.0;  // leaflet fractions covered so far
+    for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+      const MembraneProtein& protein = m.proteins[i];
+      const MoleculeMeasure& p = molecules[protein.molecule.index];
+      const double d = per_a2(m, protein.abundance);
+      const double covered_outer = outer + d * p.outer_footprint, covered_inner = inner + d * p.inner_footprint;
+      const double layer = p.height > 0.0 ? d * p.volume / p.height : 0.0;  // its own slab, alone
+      const bool over_leaflet = covered_outer > kMaxLeafletCoverage || covered_inner > kMaxLeafletCoverage;
+      if (over_leaflet || layer > kMaxLeafletCoverage) {
+        const double footprint = std::max(p.outer_footprint, p.inner_footprint);
+        const double before = p.outer_footprint >= p.inner_footprint ? outer : inner;
+        double most = over_leaflet ? (kMaxLeafletCoverage - before) / footprint : kMaxLeafletCoverage * p.height / p.volume;
+        if (over_leaflet && p.height > 0.0) most = std::min(most, kMaxLeafletCoverage * p.height / p.volume);
+        most = std::max(most, 0.0);
+        std::string rule = short_number(protein.abundance.value) + " cannot fit: '" + protein.molecule.name + "' ";
+        if (over_leaflet)
+          rule += "covers " + short_number(footprint / kA2PerNm2) + " nm² of a leaflet";
+        else
+          rule += "takes " + short_number(p.volume / p.height / kA2PerNm2) + " nm² of its layer on average";
+        rule += ", at most " + surface_amount_text(m, protein.abundance, most);
+        if (over_leaflet && before > 0.0)
+          rule += " beside the proteins listed before it (they cover " + short_number(100.0 * before) + "% of the leaflet)";
+        refuse(scene, protein_amount_key(m, i), rule);
+      }
+      outer = covered_outer;
+      inner = covered_inner;
+    }
+  }
+  for (const SolubleDescription& s : scene.solubles) {
+    for (const SolubleMolecule& molecule : s.molecules) {
+      const MoleculeMeasure& mm = molecules[molecule.molecule.index];
+      if (2.0 * mm.bounding_radius > s.cube_size)
+        refuse(scene, soluble_key(s) + ".cube_size",
+               short_number(s.cube_size) + " Å: '" + molecule.molecule.name + "' spans " +
+                   short_number(2.0 * mm.bounding_radius) + " Å, more than a cube; at least " +
+                   short_number(2.0 * mm.bounding_radius) + " Å");
+    }
+    check_soluble_places_some(scene, s);
+    double filled = 0.0;  // volume fraction of the cubes taken so far
+    for (std::size_t i = 0; i < s.molecules.size(); ++i) {
+      const SolubleMolecule& molecule = s.molecules[i];
+      const MoleculeMeasure& mm = molecules[molecule.molecule.index];
+      const double fraction = per_a3(molecule.abundance) * mm.volume;
+      if (filled + fraction > kMaxSolubleVolumeFraction) {
+        const double most = std::max(0.0, (kMaxSolubleVolumeFraction - filled) / mm.volume);
+        std::string rule = short_number(molecule.abundance.value) + " cannot fit: '" + molecule.molecule.name + "' takes " +
+                           short_number(mm.volume) + " Å³ a copy, which would fill " + short_number(100.0 * fraction) +
+                           "% of the volume; at most " + volume_amount_text(molecule.abundance, most);
+        if (filled > 0.0)
+          rule += " beside the molecules listed before it (they fill " + short_number(100.0 * filled) + "%)";
+        rule += " (atoms fill at most " + short_number(100.0 * kMaxSolubleVolumeFraction) + "% of space, as close-packed spheres)";
+        refuse(scene, soluble_amount_key(s, i), rule);
+      }
+      filled += fraction;
+    }
+  }
+}
+
+void check_compartment_amounts(const SceneDescription& scene, std::size_t compartment, const CompartmentMeasure& mesh,
+                               std::span<const MoleculeMeasure> molecules) {
+  const CompartmentDescription& c = scene.compartments.at(compartment);
+  if (!(mesh.extent <= kMaxCompartmentExtent)) refuse_extent(scene, c, mesh.extent);
+  if (static_cast<double>(mesh.triangles) > kMaxMeshTriangles)
+    refuse(scene, "compartments." + c.name + ".mesh.file", too_many_triangles(static_cast<double>(mesh.triangles)));
+  if (!c.membrane) return;
+  // The exact test of where a bilayer fits comes later (bake/mesh/membrane_fit.hpp), on the
+  // triangles; a mesh smaller than the bilayer's own thickness fails it by its size alone.
+  if (mesh.extent < mesh.bilayer_thickness) {
+    const double value = size_value(c);
+    std::string rule = "the mesh reaches only " + short_number(mesh.extent) + " Å from its origin, less than the " +
+                       short_number(mesh.bilayer_thickness) + " Å thick bilayer it wears";
+    if (value > 0.0) {
+      const double grow = mesh.bilayer_thickness / std::max(mesh.extent, 1e-300);
+      rule += "; at least " + short_number(value * (c.mesh.volume && !c.mesh.diameter ? grow * grow * grow : grow)) + size_unit(c);
+    }
+    refuse(scene, size_key(c), rule);
+  }
+  const MembraneDescription& m = scene.membranes.at(c.membrane->index);
+  double covered = 0.0;  // Å² of the busier leaflet taken by per-compartment copies so far
+  for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+    const MembraneProtein& protein = m.proteins[i];
+    if (!protein.per_compartment) continue;
+    if (protein.molecule.index >= molecules.size())
+      throw std::invalid_argument("check_compartment_amounts: one measure per molecule is needed");
+    const MoleculeMeasure& p = molecules[protein.molecule.index];
+    const double footprint = std::max({p.outer_footprint, p.inner_footprint, p.height > 0.0 ? p.volume / p.height : 0.0});
+    const double need = static_cast<double>(*protein.per_compartment) * footprint;
+    if (covered + need > kMaxLeafletCoverage * mesh.area) {
+      const double most = std::max(0.0, std::floor((kMaxLeafletCoverage * mesh.area - covered) / footprint));
+      refuse(scene, membrane_key(m) + ".proteins[" + std::to_string(i) + "].per_compartment",
+             std::to_string(*protein.per_compartment) + " cannot fit on compartment '" + c.name + "': its surface is " +
+                 short_number(mesh.area / kA2PerUm2) + " µm² and '" + protein.molecule.name + "' covers " +
+                 short_number(footprint / kA2PerNm2) + " nm²; at most " + short_number(most));
+    }
+    covered += need;
+  }
+}
+
+void check_placement_amounts(const SceneDescription& scene, std::span<const double> bounding_radii) {
+  if (bounding_radii.size() != scene.compartments.size())
+    throw std::invalid_argument("check_placement_amounts: one bounding radius per compartment is needed");
+  for (std::size_t e = 0; e < scene.instances.size(); ++e) {
+    const auto* placement = std::get_if<RandomPlacement>(&scene.instances[e]);
+    if (!placement) continue;
+    const double r = bounding_radii[placement->compartment.index] + 0.5 * placement->min_gap;
+    const glm::dvec3 size = placement->box.max - placement->box.min + placement->min_gap;
+    const double room = kMaxSphereFraction * size.x * size.y * size.z;
+    const double one = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    if (static_cast<double>(placement->count) * one > room)
+      refuse(scene, "instances[" + std::to_string(e) + "].count",
+             std::to_string(placement->count) + " copies of compartment '" + placement->compartment.name +
+                 "' cannot fit in the box: each needs a sphere of radius " + short_number(r) +
+                 " Å (bounding sphere and half the min_gap), and spheres fill at most 74% of a box; at most " +
+                 short_number(std::floor(room / one)) + " (or a larger box)");
+  }
+}
+
+}  // namespace nano::scene

@@ -1,0 +1,67 @@
+#pragma once
+// Whether what a scene asks for can physically fit, decided from numbers before any tile is
+// packed: a membrane protein's density against its footprint in the leaflet, lipids against their
+// own cross-section, a soluble's concentration against its volume (and all solubles together
+// against the cube), per-compartment counts against the surface, molecules against their tile,
+// meshes against the precision of the coordinates the runtime traces in. Each refusal is an
+// InputError naming the scene file, the key path, the value and the largest (or smallest) value
+// that can work. Pure arithmetic on the description and on measures the baker takes of the
+// molecules and meshes, so the scene fuzzer exercises it without reading a file.
+#include <cstddef>
+#include <span>
+
+#include "bake/scene/scene_description.hpp"
+
+namespace nano::scene {
+
+// One molecule of the scene as the tile packers will see it (Å, Å², Å³).
+struct MoleculeMeasure {
+  double bounding_radius = 0.0;  // about its centroid: the reach a soluble copy needs in its cube
+  double lateral_radius = 0.0;   // about its up axis: the reach a membrane copy needs in its tile
+  // Standing along +z at the given depth (the protein's), the area its atoms take of the outer
+  // (0 < z < half_thickness) and inner leaflet, projected on the membrane plane.
+  double outer_footprint = 0.0, inner_footprint = 0.0;
+  double height = 0.0;  // extent along its up axis: copies side by side fill a slab this thick
+  double volume = 0.0;  // union of its atoms' spheres
+};
+
+// A compartment's mesh after units, scale, "diameter" or "volume" (Å, Å², Å³).
+struct CompartmentMeasure {
+  double area = 0.0;
+  double volume = 0.0;
+  double extent = 0.0;  // largest distance of a vertex from the compartment's origin
+  std::size_t triangles = 0;
+  double bilayer_thickness = 0.0;  // of the membrane it wears (0: none)
+};
+
+// The largest concentration at which solubles still fit: volume fraction of their atoms.
+inline constexpr double kMaxSolubleVolumeFraction = 0.74;  // close-packed spheres
+// The largest share of a leaflet (or of a protein's own layer) membrane proteins may cover.
+inline constexpr double kMaxLeafletCoverage = 1.0;
+// Compartment coordinates are float32 on the GPU: beyond 2^20 Å their spacing exceeds 1/8 Å.
+inline constexpr double kMaxCompartmentExtent = 1048576.0;
+// Tiles and cubes: below an atom, nothing fits; above 10 µm, a single tile set is more copies
+// than a machine holds.
+inline constexpr double kMinTileSize = 10.0, kMaxTileSize = 100000.0;
+// Proxy meshes are low-poly.
+inline constexpr double kMaxMeshTriangles = 4e6;
+
+// Checks on the description alone: tile and cube sizes, mesh sizes, instance counts, random
+// placements against their boxes. Run before any file is read.
+void check_scene_amounts(const SceneDescription& scene);
+
+// Checks that need the molecules (one measure per scene.molecules entry, in order): densities,
+// concentrations, molecules against their tiles. A lipid patch is not checked here: it gives way
+// to the proteins wherever they stand.
+void check_molecule_amounts(const SceneDescription& scene, std::span<const MoleculeMeasure> molecules);
+
+// Checks of one compartment's mesh: extent against float precision, per-compartment counts
+// against its area.
+void check_compartment_amounts(const SceneDescription& scene, std::size_t compartment, const CompartmentMeasure& mesh,
+                               std::span<const MoleculeMeasure> molecules);
+
+// Random placements against their boxes (one bounding radius per compartment, Å): run before
+// expand_random_instances, whose work grows with the count.
+void check_placement_amounts(const SceneDescription& scene, std::span<const double> bounding_radii);
+
+}  // namespace nano::scene

@@ -1,0 +1,297 @@
+#include "bake/scene_bake/bake_estimate.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "bake/mesh/uv_distortion.hpp"
+#include "bake/scene/random_placement.hpp"
+#include "bake/scene_bake/compartment_mesh.hpp"
+#include "bake/shell/membrane_pruning.hpp"
+
+namespace nano::bake {
+namespace {
+
+constexpr double kA2PerUm2 = 1e8;
+constexpr double kA3PerUm3 = 1e12;
+constexpr double kCopiesPerA3PerMillimolar = 1e-3 * 6.02214076e23 / 1e27;
+
+// Cost coefficients, CPU seconds per unit of each stage's work, and bytes per unit of memory,
+// fitted on the bundled scenes (docs/bake-estimate.md).
+struct StageCost {
+  const char* stage;
+  double seconds_per_work;
+  double seconds;  // fixed
+};
+constexpr StageCost kTileSets{"tile sets", 2.2e-6, 0.3};    // per atom of the copies in the sets
+constexpr StageCost kShells{"shells", 1.6e-5, 0.1};           // per membrane copy checked on the surface
+constexpr StageCost kCoreGrids{"core grids", 3e-7, 0.05};     // per soluble copy in a boundary box
+constexpr StageCost kPackage{"package content", 2e-9, 0.3};   // per atom of the copies in the sets (and writing)
+// Of a patch's lipids, the share kept once the clashes of an equilibrated patch are resolved
+// (clearance 0.6: the bundled scenes keep 72-78 %).
+constexpr double kPatchLipidsKept = 0.75;
+// Along a UV seam of a large membrane, the width (Å) over which copies are checked one by one.
+constexpr double kSeamBand = 230.0;
+constexpr double kBaseBytes = 64e6;
+constexpr double kBytesPerTileAtom = 100.0;
+constexpr double kBytesPerTriangle = 2000.0;
+constexpr double kBytesPerCheckedCopy = 300.0;
+constexpr double kBytesPerCoreBox = 100.0;
+constexpr double kBytesPerInstance = 256.0;
+// Of a stage's work, the share that runs on the worker threads.
+constexpr double kParallelShare = 0.8;
+
+double per_a2(const scene::MembraneDescription& m, const scene::SurfaceAbundance& a) {
+  return a.unit == scene::SurfaceAbundance::Unit::per_um2 ? a.value / kA2PerUm2 : a.value / (m.tile_size * m.tile_size);
+}
+double per_a3(const scene::VolumeAbundance& a) {
+  return a.unit == scene::VolumeAbundance::Unit::millimolar ? a.value * kCopiesPerA3PerMillimolar : a.value / kA3PerUm3;
+}
+
+void add_named(std::vector<std::pair<std::string, double>>& list, const std::string& name, double n) {
+  auto it = std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == name; });
+  if (it == list.end()) list.emplace_back(name, n);
+  else it->second += n;
+}
+
+double mean_atoms(const BakedLipidPatch& patch, const std::vector<BakedMolecule>& library) {
+  double atoms = 0.0;
+  for (const std::uint32_t m : patch.molecules) atoms += static_cast<double>(library[m].atoms.size());
+  return patch.molecules.empty() ? 0.0 : atoms / static_cast<double>(patch.molecules.size());
+}
+
+// A membrane's lipids per Å² of surface (both leaflets), the atoms of one, and per species the
+// share of the lipids.
+struct MembraneLipids {
+  double per_a2 = 0.0;
+  double atoms = 0.0;
+  std::vector<std::pair<std::string, double>> share;
+};
+
+MembraneLipids membrane_lipids(const scene::MembraneDescription& m, const std::optional<BakedLipidPatch>& patch,
+                               const std::vector<BakedMolecule>& library) {
+  MembraneLipids l;
+  if (patch && patch->period_x > 0.0 && patch->period_y > 0.0) {
+    l.per_a2 = static_cast<double>(patch->molecules.size()) / (patch->period_x * patch->period_y);
+    l.atoms = mean_atoms(*patch, library);
+    double mixed = 0.0;
+    for (std::size_t k = 0; k < patch->mix.size(); ++k) {
+      const double share = 0.5 * (patch->mix[k].outer + patch->mix[k].inner);
+      l.share.emplace_back(m.lipid_mix[k].name, share);
+      mixed += share;
+    }
+    l.share.insert(l.share.begin(), {m.lipid_patch->name, std::max(0.0, 1.0 - mixed)});
+  } else if (m.lipids) {
+    l.per_a2 = 2.0 / m.lipids->area_per_lipid;
+    l.atoms = static_cast<double>(library[m.lipids->molecule.index].atoms.size());
+    l.share.emplace_back(m.lipids->molecule.name, 1.0);
+  }
+  return l;
+}
+
+std::string count_text(double n) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", n);
+  return text;
+}
+
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, bytes >= 1e9 ? "%.2f GB" : "%.0f MB", bytes >= 1e9 ? bytes / 1e9 : bytes / 1e6);
+  return text;
+}
+
+}  // namespace
+
+BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vector<BakedMolecule>& library,
+                           const std::vector<std::optional<BakedLipidPatch>>& patches,
+                           const std::vector<EstimatedMesh>& meshes, int jobs) {
+  BakeEstimate e;
+  std::vector<MembraneLipids> lipids;
+  double tile_atoms = 0.0;  // atoms of the copies in every tile and cube set
+  for (std::size_t i = 0; i < scene.membranes.size(); ++i) {
+    const scene::MembraneDescription& m = scene.membranes[i];
+    lipids.push_back(membrane_lipids(m, patches[i], library));
+    double atoms_per_a2 = lipids.back().per_a2 * lipids.back().atoms;
+    for (const scene::MembraneProtein& p : m.proteins)
+      atoms_per_a2 += per_a2(m, p.abundance) * static_cast<double>(library[p.molecule.index].atoms.size());
+    tile_atoms += m.tiles * m.tile_size * m.tile_size * atoms_per_a2;
+  }
+  for (const scene::SolubleDescription& s : scene.solubles)
+    for (const scene::SolubleMolecule& molecule : s.molecules)
+      tile_atoms += s.cubes * std::pow(s.cube_size, 3) * per_a3(molecule.abundance) *
+                    static_cast<double>(library[molecule.molecule.index].atoms.size());
+
+  double checked_copies = 0.0, core_box_copies = 0.0, core_boxes = 0.0, triangles = 0.0;
+  for (std::size_t c = 0; c < scene.compartments.size(); ++c) {
+    const scene::CompartmentDescription& description = scene.compartments[c];
+    const mesh::ProxyMesh& mesh = *meshes[c].mesh;
+    const scene::CompartmentMeasure measure = measure_compartment(mesh);
+    CompartmentEstimate out;
+    out.name = description.name;
+    out.area_um2 = measure.area / kA2PerUm2;
+    out.volume_um3 = std::max(0.0, measure.volume) / kA3PerUm3;
+    triangles += static_cast<double>(mesh.triangles.size());
+    double inset = 0.0;  // how far inside the mesh the core grid's solubles start
+    if (description.membrane) {
+      const scene::MembraneDescription& m = scene.membranes[description.membrane->index];
+      const MembraneLipids& l = lipids[description.membrane->index];
+      double copies = 0.0;
+      for (const scene::MembraneProtein& p : m.proteins) {
+        double n = per_a2(m, p.abundance) * measure.area;
+        if (p.per_compartment) n = std::min(n, static_cast<double>(*p.per_compartment));
+        add_named(out.copies, p.molecule.name, n);
+        copies += n;
+      }
+      const double lipid_copies = kPatchLipidsKept * l.per_a2 * measure.area;
+      for (const auto& [name, share] : l.share) add_named(out.copies, name, share * lipid_copies);
+      copies += lipid_copies;
+      // The shells check every copy of a small membrane, only those along the UV seams of a large one.
+      const bool everywhere = copies <= static_cast<double>(shell::PruningSettings{}.whole_surface_budget);
+      checked_copies += everywhere ? copies : std::min(copies, meshes[c].seam_length * kSeamBand * copies / measure.area);
+      inset = 0.5 * meshes[c].bilayer_thickness;
+    }
+    if (description.soluble) {
+      const scene::SolubleDescription& s = scene.solubles[description.soluble->index];
+      const double cube = std::pow(s.cube_size, 3);
+      const double boundary = measure.area / (s.cube_size * s.cube_size);
+      core_boxes += std::max(0.0, measure.volume) / cube;
+      for (const scene::SolubleMolecule& molecule : s.molecules) {
+        const double reach = inset + s.clearance + library[molecule.molecule.index].properties.bounding_radius;
+        const double volume = std::max(0.0, measure.volume - measure.area * reach);
+        add_named(out.copies, molecule.molecule.name, per_a3(molecule.abundance) * volume);
+        core_box_copies += boundary * per_a3(molecule.abundance) * cube;
+      }
+    }
+    e.compartments.push_back(std::move(out));
+  }
+  e.instances = scene::expanded_instance_count(scene);
+  for (const scene::InstanceEntry& entry : scene.instances) {
+    const std::size_t c = std::holds_alternative<scene::ExplicitInstance>(entry)
+                              ? std::get<scene::ExplicitInstance>(entry).compartment.index
+                              : std::get<scene::RandomPlacement>(entry).compartment.index;
+    const double n = std::holds_alternative<scene::ExplicitInstance>(entry) ? 1.0 : std::get<scene::RandomPlacement>(entry).count;
+    double atoms_in_one = 0.0;
+    for (const auto& [name, copies] : e.compartments[c].copies) {
+      auto it = std::find_if(library.begin(), library.end(), [&](const BakedMolecule& b) { return b.name == name; });
+      if (it != library.end()) atoms_in_one += copies * static_cast<double>(it->atoms.size());
+    }
+    e.represented_atoms += n * atoms_in_one;
+  }
+
+  const auto stage = [&](const StageCost& cost, double work) {
+    e.stages.push_back({cost.stage, work, cost.seconds + cost.seconds_per_work * work});
+  };
+  stage(kTileSets, tile_atoms);
+  stage(kShells, checked_copies);
+  stage(kCoreGrids, core_box_copies);
+  stage(kPackage, tile_atoms);
+  const double threads = std::max(1, jobs);
+  for (const StageEstimate& s : e.stages) {
+    e.cpu_seconds += s.cpu_seconds;
+    e.wall_seconds += s.cpu_seconds * ((1.0 - kParallelShare) + kParallelShare / threads);
+  }
+  e.memory = {
+      {"the baker itself", kBaseBytes, ""},
+      {"tile and cube sets (" + count_text(tile_atoms) + " atoms of copies)", kBytesPerTileAtom * tile_atoms,
+       "lower densities or concentrations, a smaller tile_size or cube_size, or fewer tiles or cubes"},
+      {"meshes (" + count_text(triangles) + " triangles)", kBytesPerTriangle * triangles,
+       "fewer triangles (\"triangles\", or \"remesh\": {\"edge\": ...} with a longer edge)"},
+      {"membrane copies checked on the surface (" + count_text(checked_copies) + ")", kBytesPerCheckedCopy * checked_copies,
+       "a smaller membrane or fewer copies on it"},
+      {"core grids (" + count_text(core_boxes) + " boxes)", kBytesPerCoreBox * core_boxes, "a larger cube_size"},
+      {"instances (" + count_text(static_cast<double>(e.instances)) + ")", kBytesPerInstance * static_cast<double>(e.instances),
+       "fewer instances (\"count\")"},
+  };
+  for (const MemoryTerm& t : e.memory) e.peak_bytes += t.bytes;
+  return e;
+}
+
+std::string describe(const BakeEstimate& e) {
+  std::ostringstream out;
+  char line[512];
+  std::snprintf(line, sizeof line, "estimate: %.3g s on %s, peak memory %s, %llu instance(s), %.3g represented atoms\n",
+                e.wall_seconds, "this machine's jobs", gigabytes(e.peak_bytes).c_str(),
+                static_cast<unsigned long long>(e.instances), e.represented_atoms);
+  out << line;
+  for (const StageEstimate& s : e.stages) {
+    std::snprintf(line, sizeof line, "  %s: %.3g CPU s (work %.3g)\n", s.stage.c_str(), s.cpu_seconds, s.work);
+    out << line;
+  }
+  for (const CompartmentEstimate& c : e.compartments) {
+    std::snprintf(line, sizeof line, "  %s: %.4g µm², %.4g µm³", c.name.c_str(), c.area_um2, c.volume_um3);
+    out << line;
+    for (const auto& [name, n] : c.copies) {
+      std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), n);
+      out << line;
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string over_memory_budget(const BakeEstimate& e, double max_bytes) {
+  std::vector<MemoryTerm> terms = e.memory;
+  std::sort(terms.begin(), terms.end(), [](const MemoryTerm& a, const MemoryTerm& b) { return a.bytes > b.bytes; });
+  std::string rule = "the bake would take about " + gigabytes(e.peak_bytes) + " of memory at its peak, more than the " +
+                     gigabytes(max_bytes) + " allowed (--max-memory; default: what the machine has available). Most of it:";
+  for (const MemoryTerm& t : terms) {
+    if (t.advice.empty() || t.bytes < 0.1 * e.peak_bytes) continue;
+    rule += "\n  " + t.what + ": " + gigabytes(t.bytes) + "; to shrink it: " + t.advice;
+  }
+  return rule;
+}
+
+std::optional<double> parse_byte_size(const std::string& text) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  std::string unit = text.substr(used);
+  for (char& ch : unit) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  if (!unit.empty() && unit.back() == 'B') unit.pop_back();
+  if (!unit.empty() && unit.back() == 'I') unit.pop_back();  // "GiB"
+  double factor = 1.0;
+  if (unit == "K") factor = 1024.0;
+  else if (unit == "M") factor = 1024.0 * 1024.0;
+  else if (unit == "G") factor = 1024.0 * 1024.0 * 1024.0;
+  else if (unit == "T") factor = 1024.0 * 1024.0 * 1024.0 * 1024.0;
+  else if (!unit.empty()) return std::nullopt;
+  if (!(value > 0.0) || !std::isfinite(value)) return std::nullopt;
+  return value * factor;
+}
+
+double available_memory_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kb = 0.0;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024.0;
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+}
+
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+double peak_resident_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return 1024.0 * static_cast<double>(usage.ru_maxrss);  // Linux: KiB
+}
+
+}  // namespace nano::bake
