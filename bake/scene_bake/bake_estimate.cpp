@@ -22,8 +22,9 @@ constexpr double kA2PerUm2 = 1e8;
 constexpr double kA3PerUm3 = 1e12;
 constexpr double kCopiesPerA3PerMillimolar = 1e-3 * 6.02214076e23 / 1e27;
 
-// Cost coefficients, CPU seconds per unit of each stage's work, and bytes per unit of memory,
-// fitted on the bundled scenes (docs/bake-estimate.md).
+// Cost coefficients, CPU seconds per unit of each stage's work and bytes per unit of memory,
+// fitted on the bundled scenes' reports (stages_cpu, stages_peak_memory_bytes) on a 2-core machine:
+// virion, rod cell, red blood cell and blood come within 0.7-1.3x of both (docs/bake-estimate.md).
 struct StageCost {
   const char* stage;
   double seconds_per_work;
@@ -38,11 +39,12 @@ constexpr StageCost kPackage{"package content", 2e-9, 0.3};   // per atom of the
 constexpr double kPatchLipidsKept = 0.75;
 // Along a UV seam of a large membrane, the width (Å) over which copies are checked one by one.
 constexpr double kSeamBand = 230.0;
-constexpr double kBaseBytes = 64e6;
-constexpr double kBytesPerTileAtom = 100.0;
+constexpr double kBaseBytes = 60e6;
+constexpr double kCompressionBytes = 64e6;  // zstd at its high levels, while the package is written
+constexpr double kBytesPerTileAtom = 4.0;
 constexpr double kBytesPerTriangle = 2000.0;
-constexpr double kBytesPerCheckedCopy = 300.0;
-constexpr double kBytesPerCoreBox = 100.0;
+constexpr double kBytesPerCheckedCopy = 450.0;
+constexpr double kBytesPerCoreBox = 2.0;
 constexpr double kBytesPerInstance = 256.0;
 // Of a stage's work, the share that runs on the worker threads.
 constexpr double kParallelShare = 0.8;
@@ -192,13 +194,15 @@ BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vect
   stage(kShells, checked_copies);
   stage(kCoreGrids, core_box_copies);
   stage(kPackage, tile_atoms);
-  const double threads = std::max(1, jobs);
+  e.jobs = std::max(1, jobs);
+  const double threads = e.jobs;
   for (const StageEstimate& s : e.stages) {
     e.cpu_seconds += s.cpu_seconds;
     e.wall_seconds += s.cpu_seconds * ((1.0 - kParallelShare) + kParallelShare / threads);
   }
   e.memory = {
       {"the baker itself", kBaseBytes, ""},
+      {"compressing the package", kCompressionBytes, ""},
       {"tile and cube sets (" + count_text(tile_atoms) + " atoms of copies)", kBytesPerTileAtom * tile_atoms,
        "lower densities or concentrations, a smaller tile_size or cube_size, or fewer tiles or cubes"},
       {"meshes (" + count_text(triangles) + " triangles)", kBytesPerTriangle * triangles,
@@ -216,8 +220,10 @@ BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vect
 std::string describe(const BakeEstimate& e) {
   std::ostringstream out;
   char line[512];
-  std::snprintf(line, sizeof line, "estimate: %.3g s on %s, peak memory %s, %llu instance(s), %.3g represented atoms\n",
-                e.wall_seconds, "this machine's jobs", gigabytes(e.peak_bytes).c_str(),
+  std::snprintf(line, sizeof line,
+                "estimate: about %.2g s with %d job(s) (%.0f CPU s) and %s of memory at the peak; %llu instance(s), %.3g "
+                "represented atoms\n",
+                e.wall_seconds, e.jobs, e.cpu_seconds, gigabytes(e.peak_bytes).c_str(),
                 static_cast<unsigned long long>(e.instances), e.represented_atoms);
   out << line;
   for (const StageEstimate& s : e.stages) {

@@ -43,6 +43,7 @@ struct BakeEstimate {
   std::vector<StageEstimate> stages;
   double cpu_seconds = 0.0;   // all stages after the meshes
   double wall_seconds = 0.0;  // with the bake's worker threads
+  int jobs = 1;
   double peak_bytes = 0.0;    // resident memory at the bake's peak: the sum of `memory`
   std::vector<MemoryTerm> memory;
 };
