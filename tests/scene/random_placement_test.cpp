@@ -98,6 +98,24 @@ TEST(RandomPlacement, NoOverlapAllInsideRigidRotations) {
   }
 }
 
+TEST(RandomPlacement, ThousandsOfCopiesBesideALargeExplicitOneNeverOverlap) {
+  // The grid that finds neighbours must answer what testing every pair answers: checked here pair
+  // by pair, with a scaled-up explicit copy wider than a grid cell in the middle of the box.
+  const Box wide{{-6000, -6000, -6000}, {6000, 6000, 6000}};
+  const SceneDescription s = scene_with({ExplicitInstance{big, translate_rotate_scale({0, 0, 0}, {0, 0, 1}, 0, 8.0)},
+                                         RandomPlacement{small, 3000, wide, 9, 20.0}, RandomPlacement{big, 40, wide, 4, 0.0}});
+  const auto placed = expand_random_instances(s, radii);
+  ASSERT_EQ(placed.size(), 3041u);
+  const auto radius = [&](std::size_t i) { return i == 0 ? 8.0 * radii[0] : radii[placed[i].compartment.index]; };
+  for (std::size_t i = 0; i < placed.size(); ++i)
+    for (std::size_t j = i + 1; j < placed.size(); ++j) {
+      const double gap_needed = j <= 3000 ? 20.0 : 0.0;  // the min_gap of the entry placed later
+      ASSERT_GE(glm::distance(centre_of(placed[i].transform), centre_of(placed[j].transform)),
+                radius(i) + radius(j) + gap_needed - 1e-9)
+          << i << " " << j;
+    }
+}
+
 TEST(RandomPlacement, RotationsCoverTheSphereEvenly) {
   // For uniformly random rotations the image of any fixed axis is uniform on the sphere, so each
   // component has mean 0 and mean square 1/3. 4000 samples: standard error ≈ 0.009 for the mean.
