@@ -314,6 +314,9 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   std::vector<double> mesh_radii;
   for (const CompartmentBake& c : compartments) mesh_radii.push_back(measure_compartment(c.mesh.mesh).extent);
   scene::check_placement_amounts(scene, mesh_radii);
+  // A trial of the random placements with the meshes' own radii (the real one, after the shells,
+  // adds their margin): a box too crowded to fill is refused now, not after the heavy stages.
+  if (scene::expanded_instance_count(scene) > scene.instances.size()) scene::expand_random_instances(scene, mesh_radii);
 
   std::vector<EstimatedMesh> meshes;
   for (const CompartmentBake& c : compartments)
