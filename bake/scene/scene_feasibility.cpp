@@ -48,16 +48,6 @@ std::string short_number(double v) {
 std::string membrane_key(const MembraneDescription& m) { return "membranes." + m.name; }
 std::string soluble_key(const SolubleDescription& s) { return "solubles." + s.name; }
 
-std::string protein_amount_key(const MembraneDescription& m, std::size_t i) {
-  return membrane_key(m) + ".proteins[" + std::to_string(i) + "]." +
-         (m.proteins[i].abundance.unit == SurfaceAbundance::Unit::per_um2 ? "density_per_um2" : "copies_per_tile");
-}
-
-std::string soluble_amount_key(const SolubleDescription& s, std::size_t i) {
-  return soluble_key(s) + ".molecules[" + std::to_string(i) + "]." +
-         (s.molecules[i].abundance.unit == VolumeAbundance::Unit::millimolar ? "concentration_mM" : "copies_per_um3");
-}
-
 // Copies per Å² of membrane, and back in the scene's own unit.
 double per_a2(const MembraneDescription& m, const SurfaceAbundance& a) {
   return a.unit == SurfaceAbundance::Unit::per_um2 ? a.value / kA2PerUm2 : a.value / (m.tile_size * m.tile_size);
@@ -131,7 +121,7 @@ void check_membrane_places_some(const SceneDescription& scene, const MembraneDes
     for (std::size_t i = 0; i < m.proteins.size(); ++i) {
       const double expected = per_a2(m, m.proteins[i].abundance) * set_area;
       if (m.proteins[i].abundance.value > 0.0 && expected < 1.0)
-        refuse(scene, protein_amount_key(m, i),
+        refuse(scene, amount_key(m, i),
                short_number(m.proteins[i].abundance.value) + " places no copy: the " + std::to_string(m.tiles) +
                    " tiles of " + short_number(m.tile_size) + " Å hold " + short_number(set_area / kA2PerUm2) +
                    " µm² of membrane, so at least " + surface_amount_text(m, m.proteins[i].abundance, 1.0 / set_area) +
@@ -144,7 +134,7 @@ void check_soluble_places_some(const SceneDescription& scene, const SolubleDescr
     for (std::size_t i = 0; i < s.molecules.size(); ++i) {
       const double expected = per_a3(s.molecules[i].abundance) * set_volume;
       if (s.molecules[i].abundance.value > 0.0 && expected < 1.0)
-        refuse(scene, soluble_amount_key(s, i),
+        refuse(scene, amount_key(s, i),
                short_number(s.molecules[i].abundance.value) + " places no copy: the " + std::to_string(s.cubes) +
                    " cubes of " + short_number(s.cube_size) + " Å hold " + short_number(set_volume / kA3PerUm3) +
                    " µm³, so at least " + volume_amount_text(s.molecules[i].abundance, 1.0 / set_volume) +
@@ -158,6 +148,16 @@ std::string too_many_triangles(double triangles) {
 }
 
 }  // namespace
+
+std::string amount_key(const MembraneDescription& m, std::size_t i) {
+  return membrane_key(m) + ".proteins[" + std::to_string(i) + "]." +
+         (m.proteins.at(i).abundance.unit == SurfaceAbundance::Unit::per_um2 ? "density_per_um2" : "copies_per_tile");
+}
+
+std::string amount_key(const SolubleDescription& s, std::size_t i) {
+  return soluble_key(s) + ".molecules[" + std::to_string(i) + "]." +
+         (s.molecules.at(i).abundance.unit == VolumeAbundance::Unit::millimolar ? "concentration_mM" : "copies_per_um3");
+}
 
 void check_scene_amounts(const SceneDescription& scene) {
   for (const MembraneDescription& m : scene.membranes) check_edge(scene, membrane_key(m) + ".tile_size", m.tile_size, "Wang square");
@@ -226,7 +226,7 @@ void check_molecule_amounts(const SceneDescription& scene, std::span<const Molec
         rule += ", at most " + surface_amount_text(m, protein.abundance, most);
         if (over_leaflet && before > 0.0)
           rule += " beside the proteins listed before it (they cover " + short_number(100.0 * before) + "% of the leaflet)";
-        refuse(scene, protein_amount_key(m, i), rule);
+        refuse(scene, amount_key(m, i), rule);
       }
       outer = covered_outer;
       inner = covered_inner;
@@ -255,7 +255,7 @@ void check_molecule_amounts(const SceneDescription& scene, std::span<const Molec
         if (filled > 0.0)
           rule += " beside the molecules listed before it (they fill " + short_number(100.0 * filled) + "%)";
         rule += " (atoms fill at most " + short_number(100.0 * kMaxSolubleVolumeFraction) + "% of space, as close-packed spheres)";
-        refuse(scene, soluble_amount_key(s, i), rule);
+        refuse(scene, amount_key(s, i), rule);
       }
       filled += fraction;
     }

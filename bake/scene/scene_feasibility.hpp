@@ -9,6 +9,7 @@
 // molecules and meshes, so the scene fuzzer exercises it without reading a file.
 #include <cstddef>
 #include <span>
+#include <string>
 
 #include "bake/scene/scene_description.hpp"
 
@@ -45,6 +46,11 @@ inline constexpr double kMaxCompartmentExtent = 1048576.0;
 inline constexpr double kMinTileSize = 10.0, kMaxTileSize = 100000.0;
 // Proxy meshes are low-poly.
 inline constexpr double kMaxMeshTriangles = 4e6;
+
+// The key path of a membrane protein's amount, or of a soluble's, in the unit the scene wrote it
+// in ("membranes.envelope.proteins[2].density_per_um2").
+std::string amount_key(const MembraneDescription& membrane, std::size_t protein);
+std::string amount_key(const SolubleDescription& soluble, std::size_t molecule);
 
 // Checks on the description alone: tile and cube sizes, mesh sizes, instance counts, random
 // placements against their boxes. Run before any file is read.

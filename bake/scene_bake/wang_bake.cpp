@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bake/scene/scene_feasibility.hpp"
 #include "bake/tiles/wang_sets.hpp"
 #include "common/error.hpp"
 
@@ -36,6 +37,15 @@ void merge_densities_by_name(std::vector<tiles::MoleculeDensity>& densities) {
     it->copies_in_set += d.copies_in_set;
   }
   densities = std::move(merged);
+}
+
+// The packers name the molecule whose amount they cannot reach; the user wrote a key, which the
+// scene file's name is put before (bake_scene).
+template <class Entries, class Set>
+[[noreturn]] void rethrow_at_amount(const InputError& e, const Entries& entries, const Set& set, const std::string& more) {
+  for (std::size_t i = 0; i < entries.size(); ++i)
+    if (e.where() == entries[i].molecule.name) throw InputError("", scene::amount_key(set, i), e.rule() + more);
+  throw InputError(e.file(), e.where(), e.rule() + more);
 }
 
 int integer_power(int base, int exponent) {
@@ -124,15 +134,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
                   " (tiles packed to survive chart stretch %.3g, normals turning %.3g rad/Å and tilting %.3g "
                   "from their faces: a finer mesh lowers the tilt, a more even UV layout the stretch)",
                   1.0 + surface.lateral_stretch, surface.curvature, surface.tilt);
-    // The packer names the molecule; the user wrote a key.
-    for (std::size_t i = 0; i < membrane.proteins.size(); ++i)
-      if (e.where() == membrane.proteins[i].molecule.name)
-        throw InputError("", "membranes." + membrane.name + ".proteins[" + std::to_string(i) + "]." +
-                                 (membrane.proteins[i].abundance.unit == scene::SurfaceAbundance::Unit::per_um2
-                                      ? "density_per_um2"
-                                      : "copies_per_tile"),
-                         e.rule() + bounds);
-    throw InputError(e.file(), e.where(), e.rule() + bounds);
+    rethrow_at_amount(e, membrane.proteins, membrane, bounds);
   }
   merge_densities_by_name(baked.set.densities);
   return baked;
@@ -163,14 +165,7 @@ BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
   try {
     baked.set = tiles::make_soluble_cubes(request);
   } catch (const InputError& e) {
-    for (std::size_t i = 0; i < soluble.molecules.size(); ++i)
-      if (e.where() == soluble.molecules[i].molecule.name)
-        throw InputError("", "solubles." + soluble.name + ".molecules[" + std::to_string(i) + "]." +
-                                 (soluble.molecules[i].abundance.unit == scene::VolumeAbundance::Unit::millimolar
-                                      ? "concentration_mM"
-                                      : "copies_per_um3"),
-                         e.rule());
-    throw;
+    rethrow_at_amount(e, soluble.molecules, soluble, "");
   }
   baked.flat_clearance = request.budget.clearance;
   return baked;

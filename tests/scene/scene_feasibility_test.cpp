@@ -196,6 +196,21 @@ TEST(SceneFeasibility, RandomPlacementsAgainstTheirBox) {
   EXPECT_INPUT_ERROR(check_placement_amounts(at(1100), std::vector<double>{560.0}), "instances[0].count", "at most 1005 (or a larger box)");
 }
 
+TEST(SceneFeasibility, AmountKeysAreInTheUnitTheSceneWrote) {
+  const auto s = scene_with([](Json& d) {
+    auto& p = d["membranes"]["envelope"]["proteins"][0];
+    p.erase("density_per_um2");
+    p["copies_per_tile"] = 1;
+    auto& m = d["solubles"]["lumen"]["molecules"][1];
+    m.erase("concentration_mM");
+    m["copies_per_um3"] = 1000;
+  });
+  EXPECT_EQ(amount_key(s.membranes[0], 0), "membranes.envelope.proteins[0].copies_per_tile");
+  EXPECT_EQ(amount_key(s.membranes[0], 1), "membranes.envelope.proteins[1].density_per_um2");
+  EXPECT_EQ(amount_key(s.solubles[0], 0), "solubles.lumen.molecules[0].concentration_mM");
+  EXPECT_EQ(amount_key(s.solubles[0], 1), "solubles.lumen.molecules[1].copies_per_um3");
+}
+
 TEST(SceneFeasibility, MeasuresMustMatchTheScene) {
   EXPECT_THROW(check_molecule_amounts(scene_with(), std::vector<MoleculeMeasure>(2)), std::invalid_argument);
 }
