@@ -97,8 +97,10 @@ TEST(BakeEstimate, CopiesFollowTheDensityTimesTheAreaAndTheConcentrationTimesThe
   EXPECT_NEAR(e.compartments[0].area_um2, 4 * kPi * 1e6 / 1e8, 0.01 * 4 * kPi * 1e6 / 1e8);
   ASSERT_GE(e.compartments[0].copies.size(), 1u);
   EXPECT_EQ(e.compartments[0].copies[0].first, "rod");
-  // 1000 per µm² on the surface plus 1 mM (6.02e-7 per Å³) in the volume.
-  const double expected = 1000.0 * measure.area / 1e8 + 6.02214076e-7 * measure.volume;
+  // 1000 per µm² on the surface plus 1 mM (6.02e-7 per Å³) in the volume inside the membrane: the
+  // solubles' centres keep half the bilayer (20 Å) and their own radius (5.7 Å) from the mesh.
+  const double inside = measure.volume - measure.area * (20.0 + 5.7);
+  const double expected = 1000.0 * measure.area / 1e8 + 6.02214076e-7 * inside;
   EXPECT_NEAR(e.compartments[0].copies[0].second, expected, 0.01 * expected);
   EXPECT_EQ(e.instances, 1u);
   EXPECT_GT(e.peak_bytes, 0.0);

@@ -315,14 +315,15 @@ TEST(WangBake, MembraneTilesReachTheDensityOrSayWhatTheSurfaceCosts) {
   EXPECT_EQ(flat.set.densities[0].name, "blob");
   EXPECT_NEAR(flat.set.densities[0].achieved, flat.set.densities[0].requested, 0.1 * flat.set.densities[0].requested);
   // Packed densely enough that a strongly tilted, stretched surface cannot hold it: the error names
-  // the set's molecule and says what the meshes cost and what helps.
+  // the scene key of the amount and says what the meshes cost and what helps.
   membrane.proteins[0].abundance.value = 30.0;
   try {
     bake::bake_membrane_tiles(membrane, library, nullptr, {0.5f, 0.01f, 0.4f, 50.f}, 3);
     ADD_FAILURE() << "an impossible density was accepted";
   } catch (const InputError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("blob"), std::string::npos) << what;
+    EXPECT_EQ(e.where(), "membranes.m.proteins[0].copies_per_tile") << what;
+    EXPECT_NE(what.find("best achieved"), std::string::npos) << what;
     EXPECT_NE(what.find("chart stretch 1.5"), std::string::npos) << what;
     EXPECT_NE(what.find("a finer mesh lowers the tilt"), std::string::npos) << what;
   }
