@@ -1,5 +1,6 @@
 #include "bake/scene/effects_parser.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
@@ -11,12 +12,26 @@
 namespace nano::scene {
 namespace {
 
+// The same vector scaled by the power of two that brings its largest component into [1, 2).
+// Exact, so whatever is normalised from it has the bits it had from `v` (when that did not
+// overflow), yet one written as [1e-200, 0, 0] or [1e300, 1e300, 0] no longer under- or overflows.
+glm::dvec3 rescaled(const glm::dvec3& v) {
+  const int e = std::ilogb(std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}));
+  return {std::ldexp(v.x, -e), std::ldexp(v.y, -e), std::ldexp(v.z, -e)};
+}
+
 // Stored with a unit normal, so that n·p + d is a signed distance in Å.
 glm::dvec4 parse_plane(const JsonCursor& c) {
   const glm::dvec4 p = c.vec4();
-  const double length = glm::length(glm::dvec3(p));
-  if (length == 0.0) c.fail("the plane normal [nx, ny, nz] must be non-zero, got " + c.shown());
-  return p / length;
+  const glm::dvec3 normal(p);
+  if (normal == glm::dvec3(0.0)) c.fail("the plane normal [nx, ny, nz] must be non-zero, got " + c.shown());
+  // n and d scaled alike (by the power of two of `rescaled`), then divided by |n|.
+  const int e = std::ilogb(std::max({std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)}));
+  const glm::dvec3 n = rescaled(normal);
+  const double length = glm::length(n);
+  const glm::dvec4 plane(n / length, std::ldexp(p.w, -e) / length);
+  if (!std::isfinite(plane.w)) c.fail("the plane's offset d / |n| is beyond a double, got " + c.shown());
+  return plane;
 }
 
 Clipping parse_clipping(const JsonCursor& c) {
@@ -115,6 +130,9 @@ Box parse_box(const JsonCursor& c) {
   const Box box{corners[0].vec3(), corners[1].vec3()};
   if (!(box.min.x < box.max.x && box.min.y < box.max.y && box.min.z < box.max.z))
     c.fail("expected min < max on every axis, got " + c.shown());
+  const glm::dvec3 size = box.max - box.min;
+  if (!std::isfinite(size.x) || !std::isfinite(size.y) || !std::isfinite(size.z))
+    c.fail("the box is larger than a double can measure (max - min overflows), got " + c.shown());
   return box;
 }
 
@@ -136,9 +154,12 @@ Camera parse_camera(const JsonCursor& c) {
   const JsonCursor look_at = c.required("look_at");
   cam.at = look_at.vec3();
   if (cam.at == cam.eye) look_at.fail("look_at must differ from position");
+  const glm::dvec3 towards = cam.at - cam.eye;  // not 0: IEEE subtraction of distinct numbers never is
+  if (!std::isfinite(towards.x) || !std::isfinite(towards.y) || !std::isfinite(towards.z))
+    look_at.fail("look_at is too far from position: look_at - position overflows a double");
   const auto up = c.optional("up");
   if (up) cam.up = up->unit_vec3();
-  const glm::dvec3 view = glm::normalize(cam.at - cam.eye);
+  const glm::dvec3 view = glm::normalize(rescaled(towards));
   // Nearly parallel up and view directions leave the camera's roll undefined.
   if (glm::length(glm::cross(view, cam.up)) < 1e-6) {
     if (up) up->fail("up must not be parallel to the view direction");

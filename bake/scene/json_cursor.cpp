@@ -1,5 +1,6 @@
 #include "bake/scene/json_cursor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -16,6 +17,14 @@ std::string format_number(double v) {
   s.precision(std::numeric_limits<double>::max_digits10);
   s << v;
   return s.str();
+}
+
+// The same vector scaled by the power of two that brings its largest component into [1, 2).
+// Exact, so whatever is normalised from it has the bits it had from `v` (when that did not
+// overflow), yet one written as [1e-200, 0, 0] or [1e300, 1e300, 0] no longer under- or overflows.
+glm::dvec3 rescaled(const glm::dvec3& v) {
+  const int e = std::ilogb(std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}));
+  return {std::ldexp(v.x, -e), std::ldexp(v.y, -e), std::ldexp(v.z, -e)};
 }
 
 std::string type_name(const Json& v) {
@@ -81,7 +90,10 @@ std::optional<JsonCursor> JsonCursor::optional(std::string_view key) const {
 std::vector<std::pair<std::string, JsonCursor>> JsonCursor::members() const {
   expect_object();
   std::vector<std::pair<std::string, JsonCursor>> out;
-  for (const auto& [key, value] : value_->items()) out.emplace_back(key, child(key));
+  // From the member itself, not child(key): ordered_json finds a key by a linear search, which
+  // would make a map of n names cost n².
+  for (const auto& [key, value] : value_->items())
+    out.emplace_back(key, JsonCursor(value, *file_, path_.empty() ? key : path_ + "." + key));
   return out;
 }
 
@@ -187,7 +199,7 @@ glm::dvec3 JsonCursor::non_zero_vec3() const {
 }
 
 glm::dvec3 JsonCursor::unit_vec3() const {
-  const glm::dvec3 v = non_zero_vec3();
+  const glm::dvec3 v = rescaled(non_zero_vec3());
   // Division, not glm::normalize's multiplication by an inverse square root, so that an axis
   // such as [0, 3, 4] becomes exactly [0, 0.6, 0.8].
   return v / glm::length(v);

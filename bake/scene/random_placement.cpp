@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -54,55 +56,99 @@ std::string format(double v) {
   return s.str();
 }
 
-// The spheres placed so far, found by a uniform grid, so that a placement of n copies costs O(n),
-// not O(n^2) (10^6 copies: seconds, not hours). Spheres wider than a cell (an explicit instance
-// scaled up) are few and are checked one by one. Answers exactly what testing every sphere would.
+// The spheres placed so far, found by grids, so that a placement of n copies costs O(n), not
+// O(n^2) (10^6 copies: seconds, not hours). Spheres of different sizes would defeat one grid (a
+// cell as wide as a cell body holds thousands of virions), so each power of two of the radius has
+// its own level, whose cells are as wide as its spheres plus the widest min_gap they are placed
+// with. A query looks at the cells of each level that the candidate can reach, or, when those are
+// more than the level's spheres, at its spheres one by one; a level whose spheres all lie out of
+// reach is skipped at once. Answers exactly what testing every sphere would.
 class PlacedSpheres {
 public:
-  explicit PlacedSpheres(double cell) : cell_(cell) {}
+  // `cell_for(level)`: the cell width of each level that random copies are placed in.
+  explicit PlacedSpheres(std::unordered_map<int, double> cell_for) : cell_for_(std::move(cell_for)) {}
+
+  // Radius in [2^(k-1), 2^k): level k. (ilogb of 0, an infinity or NaN is INT_MIN or INT_MAX.)
+  static int level_of(double radius) { return std::clamp(std::ilogb(radius), -1075, 1023) + 1; }
 
   void add(const Sphere& s) {
-    if (s.radius > 0.5 * cell_) {
-      large_.push_back(s);
-      return;
+    const int k = level_of(s.radius);
+    auto it = levels_.find(k);
+    if (it == levels_.end()) {
+      const auto cell = cell_for_.find(k);
+      it = levels_.emplace(k, Level(cell != cell_for_.end() ? cell->second : 2.0 * std::ldexp(1.0, k))).first;
     }
-    const glm::dvec3 k = cell_of(s.centre);
-    cells_[key(k.x, k.y, k.z)].push_back(s);
+    it->second.add(s);
   }
 
   bool clear_of_all(const Sphere& candidate, double gap) const {
-    const auto clear = [&](const Sphere& s) {
-      return glm::distance(s.centre, candidate.centre) >= s.radius + candidate.radius + gap;
-    };
-    for (const Sphere& s : large_)
-      if (!clear(s)) return false;
-    // Any sphere in a cell reaches at most half a cell beyond it.
-    const double reach = candidate.radius + 0.5 * cell_ + gap;
-    const glm::dvec3 lo = cell_of(candidate.centre - reach), hi = cell_of(candidate.centre + reach);
-    for (double z = lo.z; z <= hi.z; ++z)
-      for (double y = lo.y; y <= hi.y; ++y)
-        for (double x = lo.x; x <= hi.x; ++x) {
-          const auto it = cells_.find(key(x, y, z));
-          if (it == cells_.end()) continue;
-          for (const Sphere& s : it->second)
-            if (!clear(s)) return false;
-        }
+    for (const auto& [k, level] : levels_)
+      if (!level.clear_of_all(candidate, gap)) return false;
     return true;
   }
 
 private:
-  // Cell coordinates, clamped far beyond any box a scene can hold a copy in.
-  glm::dvec3 cell_of(const glm::dvec3& p) const {
-    return glm::clamp(glm::floor(p / cell_), glm::dvec3(-kLimit), glm::dvec3(kLimit));
-  }
-  static std::uint64_t key(double x, double y, double z) {
-    const auto part = [](double v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + kLimit) & 0x1FFFFF; };
-    return part(x) | part(y) << 21 | part(z) << 42;
-  }
-  static constexpr double kLimit = 1 << 20;
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<Sphere>> cells_;
-  std::vector<Sphere> large_;
+  class Level {
+  public:
+    explicit Level(double cell) : cell_(cell) {}
+
+    void add(const Sphere& s) {
+      if (all_.empty()) lo_ = hi_ = s.centre;
+      lo_ = glm::min(lo_, s.centre);
+      hi_ = glm::max(hi_, s.centre);
+      largest_ = std::max(largest_, s.radius);
+      const glm::dvec3 k = cell_of(s.centre);
+      cells_[key(k.x, k.y, k.z)].push_back(static_cast<std::uint32_t>(all_.size()));
+      all_.push_back(s);
+    }
+
+    bool clear_of_all(const Sphere& candidate, double gap) const {
+      const auto clear = [&](const Sphere& s) {
+        return glm::distance(s.centre, candidate.centre) >= s.radius + candidate.radius + gap;
+      };
+      // Every sphere the candidate can touch has its centre within `reach` of the candidate's
+      // (a hair more, so that rounding never leaves one out).
+      const double sum = candidate.radius + largest_ + gap;
+      const double reach = sum + 1e-9 * (sum + glm::length(candidate.centre));
+      const glm::dvec3 from = glm::max(candidate.centre - reach, lo_), to = glm::min(candidate.centre + reach, hi_);
+      if (from.x > to.x || from.y > to.y || from.z > to.z) return true;  // all out of reach
+      const glm::dvec3 lo = cell_of(from), hi = cell_of(to);
+      const glm::dvec3 span = hi - lo + 1.0;
+      if (span.x * span.y * span.z > static_cast<double>(all_.size())) {
+        for (const Sphere& s : all_)
+          if (!clear(s)) return false;
+        return true;
+      }
+      for (double z = lo.z; z <= hi.z; ++z)
+        for (double y = lo.y; y <= hi.y; ++y)
+          for (double x = lo.x; x <= hi.x; ++x) {
+            const auto it = cells_.find(key(x, y, z));
+            if (it == cells_.end()) continue;
+            for (const std::uint32_t i : it->second)
+              if (!clear(all_[i])) return false;
+          }
+      return true;
+    }
+
+  private:
+    // Cell coordinates, clamped far beyond any box a scene can hold a copy in.
+    glm::dvec3 cell_of(const glm::dvec3& p) const {
+      return glm::clamp(glm::floor(p / cell_), glm::dvec3(-kLimit), glm::dvec3(kLimit));
+    }
+    static std::uint64_t key(double x, double y, double z) {
+      const auto part = [](double v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + kLimit) & 0x1FFFFF; };
+      return part(x) | part(y) << 21 | part(z) << 42;
+    }
+    static constexpr double kLimit = 1 << 20;
+    double cell_;
+    double largest_ = 0.0;
+    glm::dvec3 lo_{0.0}, hi_{0.0};  // bounds of the centres
+    std::vector<Sphere> all_;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+  };
+
+  std::unordered_map<int, double> cell_for_;
+  std::map<int, Level> levels_;
 };
 
 void place_copies(const RandomPlacement& entry, std::size_t entry_index, double radius,
@@ -160,13 +206,16 @@ std::vector<PlacedInstance> expand_random_instances(const SceneDescription& scen
       throw std::invalid_argument("expand_random_instances: bounding radii must be finite and > 0");
 
   const std::string scene_file = scene.source.string();
-  // Cells as wide as the largest randomly placed sphere plus its gap: a candidate meets the
-  // spheres of at most the cells around its own.
-  double cell = 1.0;
+  // Each level's cells as wide as the largest sphere placed in it plus the widest gap it is placed
+  // with: a candidate meets the spheres of its own level in at most the cells around its own.
+  std::unordered_map<int, double> cell_for;
   for (const InstanceEntry& e : scene.instances)
-    if (const auto* random = std::get_if<RandomPlacement>(&e))
-      cell = std::max(cell, 2.0 * bounding_radius.at(random->compartment.index) + random->min_gap);
-  PlacedSpheres placed(cell);
+    if (const auto* random = std::get_if<RandomPlacement>(&e)) {
+      const double r = bounding_radius.at(random->compartment.index);
+      double& cell = cell_for.try_emplace(PlacedSpheres::level_of(r), 0.0).first->second;
+      cell = std::max({cell, 2.0 * std::ldexp(1.0, PlacedSpheres::level_of(r)), 2.0 * r + random->min_gap});
+    }
+  PlacedSpheres placed(std::move(cell_for));
   std::vector<PlacedInstance> out;
   out.reserve(expanded_instance_count(scene));
   // Explicit instances claim their space first, wherever they appear in the list, so a random

@@ -2,6 +2,8 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
@@ -16,9 +18,19 @@ namespace {
 constexpr std::int64_t max_tile_colours = 16;
 constexpr std::int64_t max_triangles = 100'000'000;
 constexpr std::int64_t max_copies_per_placement = 10'000'000;
+// Names are part of every key path below them, and each checked value keeps its path.
+constexpr std::size_t max_name_length = 100;
+
+// Blames `owner` (the map, so that the message does not repeat a megabyte-long name).
+void check_name_length(const JsonCursor& owner, const std::string& name) {
+  if (name.size() > max_name_length)
+    owner.fail("the name \"" + name.substr(0, 20) + "...\" has " + std::to_string(name.size()) +
+               " characters; a name may have at most " + std::to_string(max_name_length));
+}
 
 // Names appear in key paths, so they may not contain the path separators "." "[" "]".
 void check_name(const JsonCursor& map, const std::string& name) {
+  check_name_length(map, name);
   const bool ok = !name.empty() && name.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
                                                           "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") == std::string::npos;
   if (!ok)
@@ -30,14 +42,36 @@ std::filesystem::path resolve_path(const JsonCursor& c, const std::filesystem::p
   return p.is_absolute() ? p.lexically_normal() : (folder / p).lexically_normal();
 }
 
+// The names of one finished map (molecules, membranes, ...) and where each stands in its vector,
+// so that resolving a reference is no search (10^5 instances may name one of 10^5 compartments).
 template <class Named>
-NameRef resolve(const JsonCursor& c, const std::vector<Named>& defined, const std::string& kind) {
+class Defined {
+public:
+  explicit Defined(const std::vector<Named>& all) : all_(all) {
+    for (std::size_t i = 0; i < all.size(); ++i) index_.emplace(all[i].name, i);  // the first of a name wins
+  }
+  const std::vector<Named>& all() const { return all_; }
+  const std::size_t* find(const std::string& name) const {
+    const auto it = index_.find(name);
+    return it == index_.end() ? nullptr : &it->second;
+  }
+
+private:
+  const std::vector<Named>& all_;                             // complete: not changed while this lives
+  std::unordered_map<std::string_view, std::size_t> index_;  // views of all_'s names
+};
+
+template <class Named>
+NameRef resolve(const JsonCursor& c, const Defined<Named>& defined, const std::string& kind) {
   const std::string name = c.string();
-  for (std::size_t i = 0; i < defined.size(); ++i)
-    if (defined[i].name == name) return {name, i};
+  if (const std::size_t* i = defined.find(name)) return {name, *i};
+  constexpr std::size_t listed = 10;
   std::string known;
-  for (const Named& d : defined) known += (known.empty() ? "" : ", ") + d.name;
-  c.fail("unknown " + kind + " \"" + name + "\" (" + (known.empty() ? "none are defined" : "defined: " + known) + ")");
+  for (std::size_t i = 0; i < defined.all().size() && i < listed; ++i)
+    known += (known.empty() ? "" : ", ") + defined.all()[i].name;
+  if (defined.all().size() > listed) known += ", ... (" + std::to_string(defined.all().size()) + " in all)";
+  c.fail("unknown " + kind + " \"" + name.substr(0, 100) + "\" (" +
+         (known.empty() ? "none are defined" : "defined: " + known) + ")");
 }
 
 int hex_digit(char ch) {
@@ -123,7 +157,7 @@ LipidPatchDescription parse_lipid_patch(const JsonCursor& patch, const std::file
 }
 
 MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
-                                   const std::vector<MoleculeDescription>& molecules, const std::filesystem::path& folder) {
+                                   const Defined<MoleculeDescription>& molecules, const std::filesystem::path& folder) {
   c.only_keys({"tile_size", "edge_colours", "tiles", "proteins", "lipids", "lipid_patch", "lipid_mix"});
   MembraneDescription m;
   m.name = name;
@@ -176,7 +210,7 @@ MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
 }
 
 SolubleDescription parse_soluble(const std::string& name, const JsonCursor& c,
-                                 const std::vector<MoleculeDescription>& molecules) {
+                                 const Defined<MoleculeDescription>& molecules) {
   c.only_keys({"cube_size", "face_colours", "cubes", "molecules", "clearance"});
   SolubleDescription s;
   s.name = name;
@@ -270,14 +304,15 @@ MeshSource parse_mesh(const JsonCursor& c, const std::filesystem::path& folder) 
   return mesh;
 }
 
-CompartmentDescription parse_compartment(const std::string& name, const JsonCursor& c, const SceneDescription& scene,
-                                         const std::filesystem::path& folder) {
+CompartmentDescription parse_compartment(const std::string& name, const JsonCursor& c,
+                                         const Defined<MembraneDescription>& membranes,
+                                         const Defined<SolubleDescription>& solubles, const std::filesystem::path& folder) {
   c.only_keys({"mesh", "membrane", "soluble", "scale"});
   CompartmentDescription comp;
   comp.name = name;
   comp.mesh = parse_mesh(c.required("mesh"), folder);
-  if (const auto m = c.optional("membrane")) comp.membrane = resolve(*m, scene.membranes, "membrane");
-  if (const auto s = c.optional("soluble")) comp.soluble = resolve(*s, scene.solubles, "soluble");
+  if (const auto m = c.optional("membrane")) comp.membrane = resolve(*m, membranes, "membrane");
+  if (const auto s = c.optional("soluble")) comp.soluble = resolve(*s, solubles, "soluble");
   if (!comp.membrane && !comp.soluble) c.fail("a compartment needs a \"membrane\", a \"soluble\" or both");
   if (const auto scale = c.optional("scale")) {
     if (comp.mesh.diameter || comp.mesh.volume) scale->fail("give the mesh a \"scale\" or a \"diameter\"/\"volume\", not both");
@@ -286,21 +321,22 @@ CompartmentDescription parse_compartment(const std::string& name, const JsonCurs
   return comp;
 }
 
-InstanceEntry parse_instance(const JsonCursor& c, std::size_t index, const SceneDescription& scene) {
+InstanceEntry parse_instance(const JsonCursor& c, std::size_t index, std::uint64_t scene_seed,
+                             const Defined<CompartmentDescription>& compartments) {
   const bool random = c.has("count") || c.has("box") || c.has("seed") || c.has("min_gap");
   if (!random) {
     c.only_keys({"compartment", "transform", "matrix"});
     ExplicitInstance e;
-    e.compartment = resolve(c.required("compartment"), scene.compartments, "compartment");
+    e.compartment = resolve(c.required("compartment"), compartments, "compartment");
     e.transform = parse_placement_transform(c);
     return e;
   }
   c.only_keys({"compartment", "count", "box", "seed", "min_gap"});
   RandomPlacement r;
-  r.compartment = resolve(c.required("compartment"), scene.compartments, "compartment");
+  r.compartment = resolve(c.required("compartment"), compartments, "compartment");
   r.count = static_cast<int>(c.required("count").integer_between(1, max_copies_per_placement));
   r.box = parse_box(c.required("box"));
-  r.seed = c.has("seed") ? c.required("seed").unsigned_integer() : derive_placement_seed(scene.seed, index);
+  r.seed = c.has("seed") ? c.required("seed").unsigned_integer() : derive_placement_seed(scene_seed, index);
   if (const auto gap = c.optional("min_gap")) r.min_gap = gap->number_at_least(0.0);
   return r;
 }
@@ -311,6 +347,7 @@ void for_each_named(const JsonCursor& root, const char* key, Parse parse) {
   const auto map = root.optional(key);
   if (!map) return;
   for (const auto& [name, value] : map->members()) {
+    check_name_length(*map, name);
     check_name(value, name);
     parse(name, value);
   }
@@ -340,18 +377,23 @@ SceneDescription parse_scene_description(const Json& document, const std::filesy
   for_each_named(root, "molecules", [&](const std::string& name, const JsonCursor& c) {
     scene.molecules.push_back(parse_molecule(name, c, folder));
   });
+  const Defined molecules(scene.molecules);
   for_each_named(root, "membranes", [&](const std::string& name, const JsonCursor& c) {
-    scene.membranes.push_back(parse_membrane(name, c, scene.molecules, folder));
+    scene.membranes.push_back(parse_membrane(name, c, molecules, folder));
   });
   for_each_named(root, "solubles", [&](const std::string& name, const JsonCursor& c) {
-    scene.solubles.push_back(parse_soluble(name, c, scene.molecules));
+    scene.solubles.push_back(parse_soluble(name, c, molecules));
   });
+  const Defined membranes(scene.membranes);
+  const Defined solubles(scene.solubles);
   if (root.required("compartments").members().empty()) root.required("compartments").fail("expected at least one compartment");
   for_each_named(root, "compartments", [&](const std::string& name, const JsonCursor& c) {
-    scene.compartments.push_back(parse_compartment(name, c, scene, folder));
+    scene.compartments.push_back(parse_compartment(name, c, membranes, solubles, folder));
   });
+  const Defined compartments(scene.compartments);
   const auto instances = root.required("instances").elements(1);
-  for (std::size_t i = 0; i < instances.size(); ++i) scene.instances.push_back(parse_instance(instances[i], i, scene));
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    scene.instances.push_back(parse_instance(instances[i], i, scene.seed, compartments));
   if (const auto effects = root.optional("effects")) scene.effects = parse_effects(*effects, expanded_instance_count(scene));
   if (const auto camera = root.optional("camera")) scene.camera = parse_camera(*camera);
   return scene;
