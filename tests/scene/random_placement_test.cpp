@@ -116,6 +116,22 @@ TEST(RandomPlacement, ThousandsOfCopiesBesideALargeExplicitOneNeverOverlap) {
     }
 }
 
+TEST(RandomPlacement, CopiesOfVeryDifferentSizesNeverOverlap) {
+  // A cell-sized copy placed at random among thousands of virion-sized ones: each size has its own
+  // grid, and every pair is still checked here one by one.
+  const std::vector<double> mixed = {20000.0, 100.0};
+  const Box wide{{-40000, -40000, -40000}, {40000, 40000, 40000}};
+  const SceneDescription s =
+      scene_with({RandomPlacement{big, 2, wide, 3, 0.0}, RandomPlacement{small, 3000, wide, 5, 50.0}});
+  const auto placed = expand_random_instances(s, mixed);
+  ASSERT_EQ(placed.size(), 3002u);
+  for (std::size_t i = 0; i < placed.size(); ++i)
+    for (std::size_t j = i + 1; j < placed.size(); ++j)
+      ASSERT_GE(glm::distance(centre_of(placed[i].transform), centre_of(placed[j].transform)),
+                mixed[placed[i].compartment.index] + mixed[placed[j].compartment.index] + (j >= 2 ? 50.0 : 0.0) - 1e-9)
+          << i << " " << j;
+}
+
 TEST(RandomPlacement, RotationsCoverTheSphereEvenly) {
   // For uniformly random rotations the image of any fixed axis is uniform on the sphere, so each
   // component has mean 0 and mean square 1/3. 4000 samples: standard error ≈ 0.009 for the mean.
