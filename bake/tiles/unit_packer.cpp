@@ -189,7 +189,7 @@ public:
         if (!specs_[si].densify) continue;
         const int darts = static_cast<int>(std::ceil(settings_.relaxation_darts * static_cast<double>(units_.size())));
         for (int k = 0; k < darts && achieved_per_tile[si] < wanted - 1e-9; ++k) {
-          const double added = insert(si, rng);
+          const double added = insert(si, rng, wanted - achieved_per_tile[si]);
           achieved_per_tile[si] += added;
           inserted |= added > 0.0;
         }
@@ -365,13 +365,18 @@ private:
 
   // One insertion attempt for spec si: a unit drawn in proportion to how much of a tile its zone
   // covers, the emptiest of a few random points of the zone (largest distance to the bounding
-  // spheres around it), a few orientations there. Returns the copies per tile added.
-  double insert(size_t si, SplitMix64& rng) {
+  // spheres around it), a few orientations there. Returns the copies per tile added. Only units
+  // whose copy brings the density closer to the request take part: a copy in a unit shared by
+  // every tile adds a whole copy per tile, and short by a tenth of one, adding it would overshoot
+  // ninefold (a protein at 200 per µm² came out at 1540).
+  double insert(size_t si, SplitMix64& rng, double shortfall_per_tile) {
     const PlacementSpec& spec = specs_[si];
     double total = 0.0;
     std::vector<double> weight(units_.size());
     for (size_t a = 0; a < units_.size(); ++a)
-      total += weight[a] = units_[a].per_tile * zone_measure(units_[a].mask, spec.band, D_, S_);
+      total += weight[a] = units_[a].per_tile < 2.0 * shortfall_per_tile
+                               ? units_[a].per_tile * zone_measure(units_[a].mask, spec.band, D_, S_)
+                               : 0.0;
     if (!(total > 0.0)) return 0.0;
     double pick = rng.uniform(0.0, total);
     size_t a = 0;

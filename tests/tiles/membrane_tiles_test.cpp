@@ -417,3 +417,27 @@ TEST(MembraneTiles, ImpossibleRequestsThrowInputError) {
 
 }  // namespace
 }  // namespace nano::tiles
+
+namespace nano::tiles {
+namespace {
+
+// A protein so sparse that the whole set holds about one copy: 1.17 copies wanted in 16 tiles.
+// Every copy counts per tile as its unit occurs: 1/16 in a tile's interior, 1/2 on an edge of two
+// colours, 1 in the corner every tile shares. The set must come as close to the request as whole
+// copies allow (one copy, 0.85x), never by a shared copy that overshoots many times over.
+TEST(MembraneTiles, ASparseProteinIsPlacedAsCloseAsWholeCopiesAllow) {
+  for (uint64_t seed : {1u, 2u, 3u, 4u}) {
+    MembraneTileRequest r = membrane_request(seed);
+    const double set_um2 = 16 * kEdge * kEdge * 1e-8;
+    r.molecules = {{0, 1.17 / set_um2, 0.f}};
+    r.lipids.reset();
+    const WangSet set = make_membrane_tiles(r);
+    ASSERT_EQ(set.densities.size(), 1u);
+    const double copies_in_set = set.densities[0].achieved * set_um2;
+    EXPECT_NEAR(copies_in_set, 1.17, 0.5) << "seed " << seed << ": " << set.densities[0].achieved << " per µm² of "
+                                          << set.densities[0].requested;
+  }
+}
+
+}  // namespace
+}  // namespace nano::tiles
