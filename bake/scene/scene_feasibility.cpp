@@ -48,19 +48,13 @@ std::string short_number(double v) {
 std::string membrane_key(const MembraneDescription& m) { return "membranes." + m.name; }
 std::string soluble_key(const SolubleDescription& s) { return "solubles." + s.name; }
 
-// Copies per Å² of membrane, and back in the scene's own unit.
-double per_a2(const MembraneDescription& m, const SurfaceAbundance& a) {
-  return a.unit == SurfaceAbundance::Unit::per_um2 ? a.value / kA2PerUm2 : a.value / (m.tile_size * m.tile_size);
-}
+// A copies-per-Å² amount back in the scene's own unit.
 std::string surface_amount_text(const MembraneDescription& m, const SurfaceAbundance& a, double copies_per_a2) {
   return a.unit == SurfaceAbundance::Unit::per_um2 ? short_number(copies_per_a2 * kA2PerUm2) + " per µm²"
                                                    : short_number(copies_per_a2 * m.tile_size * m.tile_size) + " per tile";
 }
 
-// Copies per Å³, and back in the scene's own unit.
-double per_a3(const VolumeAbundance& a) {
-  return a.unit == VolumeAbundance::Unit::millimolar ? a.value * kCopiesPerA3PerMillimolar : a.value / kA3PerUm3;
-}
+// A copies-per-Å³ amount back in the scene's own unit.
 std::string volume_amount_text(const VolumeAbundance& a, double copies_per_a3) {
   return a.unit == VolumeAbundance::Unit::millimolar ? short_number(copies_per_a3 / kCopiesPerA3PerMillimolar) + " mM"
                                                      : short_number(copies_per_a3 * kA3PerUm3) + " per µm³";
@@ -119,7 +113,7 @@ double size_value(const CompartmentDescription& c) {
 void check_membrane_places_some(const SceneDescription& scene, const MembraneDescription& m) {
     const double set_area = m.tiles * m.tile_size * m.tile_size;  // Å²
     for (std::size_t i = 0; i < m.proteins.size(); ++i) {
-      const double expected = per_a2(m, m.proteins[i].abundance) * set_area;
+      const double expected = copies_per_a2(m, m.proteins[i].abundance) * set_area;
       if (m.proteins[i].abundance.value > 0.0 && expected < 1.0)
         refuse(scene, amount_key(m, i),
                short_number(m.proteins[i].abundance.value) + " places no copy: the " + std::to_string(m.tiles) +
@@ -132,7 +126,7 @@ void check_membrane_places_some(const SceneDescription& scene, const MembraneDes
 void check_soluble_places_some(const SceneDescription& scene, const SolubleDescription& s) {
     const double set_volume = s.cubes * s.cube_size * s.cube_size * s.cube_size;  // Å³
     for (std::size_t i = 0; i < s.molecules.size(); ++i) {
-      const double expected = per_a3(s.molecules[i].abundance) * set_volume;
+      const double expected = copies_per_a3(s.molecules[i].abundance) * set_volume;
       if (s.molecules[i].abundance.value > 0.0 && expected < 1.0)
         refuse(scene, amount_key(s, i),
                short_number(s.molecules[i].abundance.value) + " places no copy: the " + std::to_string(s.cubes) +
@@ -148,6 +142,14 @@ std::string too_many_triangles(double triangles) {
 }
 
 }  // namespace
+
+double copies_per_a2(const MembraneDescription& m, const SurfaceAbundance& a) {
+  return a.unit == SurfaceAbundance::Unit::per_um2 ? a.value / kA2PerUm2 : a.value / (m.tile_size * m.tile_size);
+}
+
+double copies_per_a3(const VolumeAbundance& a) {
+  return a.unit == VolumeAbundance::Unit::millimolar ? a.value * kCopiesPerA3PerMillimolar : a.value / kA3PerUm3;
+}
 
 std::string amount_key(const MembraneDescription& m, std::size_t i) {
   return membrane_key(m) + ".proteins[" + std::to_string(i) + "]." +
@@ -208,7 +210,7 @@ void check_molecule_amounts(const SceneDescription& scene, std::span<const Molec
     for (std::size_t i = 0; i < m.proteins.size(); ++i) {
       const MembraneProtein& protein = m.proteins[i];
       const MoleculeMeasure& p = molecules[protein.molecule.index];
-      const double d = per_a2(m, protein.abundance);
+      const double d = copies_per_a2(m, protein.abundance);
       const double covered_outer = outer + d * p.outer_footprint, covered_inner = inner + d * p.inner_footprint;
       const double layer = p.height > 0.0 ? d * p.volume / p.height : 0.0;  // its own slab, alone
       const bool over_leaflet = covered_outer > kMaxLeafletCoverage || covered_inner > kMaxLeafletCoverage;
@@ -246,7 +248,7 @@ void check_molecule_amounts(const SceneDescription& scene, std::span<const Molec
     for (std::size_t i = 0; i < s.molecules.size(); ++i) {
       const SolubleMolecule& molecule = s.molecules[i];
       const MoleculeMeasure& mm = molecules[molecule.molecule.index];
-      const double fraction = per_a3(molecule.abundance) * mm.volume;
+      const double fraction = copies_per_a3(molecule.abundance) * mm.volume;
       if (filled + fraction > kMaxSolubleVolumeFraction) {
         const double most = std::max(0.0, (kMaxSolubleVolumeFraction - filled) / mm.volume);
         std::string rule = short_number(molecule.abundance.value) + " cannot fit: '" + molecule.molecule.name + "' takes " +

@@ -47,6 +47,11 @@ inline constexpr double kMinTileSize = 10.0, kMaxTileSize = 100000.0;
 // Proxy meshes are low-poly.
 inline constexpr double kMaxMeshTriangles = 4e6;
 
+// A membrane protein's amount as copies per Å² of membrane (per_um2 or per tile of the membrane's
+// Wang squares), a soluble's as copies per Å³ (mM or per µm³).
+double copies_per_a2(const MembraneDescription& membrane, const SurfaceAbundance& amount);
+double copies_per_a3(const VolumeAbundance& amount);
+
 // The key path of a membrane protein's amount, or of a soluble's, in the unit the scene wrote it
 // in ("membranes.envelope.proteins[2].density_per_um2").
 std::string amount_key(const MembraneDescription& membrane, std::size_t protein);

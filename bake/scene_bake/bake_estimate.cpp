@@ -10,9 +10,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "bake/mesh/uv_distortion.hpp"
 #include "bake/scene/random_placement.hpp"
-#include "bake/scene_bake/compartment_mesh.hpp"
+#include "bake/scene_bake/named_totals.hpp"
 #include "bake/shell/membrane_pruning.hpp"
 
 namespace nano::bake {
@@ -20,7 +19,6 @@ namespace {
 
 constexpr double kA2PerUm2 = 1e8;
 constexpr double kA3PerUm3 = 1e12;
-constexpr double kCopiesPerA3PerMillimolar = 1e-3 * 6.02214076e23 / 1e27;
 
 // Cost coefficients, CPU seconds per unit of each stage's work and bytes per unit of memory,
 // fitted on the bundled scenes' reports (stages_cpu, stages_peak_memory_bytes) on a 2-core machine:
@@ -48,19 +46,6 @@ constexpr double kBytesPerCoreBox = 2.0;
 constexpr double kBytesPerInstance = 256.0;
 // Of a stage's work, the share that runs on the worker threads.
 constexpr double kParallelShare = 0.8;
-
-double per_a2(const scene::MembraneDescription& m, const scene::SurfaceAbundance& a) {
-  return a.unit == scene::SurfaceAbundance::Unit::per_um2 ? a.value / kA2PerUm2 : a.value / (m.tile_size * m.tile_size);
-}
-double per_a3(const scene::VolumeAbundance& a) {
-  return a.unit == scene::VolumeAbundance::Unit::millimolar ? a.value * kCopiesPerA3PerMillimolar : a.value / kA3PerUm3;
-}
-
-void add_named(std::vector<std::pair<std::string, double>>& list, const std::string& name, double n) {
-  auto it = std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == name; });
-  if (it == list.end()) list.emplace_back(name, n);
-  else it->second += n;
-}
 
 double mean_atoms(const BakedLipidPatch& patch, const std::vector<BakedMolecule>& library) {
   double atoms = 0.0;
@@ -111,6 +96,15 @@ std::string gigabytes(double bytes) {
 
 }  // namespace
 
+double membrane_copies_for_pruning(double area, const scene::MembraneDescription& membrane,
+                                   const std::optional<BakedLipidPatch>& patch) {
+  double per_a2 = 0.0;
+  if (patch && patch->period_x > 0 && patch->period_y > 0) per_a2 += patch->molecules.size() / (patch->period_x * patch->period_y);
+  if (membrane.lipids && membrane.lipids->area_per_lipid > 0) per_a2 += 2.0 / membrane.lipids->area_per_lipid;
+  for (const scene::MembraneProtein& p : membrane.proteins) per_a2 += scene::copies_per_a2(membrane, p.abundance);
+  return area * per_a2;
+}
+
 BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vector<BakedMolecule>& library,
                            const std::vector<std::optional<BakedLipidPatch>>& patches,
                            const std::vector<EstimatedMesh>& meshes, int jobs) {
@@ -122,42 +116,42 @@ BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vect
     lipids.push_back(membrane_lipids(m, patches[i], library));
     double atoms_per_a2 = lipids.back().per_a2 * lipids.back().atoms;
     for (const scene::MembraneProtein& p : m.proteins)
-      atoms_per_a2 += per_a2(m, p.abundance) * static_cast<double>(library[p.molecule.index].atoms.size());
+      atoms_per_a2 += scene::copies_per_a2(m, p.abundance) * static_cast<double>(library[p.molecule.index].atoms.size());
     tile_atoms += m.tiles * m.tile_size * m.tile_size * atoms_per_a2;
   }
   for (const scene::SolubleDescription& s : scene.solubles)
     for (const scene::SolubleMolecule& molecule : s.molecules)
-      tile_atoms += s.cubes * std::pow(s.cube_size, 3) * per_a3(molecule.abundance) *
+      tile_atoms += s.cubes * std::pow(s.cube_size, 3) * scene::copies_per_a3(molecule.abundance) *
                     static_cast<double>(library[molecule.molecule.index].atoms.size());
 
   double checked_copies = 0.0, core_box_copies = 0.0, core_boxes = 0.0, triangles = 0.0;
   for (std::size_t c = 0; c < scene.compartments.size(); ++c) {
     const scene::CompartmentDescription& description = scene.compartments[c];
-    const mesh::ProxyMesh& mesh = *meshes[c].mesh;
-    const scene::CompartmentMeasure measure = measure_compartment(mesh);
+    const scene::CompartmentMeasure& measure = meshes[c].measure;
     CompartmentEstimate out;
     out.name = description.name;
     out.area_um2 = measure.area / kA2PerUm2;
     out.volume_um3 = std::max(0.0, measure.volume) / kA3PerUm3;
-    triangles += static_cast<double>(mesh.triangles.size());
+    triangles += static_cast<double>(measure.triangles);
     double inset = 0.0;  // how far inside the mesh the core grid's solubles start
     if (description.membrane) {
       const scene::MembraneDescription& m = scene.membranes[description.membrane->index];
       const MembraneLipids& l = lipids[description.membrane->index];
       double copies = 0.0;
       for (const scene::MembraneProtein& p : m.proteins) {
-        double n = per_a2(m, p.abundance) * measure.area;
+        double n = scene::copies_per_a2(m, p.abundance) * measure.area;
         if (p.per_compartment) n = std::min(n, static_cast<double>(*p.per_compartment));
-        add_named(out.copies, p.molecule.name, n);
+        named_entry(out.copies, p.molecule.name) += n;
         copies += n;
       }
       const double lipid_copies = kPatchLipidsKept * l.per_a2 * measure.area;
-      for (const auto& [name, share] : l.share) add_named(out.copies, name, share * lipid_copies);
+      for (const auto& [name, share] : l.share) named_entry(out.copies, name) += share * lipid_copies;
       copies += lipid_copies;
       // The shells check every copy of a small membrane, only those along the UV seams of a large one.
-      const bool everywhere = copies <= static_cast<double>(shell::PruningSettings{}.whole_surface_budget);
+      const bool everywhere = membrane_copies_for_pruning(measure.area, m, patches[description.membrane->index]) <=
+                              static_cast<double>(shell::PruningSettings{}.whole_surface_budget);
       checked_copies += everywhere ? copies : std::min(copies, meshes[c].seam_length * kSeamBand * copies / measure.area);
-      inset = 0.5 * meshes[c].bilayer_thickness;
+      inset = 0.5 * measure.bilayer_thickness;
     }
     if (description.soluble) {
       const scene::SolubleDescription& s = scene.solubles[description.soluble->index];
@@ -167,8 +161,8 @@ BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vect
       for (const scene::SolubleMolecule& molecule : s.molecules) {
         const double reach = inset + s.clearance + library[molecule.molecule.index].properties.bounding_radius;
         const double volume = std::max(0.0, measure.volume - measure.area * reach);
-        add_named(out.copies, molecule.molecule.name, per_a3(molecule.abundance) * volume);
-        core_box_copies += boundary * per_a3(molecule.abundance) * cube;
+        named_entry(out.copies, molecule.molecule.name) += scene::copies_per_a3(molecule.abundance) * volume;
+        core_box_copies += boundary * scene::copies_per_a3(molecule.abundance) * cube;
       }
     }
     e.compartments.push_back(std::move(out));

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "bake/mesh/proxy_mesh.hpp"
 #include "bake/scene/scene_description.hpp"
+#include "bake/scene/scene_feasibility.hpp"
 #include "bake/scene_bake/molecule_library.hpp"
 
 namespace nano::bake {
@@ -50,10 +50,14 @@ struct BakeEstimate {
 
 // A compartment's mesh at its final size, and what the checks found of it.
 struct EstimatedMesh {
-  const mesh::ProxyMesh* mesh = nullptr;
-  double seam_length = 0.0;        // Å of UV seams: where a large membrane is checked copy by copy
-  double bilayer_thickness = 0.0;  // of its membrane (0: none)
+  scene::CompartmentMeasure measure;  // with the bilayer thickness of its membrane (0: none)
+  double seam_length = 0.0;           // Å of UV seams: where a large membrane is checked copy by copy
 };
+
+// The copies a membrane puts on `area` Å² at the requested densities (a lipid patch at its own),
+// by which the baker chooses to check every copy on the surface or those along seams only.
+double membrane_copies_for_pruning(double area, const scene::MembraneDescription& membrane,
+                                   const std::optional<BakedLipidPatch>& patch);
 
 // One EstimatedMesh per compartment; `patches[m]` is membrane m's lipid patch.
 BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vector<BakedMolecule>& library,

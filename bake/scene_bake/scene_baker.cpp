@@ -14,6 +14,7 @@
 #include "bake/scene_bake/core_bake.hpp"
 #include "bake/scene_bake/membrane_bake.hpp"
 #include "bake/scene_bake/molecule_measures.hpp"
+#include "bake/scene_bake/named_totals.hpp"
 #include "bake/scene_bake/provenance.hpp"
 #include "bake/tiles/bilayer_footprint.hpp"
 #include "bake/tiles/tile_random.hpp"
@@ -50,11 +51,9 @@ public:
       double cpu_start;
       ~Record() {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        clock.add(clock.scene_.stage_seconds, stage, seconds);
-        clock.add(clock.scene_.stage_cpu_seconds, stage, process_cpu_seconds() - cpu_start);
-        auto& peaks = clock.scene_.stage_peak_bytes;  // the process's peak so far, at the stage's end
-        if (peaks.empty() || peaks.back().first != stage) peaks.emplace_back(stage, 0.0);
-        peaks.back().second = peak_resident_bytes();
+        named_entry(clock.scene_.stage_seconds, stage) += seconds;
+        named_entry(clock.scene_.stage_cpu_seconds, stage) += process_cpu_seconds() - cpu_start;
+        named_entry(clock.scene_.stage_peak_bytes, stage) = peak_resident_bytes();  // the process's peak so far
         if (clock.options_.on_stage_end) clock.options_.on_stage_end(stage, seconds);
       }
     } record{*this, stage, start, process_cpu_seconds()};
@@ -62,14 +61,6 @@ public:
   }
 
 private:
-  static void add(std::vector<std::pair<std::string, double>>& list, const std::string& stage, double seconds) {
-    for (auto& [name, total] : list)
-      if (name == stage) {
-        total += seconds;
-        return;
-      }
-    list.emplace_back(stage, seconds);
-  }
   BakedScene& scene_;
   const BakeOptions& options_;
 };
@@ -80,28 +71,6 @@ struct CompartmentBake {
   std::optional<BakedCore> core;
   double shell_margin = 0.0;  // how far copies reach outside the mesh (Å)
 };
-
-// Copies a membrane puts on a mesh, estimated from the mesh area and the requested densities (a
-// lipid patch at its own density), to choose between pruning everywhere and along seams only.
-double estimated_membrane_copies(const mesh::ProxyMesh& mesh, const scene::MembraneDescription& membrane,
-                                 const std::optional<BakedLipidPatch>& patch) {
-  double area = 0.0;  // Å²
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) area += mesh::world_area(mesh, t);
-  double per_a2 = 0.0;
-  if (patch && patch->period_x > 0 && patch->period_y > 0) per_a2 += patch->molecules.size() / (patch->period_x * patch->period_y);
-  if (membrane.lipids && membrane.lipids->area_per_lipid > 0) per_a2 += 2.0 / membrane.lipids->area_per_lipid;
-  for (const scene::MembraneProtein& p : membrane.proteins)
-    if (p.abundance.unit == scene::SurfaceAbundance::Unit::per_um2) per_a2 += p.abundance.value / 1e8;
-    else per_a2 += p.abundance.value / (membrane.tile_size * membrane.tile_size);
-  return area * per_a2;
-}
-
-// Adds n to the entry called `name`, keeping first-appearance order.
-void add_named(std::vector<std::pair<std::string, std::uint64_t>>& list, const std::string& name, std::uint64_t n) {
-  auto it = std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == name; });
-  if (it == list.end()) list.emplace_back(name, n);
-  else it->second += n;
-}
 
 MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembrane& m, const BakedWangSet& tiles,
                                  const std::vector<BakedMolecule>& library, const std::optional<BakedLipidPatch>& patch,
@@ -121,12 +90,12 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
   if (membrane.lipids) lipid[membrane.lipids->molecule.index] = 1;  // both leaflets: counted as outer
   for (std::size_t i = 0; i < library.size(); ++i) {
     if (lipid[i] != 0 && m.copies_by_molecule[i] > 0) {
-      add_named(s.lipids, library[i].name, m.copies_by_molecule[i]);
+      named_entry(s.lipids, library[i].name) += m.copies_by_molecule[i];
       (lipid[i] > 0 ? s.outer_lipids : s.inner_lipids) += m.copies_by_molecule[i];
     }
-    if (m.dropped_by_molecule[i] > 0) add_named(s.dropped, library[i].name, m.dropped_by_molecule[i]);
-    if (m.alternates_by_molecule[i] > 0) add_named(s.alternates, library[i].name, m.alternates_by_molecule[i]);
-    if (m.unfit_by_molecule[i] > 0) add_named(s.unfit, library[i].name, m.unfit_by_molecule[i]);
+    if (m.dropped_by_molecule[i] > 0) named_entry(s.dropped, library[i].name) += m.dropped_by_molecule[i];
+    if (m.alternates_by_molecule[i] > 0) named_entry(s.alternates, library[i].name) += m.alternates_by_molecule[i];
+    if (m.unfit_by_molecule[i] > 0) named_entry(s.unfit, library[i].name) += m.unfit_by_molecule[i];
   }
   if (membrane.lipids) {  // one pose in both leaflets: split evenly
     s.inner_lipids += s.outer_lipids / 2;
@@ -311,16 +280,20 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
       return loaded;
     });
 
+  std::vector<scene::CompartmentMeasure> mesh_measures;
   std::vector<double> mesh_radii;
-  for (const CompartmentBake& c : compartments) mesh_radii.push_back(measure_compartment(c.mesh.mesh).extent);
+  for (const CompartmentBake& c : compartments) {
+    mesh_measures.push_back(measure_compartment(c.mesh.mesh));
+    mesh_measures.back().bilayer_thickness = c.mesh.bilayer_thickness;
+    mesh_radii.push_back(mesh_measures.back().extent);
+  }
   scene::check_placement_amounts(scene, mesh_radii);
   // A trial of the random placements with the meshes' own radii (the real one, after the shells,
   // adds their margin): a box too crowded to fill is refused now, not after the heavy stages.
   if (scene::expanded_instance_count(scene) > scene.instances.size()) scene::expand_random_instances(scene, mesh_radii);
 
   std::vector<EstimatedMesh> meshes;
-  for (const CompartmentBake& c : compartments)
-    meshes.push_back({&c.mesh.mesh, c.mesh.report.seam_length, c.mesh.bilayer_thickness});
+  for (std::size_t c = 0; c < compartments.size(); ++c) meshes.push_back({mesh_measures[c], compartments[c].mesh.report.seam_length});
   baked.estimate = estimate_bake(scene, library, patches, meshes, threads);
   baked.cpu_seconds_at_estimate = process_cpu_seconds();
   if (options.max_memory && baked.estimate.peak_bytes > *options.max_memory)
@@ -337,7 +310,7 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   for (std::size_t c = 0; c < scene.compartments.size(); ++c)
     if (const auto& membrane = scene.compartments[c].membrane) {
       const mesh::ProxyMesh& m = compartments[c].mesh.mesh;
-      if (estimated_membrane_copies(m, scene.membranes[membrane->index], patches[membrane->index]) <=
+      if (membrane_copies_for_pruning(mesh_measures[c].area, scene.membranes[membrane->index], patches[membrane->index]) <=
           shell::PruningSettings{}.whole_surface_budget)
         continue;
       tiles::SurfaceDistortion& s = membrane_surface[membrane->index];

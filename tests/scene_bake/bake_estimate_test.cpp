@@ -9,6 +9,7 @@
 #include "bake/scene_bake/bake_progress.hpp"
 #include "bake/scene_bake/compartment_mesh.hpp"
 #include "bake/scene_bake/molecule_measures.hpp"
+#include "bake/scene_bake/named_totals.hpp"
 
 namespace nano::bake {
 namespace {
@@ -90,8 +91,9 @@ TEST(BakeEstimate, CopiesFollowTheDensityTimesTheAreaAndTheConcentrationTimesThe
   s.compartments.push_back(c);
   s.instances.push_back(scene::ExplicitInstance{.compartment = {"cell", 0}});
   const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(5000, 1000.0);
-  const scene::CompartmentMeasure measure = measure_compartment(sphere);
-  const BakeEstimate e = estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{&sphere, 0.0, 40.0}}, 2);
+  scene::CompartmentMeasure measure = measure_compartment(sphere);
+  measure.bilayer_thickness = 40.0;
+  const BakeEstimate e = estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0}}, 2);
   ASSERT_EQ(e.compartments.size(), 1u);
   EXPECT_NEAR(e.compartments[0].area_um2, measure.area / 1e8, 1e-12);
   EXPECT_NEAR(e.compartments[0].area_um2, 4 * kPi * 1e6 / 1e8, 0.01 * 4 * kPi * 1e6 / 1e8);
@@ -106,6 +108,34 @@ TEST(BakeEstimate, CopiesFollowTheDensityTimesTheAreaAndTheConcentrationTimesThe
   EXPECT_GT(e.peak_bytes, 0.0);
   EXPECT_GT(e.cpu_seconds, 0.0);
   EXPECT_LE(e.wall_seconds, e.cpu_seconds);
+}
+
+TEST(BakeEstimate, MembraneCopiesForPruningAddTheLipidsAndEveryProtein) {
+  // 1e6 Å² (0.01 µm²) with 65 Å² lipids in two leaflets, 1000 per µm² and 0.5 per 100 Å tile.
+  scene::MembraneDescription m = one_molecule_scene(0.0).membranes[0];
+  m.proteins[0].abundance = {scene::SurfaceAbundance::Unit::per_um2, 1000.0};
+  m.proteins.push_back({.molecule = {"rod", 0}, .abundance = {scene::SurfaceAbundance::Unit::per_tile, 0.5}});
+  m.lipids = scene::LipidFill{.molecule = {"rod", 0}, .area_per_lipid = 65.0};
+  EXPECT_NEAR(membrane_copies_for_pruning(1e6, m, std::nullopt), 1e6 * (2.0 / 65.0 + 1000.0 / 1e8 + 0.5 / 1e4), 1e-6);
+  // A patch of 4 lipids in a 10 x 20 Å box: 0.02 per Å².
+  BakedLipidPatch patch;
+  patch.molecules = {0, 0, 0, 0};
+  patch.period_x = 10.0;
+  patch.period_y = 20.0;
+  m.lipids.reset();
+  EXPECT_NEAR(membrane_copies_for_pruning(1e6, m, patch), 1e6 * (0.02 + 1000.0 / 1e8 + 0.5 / 1e4), 1e-6);
+}
+
+TEST(NamedTotals, EntriesKeepFirstAppearanceOrderAndStartAtZero) {
+  std::vector<std::pair<std::string, double>> list;
+  named_entry(list, "b") += 2.0;
+  named_entry(list, "a") += 1.0;
+  named_entry(list, "b") += 3.0;
+  named_entry(list, "c") = 7.0;
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list[0], (std::pair<std::string, double>{"b", 5.0}));
+  EXPECT_EQ(list[1], (std::pair<std::string, double>{"a", 1.0}));
+  EXPECT_EQ(list[2], (std::pair<std::string, double>{"c", 7.0}));
 }
 
 TEST(BakeEstimate, OverTheBudgetNamesTheLargestPartAndWhatShrinksIt) {
