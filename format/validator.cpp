@@ -1,7 +1,9 @@
 #include "format/validator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "common/effect_table.hpp"
 #include "format/checked_math.hpp"
 
 namespace nano::format {
@@ -571,7 +574,7 @@ private:
     const Cursor c = cursor<SectionKind::effects>(0);
     const auto* floats = reinterpret_cast<const float*>(&e);
     finite(c, 0, floats, 60, "effect parameter");
-    const bool clipping = flags & gpu::NANO_EFFECT_CLIPPING_PLANES;
+    const bool clipping = flags & package_flag(EffectId::clipping);
     if (e.clip_plane_count > gpu::NANO_MAX_CLIP_PLANES || (!clipping && e.clip_plane_count != 0))
       fail(c, 240, Rule::bad_value, "clip_plane_count " + str(e.clip_plane_count) + (clipping ? " exceeds 8" : " with clipping off"));
     for (std::uint32_t k = 0; k < gpu::NANO_MAX_CLIP_PLANES; ++k) {
@@ -586,37 +589,49 @@ private:
     }
     zero_vec(c, 144, e.clip_box_max, 3, "clip box maximum");
     const bool keyed = p_.record_count(SectionKind::keyframes) > 0;
-    if ((flags & gpu::NANO_EFFECT_PROXY_ANIMATION) && !keyed) {
+    if ((flags & package_flag(EffectId::animation)) && !keyed) {
       if (e.spin.w != 0.0f) unit(c, 160, glm::vec3(e.spin), "spin axis");
     } else if (e.spin != vec4(0.0f) || e.velocity != vec4(0.0f)) {
       fail(c, 160, Rule::bad_value, "steady motion without the animation flag, or beside keyframes");
     }
     zero_vec(c, 176, e.velocity, 3, "velocity");
-    if (flags & gpu::NANO_EFFECT_JITTER) {
-      if (!(e.jitter.x >= 0.0f && e.jitter.x <= 180.0f)) fail(c, 192, Rule::bad_value, "jitter amplitude outside [0, 180] degrees");
-      if (!(e.jitter.y > 0.0f)) fail(c, 196, Rule::bad_value, "jitter frequency must be positive");
-      zero_vec(c, 192, e.jitter, 2, "jitter");
-    } else {
-      zero_vec(c, 192, e.jitter, 0, "jitter (off)");
+    check_effect_parameters(c, e, flags);
+  }
+
+  // The table's plain parameters (common/effect_table.hpp): in range while their effect is on, zero
+  // while it is off. Every word that neither they nor clipping's and proxy motion's members (checked
+  // above) own is reserved and must be zero.
+  void check_effect_parameters(const Cursor& c, const gpu::SceneEffects& e, std::uint32_t flags) const {
+    constexpr std::size_t kWords = sizeof(gpu::SceneEffects) / 4;
+    std::array<bool, kWords> owned{};
+    for (std::size_t w = 0; w < 39; ++w) owned[w] = true;   // clip planes, clip box (box max .w is reserved)
+    for (std::size_t w = 40; w < 47; ++w) owned[w] = true;  // spin, velocity (velocity .w is reserved)
+    owned[60] = true;                                       // clip_plane_count
+    std::array<std::uint32_t, kWords> words;
+    std::memcpy(words.data(), &e, sizeof e);
+    for (const EffectDeclaration& effect : effect_table()) {
+      const bool on = (flags & effect.package_flag) != 0;
+      const ParameterValues values = load_parameters(e, effect.id);
+      for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
+        const EffectParameter& p = effect.parameters[i];
+        const std::uint32_t first = p.record_offset / 4, count = p.kind == ParameterKind::unit_vector ? 3 : 1;
+        const std::string what = std::string(effect.name) + " " + std::string(p.key);
+        for (std::uint32_t w = first; w < first + count; ++w) {
+          owned[w] = true;
+          if (!on && words[w] != 0) fail(c, 4 * w, Rule::nonzero_reserved, what + " is set while " + std::string(effect.name) + " is off");
+        }
+        if (!on) continue;
+        if (p.kind == ParameterKind::unit_vector) {
+          unit(c, p.record_offset, glm::vec3(values[i]), what.c_str());
+        } else if (p.kind == ParameterKind::colour) {
+          if (words[first] >> 24 != 255u) fail(c, p.record_offset, Rule::bad_value, what + ": a colour's alpha byte must be 255");
+        } else if (const std::string problem = parameter_problem(p, values[i]); !problem.empty()) {
+          fail(c, p.record_offset, Rule::bad_value, what + " " + problem);
+        }
+      }
     }
-    if (flags & gpu::NANO_EFFECT_AMBIENT_OCCLUSION) {
-      const float rays = e.ambient_occlusion.x;
-      if (!(rays >= 1.0f && rays <= 1024.0f && rays == std::floor(rays)))
-        fail(c, 208, Rule::bad_value, "ambient occlusion rays must be a whole number in [1, 1024]");
-      if (!(e.ambient_occlusion.y > 0.0f)) fail(c, 212, Rule::bad_value, "ambient occlusion radius must be positive");
-      zero_vec(c, 208, e.ambient_occlusion, 2, "ambient occlusion");
-    } else {
-      zero_vec(c, 208, e.ambient_occlusion, 0, "ambient occlusion (off)");
-    }
-    if (flags & gpu::NANO_EFFECT_SHADOWS) {
-      unit(c, 224, glm::vec3(e.shadow_light), "shadow light direction");
-      zero_vec(c, 224, e.shadow_light, 3, "shadow light");
-    } else {
-      zero_vec(c, 224, e.shadow_light, 0, "shadow light (off)");
-    }
-    zero(c, 244, e.reserved0);
-    zero(c, 248, e.reserved1);
-    zero(c, 252, e.reserved2);
+    for (std::size_t w = 0; w < kWords; ++w)
+      if (!owned[w] && words[w] != 0) fail(c, 4 * w, Rule::nonzero_reserved, "effects record: reserved member is not zero");
   }
 
   void check_keyframes() {

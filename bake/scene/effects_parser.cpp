@@ -83,16 +83,39 @@ std::vector<InstanceKeyframes> parse_keyframes(const JsonCursor& c, std::size_t 
   return all;
 }
 
-Jitter parse_jitter(const JsonCursor& c) {
-  c.only_keys({"amplitude_degrees", "frequency_hz"});
-  Jitter j;
-  j.amplitude_degrees = c.required("amplitude_degrees").number_between(0.0, 180.0);
-  j.frequency_hz = c.required("frequency_hz").number_greater_than(0.0);
-  return j;
+// A plain effect (common/effect_table.hpp): each parameter by its kind and range; absent optional
+// ones take the table's fallback.
+ParameterValues parse_plain_effect(const JsonCursor& c, const EffectDeclaration& effect) {
+  std::array<std::string_view, kMaxEffectParameters> keys{};
+  for (std::size_t i = 0; i < effect.parameters.size(); ++i) keys[i] = effect.parameters[i].key;
+  c.only_keys(std::span<const std::string_view>(keys.data(), effect.parameters.size()));
+  ParameterValues values{};
+  for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
+    const EffectParameter& p = effect.parameters[i];
+    values[i] = p.fallback;
+    const std::optional<JsonCursor> field = p.required ? std::optional(c.required(p.key)) : c.optional(p.key);
+    if (!field) continue;
+    switch (p.kind) {
+      case ParameterKind::whole_number:
+        values[i].x = double(field->integer_between(std::int64_t(p.min), std::int64_t(p.max)));
+        break;
+      case ParameterKind::number:
+        if (std::isinf(p.max)) values[i].x = p.min_exclusive ? field->number_greater_than(p.min) : field->number_at_least(p.min);
+        else if (!p.min_exclusive) values[i].x = field->number_between(p.min, p.max);
+        else values[i].x = field->number_greater_than(p.min);
+        break;
+      case ParameterKind::unit_vector: values[i] = field->unit_vec3(); break;
+      case ParameterKind::colour: values[i] = field->vec3(); break;
+    }
+    if (const std::string problem = parameter_problem(p, values[i]); !problem.empty())
+      field->fail("expected a value that " + problem + ", got " + field->shown());
+  }
+  return values;
 }
 
-// Validated in full even when disabled, so a typo never hides behind "enabled": false.
-std::optional<Animation> parse_animation(const JsonCursor& c, std::size_t instance_count) {
+// Validated in full even when disabled, so a typo never hides behind "enabled": false. The jitter
+// inside it is a plain effect; it is parsed here so that "enabled": false turns it off as well.
+std::optional<Animation> parse_animation(const JsonCursor& c, std::size_t instance_count, Effects& effects) {
   c.only_keys({"enabled", "proxy_motion", "jitter"});
   const bool enabled = c.has("enabled") ? c.required("enabled").boolean() : true;
   Animation a;
@@ -103,23 +126,13 @@ std::optional<Animation> parse_animation(const JsonCursor& c, std::size_t instan
     if (steady) a.steady = parse_steady_motion(motion->required("steady"));
     else a.keyframes = parse_keyframes(motion->required("keyframes"), instance_count);
   }
-  if (const auto jitter = c.optional("jitter")) a.jitter = parse_jitter(*jitter);
+  if (const auto jitter = c.optional("jitter")) {
+    const ParameterValues values = parse_plain_effect(*jitter, effect_declaration(EffectId::jitter));
+    if (enabled) effects[EffectId::jitter] = values;
+  }
   if (!c.has("proxy_motion") && !c.has("jitter")) c.fail("expected \"proxy_motion\", \"jitter\" or both");
   if (!enabled) return std::nullopt;
   return a;
-}
-
-AmbientOcclusion parse_ambient_occlusion(const JsonCursor& c) {
-  c.only_keys({"rays", "radius"});
-  AmbientOcclusion ao;
-  ao.rays = static_cast<int>(c.required("rays").integer_between(1, 1024));
-  ao.radius = c.required("radius").number_greater_than(0.0);
-  return ao;
-}
-
-Shadows parse_shadows(const JsonCursor& c) {
-  c.only_keys({"light_direction"});
-  return Shadows{c.required("light_direction").unit_vec3()};
 }
 
 }  // namespace
@@ -137,12 +150,19 @@ Box parse_box(const JsonCursor& c) {
 }
 
 Effects parse_effects(const JsonCursor& c, std::size_t instance_count) {
-  c.only_keys({"clipping", "animation", "ambient_occlusion", "shadows"});
+  // The keys directly under "effects": every table row whose key is not nested in another's.
+  std::array<std::string_view, kEffectCount> keys{};
+  std::size_t key_count = 0;
+  for (const EffectDeclaration& effect : effect_table())
+    if (effect.scene_key.find('.') == std::string_view::npos) keys[key_count++] = effect.scene_key;
+  c.only_keys(std::span<const std::string_view>(keys.data(), key_count));
   Effects e;
   if (const auto clipping = c.optional("clipping")) e.clipping = parse_clipping(*clipping);
-  if (const auto animation = c.optional("animation")) e.animation = parse_animation(*animation, instance_count);
-  if (const auto ao = c.optional("ambient_occlusion")) e.ambient_occlusion = parse_ambient_occlusion(*ao);
-  if (const auto shadows = c.optional("shadows")) e.shadows = parse_shadows(*shadows);
+  if (const auto animation = c.optional("animation")) e.animation = parse_animation(*animation, instance_count, e);
+  for (const EffectDeclaration& effect : effect_table()) {
+    if (!effect.structured.empty() || effect.scene_key.find('.') != std::string_view::npos) continue;
+    if (const auto object = c.optional(effect.scene_key)) e[effect.id] = parse_plain_effect(*object, effect);
+  }
   return e;
 }
 

@@ -57,6 +57,10 @@ void JsonCursor::expect_object() const {
 }
 
 void JsonCursor::only_keys(std::initializer_list<std::string_view> allowed) const {
+  only_keys(std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+void JsonCursor::only_keys(std::span<const std::string_view> allowed) const {
   expect_object();
   for (const auto& [key, value] : value_->items()) {
     bool known = false;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -29,6 +30,7 @@ public:
 
   // Objects. `only_keys` rejects any member not in `allowed`, naming it and listing the allowed set.
   void only_keys(std::initializer_list<std::string_view> allowed) const;
+  void only_keys(std::span<const std::string_view> allowed) const;
   bool has(std::string_view key) const;
   JsonCursor required(std::string_view key) const;
   std::optional<JsonCursor> optional(std::string_view key) const;

@@ -2,6 +2,7 @@
 // scene.json as plain data (docs/scene.md). Named maps become vectors in the file's order, so
 // everything baked from them is deterministic; a reference keeps both the name (for messages)
 // and the index into its vector (for the baker). Lengths in Å, angles in degrees, times in s.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "bake/scene/transform.hpp"
 #include "common/camera.hpp"
+#include "common/effect_table.hpp"
 
 namespace nano::scene {
 
@@ -194,36 +196,22 @@ struct InstanceKeyframes {
   bool operator==(const InstanceKeyframes&) const = default;
 };
 
-struct Jitter {
-  double amplitude_degrees = 0.0;
-  double frequency_hz = 0.0;
-  bool operator==(const Jitter&) const = default;
-};
-
+// Proxy motion: "effects.animation" without its jitter, which is a plain effect of the table.
 struct Animation {
   std::optional<SteadyMotion> steady;       // at most one of steady and keyframes is used
   std::vector<InstanceKeyframes> keyframes;
-  std::optional<Jitter> jitter;
+  bool moves() const { return steady.has_value() || !keyframes.empty(); }
   bool operator==(const Animation&) const = default;
 };
 
-struct AmbientOcclusion {
-  int rays = 0;
-  double radius = 0.0;  // Å
-  bool operator==(const AmbientOcclusion&) const = default;
-};
-
-struct Shadows {
-  glm::dvec3 light_direction{0.0};  // unit, from the scene towards the light
-  bool operator==(const Shadows&) const = default;
-};
-
-// Each absent effect is off.
+// Each absent effect is off. Clipping and proxy motion are structured; every other effect is a row
+// of common/effect_table.hpp, present here with its parameter values when the scene sets it.
 struct Effects {
   std::optional<Clipping> clipping;
   std::optional<Animation> animation;
-  std::optional<AmbientOcclusion> ambient_occlusion;
-  std::optional<Shadows> shadows;
+  std::array<std::optional<ParameterValues>, kEffectCount> plain;
+  const std::optional<ParameterValues>& operator[](EffectId id) const { return plain[static_cast<std::size_t>(id)]; }
+  std::optional<ParameterValues>& operator[](EffectId id) { return plain[static_cast<std::size_t>(id)]; }
   bool operator==(const Effects&) const = default;
 };
 

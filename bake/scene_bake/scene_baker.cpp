@@ -139,13 +139,10 @@ void world_aabb(const scene::Matrix3x4& m, const glm::dvec3& lo, const glm::dvec
 
 std::uint32_t effect_flags(const scene::Effects& effects) {
   std::uint32_t flags = 0;
-  if (effects.clipping) flags |= gpu::NANO_EFFECT_CLIPPING_PLANES;
-  if (effects.animation) {
-    if (effects.animation->steady || !effects.animation->keyframes.empty()) flags |= gpu::NANO_EFFECT_PROXY_ANIMATION;
-    if (effects.animation->jitter) flags |= gpu::NANO_EFFECT_JITTER;
-  }
-  if (effects.ambient_occlusion) flags |= gpu::NANO_EFFECT_AMBIENT_OCCLUSION;
-  if (effects.shadows) flags |= gpu::NANO_EFFECT_SHADOWS;
+  if (effects.clipping) flags |= effect_declaration(EffectId::clipping).package_flag;
+  if (effects.animation && effects.animation->moves()) flags |= effect_declaration(EffectId::animation).package_flag;
+  for (const EffectDeclaration& effect : effect_table())
+    if (effects[effect.id]) flags |= effect.package_flag;
   return flags;
 }
 
@@ -169,10 +166,9 @@ std::vector<gpu::SceneEffects> scene_effects(const scene::Effects& effects) {
       if (e.spin.w == 0.f) e.spin = glm::vec4(0.f);
       e.velocity = glm::vec4(glm::vec3(a->steady->velocity), 0.f);
     }
-    if (a->jitter) e.jitter = glm::vec4(float(a->jitter->amplitude_degrees), float(a->jitter->frequency_hz), 0.f, 0.f);
   }
-  if (const auto& ao = effects.ambient_occlusion) e.ambient_occlusion = glm::vec4(float(ao->rays), float(ao->radius), 0.f, 0.f);
-  if (const auto& sh = effects.shadows) e.shadow_light = glm::vec4(glm::vec3(sh->light_direction), 0.f);
+  for (const EffectDeclaration& effect : effect_table())
+    if (const auto& values = effects[effect.id]) store_parameters(e, effect.id, *values);
   return {e};
 }
 

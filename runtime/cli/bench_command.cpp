@@ -179,8 +179,8 @@ struct EffectVariant {
   render::RenderSettings settings;
 };
 
-// Every effect on its own, with the scene's parameters or EffectSettings' defaults (8 AO rays of
-// 40 Å, 5° jitter at 1 Hz), and a cut-away plane through the target when the scene clips nothing.
+// Every effect on its own, with the scene's parameters or the effect table's fallbacks (8 AO rays
+// of 40 Å, 5° jitter at 1 Hz), and a cut-away plane through the target when the scene clips nothing.
 std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, const render::EffectSettings& scene,
                                            const Camera& camera) {
   render::EffectSettings off;
@@ -200,19 +200,14 @@ std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, c
   };
   add("no effect code", off, true);
   add("all off", off);
-  const auto only = [&](const char* name, bool render::EffectSettings::*flag) {
+  for (const EffectDeclaration& effect : effect_table()) {  // every effect of the table alone
     render::EffectSettings e = with;
-    e.clipping_on = e.animation_on = e.jitter_on = e.ambient_occlusion_on = e.shadows_on = false;
-    e.*flag = true;
-    add(name, e);
-  };
-  only("clipping", &render::EffectSettings::clipping_on);
-  only("animation", &render::EffectSettings::animation_on);
-  only("jitter", &render::EffectSettings::jitter_on);
-  only("ao", &render::EffectSettings::ambient_occlusion_on);
-  only("shadows", &render::EffectSettings::shadows_on);
+    e.on = {};
+    e.flag(effect.id) = true;
+    add(std::string(effect.name), e);
+  }
   render::EffectSettings all = with;
-  all.clipping_on = all.animation_on = all.jitter_on = all.ambient_occlusion_on = all.shadows_on = true;
+  all.on.fill(true);
   add("all on", all);
   return v;
 }
@@ -251,7 +246,7 @@ std::vector<CompileRow> compile_rows(const render::RenderSettings& command, cons
   knob("--levels 3", [](render::RenderSettings& s) { s.replication_las = false; });
   knob("--levels 2", [](render::RenderSettings& s) {
     s.two_level = true;
-    s.effects.clipping_on = s.effects.jitter_on = false;
+    s.effects.flag(EffectId::clipping) = s.effects.flag(EffectId::jitter) = false;
   });
   knob("--precision camera-relative", [](render::RenderSettings& s) { s.precision = render::Precision::camera_relative; });
   knob("--precision world", [](render::RenderSettings& s) { s.precision = render::Precision::world; });

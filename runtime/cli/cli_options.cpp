@@ -34,11 +34,15 @@ void add_effect_options(CLI::App& command, EffectOptions& o) {
   command.add_option("--clip-plane", o.clip_planes, "keep points with n·p + d ≥ 0: \"nx,ny,nz,d\" (world Å; repeatable, ≤ 8)");
   command.add_option("--clip-box", o.clip_box, "keep points inside \"x0,y0,z0,x1,y1,z1\" (world Å)");
   command.add_option("--time", o.time, "seconds: proxy animation and jitter are evaluated at this time")->capture_default_str();
-  command.add_option("--effect", o.on, "turn an effect on: clipping, animation, jitter, ao, shadows (repeatable)");
+  command.add_option("--effect", o.on, "turn an effect on: " + effect_names() + " (repeatable)");
   command.add_option("--no-effect", o.off, "turn an effect off (repeatable)");
   command.add_flag("--no-scene-effects", o.no_scene_effects, "start with every effect off instead of the scene's");
-  command.add_option("--ao-rays", o.ao_rays, "ambient-occlusion rays per pixel (default: the scene's, or 8)");
-  command.add_option("--ao-radius", o.ao_radius, "ambient-occlusion ray length, Å (default: the scene's, or 40)");
+  for (const EffectDeclaration& effect : effect_table())
+    for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
+      const EffectParameter& p = effect.parameters[i];
+      command.add_option(parameter_option(effect, p), o.parameters[static_cast<std::size_t>(effect.id)][i],
+                         render::parameter_help(effect, p));
+    }
 }
 
 }  // namespace nano::view

@@ -78,7 +78,7 @@ void run_verify(const VerifyOptions& o) {
   // The oracle sees what the effects change: moved instances, jittered copies, clipped atoms.
   const OracleEffects oracle_view = oracle_effects(session.package, settings.effects);
   const oracle::ExplicitScene scene(session.package, oracle_view.scene);
-  if (settings.effects.ambient_occlusion_on || settings.effects.shadows_on)
+  if (settings.effects.flag(EffectId::ambient_occlusion) || settings.effects.flag(EffectId::shadows))
     std::fprintf(stderr, "verify: ambient occlusion and shadows change colours only; the ids compared here do not see them\n");
   render::Renderer renderer(session.device, *session.scene, settings);
   std::vector<oracle::VerifyCamera> cameras;

@@ -1,3 +1,4 @@
+#include "common/effect_table.hpp"
 #include "runtime/render/animation.hpp"
 
 #include <algorithm>
@@ -57,7 +58,7 @@ std::vector<format::InstanceTransform> animated_instance_transforms(const format
   for (const gpu::CompartmentInstance& ci : instances) out.push_back(format::instance_transform(ci));
   const std::uint32_t flags =
       package.record_count(SectionKind::scene) == 1 ? package.records<SectionKind::scene>()[0].effect_flags : 0u;
-  if (!(flags & gpu::NANO_EFFECT_PROXY_ANIMATION) || package.record_count(SectionKind::effects) != 1) return out;
+  if (!(flags & package_flag(EffectId::animation)) || package.record_count(SectionKind::effects) != 1) return out;
 
   const auto keys = package.records<SectionKind::keyframes>();
   if (!keys.empty()) {

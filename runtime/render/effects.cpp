@@ -41,37 +41,67 @@ EffectSettings package_effects(const format::Package& package) {
   if (package.record_count(SectionKind::effects) != 1 || package.record_count(SectionKind::scene) != 1) return e;
   const std::uint32_t flags = package.records<SectionKind::scene>()[0].effect_flags;
   const gpu::SceneEffects& r = package.records<SectionKind::effects>()[0];
-  if (flags & gpu::NANO_EFFECT_CLIPPING_PLANES) {
-    e.clipping_on = true;
+  for (const EffectDeclaration& effect : effect_table()) {
+    if (!(flags & effect.package_flag)) continue;
+    e.flag(effect.id) = true;
+    if (!effect.parameters.empty()) e.parameters(effect.id) = load_parameters(r, effect.id);
+  }
+  if (e.flag(EffectId::clipping)) {
     for (std::uint32_t k = 0; k < r.clip_plane_count && k < gpu::NANO_MAX_CLIP_PLANES; ++k)
       e.clipping.planes.push_back(glm::dvec4(r.clip_planes[k]));
     if (r.clip_box_min.w == 1.f) e.clipping.box = {glm::dvec3(r.clip_box_min), glm::dvec3(r.clip_box_max)};
-  }
-  e.animation_on = flags & gpu::NANO_EFFECT_PROXY_ANIMATION;
-  if (flags & gpu::NANO_EFFECT_JITTER) {
-    e.jitter_on = true;
-    e.jitter_degrees = r.jitter.x;
-    e.jitter_hz = r.jitter.y;
-  }
-  if (flags & gpu::NANO_EFFECT_AMBIENT_OCCLUSION) {
-    e.ambient_occlusion_on = true;
-    e.ao_rays = std::uint32_t(r.ambient_occlusion.x);
-    e.ao_radius = r.ambient_occlusion.y;
-  }
-  if (flags & gpu::NANO_EFFECT_SHADOWS) {
-    e.shadows_on = true;
-    e.light_direction = glm::dvec3(r.shadow_light);
   }
   return e;
 }
 
 bool& effect_flag(EffectSettings& effects, std::string_view name) {
-  if (name == "clipping") return effects.clipping_on;
-  if (name == "animation") return effects.animation_on;
-  if (name == "jitter") return effects.jitter_on;
-  if (name == "ao") return effects.ambient_occlusion_on;
-  if (name == "shadows") return effects.shadows_on;
-  throw std::invalid_argument("unknown effect '" + std::string(name) + "' (clipping, animation, jitter, ao, shadows)");
+  if (const EffectDeclaration* effect = find_effect(name)) return effects.flag(effect->id);
+  throw std::invalid_argument("unknown effect '" + std::string(name) + "' (" + effect_names() + ")");
+}
+
+gpu::SceneEffects effect_record(const EffectSettings& effects) {
+  gpu::SceneEffects record{};
+  for (const EffectDeclaration& effect : effect_table())
+    if (effects.flag(effect.id) && !effect.parameters.empty()) store_parameters(record, effect.id, effects.parameters(effect.id));
+  return record;
+}
+
+glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view text) {
+  const bool vector = parameter.kind == ParameterKind::unit_vector || parameter.kind == ParameterKind::colour;
+  const std::vector<double> v = numbers(text, vector ? 3 : 1, vector ? "x,y,z" : "a number");
+  glm::dvec3 value = vector ? glm::dvec3(v[0], v[1], v[2]) : glm::dvec3(v[0], 0.0, 0.0);
+  if (const std::string problem = parameter_problem(parameter, value); !problem.empty())
+    throw std::invalid_argument(std::string(parameter.key) + " " + problem + ", got '" + std::string(text) + "'");
+  if (parameter.kind == ParameterKind::unit_vector) value = glm::normalize(value);
+  return value;
+}
+
+std::string parameter_help(const EffectDeclaration& effect, const EffectParameter& p) {
+  const auto number = [](double x) {
+    std::string s = std::to_string(x);
+    s.erase(s.find_last_not_of('0') + 1);
+    if (s.back() == '.') s.pop_back();
+    return s;
+  };
+  std::string what = std::string(effect.name) + " " + std::string(p.key);
+  switch (p.kind) {
+    case ParameterKind::number:
+    case ParameterKind::whole_number:
+      what += p.kind == ParameterKind::whole_number ? " (a whole number" : " (a number";
+      what += std::isinf(p.max) ? std::string(p.min_exclusive ? " > " : " >= ") + number(p.min)
+                                : " in " + std::string(p.min_exclusive ? "(" : "[") + number(p.min) + ", " + number(p.max) + "]";
+      what += (p.unit.empty() ? "" : " " + std::string(p.unit)) + "; default: the scene's, or " + number(p.fallback.x) + ")";
+      break;
+    case ParameterKind::unit_vector:
+      what += " (x,y,z, any length; default: the scene's, or " + number(p.fallback.x) + "," + number(p.fallback.y) + "," +
+              number(p.fallback.z) + ")";
+      break;
+    case ParameterKind::colour:
+      what += " (linear r,g,b in [0, 1]; default: the scene's, or " + number(p.fallback.x) + "," + number(p.fallback.y) + "," +
+              number(p.fallback.z) + ")";
+      break;
+  }
+  return what + "; sets the value, --effect " + std::string(effect.name) + " turns it on";
 }
 
 glm::dvec4 parse_clip_plane(std::string_view text) {
@@ -91,7 +121,7 @@ std::pair<glm::dvec3, glm::dvec3> parse_clip_box(std::string_view text) {
 }
 
 glm::vec3 jitter_frame_parameters(const EffectSettings& e) {
-  return {float(e.time), float(glm::radians(e.jitter_degrees)), float(e.jitter_hz)};
+  return {float(e.time), float(glm::radians(e.jitter_degrees())), float(e.jitter_hz())};
 }
 
 std::vector<glm::dvec4> clip_half_spaces(const Clipping& clipping) {

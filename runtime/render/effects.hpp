@@ -4,6 +4,7 @@
 // (section "effects" of the package) or the user turns it on, and each is compiled into the frame
 // only when on (specialization constants of shaders/render/render.comp), so an effect that is off
 // costs nothing.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,6 +14,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "common/effect_table.hpp"
 #include "format/package.hpp"
 
 namespace nano::render {
@@ -26,33 +28,46 @@ struct Clipping {
 };
 inline constexpr std::size_t kMaxClipPlanes = 8;  // user planes; the box adds 6 half-spaces
 
+// The effects of common/effect_table.hpp, switched on or off, with their parameters (the table's
+// fallbacks until the scene or the user sets them), plus clipping's planes and box and the moment.
 struct EffectSettings {
-  bool clipping_on = false;
+  std::array<bool, kEffectCount> on{};
+  EffectValues values = fallback_effect_values();
   Clipping clipping;
-
-  double time = 0;              // seconds: proxy animation and jitter are evaluated at this time
-  bool animation_on = false;    // compartment instances move as the package's animation says
-  bool jitter_on = false;       // proteins wobble about their own origin (shared/effects.h)
-  double jitter_degrees = 5, jitter_hz = 1;  // what a user gets asking for jitter the scene does not set
-
-  bool ambient_occlusion_on = false;
-  std::uint32_t ao_rays = 8;
-  float ao_radius = 40;         // Å
+  double time = 0;                 // seconds: proxy animation and jitter are evaluated at this time
   std::uint32_t sample_index = 0;  // seeds the AO directions; progressive refinement varies it
 
-  bool shadows_on = false;
-  glm::dvec3 light_direction{0.3, 0.5, 0.8};  // towards the light (world)
+  bool& flag(EffectId id) { return on[static_cast<std::size_t>(id)]; }
+  bool flag(EffectId id) const { return on[static_cast<std::size_t>(id)]; }
+  ParameterValues& parameters(EffectId id) { return values[static_cast<std::size_t>(id)]; }
+  const ParameterValues& parameters(EffectId id) const { return values[static_cast<std::size_t>(id)]; }
+  double number(EffectId id, std::string_view key) const { return parameters(id)[parameter_index(id, key)].x; }
+  glm::dvec3 vector(EffectId id, std::string_view key) const { return parameters(id)[parameter_index(id, key)]; }
+
+  // The parameters the renderer reads by meaning.
+  std::uint32_t ao_rays() const { return std::uint32_t(number(EffectId::ambient_occlusion, "rays")); }
+  float ao_radius() const { return float(number(EffectId::ambient_occlusion, "radius")); }
+  double jitter_degrees() const { return number(EffectId::jitter, "amplitude_degrees"); }
+  double jitter_hz() const { return number(EffectId::jitter, "frequency_hz"); }
+  glm::dvec3 light_direction() const { return vector(EffectId::shadows, "light_direction"); }
 };
 
 // The effects the package's scene asks for (all off when it has no "effects" section).
 EffectSettings package_effects(const format::Package& package);
 
-// Names of the switchable effects, as the CLI and the viewer script spell them.
-inline constexpr std::string_view kEffectNames[] = {"clipping", "animation", "jitter", "ao", "shadows"};
-// The switch of effect `name` (one of kEffectNames); throws std::invalid_argument naming the
-// choices for another name.
+// The switch of effect `name` (as --effect and the viewer script spell it, common/effect_table.hpp);
+// throws std::invalid_argument naming the choices for another name.
 bool& effect_flag(EffectSettings& effects, std::string_view name);
 inline void set_effect(EffectSettings& effects, std::string_view name, bool on) { effect_flag(effects, name) = on; }
+// The on effects' parameters in the package's record layout, as the shader reads them
+// (RenderFrame::effect_record).
+gpu::SceneEffects effect_record(const EffectSettings& effects);
+
+// A parameter option's text ("16", "0.2,0.5,1"): the value, unit vectors normalised; throws
+// std::invalid_argument saying what the parameter accepts.
+glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view text);
+// --help's line for a parameter option.
+std::string parameter_help(const EffectDeclaration& effect, const EffectParameter& parameter);
 
 // "nx,ny,nz,d" → plane; "x0,y0,z0,x1,y1,z1" → box. Throw std::invalid_argument saying what is wrong.
 glm::dvec4 parse_clip_plane(std::string_view text);

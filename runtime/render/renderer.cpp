@@ -1,5 +1,6 @@
 #include "runtime/render/renderer.hpp"
 
+#include <array>
 #include <chrono>
 #include <future>
 #include <map>
@@ -25,25 +26,40 @@ namespace {
 
 // What selects a pipeline: the shader build and its specialization constants.
 struct Variant {
-  bool exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows, eye_from_host,
-      world_space_ulas, counters, lod, flat;
+  bool exact_prism, replication_las, two_level, no_effect_code, eye_from_host, world_space_ulas, counters, lod, flat;
+  std::array<bool, kEffectCount> effects;  // compiled in, per row of the effect table
+  bool code(EffectId id) const { return effects[static_cast<std::size_t>(id)]; }
+  bool image_pass() const {
+    for (const EffectDeclaration& e : effect_table())
+      if (e.image_pass && code(e.id)) return true;
+    return false;
+  }
   auto key() const {
-    return std::tuple(exact_prism, replication_las, two_level, no_effect_code, clipping, jitter, ambient_occlusion, shadows,
-                      eye_from_host, world_space_ulas, counters, lod, flat);
+    return std::tuple(exact_prism, replication_las, two_level, no_effect_code, effects, eye_from_host, world_space_ulas, counters,
+                      lod, flat);
   }
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
 
+// An effect is compiled in when it is on and has shader code, except where its parameters make it
+// do nothing: clipping without a plane or box, jitter of 0°, ambient occlusion of no ray.
+bool compiled_in(const EffectSettings& e, const EffectDeclaration& effect) {
+  if (!e.flag(effect.id) || effect.spec_constant < 0) return false;
+  if (effect.id == EffectId::clipping) return e.clipping.any();
+  if (effect.id == EffectId::jitter) return e.jitter_degrees() > 0;
+  if (effect.id == EffectId::ambient_occlusion) return e.ao_rays() > 0;
+  return true;
+}
+
 Variant variant_of(const RenderSettings& s) {
-  const EffectSettings& e = s.effects;
-  const bool effects = !s.without_effect_code;
-  const bool jitter = effects && e.jitter_on && e.jitter_degrees > 0;
+  std::array<bool, kEffectCount> effects{};
+  if (!s.without_effect_code)
+    for (const EffectDeclaration& effect : effect_table()) effects[static_cast<std::size_t>(effect.id)] = compiled_in(s.effects, effect);
+  const bool jitter = effects[static_cast<std::size_t>(EffectId::jitter)];
   return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
-          effects && e.clipping_on && e.clipping.any(), jitter,
-          effects && e.ambient_occlusion_on && e.ao_rays > 0, effects && e.shadows_on,
           s.precision == Precision::two_float_eye, s.precision == Precision::world, !s.without_effect_code && s.counters,
           !s.without_effect_code && s.lod_pixels > 0,
-          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world};
+          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world, effects};
 }
 
 std::string name_of(const Variant& v) {
@@ -60,10 +76,7 @@ std::string name_of(const Variant& v) {
   add(v.eye_from_host, "eye_from_host");
   add(v.world_space_ulas, "world_space_ulas");
   add(v.flat, "flat");
-  add(v.clipping, "clipping");
-  add(v.jitter, "jitter");
-  add(v.ambient_occlusion, "ao");
-  add(v.shadows, "shadows");
+  for (const EffectDeclaration& effect : effect_table()) add(v.code(effect.id), std::string(effect.name).c_str());
   add(v.counters, "counters");
   add(v.lod, "lod");
   return name;
@@ -100,10 +113,8 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   desc.specialization.set_bool(gpu::NANO_SPEC_WORLD_SPACE_ULAS, v.world_space_ulas);
   desc.specialization.set_bool(gpu::NANO_SPEC_FLAT, v.flat);
   if (!v.no_effect_code) {
-    desc.specialization.set_bool(gpu::NANO_SPEC_CLIPPING, v.clipping);
-    desc.specialization.set_bool(gpu::NANO_SPEC_JITTER, v.jitter);
-    desc.specialization.set_bool(gpu::NANO_SPEC_AMBIENT_OCCLUSION, v.ambient_occlusion);
-    desc.specialization.set_bool(gpu::NANO_SPEC_SHADOWS, v.shadows);
+    for (const EffectDeclaration& effect : effect_table())
+      if (effect.spec_constant >= 0) desc.specialization.set_bool(effect.spec_constant, v.code(effect.id));
     desc.specialization.set_bool(gpu::NANO_SPEC_COUNTERS, v.counters);
     desc.specialization.set_bool(gpu::NANO_SPEC_LOD, v.lod);
   }
@@ -112,13 +123,13 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
 
 void check(const RenderSettings& s) {
   const EffectSettings& e = s.effects;
-  if (e.clipping_on && clip_half_spaces(e.clipping).size() > gpu::NANO_MAX_CLIP_HALF_SPACES)
+  if (e.flag(EffectId::clipping) && clip_half_spaces(e.clipping).size() > gpu::NANO_MAX_CLIP_HALF_SPACES)
     throw std::invalid_argument("at most 8 clip planes (plus the clip box)");
-  if (s.two_level && ((e.clipping_on && e.clipping.any()) || e.jitter_on))
+  if (s.two_level && ((e.flag(EffectId::clipping) && e.clipping.any()) || e.flag(EffectId::jitter)))
     throw std::invalid_argument("--levels 2 (the paper's two-level membrane) has no clipping or jitter; use 3+rep or 3");
-  if (e.ambient_occlusion_on && !(e.ao_rays >= 1 && e.ao_rays <= 1024 && e.ao_radius > 0))
+  if (e.flag(EffectId::ambient_occlusion) && !(e.ao_rays() >= 1 && e.ao_rays() <= 1024 && e.ao_radius() > 0))
     throw std::invalid_argument("ambient occlusion needs 1 to 1024 rays and a positive radius");
-  if (e.shadows_on && !(glm::length(e.light_direction) > 0)) throw std::invalid_argument("shadows need a light direction");
+  if (e.flag(EffectId::shadows) && !(glm::length(e.light_direction()) > 0)) throw std::invalid_argument("shadows need a light direction");
   if (s.counters && s.without_effect_code) throw std::invalid_argument("the build without effect code has no counters");
   if (!(s.lod_pixels >= 0 && s.lod_pixels <= 1e4)) throw std::invalid_argument("--lod: a pixel threshold in (0, 10000]");
   if (s.lod_pixels > 0 && s.without_effect_code) throw std::invalid_argument("the build without effect code has no level of detail");
@@ -183,6 +194,7 @@ struct Renderer::Impl {
     std::uint32_t width = 0, height = 0, next_row = 0, next_column = 0;
     Variant variant{};
     double traced_seconds = 0;  // begin + parts, not the time between them
+    gpu::RenderFrame frame{};   // for the image pass, which reads it again with pass.x = 1
   };
   std::optional<Pending> pending;
 
@@ -237,9 +249,9 @@ struct Renderer::Impl {
     frame.camera = camera;
     frame.levels = glm::uvec4(scene.first_square_level(), scene.first_cube_level(), scene.molecule_type_count(),
                               scene.first_atom_square_level());
-    const glm::vec3 light = e.shadows_on ? glm::vec3(e.light_direction) : settings.light;
+    const glm::vec3 light = e.flag(EffectId::shadows) ? glm::vec3(e.light_direction()) : settings.light;
     frame.light = glm::vec4(glm::normalize(light), settings.depth_cue);
-    if (e.clipping_on) {
+    if (e.flag(EffectId::clipping)) {
       // In the µLAS's frame: camera-relative, n·(x' + eye) + d = n·x' + (d + n·eye), in double.
       const glm::dvec3 eye = ulas_origin(camera);
       const std::vector<glm::dvec4> half_spaces = clip_half_spaces(e.clipping);
@@ -247,13 +259,14 @@ struct Renderer::Impl {
         frame.clip[k] = glm::vec4(glm::vec3(half_spaces[k]), float(half_spaces[k].w + glm::dot(glm::dvec3(half_spaces[k]), eye)));
       frame.effects.x = std::uint32_t(half_spaces.size());
     }
-    frame.effects.y = e.ao_rays;
+    frame.effects.y = e.ao_rays();
     frame.effects.z = e.sample_index;
     frame.effects.w = scene.first_bead_level();
     frame.flat_eye = variant_of(settings).flat ? scene.flat_eye(ulas_origin(camera)) : glm::vec4(0.f);
     frame.lod = glm::vec4(2.0f * camera.forward.w / float(camera.size.y), float(settings.lod_pixels), gpu::NANO_TYPICAL_ATOM_DIAMETER, 0.f);
     const glm::vec3 jitter = jitter_frame_parameters(e);
-    frame.effect_parameters = glm::vec4(e.ao_radius, jitter.x, jitter.y, jitter.z);
+    frame.effect_parameters = glm::vec4(e.ao_radius(), jitter.x, jitter.y, jitter.z);
+    frame.effect_record = effect_record(e);
     return frame;
   }
 
@@ -282,8 +295,8 @@ struct Renderer::Impl {
     pending.reset();
     const auto start = std::chrono::steady_clock::now();
     const glm::dvec3 eye = ulas_origin(camera);
-    scene.set_flatten(flatten_budget(), camera, variant_of(settings).clipping, settings.flatten_new_copies);
-    if (settings.effects.animation_on) {
+    scene.set_flatten(flatten_budget(), camera, variant_of(settings).code(EffectId::clipping), settings.flatten_new_copies);
+    if (settings.effects.flag(EffectId::animation)) {
       const std::vector<format::InstanceTransform> moved = animated_instance_transforms(scene.package(), settings.effects.time);
       scene.set_eye(eye, moved);
     } else {
@@ -296,7 +309,7 @@ struct Renderer::Impl {
     scene.write_descriptors(p.set);
     vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_FRAME, frame_buffer);
     outputs.bind(device, p.set, {gpu::NANO_B_HITS, gpu::NANO_B_COLOURS, gpu::NANO_B_COUNTERS}, std::uint64_t(w) * h, v.counters);
-    pending = Pending{w, h, 0, 0, v, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+    pending = Pending{w, h, 0, 0, v, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), frame};
   }
 
   Renderer::Part trace_part(std::uint64_t pixels) {
@@ -327,8 +340,18 @@ struct Renderer::Impl {
     const auto dispatched = std::chrono::steady_clock::now();
     vk::dispatch_region_and_wait(device, p.pipeline, p.set, x, y, w, h, std::uint32_t(wg));
     if (p.first_dispatch_seconds < 0) p.first_dispatch_seconds = seconds_since(dispatched);
+    if (f.next_row >= f.height && f.variant.image_pass()) image_pass(p, f);
     f.traced_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return {std::uint64_t(w) * h, f.next_row >= f.height};
+  }
+
+  // Effects that need the finished hits of their neighbours (outlines) run once the last part is
+  // traced: the same pipeline over the whole image, told by the frame record that it is that pass.
+  void image_pass(Pipeline& p, Pending& f) {
+    gpu::RenderFrame frame = f.frame;
+    frame.pass = glm::uvec4(1u, 0u, 0u, 0u);
+    frame_buffer.write(std::as_bytes(std::span(&frame, 1)));
+    vk::dispatch_region_and_wait(device, p.pipeline, p.set, 0, 0, f.width, f.height, std::uint32_t(gpu::NANO_WORKGROUP_SIZE));
   }
 
   Frame finish() {
@@ -386,7 +409,7 @@ std::string Renderer::variant_name(const RenderSettings& settings) { return name
 
 std::uint64_t Renderer::rays_per_frame(const RenderSettings& settings, std::uint64_t pixels) {
   const Variant v = variant_of(settings);
-  return pixels * (1 + (v.shadows ? 1 : 0) + (v.ambient_occlusion ? settings.effects.ao_rays : 0));
+  return pixels * (1 + (v.code(EffectId::shadows) ? 1 : 0) + (v.code(EffectId::ambient_occlusion) ? settings.effects.ao_rays() : 0));
 }
 
 }  // namespace nano::render

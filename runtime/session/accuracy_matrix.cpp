@@ -1,3 +1,4 @@
+#include "common/effect_table.hpp"
 #include "runtime/session/accuracy_matrix.hpp"
 
 #include <algorithm>
@@ -23,7 +24,7 @@ constexpr double kClipViewDepth = 400;  // Å from the eye: views' targets lie ~
 // side, so every view keeps what it looks at and the oracle resolves it without walking the far,
 // removed side (the package's own planes would leave some verify views looking into nothing).
 render::EffectSettings effects_for_view(render::EffectSettings e, const gpu::Camera& camera) {
-  if (!e.clipping_on) return e;
+  if (!e.flag(EffectId::clipping)) return e;
   const glm::dvec3 forward(glm::vec3(camera.forward));
   const glm::dvec3 beyond = glm::dvec3(glm::vec3(camera.position)) + forward * kClipViewDepth;
   e.clipping.planes = {glm::dvec4(-forward, glm::dot(forward, beyond))};
@@ -33,7 +34,7 @@ render::EffectSettings effects_for_view(render::EffectSettings e, const gpu::Cam
 
 std::string oracle_key(const render::EffectSettings& e) {
   char key[160];
-  std::snprintf(key, sizeof key, "c%d j%d a%d t%.9g", int(e.clipping_on && e.clipping.any()), int(e.jitter_on), int(e.animation_on), e.time);
+  std::snprintf(key, sizeof key, "c%d j%d a%d t%.9g", int(e.flag(EffectId::clipping) && e.clipping.any()), int(e.flag(EffectId::jitter)), int(e.flag(EffectId::animation)), e.time);
   return key;
 }
 
@@ -82,22 +83,18 @@ std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, c
   add("flat level", "auto (half the scene's memory)", [](MatrixVariant& m) { m.settings.flatten_bytes = render::kFlattenAuto; },
       "the membrane copies of the triangles in view as one TLAS instance each");
   render::EffectSettings effects = render::package_effects(package);
-  effects.clipping_on = effects.animation_on = effects.jitter_on = effects.ambient_occlusion_on = effects.shadows_on = false;
+  effects.on = {};
   effects.time = 1.0;
-  const auto effect = [&](const char* name, bool render::EffectSettings::*flag, std::string note = {}) {
-    add("effect", name, [&](MatrixVariant& m) {
-      m.settings.effects = effects;
-      m.settings.effects.*flag = true;
-    }, std::move(note));
-  };
-  effect("clipping", &render::EffectSettings::clipping_on,
-         "per view a plane 400 Å ahead of the eye removes what lies beyond; the oracle clips too");
   const bool animated = package.record_count(format::SectionKind::scene) == 1 &&
-                        (package.records<format::SectionKind::scene>()[0].effect_flags & gpu::NANO_EFFECT_PROXY_ANIMATION);
-  if (animated) effect("animation", &render::EffectSettings::animation_on, "the oracle moves the instances too");
-  effect("jitter", &render::EffectSettings::jitter_on, "the oracle jitters too");
-  effect("ao", &render::EffectSettings::ambient_occlusion_on, "shading only: ids unchanged by design");
-  effect("shadows", &render::EffectSettings::shadows_on, "shading only: ids unchanged by design");
+                        (package.records<format::SectionKind::scene>()[0].effect_flags & package_flag(EffectId::animation));
+  // Every effect of the table alone; what the oracle does for it is the table's word.
+  for (const EffectDeclaration& effect : effect_table()) {
+    if (effect.id == EffectId::animation && !animated) continue;  // nothing moves: the row would repeat the default
+    add("effect", std::string(effect.name), [&effects, id = effect.id](MatrixVariant& m) {
+      m.settings.effects = effects;
+      m.settings.effects.flag(id) = true;
+    }, std::string(effect.oracle));
+  }
   return v;
 }
 

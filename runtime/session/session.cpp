@@ -76,17 +76,19 @@ render::EffectSettings EffectOptions::settings(const format::Package& package) c
   if (e.clipping.planes.size() > render::kMaxClipPlanes)
     throw InputError("--clip-plane", "", "at most " + std::to_string(render::kMaxClipPlanes) + " planes in all (the scene's included)");
   if (!clip_box.empty()) parse("--clip-box", [&] { e.clipping.box = render::parse_clip_box(clip_box); });
-  if (!clip_planes.empty() || !clip_box.empty()) e.clipping_on = true;
+  if (!clip_planes.empty() || !clip_box.empty()) e.flag(EffectId::clipping) = true;
   for (const std::string& name : on) parse("--effect", [&] { render::set_effect(e, name, true); });
   for (const std::string& name : off) parse("--no-effect", [&] { render::set_effect(e, name, false); });
-  if (ao_rays != 0) {
-    if (ao_rays > 1024) throw InputError("--ao-rays", "", "at most 1024");
-    e.ao_rays = ao_rays;
-  }
-  if (ao_radius != 0) {
-    if (!(ao_radius > 0) || !std::isfinite(ao_radius)) throw InputError("--ao-radius", "", "must be a positive length in Å");
-    e.ao_radius = float(ao_radius);
-  }
+  for (const EffectDeclaration& effect : effect_table())
+    for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
+      const std::string& text = parameters[static_cast<std::size_t>(effect.id)][i];
+      if (text.empty()) continue;
+      const EffectParameter& p = effect.parameters[i];
+      const std::string option = parameter_option(effect, p);
+      glm::dvec3 value{};
+      parse(option.c_str(), [&] { value = render::parse_parameter(p, text); });
+      e.parameters(effect.id)[i] = value;
+    }
   return e;
 }
 
@@ -102,10 +104,10 @@ Camera camera_option(const format::Package& package, const std::string& text) {
 
 OracleEffects oracle_effects(const format::Package& package, const render::EffectSettings& effects) {
   OracleEffects o;
-  if (effects.animation_on) o.scene.instance_transforms = render::animated_instance_transforms(package, effects.time);
-  o.scene.jitter = effects.jitter_on && effects.jitter_degrees > 0;
+  if (effects.flag(EffectId::animation)) o.scene.instance_transforms = render::animated_instance_transforms(package, effects.time);
+  o.scene.jitter = effects.flag(EffectId::jitter) && effects.jitter_degrees() > 0;
   o.scene.jitter_parameters = render::jitter_frame_parameters(effects);
-  if (effects.clipping_on) o.clip = render::clip_half_spaces(effects.clipping);
+  if (effects.flag(EffectId::clipping)) o.clip = render::clip_half_spaces(effects.clipping);
   o.scene.clip = o.clip;
   return o;
 }

@@ -3,6 +3,7 @@
 // a package opened and validated BEFORE any GPU work (a package that fails validation never reaches
 // the device), the Vulkan device, the scene on it, and the settings the options describe. No
 // command-line parsing here: runtime/cli/cli_options.hpp registers these options with CLI11.
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -59,14 +60,16 @@ struct PresentationOptions {
 };
 
 // The effect options `render`, `verify`, `pick` and `bench` share. The package's effects are the
-// start (unless --no-scene-effects); --effect / --no-effect switch one; clip options turn clipping on.
+// start (unless --no-scene-effects); --effect / --no-effect switch one; clip options turn clipping on;
+// parameter options set a value and leave the switch as it is.
 struct EffectOptions {
   std::vector<std::string> clip_planes, on, off;
   std::string clip_box;
   double time = 0;
   bool no_scene_effects = false;
-  std::uint32_t ao_rays = 0;  // 0: the scene's (or 8)
-  double ao_radius = 0;       // 0: the scene's (or 40 Å)
+  // --<prefix>-<parameter> of every effect of common/effect_table.hpp, as typed; empty: the scene's
+  // value (or the table's fallback).
+  std::array<std::array<std::string, kMaxEffectParameters>, kEffectCount> parameters;
   // Throws InputError naming the option that does not parse.
   render::EffectSettings settings(const format::Package& package) const;
 };

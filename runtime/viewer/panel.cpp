@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <imgui.h>
 
 #include "runtime/render/effects.hpp"
@@ -25,7 +27,7 @@ void frame_section(const ViewerState& s, const PanelContext& c) {
   const FrameStats& f = s.stats;
   ImGui::Text("frame %.3f s  %ux%u%s", f.seconds, f.width, f.height, f.scale > 1 ? " (moving)" : "");
   ImGui::Text("%.2f Mrays/s", f.rays_per_second / 1e6);
-  if (s.settings.effects.ambient_occlusion_on) ImGui::Text("AO samples %u / %u", f.samples, s.ao_samples);
+  if (s.settings.effects.flag(EffectId::ambient_occlusion)) ImGui::Text("AO samples %u / %u", f.samples, s.ao_samples);
   if (c.load) {
     const render::MemoryReport& m = c.load->memory;
     if (ImGui::TreeNode("device memory", "device memory %s", megabytes(m.total()).c_str())) {
@@ -97,13 +99,13 @@ void clipping_section(ViewerState& s, const PanelContext& c) {
     // Through the scene centre facing the camera: it removes the near half.
     const glm::dvec3 n = glm::normalize(s.camera.camera().at - s.camera.camera().eye);
     e.clipping.planes.emplace_back(n, -glm::dot(n, centre));
-    e.clipping_on = changed = true;
+    e.flag(EffectId::clipping) = changed = true;
   }
   bool box = e.clipping.box.has_value();
   if (ImGui::Checkbox("clip box", &box)) {
     if (box) e.clipping.box = std::pair(c.bounds.lo, c.bounds.hi);
     else e.clipping.box.reset();
-    if (box) e.clipping_on = true;
+    if (box) e.flag(EffectId::clipping) = true;
     changed = true;
   }
   if (e.clipping.box) {
@@ -116,23 +118,52 @@ void clipping_section(ViewerState& s, const PanelContext& c) {
   if (changed) s.touch();
 }
 
+// The widget the effect table names for a parameter; true when the user changed it.
+bool parameter_widget(const EffectParameter& p, glm::dvec3& value) {
+  std::string label(p.key);
+  if (!p.unit.empty()) label += " (" + std::string(p.unit) + ")";
+  switch (p.widget) {
+    case PanelWidget::slider:
+    case PanelWidget::log_slider: {
+      const ImGuiSliderFlags flags = p.widget == PanelWidget::log_slider ? ImGuiSliderFlags_Logarithmic : 0;
+      const char* format = p.kind == ParameterKind::whole_number ? "%.0f" : "%.2f";
+      if (!ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &value.x, &p.panel_min, &p.panel_max, format, flags)) return false;
+      if (p.kind == ParameterKind::whole_number) value.x = std::round(value.x);
+      return true;
+    }
+    case PanelWidget::direction: {
+      glm::vec3 v(value);
+      if (!ImGui::SliderFloat3(label.c_str(), &v.x, float(p.panel_min), float(p.panel_max), "%.2f")) return false;
+      if (glm::length(v) > 0) value = glm::normalize(glm::dvec3(v));  // a zero vector keeps the last direction
+      return true;
+    }
+    case PanelWidget::colour_picker: {
+      glm::vec3 v(value);
+      if (!ImGui::ColorEdit3(label.c_str(), &v.x)) return false;
+      value = glm::clamp(glm::dvec3(v), 0.0, 1.0);
+      return true;
+    }
+  }
+  return false;
+}
+
 void effects_section(ViewerState& s, const PanelContext& c) {
   if (!ImGui::CollapsingHeader("effects")) return;
   render::EffectSettings& e = s.settings.effects;
-  for (std::string_view name : render::kEffectNames) {
-    bool& flag = render::effect_flag(e, name);
-    if (ImGui::Checkbox(std::string(name).c_str(), &flag)) s.touch();
-  }
+  for (const EffectDeclaration& effect : effect_table())
+    if (ImGui::Checkbox(std::string(effect.name).c_str(), &e.flag(effect.id))) s.touch();
   if (ImGui::TreeNode("clipping planes and box")) {
     clipping_section(s, c);
     ImGui::TreePop();
   }
-  if (ImGui::TreeNode("ambient occlusion")) {
-    const std::uint32_t rays_min = 1, rays_max = 64, samples_min = 1, samples_max = 256;
-    const float radius_min = 1, radius_max = 2000;
-    if (ImGui::SliderScalar("rays / pixel", ImGuiDataType_U32, &e.ao_rays, &rays_min, &rays_max)) s.touch();
-    if (ImGui::SliderFloat("radius (Å)", &e.ao_radius, radius_min, radius_max, "%.1f", ImGuiSliderFlags_Logarithmic)) s.touch();
-    ImGui::SliderScalar("samples", ImGuiDataType_U32, &s.ao_samples, &samples_min, &samples_max);
+  for (const EffectDeclaration& effect : effect_table()) {
+    if (effect.parameters.empty() || !ImGui::TreeNode(std::string(effect.name).c_str())) continue;
+    for (std::size_t i = 0; i < effect.parameters.size(); ++i)
+      if (parameter_widget(effect.parameters[i], e.parameters(effect.id)[i])) s.touch();
+    if (effect.id == EffectId::ambient_occlusion) {
+      const std::uint32_t samples_min = 1, samples_max = 256;
+      ImGui::SliderScalar("samples", ImGuiDataType_U32, &s.ao_samples, &samples_min, &samples_max);
+    }
     ImGui::TreePop();
   }
   const double t_min = 0, t_max = std::max(60.0, e.time);

@@ -7,7 +7,7 @@
 //   clip plane nx,ny,nz,d                        adds a plane (points with n·p + d ≥ 0 stay)
 //   clip box x0,y0,z0,x1,y1,z1                   sets the clip box
 //   clip off                                     removes every plane and the box
-//   effect NAME on|off                           NAME one of render::kEffectNames
+//   effect NAME on|off                           NAME one of the effect table's names (common/effect_table.hpp)
 //   time SECONDS                                 animation / jitter time
 //   wait N                                       renders N frames
 //   pick X Y                                     prints the pixel's describe_hit JSON (one line)

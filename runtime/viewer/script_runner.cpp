@@ -27,17 +27,17 @@ void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
         throw std::invalid_argument("at most " + std::to_string(render::kMaxClipPlanes) +
                                     " clip planes (the scene's included); 'clip off' removes them");
       effects.clipping.planes.push_back(c.plane);
-      effects.clipping_on = true;
+      effects.flag(EffectId::clipping) = true;
       s.touch();
       break;
     case K::clip_box:
       effects.clipping.box = c.box;
-      effects.clipping_on = true;
+      effects.flag(EffectId::clipping) = true;
       s.touch();
       break;
     case K::clip_off:
       effects.clipping = {};
-      effects.clipping_on = false;
+      effects.flag(EffectId::clipping) = false;
       s.touch();
       break;
     case K::effect:

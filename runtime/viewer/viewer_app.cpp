@@ -160,7 +160,7 @@ private:
   }
 
   bool wants_more_samples() const {
-    return state_.settings.effects.ambient_occlusion_on && accumulator_.count() < state_.ao_samples;
+    return state_.settings.effects.flag(EffectId::ambient_occlusion) && accumulator_.count() < state_.ao_samples;
   }
 
   // A frame of the current state being made: at 1/scale per axis of the window's `size` (scale 1:
@@ -177,7 +177,7 @@ private:
     job.scale = scale;
     job.size = render_size();
     job.version = state_.version;
-    if (scale == 1) job.sample = full_is_current() && state_.settings.effects.ambient_occlusion_on ? accumulator_.count() : 0;
+    if (scale == 1) job.sample = full_is_current() && state_.settings.effects.flag(EffectId::ambient_occlusion) ? accumulator_.count() : 0;
     job.settings = state_.settings;
     job.settings.depth_cue = render::depth_cue_for(state_.camera.camera());
     job.settings.effects.sample_index = job.sample;
@@ -405,7 +405,7 @@ private:
         log_status();
       }
       if (input.toggle_ambient_occlusion) {
-        state_.settings.effects.ambient_occlusion_on = !state_.settings.effects.ambient_occlusion_on;
+        state_.settings.effects.flag(EffectId::ambient_occlusion) = !state_.settings.effects.flag(EffectId::ambient_occlusion);
         state_.touch();
       }
       if (state_.playing && !state_.path.play_time) {  // while a path plays, it drives the time

@@ -104,7 +104,7 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TLAS) uniform accelerati
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_COPIES, std430) readonly buffer FlatCopies { FlatCopy flat_copies[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TRIANGLES, std430) readonly buffer FlatTriangles { uint flat_triangles[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) buffer Hits { PixelHit hits[]; };  // read by the image pass
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COUNTERS, std430) writeonly buffer Counters { uint counters[]; };
 
@@ -707,10 +707,19 @@ vec3 srgb_from_linear(vec3 c) {
   return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
 }
 
+// The image pass (frame.pass.x = 1, after every pixel is traced): effects that read the finished
+// hits of a pixel's neighbours (EffectDeclaration::image_pass in common/effect_table.hpp).
+void image_pass(uvec2 px, uint index) {
+}
+
 void main() {
   Camera cam = frame.camera;
   uvec2 px = gl_GlobalInvocationID.xy + part.origin;
   if (px.x >= cam.size.x || px.y >= cam.size.y) return;
+  if (frame.pass.x != 0u) {
+    image_pass(px, px.y * cam.size.x + px.x);
+    return;
+  }
   vec3 d = camera_ray_direction(cam, px.x, px.y);
   if (kCounters)
     for (uint k = 0u; k < NANO_RAY_COUNTER_COUNT; ++k) ray_counts[k] = 0u;

@@ -14,13 +14,6 @@ NANO_BEGIN
 // "No such record" in an optional index (a compartment without membrane, for instance).
 NANO_CONST uint NANO_NO_INDEX = 0xFFFFFFFFu;
 
-// Scene effect flags (SceneSettings.effect_flags). Unknown bits are ignored by readers.
-NANO_CONST uint NANO_EFFECT_CLIPPING_PLANES = 1u;
-NANO_CONST uint NANO_EFFECT_PROXY_ANIMATION = 2u;
-NANO_CONST uint NANO_EFFECT_JITTER = 4u;
-NANO_CONST uint NANO_EFFECT_AMBIENT_OCCLUSION = 8u;
-NANO_CONST uint NANO_EFFECT_SHADOWS = 16u;
-
 // Box occupancy values (one byte per core-grid box).
 NANO_CONST uint NANO_BOX_OUTSIDE = 0u;
 NANO_CONST uint NANO_BOX_INSIDE = 1u;
@@ -186,7 +179,7 @@ struct SceneSettings {
   vec4 camera_eye;     // xyz: default camera position (world, Å); w: vertical field of view (radians)
   vec4 camera_target;  // xyz: point looked at; w: reserved
   vec4 camera_up;      // xyz: up direction; w: reserved
-  uint effect_flags;   // NANO_EFFECT_* bits
+  uint effect_flags;   // one bit per effect, EffectDeclaration::package_flag (common/effect_table.hpp); unknown bits are ignored
   uint reserved0;
   uint reserved1;
   uint reserved2;

@@ -4,6 +4,7 @@
 #ifndef NANO_RENDER_SCENE_H
 #define NANO_RENDER_SCENE_H
 #include "shared/camera.h"
+#include "shared/package_records.h"
 
 NANO_BEGIN
 
@@ -66,6 +67,9 @@ struct RenderFrame {
   vec4 flat_eye;  // the flat level (FlatCopy): xyz: the eye in its space (eye − anchor, from double);
                   // w: 1 when it holds copies, 0 when every compartment instance is traced virtually
   vec4 clip[14];  // camera-relative world half-spaces (unit n, d): a point p stays iff n·p + d ≥ 0 for all
+  SceneEffects effect_record;  // the on effects' table parameters, in the package record's layout
+  uvec4 pass;     // x: 0 traces the pixels; 1 is the image pass after the last part (effects that read
+                  // their neighbours' hits, EffectDeclaration::image_pass); yzw: reserved
 };
 NANO_CONST uint NANO_MAX_CLIP_HALF_SPACES = 14u;  // 8 planes + the 6 faces of the clip box
 
@@ -94,7 +98,7 @@ static_assert(sizeof(nano::gpu::RenderCompartment) == 112);
 static_assert(sizeof(nano::gpu::RenderInstance) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);
 static_assert(sizeof(nano::gpu::Camera) == 80);
-static_assert(sizeof(nano::gpu::RenderFrame) == 400);
+static_assert(sizeof(nano::gpu::RenderFrame) == 672);
 static_assert(sizeof(nano::gpu::FlatCopy) == 48);
 static_assert(sizeof(nano::gpu::PixelHit) == 48 && offsetof(nano::gpu::PixelHit, cell) == 16 &&
               offsetof(nano::gpu::PixelHit, instance) == 32);

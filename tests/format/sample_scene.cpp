@@ -1,3 +1,4 @@
+#include "common/effect_table.hpp"
 #include "tests/format/sample_scene.hpp"
 
 #include <algorithm>
@@ -82,8 +83,8 @@ SampleScene make_sample_scene() {
   s.beads = {{vec4(0, 0, 1.0f / 6, 2.02f), 2, 3, 0, 0}, {vec4(0, 0, 0, 1.001f), 3, 1, 0, 0}, {vec4(0.5f, 0, 0, 0.501f), 4, 1, 0, 0}};
   s.bead_ranges = {{0, 1}, {1, 2}};
   s.scene = {{vec4(0, 0, 10, 0.8f), vec4(0, 0, 0, 0), vec4(0, 1, 0, 0),
-              gpu::NANO_EFFECT_AMBIENT_OCCLUSION | gpu::NANO_EFFECT_SHADOWS | gpu::NANO_EFFECT_CLIPPING_PLANES |
-                  gpu::NANO_EFFECT_PROXY_ANIMATION,
+              package_flag(EffectId::ambient_occlusion) | package_flag(EffectId::shadows) | package_flag(EffectId::clipping) |
+                  package_flag(EffectId::animation),
               0, 0, 0}};
   // Clipping by one plane and a box, AO and shadows; instance 1 keyframed (so no steady motion).
   gpu::SceneEffects e{};

@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "common/effect_table.hpp"
 #include "tests/format/package_bytes.hpp"
 #include "tests/format/sample_scene.hpp"
 
@@ -174,7 +175,7 @@ const Case kCases[] = {
     {"plane past the count", [](SampleScene& s) { s.effects[0].clip_planes[3] = vec4(1, 0, 0, 0); }, Rule::nonzero_reserved,
      SectionKind::effects, 48},
     {"clip planes without the clipping flag",
-     [](SampleScene& s) { s.scene[0].effect_flags &= ~gpu::NANO_EFFECT_CLIPPING_PLANES; }, Rule::bad_value, SectionKind::effects, 240},
+     [](SampleScene& s) { s.scene[0].effect_flags &= ~package_flag(EffectId::clipping); }, Rule::bad_value, SectionKind::effects, 240},
     {"inverted clip box", [](SampleScene& s) { s.effects[0].clip_box_min.y = 20; }, Rule::inverted_aabb, SectionKind::effects, 132},
     {"clip box flag 2", [](SampleScene& s) { s.effects[0].clip_box_min.w = 2; }, Rule::bad_value, SectionKind::effects, 140},
     {"steady motion beside keyframes", [](SampleScene& s) { s.effects[0].velocity = vec4(1, 0, 0, 0); }, Rule::bad_value,
@@ -192,7 +193,7 @@ const Case kCases[] = {
      SectionKind::effects, 192},
     {"jitter amplitude 200",
      [](SampleScene& s) {
-       s.scene[0].effect_flags |= gpu::NANO_EFFECT_JITTER;
+       s.scene[0].effect_flags |= package_flag(EffectId::jitter);
        s.effects[0].jitter = vec4(200, 1, 0, 0);
      },
      Rule::bad_value, SectionKind::effects, 192},

@@ -129,7 +129,7 @@ void check_parsed(const SceneDescription& s) {
     for (const InstanceKeyframes& k : s.effects.animation->keyframes)
       for (const Keyframe& key : k.keys) check_finite(key.transform, "keyframe transform");
   }
-  if (s.effects.shadows) check_unit(s.effects.shadows->light_direction, "light direction");
+  if (const auto& shadows = s.effects[EffectId::shadows]) check_unit((*shadows)[0], "light direction");
   if (s.camera) check_unit(s.camera->up, "camera up");
 }
 

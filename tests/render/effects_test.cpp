@@ -30,19 +30,19 @@ struct Opened {
 TEST(PackageEffects, ReadsWhatTheSectionsHold) {
   const Opened p(format::test::make_sample_scene());
   const EffectSettings e = package_effects(p.package);
-  EXPECT_TRUE(e.clipping_on);
+  EXPECT_TRUE(e.flag(EffectId::clipping));
   ASSERT_EQ(e.clipping.planes.size(), 1u);
   EXPECT_EQ(e.clipping.planes[0], glm::dvec4(0, 0, 1, -2));
   ASSERT_TRUE(e.clipping.box.has_value());
   EXPECT_EQ(e.clipping.box->first, dvec3(-10, -10, -10));
   EXPECT_EQ(e.clipping.box->second, dvec3(60, 10, 10));
-  EXPECT_TRUE(e.animation_on);
-  EXPECT_FALSE(e.jitter_on);
-  EXPECT_TRUE(e.ambient_occlusion_on);
-  EXPECT_EQ(e.ao_rays, 8u);
-  EXPECT_EQ(e.ao_radius, 40.f);
-  EXPECT_TRUE(e.shadows_on);
-  EXPECT_NEAR(e.light_direction.y, 0.6, 1e-7);
+  EXPECT_TRUE(e.flag(EffectId::animation));
+  EXPECT_FALSE(e.flag(EffectId::jitter));
+  EXPECT_TRUE(e.flag(EffectId::ambient_occlusion));
+  EXPECT_EQ(e.ao_rays(), 8u);
+  EXPECT_EQ(e.ao_radius(), 40.f);
+  EXPECT_TRUE(e.flag(EffectId::shadows));
+  EXPECT_NEAR(e.light_direction().y, 0.6, 1e-7);
 }
 
 TEST(PackageEffects, AllOffWithoutTheSection) {
@@ -51,7 +51,7 @@ TEST(PackageEffects, AllOffWithoutTheSection) {
   s.keyframes.clear();
   const Opened p(s);
   const EffectSettings e = package_effects(p.package);
-  EXPECT_FALSE(e.clipping_on || e.animation_on || e.jitter_on || e.ambient_occlusion_on || e.shadows_on);
+  EXPECT_FALSE(e.flag(EffectId::clipping) || e.flag(EffectId::animation) || e.flag(EffectId::jitter) || e.flag(EffectId::ambient_occlusion) || e.flag(EffectId::shadows));
   // Without effects the instances stand where the package puts them, at any time.
   const auto t = animated_instance_transforms(p.package, 5.0);
   ASSERT_EQ(t.size(), 2u);
@@ -94,13 +94,11 @@ TEST(ClipHalfSpaces, BoxFacesKeepExactlyTheInside) {
 
 TEST(SetEffect, NamesAndDefaults) {
   EffectSettings e;
-  for (std::string_view name : kEffectNames) {
-    set_effect(e, name, true);
-  }
-  EXPECT_TRUE(e.clipping_on && e.animation_on && e.jitter_on && e.ambient_occlusion_on && e.shadows_on);
-  EXPECT_GT(e.jitter_degrees, 0.0);  // a scene without jitter parameters still wobbles when asked
+  for (const EffectDeclaration& effect : effect_table()) set_effect(e, effect.name, true);
+  EXPECT_TRUE(e.flag(EffectId::clipping) && e.flag(EffectId::animation) && e.flag(EffectId::jitter) && e.flag(EffectId::ambient_occlusion) && e.flag(EffectId::shadows));
+  EXPECT_GT(e.jitter_degrees(), 0.0);  // a scene without jitter parameters still wobbles when asked
   set_effect(e, "ao", false);
-  EXPECT_FALSE(e.ambient_occlusion_on);
+  EXPECT_FALSE(e.flag(EffectId::ambient_occlusion));
   EXPECT_THROW(set_effect(e, "bloom", true), std::invalid_argument);
 }
 

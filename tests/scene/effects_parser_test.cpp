@@ -31,7 +31,7 @@ TEST(EffectsParser, SteadyMotion) {
   ASSERT_TRUE(e.animation.has_value());
   EXPECT_EQ(e.animation->steady, (SteadyMotion{{0, 0.6, 0.8}, 12.0, {1, 2, 3}}));
   EXPECT_TRUE(e.animation->keyframes.empty());
-  EXPECT_FALSE(e.animation->jitter.has_value());
+  EXPECT_FALSE(e[EffectId::jitter].has_value());
   // Velocity alone keeps the default axis and no spin.
   const Effects drift = effects_from(R"({"effects": {"animation": {"proxy_motion": {"steady": {"velocity": [5, 0, 0]}}}}})");
   EXPECT_EQ(drift.animation->steady, (SteadyMotion{{0, 0, 1}, 0.0, {5, 0, 0}}));
@@ -86,11 +86,14 @@ TEST(EffectsParser, ClippingAmbientOcclusionShadows) {
       "ambient_occlusion": {"rays": 16, "radius": 12.5},
       "shadows": {"light_direction": [1, 1, 0]}}})");
   EXPECT_EQ(e.clipping, (Clipping{{glm::dvec4(0.6, 0, 0.8, 2), glm::dvec4(0, -1, 0, 0)}, std::nullopt}));
-  EXPECT_EQ(e.ambient_occlusion, (AmbientOcclusion{16, 12.5}));
-  ASSERT_TRUE(e.shadows.has_value());
-  EXPECT_NEAR(e.shadows->light_direction.x, std::sqrt(0.5), 1e-15);
-  EXPECT_NEAR(e.shadows->light_direction.y, std::sqrt(0.5), 1e-15);
-  EXPECT_EQ(e.shadows->light_direction.z, 0.0);
+  ASSERT_TRUE(e[EffectId::ambient_occlusion].has_value());
+  EXPECT_EQ((*e[EffectId::ambient_occlusion])[0].x, 16.0);
+  EXPECT_EQ((*e[EffectId::ambient_occlusion])[1].x, 12.5);
+  ASSERT_TRUE(e[EffectId::shadows].has_value());
+  const glm::dvec3 light = (*e[EffectId::shadows])[0];
+  EXPECT_NEAR(light.x, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(light.y, std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(light.z, 0.0);
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"clipping": {}}})"), "effects.clipping", "\"planes\", \"box\" or both");
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"clipping": {"planes": []}}})"), "effects.clipping.planes",
                      "at least 1 element");

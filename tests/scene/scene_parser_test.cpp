@@ -110,11 +110,11 @@ SceneDescription expected_scene() {
   animation.keyframes = {{6,
                           {{0.0, identity_transform()},
                            {2.5, {glm::dvec4(2, 0, 0, 1), glm::dvec4(0, 2, 0, 2), glm::dvec4(0, 0, 2, 3)}}}}};
-  animation.jitter = Jitter{5.0, 2.0};
+  s.effects[EffectId::jitter] = ParameterValues{glm::dvec3(5.0, 0, 0), glm::dvec3(2.0, 0, 0)};
   s.effects.clipping = Clipping{{glm::dvec4(0, 0, 1, -2)}, Box{{-1, -2, -3}, {4, 5, 6}}};
   s.effects.animation = animation;
-  s.effects.ambient_occlusion = AmbientOcclusion{8, 30.0};
-  s.effects.shadows = Shadows{{0, -1, 0}};
+  s.effects[EffectId::ambient_occlusion] = ParameterValues{glm::dvec3(8, 0, 0), glm::dvec3(30.0, 0, 0)};
+  s.effects[EffectId::shadows] = ParameterValues{glm::dvec3(0, -1, 0)};
   s.camera = Camera{{0, 0, -5000}, {0, 0, 0}, {0, 1, 0}, 60.0};
   return s;
 }
@@ -133,8 +133,7 @@ TEST(SceneParser, CompleteSceneMatchesHandWrittenValues) {
   EXPECT_EQ(actual.instances, expected.instances);
   EXPECT_EQ(actual.effects.clipping, expected.effects.clipping);
   EXPECT_EQ(actual.effects.animation, expected.effects.animation);
-  EXPECT_EQ(actual.effects.ambient_occlusion, expected.effects.ambient_occlusion);
-  EXPECT_EQ(actual.effects.shadows, expected.effects.shadows);
+  EXPECT_EQ(actual.effects.plain, expected.effects.plain);
   EXPECT_EQ(actual.camera, expected.camera);
   EXPECT_EQ(actual, expected);
 }

@@ -53,14 +53,14 @@ TEST(ScriptRunner, ChangesStateAndRendersFrames) {
   const auto& s = host.state_;
   EXPECT_EQ(s.camera.camera().eye, glm::dvec3(0, 0, 500));
   EXPECT_EQ(s.camera.camera().fov_degrees, 30);
-  EXPECT_TRUE(s.settings.effects.clipping_on);
+  EXPECT_TRUE(s.settings.effects.flag(EffectId::clipping));
   EXPECT_EQ(s.settings.effects.clipping.planes.size(), 1u);
   EXPECT_TRUE(s.settings.effects.clipping.box.has_value());
-  EXPECT_TRUE(s.settings.effects.ambient_occlusion_on);
+  EXPECT_TRUE(s.settings.effects.flag(EffectId::ambient_occlusion));
   EXPECT_EQ(s.settings.effects.time, 3);
   EXPECT_EQ(host.frames, 2u);
   run("clip off\n", host, out);
-  EXPECT_FALSE(host.state_.settings.effects.clipping_on);
+  EXPECT_FALSE(host.state_.settings.effects.flag(EffectId::clipping));
   EXPECT_TRUE(host.state_.settings.effects.clipping.planes.empty());
   EXPECT_FALSE(host.state_.settings.effects.clipping.box.has_value());
 }

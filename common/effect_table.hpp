@@ -1,0 +1,93 @@
+#pragma once
+// Every scene effect, declared once. The scene parser, the baker, the validator, the renderer's
+// specialization constants, the command-line options, the viewer's panel and `bench --effects` all
+// walk this table, so an effect is added by one row here, its shader code and its record slots.
+//
+// An effect's plain parameters (numbers, directions, colours) need nothing else: they are parsed
+// from scene.json at `scene_key`, stored as floats (or a packed colour) at `record_offset` of the
+// package's effects record (gpu::SceneEffects), range-checked by the validator, given an option
+// `--<cli_prefix>-<key>` and a panel widget, and handed to the shader in RenderFrame::effect_record.
+// Clipping's planes and box and animation's proxy motion are structured (lists, keyframes): the
+// table names them in `structured`, and their own code parses, bakes and checks them.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <glm/vec3.hpp>
+
+#include "shared/package_records.h"
+
+namespace nano {
+
+enum class EffectId : std::uint8_t { clipping, animation, jitter, ambient_occlusion, shadows };
+inline constexpr std::size_t kEffectCount = 5;
+inline constexpr std::size_t kMaxEffectParameters = 3;
+
+enum class ParameterKind : std::uint8_t {
+  number,        // one float
+  whole_number,  // one float holding an integer
+  unit_vector,   // three floats, normalised when parsed
+  colour,        // linear RGB in [0, 1], stored as one RGBA8 word (alpha 255)
+};
+enum class PanelWidget : std::uint8_t { slider, log_slider, direction, colour_picker };
+
+struct EffectParameter {
+  std::string_view key;   // in the effect's scene object; the option is --<cli_prefix>-<key, '_' → '-'>
+  std::string_view unit;  // "Å", "px", "°", "Hz" or "" (shown by --help and the panel)
+  ParameterKind kind;
+  double min, max;        // numbers: the accepted range; min is excluded when min_exclusive
+  bool min_exclusive;
+  bool required;          // the scene must give it when it gives the effect; else `fallback`
+  glm::dvec3 fallback;    // the value when the scene does not set it (numbers in x)
+  std::uint32_t record_offset;  // byte offset of its first word in gpu::SceneEffects
+  PanelWidget widget;
+  double panel_min, panel_max;
+};
+
+struct EffectDeclaration {
+  EffectId id;
+  std::string_view name;        // --effect NAME, the viewer's switch and script, bench's row
+  std::string_view scene_key;   // where scene.json sets it, under "effects" ("animation.jitter": nested)
+  std::string_view cli_prefix;  // options --<prefix>-<parameter>; empty: no parameter options
+  std::string_view summary;     // one line for --help and docs
+  std::uint32_t package_flag;   // its bit of gpu::SceneSettings::effect_flags (file format: never reuse)
+  int spec_constant;            // render.comp's constant_id; -1: no shader code (animation moves instances on the host)
+  std::span<const EffectParameter> parameters;
+  std::string_view structured;  // parts read by the effect's own code; empty for none
+  std::string_view oracle;      // how the CPU oracle (verify) reproduces it
+  bool image_pass;              // needs the finished hits image: render.comp's second dispatch
+};
+
+std::span<const EffectDeclaration> effect_table();
+const EffectDeclaration& effect_declaration(EffectId id);
+inline std::uint32_t package_flag(EffectId id) { return effect_declaration(id).package_flag; }
+// By name (as --effect spells it); nullptr for another name.
+const EffectDeclaration* find_effect(std::string_view name);
+// "clipping, animation, jitter, ao, shadows, outlines": the choices an error message lists.
+std::string effect_names();
+// Index of the parameter `key` of effect `id`; throws std::logic_error for a key it does not have.
+std::size_t parameter_index(EffectId id, std::string_view key);
+// "--ao-rays"; empty when the effect has no parameter options.
+std::string parameter_option(const EffectDeclaration& effect, const EffectParameter& parameter);
+
+// Every effect's parameter values, numbers in x; starts at the table's fallbacks.
+using EffectValues = std::array<std::array<glm::dvec3, kMaxEffectParameters>, kEffectCount>;  // [effect][parameter]
+EffectValues fallback_effect_values();
+
+// Why `value` is not acceptable for `parameter`, or empty when it is (unit vectors: non-zero
+// finite; the caller normalises).
+std::string parameter_problem(const EffectParameter& parameter, const glm::dvec3& value);
+// The RGBA8 word of a colour parameter (R in the low byte, alpha 255) and back.
+std::uint32_t pack_colour(const glm::dvec3& rgb);
+glm::dvec3 unpack_colour(std::uint32_t rgba);
+
+// One effect's parameters in the package's effects record (and in the frame's copy of it): floats
+// (unit vectors as given: every parser normalises in double), colours packed; and read back.
+using ParameterValues = std::array<glm::dvec3, kMaxEffectParameters>;
+void store_parameters(gpu::SceneEffects& record, EffectId id, const ParameterValues& values);
+ParameterValues load_parameters(const gpu::SceneEffects& record, EffectId id);
+
+}  // namespace nano
