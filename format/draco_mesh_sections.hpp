@@ -6,6 +6,7 @@
 // back the baked floats bit for bit on any machine, whatever Draco's own float arithmetic. Draco
 // renumbers vertices and triangles, so writer and reader agree on one canonical order that depends
 // only on the values (canonical_mesh_order). The only translation unit of format/ with Draco.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -22,13 +23,31 @@
 
 namespace nano::format {
 
-// The sections codec draco serves, always together.
-inline constexpr SectionKind kDracoCodedKinds[] = {SectionKind::vertex_positions, SectionKind::vertex_normals,
-                                                   SectionKind::vertex_uvs, SectionKind::triangles};
-inline bool is_draco_coded_kind(std::uint32_t kind) {
-  for (const SectionKind k : kDracoCodedKinds)
-    if (static_cast<std::uint32_t>(k) == kind) return true;
-  return false;
+// The sections codec draco serves, always together: the rows of format/section_table.hpp whose codecs
+// column says mesh.
+namespace draco_detail {
+constexpr std::size_t coded_kind_count() {
+  std::size_t n = 0;
+  for (const SectionInfo& row : kSectionTable) n += row.codecs == SectionCodecs::mesh;
+  return n;
+}
+}  // namespace draco_detail
+inline constexpr std::array<SectionKind, draco_detail::coded_kind_count()> kDracoCodedKinds = [] {
+  std::array<SectionKind, draco_detail::coded_kind_count()> kinds{};
+  std::size_t n = 0;
+  for (const SectionInfo& row : kSectionTable)
+    if (row.codecs == SectionCodecs::mesh) kinds[n++] = row.kind;
+  return kinds;
+}();
+static_assert(kDracoCodedKinds == std::array{SectionKind::vertex_positions, SectionKind::vertex_normals,
+                                             SectionKind::vertex_uvs, SectionKind::triangles},
+              "the Draco streams (below) code exactly positions, normals, UVs and triangles");
+// "vertex_positions, vertex_normals, vertex_uvs and triangles", for messages.
+inline std::string draco_coded_kind_names() {
+  std::string names;
+  for (std::size_t i = 0; i < kDracoCodedKinds.size(); ++i)
+    names += (i == 0 ? "" : i + 1 == kDracoCodedKinds.size() ? " and " : ", ") + section_kind_name(kDracoCodedKinds[i]);
+  return names;
 }
 
 // One mesh's arrays as the package stores them; triangle indices are local to the mesh.

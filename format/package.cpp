@@ -248,7 +248,7 @@ private:
     }
     if (e.codec == static_cast<std::uint16_t>(Codec::draco)) {
       if (!is_draco_coded_kind(e.kind))
-        fail(Rule::mesh_codec, in(e, e.offset), "codec draco serves only vertex_positions, vertex_normals, vertex_uvs and triangles");
+        fail(Rule::mesh_codec, in(e, e.offset), "codec draco serves only " + draco_coded_kind_names());
       if (e.stored_size != 0) fail(Rule::mesh_codec, in(e, e.offset), "a Draco-coded section stores no bytes of its own");
       if (e.raw_size > kMaxRawSectionBytes)
         fail(Rule::raw_size_limit, in(e, e.offset), "claimed raw size " + std::to_string(e.raw_size) + " exceeds the cap (64 GiB)");
@@ -284,7 +284,7 @@ private:
       fail(Rule::missing_section, in(*some_coded, some_coded->offset), "a mesh section is Draco-coded but section draco_meshes is absent");
     if (coded != int(std::size(kDracoCodedKinds)))
       fail(Rule::mesh_codec, in(*streams, streams->offset),
-           "section draco_meshes needs all four of vertex_positions, vertex_normals, vertex_uvs and triangles Draco-coded; " +
+           "section draco_meshes needs all four of " + draco_coded_kind_names() + " Draco-coded; " +
                std::to_string(coded) + " are");
     const SectionEntry* meshes = p_.entry_of[static_cast<std::uint32_t>(SectionKind::meshes)];
     if (!meshes) fail(Rule::missing_section, in(*streams, streams->offset), "Draco-coded mesh sections need section meshes");

@@ -33,53 +33,27 @@ inline InstanceTransform instance_transform(const gpu::CompartmentInstance& ci) 
 }
 
 struct PackageView {
-  std::span<const gpu::MoleculeType> molecules;
-  std::span<const gpu::Atom> atoms;
-  std::span<const AtomInfo> atom_info;
+  // One span per section, named and typed by format/section_table.hpp: e.g. tiles2d, triangle_drops
+  // (empty: no drops, else parallel to triangles), beads (format 2.5; empty: no level of detail).
+#define NANO_SECTION_SPAN(name, value, record, ...) std::span<const record> name;
+  NANO_SECTION_TABLE(NANO_SECTION_SPAN)
+#undef NANO_SECTION_SPAN
+  // Former names of six sections, kept only for runtime/render/flat_level.cpp and runtime/oracle/
+  // until those use the names above; new code must not use them.
   std::span<const gpu::Tile2D> squares;
   std::span<const gpu::Tile3D> cubes;
-  std::span<const gpu::MoleculeInstance> instances;
-  std::span<const gpu::Recipe> recipes;
-  std::span<const std::uint32_t> recipe_indices;
-  std::span<const gpu::Mesh> meshes;
   std::span<const glm::vec4> positions, normals;
   std::span<const glm::vec2> uvs;
-  std::span<const gpu::Triangle> triangles;
   std::span<const gpu::TriangleShell> shells;
-  std::span<const gpu::Compartment> compartments;
-  std::span<const std::uint8_t> occupancy;
-  std::span<const gpu::CompartmentInstance> compartment_instances;
-  std::span<const gpu::BoundaryBox> boundary_boxes;
-  std::span<const std::uint32_t> mask_words;
-  std::span<const gpu::TriangleDrops> triangle_drops;  // empty (no drops) or parallel to triangles
-  std::span<const std::uint32_t> dropped_copies;
-  std::span<const gpu::Bead> beads;                // format 2.5; empty: no level of detail
-  std::span<const gpu::BeadRange> bead_ranges;     // empty or parallel to molecules
 
   explicit PackageView(const Package& p)
-      : molecules(p.records<SectionKind::molecules>()),
-        atoms(p.records<SectionKind::atoms>()),
-        atom_info(p.records<SectionKind::atom_info>()),
-        squares(p.records<SectionKind::tiles2d>()),
-        cubes(p.records<SectionKind::tiles3d>()),
-        instances(p.records<SectionKind::instances>()),
-        recipes(p.records<SectionKind::recipes>()),
-        recipe_indices(p.records<SectionKind::recipe_indices>()),
-        meshes(p.records<SectionKind::meshes>()),
-        positions(p.records<SectionKind::vertex_positions>()),
-        normals(p.records<SectionKind::vertex_normals>()),
-        uvs(p.records<SectionKind::vertex_uvs>()),
-        triangles(p.records<SectionKind::triangles>()),
-        shells(p.records<SectionKind::triangle_shells>()),
-        compartments(p.records<SectionKind::compartments>()),
-        occupancy(p.records<SectionKind::occupancy>()),
-        compartment_instances(p.records<SectionKind::compartment_instances>()),
-        boundary_boxes(p.records<SectionKind::boundary_boxes>()),
-        mask_words(p.records<SectionKind::mask_words>()),
-        triangle_drops(p.records<SectionKind::triangle_drops>()),
-        dropped_copies(p.records<SectionKind::dropped_copies>()),
-        beads(p.records<SectionKind::beads>()),
-        bead_ranges(p.records<SectionKind::bead_ranges>()) {}
+      :
+#define NANO_SECTION_INIT(name, ...) name(p.records<SectionKind::name>()),
+        NANO_SECTION_TABLE(NANO_SECTION_INIT)
+#undef NANO_SECTION_INIT
+        squares(tiles2d), cubes(tiles3d), positions(vertex_positions), normals(vertex_normals), uvs(vertex_uvs),
+        shells(triangle_shells) {
+  }
 
   // True iff the baker listed membrane copy `key` (membrane_copy_key) of triangle t (dropped, or an
   // alternate shown: membrane_copy_listed_shows): a binary search over the triangle's ascending keys,

@@ -27,27 +27,23 @@ class SemanticCheck {
 public:
   explicit SemanticCheck(const Package& p) : p_(p) {}
 
+  // The rule of each row of format/section_table.hpp, each rule once where its first row stands,
+  // after the needs of every row it checks.
   void run() {
-    check_strings_refs_and_molecules();
-    check_atoms();
-    check_atom_info();
-    check_tiles<SectionKind::tiles2d>();
-    check_tiles<SectionKind::tiles3d>();
-    check_instances();
-    check_recipes();
-    check_meshes();
-    check_vertices();
-    check_triangle_shells();
-    check_compartments();
-    check_occupancy();
-    check_core_masks();
-    check_scene();
-    check_compartment_instances();
-    check_effects();
-    check_keyframes();
-    check_membrane_drops();
-    check_beads();
-    check_provenance();
+    using RuleFunction = void (SemanticCheck::*)();
+    static constexpr RuleFunction kRules[] = {
+#define NANO_SECTION_RULE(name, value, record, flags, since, codecs, rule, ...) &SemanticCheck::rule,
+        NANO_SECTION_TABLE(NANO_SECTION_RULE)
+#undef NANO_SECTION_RULE
+    };
+    static_assert(std::size(kRules) == kSectionTable.size());
+    for (std::size_t i = 0; i < std::size(kRules); ++i) {
+      if (std::find(kRules, kRules + i, kRules[i]) != kRules + i) continue;  // ran at its first row
+      for (std::size_t j = i; j < std::size(kRules); ++j)
+        if (kRules[j] == kRules[i])
+          for (const SectionKind needed : kSectionTable[j].needs) require(kSectionTable[j].kind, needed);
+      (this->*kRules[i])();
+    }
   }
 
 private:
@@ -111,8 +107,11 @@ private:
     range(c, off, first, length, SectionKind::strings, what);
   }
 
-  void check_strings_refs_and_molecules() {
-    require(SectionKind::molecules, SectionKind::atoms);
+  // strings: checked as ranges by the records that refer to them. draco_meshes: decoded and checked
+  // by the reader (format/package.cpp).
+  void no_rule_of_its_own() {}
+
+  void check_molecules() {
     const auto mols = p_.records<SectionKind::molecules>();
     for (std::uint64_t i = 0; i < mols.size(); ++i) {
       const gpu::MoleculeType& m = mols[i];
@@ -160,8 +159,9 @@ private:
     }
   }
 
+  void check_tiles2d() { check_tiles<SectionKind::tiles2d>(); }
+  void check_tiles3d() { check_tiles<SectionKind::tiles3d>(); }
   template <SectionKind K> void check_tiles() {
-    require(K, SectionKind::instances);
     const auto tiles = p_.template records<K>();
     for (std::uint64_t i = 0; i < tiles.size(); ++i) {
       const auto& t = tiles[i];
@@ -189,7 +189,6 @@ private:
   }
 
   void check_instances() {
-    require(SectionKind::instances, SectionKind::molecules);
     const auto inst = p_.records<SectionKind::instances>();
     for (std::uint64_t i = 0; i < inst.size(); ++i) {
       const gpu::MoleculeInstance& m = inst[i];
@@ -208,7 +207,6 @@ private:
   }
 
   void check_recipes() {
-    require(SectionKind::recipes, SectionKind::recipe_indices);
     const auto recipes = p_.records<SectionKind::recipes>();
     const auto indices = p_.records<SectionKind::recipe_indices>();
     for (std::uint64_t i = 0; i < recipes.size(); ++i) {
@@ -241,11 +239,6 @@ private:
 
   void check_meshes() {
     const auto meshes = p_.records<SectionKind::meshes>();
-    if (!meshes.empty()) {
-      for (SectionKind k : {SectionKind::vertex_positions, SectionKind::vertex_normals, SectionKind::vertex_uvs,
-                            SectionKind::triangles, SectionKind::triangle_shells})
-        require(SectionKind::meshes, k);
-    }
     const std::uint64_t vertices = p_.record_count(SectionKind::vertex_positions);
     for (SectionKind k : {SectionKind::vertex_normals, SectionKind::vertex_uvs})
       if (p_.has(k) && p_.record_count(k) != vertices)
@@ -321,7 +314,6 @@ private:
   }
 
   void check_compartments() {
-    require(SectionKind::compartments, SectionKind::meshes);
     const auto comps = p_.records<SectionKind::compartments>();
     for (std::uint64_t i = 0; i < comps.size(); ++i) {
       const gpu::Compartment& k = comps[i];
@@ -478,8 +470,6 @@ private:
   // reports, which is one of the type's. The renderer trusts these indices and boxes.
   void check_beads() {
     if (p_.record_count(SectionKind::beads) == 0 && p_.record_count(SectionKind::bead_ranges) == 0) return;
-    require(SectionKind::beads, SectionKind::bead_ranges);
-    require(SectionKind::bead_ranges, SectionKind::beads);
     const auto mols = p_.records<SectionKind::molecules>();
     const auto ranges = p_.records<SectionKind::bead_ranges>();
     if (ranges.size() != mols.size())
@@ -539,7 +529,6 @@ private:
   }
 
   void check_compartment_instances() {
-    require(SectionKind::compartment_instances, SectionKind::compartments);
     const auto inst = p_.records<SectionKind::compartment_instances>();
     for (std::uint64_t i = 0; i < inst.size(); ++i) {
       const Cursor c = cursor<SectionKind::compartment_instances>(i);
@@ -635,7 +624,6 @@ private:
   }
 
   void check_keyframes() {
-    require(SectionKind::keyframes, SectionKind::compartment_instances);
     const auto keys = p_.records<SectionKind::keyframes>();
     for (std::uint64_t i = 0; i < keys.size(); ++i) {
       const gpu::InstanceKeyframe& k = keys[i];

@@ -138,7 +138,8 @@ std::vector<std::byte> build_package(std::span<const SectionSource> given, int z
   for (const SectionSource& s : given) {
     sections.push_back(s);
     if (!draco.empty() && s.kind == static_cast<std::uint32_t>(SectionKind::triangles))
-      sections.push_back({static_cast<std::uint32_t>(SectionKind::draco_meshes), draco, Compression::none, kSectionRequired});
+      sections.push_back(section_source(SectionKind::draco_meshes, std::span<const std::byte>(draco),
+                                        default_compression(SectionKind::draco_meshes)));
   }
   check_sources(sections);
   std::vector<Encoded> encoded;

@@ -25,10 +25,22 @@ struct SectionSource {
   std::uint16_t flags = 0;
 };
 
+// The table's (format/section_table.hpp) choice for a kind: its flags column as entry flags, and
+// zstd where smaller unless its codecs column says raw (the mesh kinds choose Draco only when asked).
+constexpr std::uint16_t section_flags(SectionKind kind) { return static_cast<std::uint16_t>(section_info(kind).flags); }
+constexpr Compression default_compression(SectionKind kind) {
+  return section_info(kind).codecs == SectionCodecs::raw ? Compression::none : Compression::zstd_if_smaller;
+}
+
 template <class T>
-SectionSource section_source(SectionKind kind, std::span<const T> records,
-                             Compression compression = Compression::zstd_if_smaller, std::uint16_t flags = 0) {
+SectionSource section_source(SectionKind kind, std::span<const T> records, Compression compression, std::uint16_t flags) {
   return {static_cast<std::uint32_t>(kind), std::as_bytes(records), compression, flags};
+}
+template <class T> SectionSource section_source(SectionKind kind, std::span<const T> records, Compression compression) {
+  return section_source(kind, records, compression, section_flags(kind));
+}
+template <class T> SectionSource section_source(SectionKind kind, std::span<const T> records) {
+  return section_source(kind, records, default_compression(kind));
 }
 
 inline constexpr int kDefaultZstdLevel = 9;

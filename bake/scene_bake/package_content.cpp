@@ -211,12 +211,11 @@ std::vector<format::SectionSource> PackageContent::sections() const {
   add_mesh_data(SectionKind::vertex_uvs, std::span(vertex_uvs));
   add_mesh_data(SectionKind::triangles, std::span(triangles));
   add(SectionKind::triangle_shells, std::span(triangle_shells));
-  // Required: a 2.1 reader that skipped them would render the copies that clash.
+  // Required (their rows in format/section_table.hpp): a 2.1 reader that skipped them would render the
+  // copies that clash.
   if (!dropped_copies.empty()) {
-    s.push_back(section_source(SectionKind::triangle_drops, std::span(triangle_drops), format::Compression::zstd_if_smaller,
-                               format::kSectionRequired));
-    s.push_back(section_source(SectionKind::dropped_copies, std::span(dropped_copies), format::Compression::zstd_if_smaller,
-                               format::kSectionRequired));
+    s.push_back(section_source(SectionKind::triangle_drops, std::span(triangle_drops)));
+    s.push_back(section_source(SectionKind::dropped_copies, std::span(dropped_copies)));
   }
   add(SectionKind::compartments, std::span(compartments));
   add(SectionKind::occupancy, std::span(occupancy));

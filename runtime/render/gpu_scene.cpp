@@ -133,10 +133,10 @@ struct GpuScene::Impl : format::PackageView {
     report.upload_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
     first_square = std::uint32_t(molecules.size());
-    first_cube = first_square + std::uint32_t(squares.size());
-    first_area = first_cube + std::uint32_t(cubes.size());
+    first_cube = first_square + std::uint32_t(tiles2d.size());
+    first_area = first_cube + std::uint32_t(tiles3d.size());
     first_atom_square = first_area + std::uint32_t(compartments.size());
-    first_bead = first_atom_square + std::uint32_t(squares.size());
+    first_bead = first_atom_square + std::uint32_t(tiles2d.size());
     level_records.assign(first_bead + molecules.size(), gpu::RenderLevel{});
     levels.resize(level_records.size());
     build_molecule_levels();
@@ -163,11 +163,11 @@ struct GpuScene::Impl : format::PackageView {
   void upload_sections() {
     const std::pair<std::uint32_t, SectionKind> kinds[] = {
         {gpu::NANO_B_MOLECULES, SectionKind::molecules},       {gpu::NANO_B_ATOMS, SectionKind::atoms},
-        {gpu::NANO_B_SQUARES, SectionKind::tiles2d},           {gpu::NANO_B_CUBES, SectionKind::tiles3d},
+        {gpu::NANO_B_TILES2D, SectionKind::tiles2d},           {gpu::NANO_B_TILES3D, SectionKind::tiles3d},
         {gpu::NANO_B_INSTANCES, SectionKind::instances},       {gpu::NANO_B_RECIPES, SectionKind::recipes},
         {gpu::NANO_B_RECIPE_INDICES, SectionKind::recipe_indices}, {gpu::NANO_B_MESHES, SectionKind::meshes},
-        {gpu::NANO_B_POSITIONS, SectionKind::vertex_positions}, {gpu::NANO_B_NORMALS, SectionKind::vertex_normals},
-        {gpu::NANO_B_UVS, SectionKind::vertex_uvs},            {gpu::NANO_B_TRIANGLES, SectionKind::triangles},
+        {gpu::NANO_B_VERTEX_POSITIONS, SectionKind::vertex_positions}, {gpu::NANO_B_VERTEX_NORMALS, SectionKind::vertex_normals},
+        {gpu::NANO_B_VERTEX_UVS, SectionKind::vertex_uvs},            {gpu::NANO_B_TRIANGLES, SectionKind::triangles},
         {gpu::NANO_B_COMPARTMENTS, SectionKind::compartments}, {gpu::NANO_B_OCCUPANCY, SectionKind::occupancy},
         {gpu::NANO_B_BOUNDARY_BOXES, SectionKind::boundary_boxes}, {gpu::NANO_B_MASK_WORDS, SectionKind::mask_words},
         {gpu::NANO_B_TRIANGLE_DROPS, SectionKind::triangle_drops}, {gpu::NANO_B_DROPPED_COPIES, SectionKind::dropped_copies},
@@ -239,14 +239,14 @@ struct GpuScene::Impl : format::PackageView {
       const std::string where = "compartments[" + std::to_string(ci) + "]";
       gpu::RenderCompartment rc{};
       if (c.membrane_recipe != gpu::NANO_NO_INDEX) {
-        if (shells.empty()) fail(where, "has a membrane but the package has no triangle_shells: the shell renderer needs its prisms");
+        if (triangle_shells.empty()) fail(where, "has a membrane but the package has no triangle_shells: the shell renderer needs its prisms");
         const float S = c.scales.y;
         const float s = S / c.scales.x;
         rc.membrane.x = s;
         rc.membrane.y = s / S;
         std::uint32_t largest = 0;
         for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t)
-          largest = std::max(largest, squares[t].instance_count);
+          largest = std::max(largest, tiles2d[t].instance_count);
         rc.counts.x = largest;
         const std::uint64_t span =
             std::uint64_t{meshes[c.mesh].triangle_count} * c.replication_width * c.replication_height * largest;
@@ -257,8 +257,8 @@ struct GpuScene::Impl : format::PackageView {
         dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
         std::uint32_t largest = 0;
         for (std::uint32_t t = c.soluble_first_tile; t < c.soluble_first_tile + c.soluble_tile_count; ++t) {
-          largest = std::max(largest, cubes[t].instance_count);
-          for (std::uint32_t m = cubes[t].first_instance; m < cubes[t].first_instance + cubes[t].instance_count; ++m) {
+          largest = std::max(largest, tiles3d[t].instance_count);
+          for (std::uint32_t m = tiles3d[t].first_instance; m < tiles3d[t].first_instance + tiles3d[t].instance_count; ++m) {
             const double r = type_radius[instances[m].molecule_type];
             lo = glm::min(lo, dvec3(instances[m].position) - r);
             hi = glm::max(hi, dvec3(instances[m].position) + r);
@@ -369,11 +369,11 @@ struct GpuScene::Impl : format::PackageView {
     for (std::uint32_t t = mesh.first_triangle; t < mesh.first_triangle + mesh.triangle_count; ++t) {
       const gpu::Triangle& tri = triangles[t];
       const std::uint32_t f = mesh.first_vertex;
-      const glm::vec2 t0 = uvs[f + tri.v0], t1 = uvs[f + tri.v1], t2 = uvs[f + tri.v2];
+      const glm::vec2 t0 = vertex_uvs[f + tri.v0], t1 = vertex_uvs[f + tri.v1], t2 = vertex_uvs[f + tri.v2];
       if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) continue;
-      const vec3 n0(normals[f + tri.v0]), n1(normals[f + tri.v1]), n2(normals[f + tri.v2]);
-      const gpu::TriangleChart chart = gpu::chart_make(vec3(positions[f + tri.v0]), vec3(positions[f + tri.v1]),
-                                                       vec3(positions[f + tri.v2]), t0, t1, t2, n0, n1, n2);
+      const vec3 n0(vertex_normals[f + tri.v0]), n1(vertex_normals[f + tri.v1]), n2(vertex_normals[f + tri.v2]);
+      const gpu::TriangleChart chart = gpu::chart_make(vec3(vertex_positions[f + tri.v0]), vec3(vertex_positions[f + tri.v1]),
+                                                       vec3(vertex_positions[f + tri.v2]), t0, t1, t2, n0, n1, n2);
       if (!gpu::chart_valid(chart)) continue;  // owns nothing the oracle would accept either
       const dmat3 m1(dvec3(chart.ju) * double(s_over_S), dvec3(chart.jv) * double(s_over_S), dvec3(chart.face_normal));
       const dmat3 l = glm::inverse(m1);
@@ -416,7 +416,7 @@ struct GpuScene::Impl : format::PackageView {
   // mLAS: per Wang square, molecule boxes in tile space widened by the distortion of every
   // compartment that uses the square; per Wang cube, bounding spheres' boxes in cube space.
   void build_tile_levels() {
-    std::vector<std::optional<Distortion>> square_distortion(squares.size());
+    std::vector<std::optional<Distortion>> square_distortion(tiles2d.size());
     for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
       const gpu::Compartment& c = compartments[ci];
       if (c.membrane_recipe == gpu::NANO_NO_INDEX) continue;
@@ -427,15 +427,15 @@ struct GpuScene::Impl : format::PackageView {
         for (int col = 0; col < 3; ++col) s.e[col] = glm::max(s.e[col], d.e[col]);
       }
     }
-    square_reach.assign(squares.size(), {dvec3(INFINITY), dvec3(-INFINITY)});
-    for (std::uint32_t t = 0; t < squares.size(); ++t) {
-      if (!square_distortion[t] || squares[t].instance_count == 0) continue;  // no compartment renders it
+    square_reach.assign(tiles2d.size(), {dvec3(INFINITY), dvec3(-INFINITY)});
+    for (std::uint32_t t = 0; t < tiles2d.size(); ++t) {
+      if (!square_distortion[t] || tiles2d[t].instance_count == 0) continue;  // no compartment renders it
       const Distortion& d = *square_distortion[t];
       std::vector<VkAabbPositionsKHR> boxes;
       // δ grows by 1e-3 for the rounding of the normalised interpolation; the pad covers the float
       // tile-space ray (≈ 1e-6 of the distance to the tile) of any camera within 10^5 Å.
       const double sigma = d.sigma * (1 + 1e-4), delta = d.delta + 1e-3, pad = 0.1;
-      for (std::uint32_t m = squares[t].first_instance; m < squares[t].first_instance + squares[t].instance_count; ++m) {
+      for (std::uint32_t m = tiles2d[t].first_instance; m < tiles2d[t].first_instance + tiles2d[t].instance_count; ++m) {
         const dvec3 pos(instances[m].position);
         const auto [atoms_lo, atoms_hi] = placed_extent(instances[m]);
         const dvec3 c = (atoms_lo + atoms_hi) * 0.5, h = (atoms_hi - atoms_lo) * 0.5;
@@ -464,10 +464,10 @@ struct GpuScene::Impl : format::PackageView {
     }
     build_replication_areas();
     if (options.two_level_membranes) build_atom_squares();
-    for (std::uint32_t t = 0; t < cubes.size(); ++t) {
-      if (cubes[t].instance_count == 0) continue;
+    for (std::uint32_t t = 0; t < tiles3d.size(); ++t) {
+      if (tiles3d[t].instance_count == 0) continue;
       std::vector<VkAabbPositionsKHR> boxes;
-      for (std::uint32_t m = cubes[t].first_instance; m < cubes[t].first_instance + cubes[t].instance_count; ++m) {
+      for (std::uint32_t m = tiles3d[t].first_instance; m < tiles3d[t].first_instance + tiles3d[t].instance_count; ++m) {
         const dvec3 pos(instances[m].position);
         const double e = type_radius[instances[m].molecule_type] + 0.01;
         boxes.push_back(box_of(pos - e, pos + e));
@@ -509,12 +509,12 @@ struct GpuScene::Impl : format::PackageView {
   // molecule, at its tile-space position p + R(q)·a (the affine tile placement, not the true M2:
   // measured against the oracle by verify). orders hold (molecule index in the tile, atom index).
   void build_atom_squares() {
-    for (std::uint32_t t = 0; t < squares.size(); ++t) {
+    for (std::uint32_t t = 0; t < tiles2d.size(); ++t) {
       if (level_records[first_square + t].count == 0) continue;  // no compartment renders it
       std::vector<VkAabbPositionsKHR> boxes;
       std::vector<std::uint32_t> values;
-      for (std::uint32_t m = 0; m < squares[t].instance_count; ++m) {
-        const gpu::MoleculeInstance& mi = instances[squares[t].first_instance + m];
+      for (std::uint32_t m = 0; m < tiles2d[t].instance_count; ++m) {
+        const gpu::MoleculeInstance& mi = instances[tiles2d[t].first_instance + m];
         const gpu::MoleculeType& type = molecules[mi.molecule_type];
         for (std::uint32_t a = type.first_atom; a < type.first_atom + type.atom_count; ++a) {
           const dvec3 c = dvec3(mi.position) + dvec3(gpu::quat_rotate(mi.rotation, vec3(atoms[a].centre_radius)));
@@ -538,7 +538,7 @@ struct GpuScene::Impl : format::PackageView {
 
   // The shell offsets of the chosen mode, parallel to section triangle_shells.
   std::vector<gpu::TriangleShell> mode_shells() const {
-    std::vector<gpu::TriangleShell> out(shells.begin(), shells.end());
+    std::vector<gpu::TriangleShell> out(triangle_shells.begin(), triangle_shells.end());
     const bool fixed = options.shell == ShellMode::fixed || options.shell == ShellMode::fixed_overlap;
     const bool overlap = options.shell == ShellMode::adaptive_overlap || options.shell == ShellMode::fixed_overlap;
     for (const gpu::Mesh& mesh : meshes) {
@@ -575,8 +575,8 @@ struct GpuScene::Impl : format::PackageView {
           if (s.h_plus == 0 && s.h_minus == 0 && s.side_offset == 0) continue;
           const gpu::Triangle& tri = triangles[mesh.first_triangle + tl];
           const gpu::Prism pr = gpu::shell_prism_make(
-              vec3(positions[f + tri.v0]), vec3(positions[f + tri.v1]), vec3(positions[f + tri.v2]),
-              vec3(normals[f + tri.v0]), vec3(normals[f + tri.v1]), vec3(normals[f + tri.v2]),
+              vec3(vertex_positions[f + tri.v0]), vec3(vertex_positions[f + tri.v1]), vec3(vertex_positions[f + tri.v2]),
+              vec3(vertex_normals[f + tri.v0]), vec3(vertex_normals[f + tri.v1]), vec3(vertex_normals[f + tri.v2]),
               gpu::ShellOffsets{s.h_plus, s.h_minus, s.side_offset});
           vec3 lo = pr.v[0], hi = pr.v[0];
           for (int k = 1; k < 6; ++k) lo = glm::min(lo, pr.v[k]), hi = glm::max(hi, pr.v[k]);
@@ -722,12 +722,12 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
   const VkDevice d = s.device.handle();
   vk::write_acceleration_structure(d, set, gpu::NANO_B_ULAS, s.ulas);
   for (std::uint32_t b = gpu::NANO_B_MOLECULES; b <= gpu::NANO_B_MASK_WORDS; ++b) {
-    if (b == gpu::NANO_B_SHELLS) continue;
+    if (b == gpu::NANO_B_TRIANGLE_SHELLS) continue;
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   }
   for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES, gpu::NANO_B_BEADS})
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
-  vk::write_storage_buffer(d, set, gpu::NANO_B_SHELLS, s.shell_buffer);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_TRIANGLE_SHELLS, s.shell_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_COMPARTMENTS, s.render_compartment_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_INSTANCES, s.render_instance_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_LEVELS, s.level_buffer);

@@ -78,17 +78,17 @@ layout(constant_id = NANO_SPEC_LOD) const bool kLod = false;
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ULAS) uniform accelerationStructureEXT ulas;
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_MOLECULES, std430) readonly buffer Molecules { MoleculeType molecules[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_ATOMS, std430) readonly buffer Atoms { Atom atoms[]; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_SQUARES, std430) readonly buffer Squares { Tile2D squares[]; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_CUBES, std430) readonly buffer Cubes { Tile3D cubes[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_TILES2D, std430) readonly buffer Squares { Tile2D squares[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_TILES3D, std430) readonly buffer Cubes { Tile3D cubes[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_INSTANCES, std430) readonly buffer Instances { MoleculeInstance instances[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_RECIPES, std430) readonly buffer Recipes { Recipe recipes[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_RECIPE_INDICES, std430) readonly buffer RecipeIndices { uint recipe_indices[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_MESHES, std430) readonly buffer Meshes { Mesh meshes[]; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_UVS, std430) readonly buffer Uvs { vec2 uvs[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_VERTEX_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_VERTEX_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_VERTEX_UVS, std430) readonly buffer Uvs { vec2 uvs[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_TRIANGLES, std430) readonly buffer Triangles { Triangle triangles[]; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_SHELLS, std430) readonly buffer Shells { TriangleShell shells[]; };  // offsets of the shell mode
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_TRIANGLE_SHELLS, std430) readonly buffer Shells { TriangleShell shells[]; };  // offsets of the shell mode
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COMPARTMENTS, std430) readonly buffer Compartments { Compartment compartments[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_OCCUPANCY, std430) readonly buffer Occupancy { uint occupancy_words[]; };  // bytes, 4 a word
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_BOUNDARY_BOXES, std430) readonly buffer BoundaryBoxes { BoundaryBox boundary_boxes[]; };

@@ -16,20 +16,21 @@ NANO_CONST uint NANO_DESCRIPTOR_SET = 0u;
 
 // shaders/render/render.comp, set 0. Bindings below NANO_SCENE_BINDING_COUNT hold the scene (one
 // package section or derived buffer each: runtime/render/gpu_scene.cpp); the last four the frame.
+// A binding holding one package section is named after it: NANO_B_<name in format/section_table.hpp>.
 NANO_CONST uint NANO_B_ULAS = 0u;  // the µLAS; every other binding is a storage buffer
 NANO_CONST uint NANO_B_MOLECULES = 1u;
 NANO_CONST uint NANO_B_ATOMS = 2u;
-NANO_CONST uint NANO_B_SQUARES = 3u;
-NANO_CONST uint NANO_B_CUBES = 4u;
+NANO_CONST uint NANO_B_TILES2D = 3u;
+NANO_CONST uint NANO_B_TILES3D = 4u;
 NANO_CONST uint NANO_B_INSTANCES = 5u;
 NANO_CONST uint NANO_B_RECIPES = 6u;
 NANO_CONST uint NANO_B_RECIPE_INDICES = 7u;
 NANO_CONST uint NANO_B_MESHES = 8u;
-NANO_CONST uint NANO_B_POSITIONS = 9u;
-NANO_CONST uint NANO_B_NORMALS = 10u;
-NANO_CONST uint NANO_B_UVS = 11u;
+NANO_CONST uint NANO_B_VERTEX_POSITIONS = 9u;
+NANO_CONST uint NANO_B_VERTEX_NORMALS = 10u;
+NANO_CONST uint NANO_B_VERTEX_UVS = 11u;
 NANO_CONST uint NANO_B_TRIANGLES = 12u;
-NANO_CONST uint NANO_B_SHELLS = 13u;
+NANO_CONST uint NANO_B_TRIANGLE_SHELLS = 13u;
 NANO_CONST uint NANO_B_COMPARTMENTS = 14u;
 NANO_CONST uint NANO_B_OCCUPANCY = 15u;
 NANO_CONST uint NANO_B_BOUNDARY_BOXES = 16u;

@@ -15,8 +15,8 @@ TEST(PackageView, SpansAreTheSectionsAsWritten) {
   const PackageView v(p);
   EXPECT_EQ(v.molecules.size(), s.molecules.size());
   EXPECT_EQ(v.atoms.size(), s.atoms.size());
-  EXPECT_EQ(v.squares.size(), s.tiles2d.size());
-  EXPECT_EQ(v.cubes.size(), s.tiles3d.size());
+  EXPECT_EQ(v.tiles2d.size(), s.tiles2d.size());
+  EXPECT_EQ(v.tiles3d.size(), s.tiles3d.size());
   EXPECT_EQ(v.triangles.size(), s.triangles.size());
   EXPECT_EQ(v.occupancy.size(), s.occupancy.size());
   EXPECT_EQ(v.mask_words.size(), s.mask_words.size());
