@@ -597,6 +597,8 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   const TileSets sets = clock.run("tile sets", [&] { return bake_tile_sets(in, molecules, surfaces); });
   summarise_tile_sets(baked, scene, sets, surfaces);
 
+  // A compartment's core grid starts below its own membrane's shells (inner_height): each
+  // compartment bakes its shells, then its core grid.
   for (std::size_t c = 0; c < compartments.size(); ++c) {
     CompartmentBake& bake = compartments[c];
     if (scene.compartments[c].membrane) {
