@@ -59,103 +59,130 @@ bool in_range(std::int64_t index, std::size_t size) {
   return index >= 0 && static_cast<std::uint64_t>(index) < size;
 }
 
+using Corner = PolygonSoup::Corner;
+
+// Welds the corners of the triangles it is given into one indexed mesh.
+class MeshAssembler {
+public:
+  MeshAssembler(const PolygonSoup& soup, const std::string& file) : soup_(soup), file_(file) {}
+
+  void emit(std::array<const Corner*, 3> corners, std::size_t face) {
+    Triangle t{}, uv_t{}, normal_t{};
+    for (int k = 0; k < 3; ++k) {
+      const Corner& corner = *corners[k];
+      t[k] = positions_.index_of(soup_.positions[corner.position]);
+      if (corner.uv >= 0) {
+        const glm::dvec2& uv = soup_.uvs[corner.uv];
+        if (!finite(uv))
+          throw InputError(file_, place("face", face, soup_.face_lines[face]), "texture coordinate is not a finite number");
+        uv_t[k] = uvs_.index_of(uv);
+      } else {
+        every_corner_has_uv_ = false;
+      }
+      if (corner.normal >= 0) {
+        normal_t[k] = normals_.index_of(soup_.normals[corner.normal]);
+      } else {
+        every_corner_has_normal_ = false;
+      }
+    }
+    mesh_.triangles.push_back(t);
+    mesh_.uv_triangles.push_back(uv_t);
+    mesh_.normal_triangles.push_back(normal_t);
+  }
+
+  // UVs only where every corner has one; the file's normals only where every corner has a usable one,
+  // else angle-weighted ones.
+  ProxyMesh finish() {
+    if (mesh_.triangles.empty()) throw InputError(file_, "", "mesh has no faces");
+    mesh_.positions = std::move(positions_.values);
+    if (every_corner_has_uv_) {
+      mesh_.uvs = std::move(uvs_.values);
+    } else {
+      mesh_.uv_triangles.clear();
+    }
+    bool normals_usable = every_corner_has_normal_;
+    for (glm::dvec3& normal : normals_.values) {
+      const double length = std::sqrt(normal.x * normal.x + normal.y * normal.y + normal.z * normal.z);
+      if (!(length > 0.0) || !std::isfinite(length)) normals_usable = false;
+      else normal /= length;
+    }
+    if (normals_usable) {
+      mesh_.normals = std::move(normals_.values);
+    } else {
+      compute_angle_weighted_normals(mesh_);
+    }
+    return std::move(mesh_);
+  }
+
+private:
+  const PolygonSoup& soup_;
+  const std::string& file_;
+  Deduplicator<glm::dvec3> positions_;
+  Deduplicator<glm::dvec2> uvs_;
+  Deduplicator<glm::dvec3> normals_;
+  ProxyMesh mesh_;
+  bool every_corner_has_uv_ = true;
+  bool every_corner_has_normal_ = true;
+};
+
+// Face `face`'s corners (from corner `begin`) into `polygon`, a vertex repeated in a row once; throws
+// where they do not make a polygon. `sorted` is scratch.
+void read_polygon(const PolygonSoup& soup, const std::string& file, std::size_t face, std::size_t begin,
+                  std::vector<const Corner*>& polygon, std::vector<std::int64_t>& sorted) {
+  const auto where = [&] { return place("face", face, soup.face_lines[face]); };
+  polygon.clear();
+  for (std::size_t c = begin; c < soup.face_ends[face]; ++c) {
+    const Corner& corner = soup.corners[c];
+    if (!in_range(corner.position, soup.positions.size()))
+      throw InputError(file, where(), "references a vertex that does not exist");
+    if (corner.uv >= 0 && !in_range(corner.uv, soup.uvs.size()))
+      throw InputError(file, where(), "references a texture coordinate that does not exist");
+    if (corner.normal >= 0 && !in_range(corner.normal, soup.normals.size()))
+      throw InputError(file, where(), "references a normal that does not exist");
+    if (polygon.empty() || polygon.back()->position != corner.position) polygon.push_back(&corner);
+  }
+  // Some writers pad a triangle to a quad by repeating a corner ("4 a b c c"): such a face is
+  // that triangle, as nobody could mean anything else by it.
+  while (polygon.size() > 1 && polygon.back()->position == polygon.front()->position) polygon.pop_back();
+  if (soup.face_ends[face] - begin < 3) throw InputError(file, where(), "face has fewer than 3 vertices");
+  if (polygon.size() < 3)
+    throw InputError(file, where(), "degenerate face: fewer than 3 distinct vertices (repeated vertex index)");
+  sorted.clear();
+  for (const Corner* corner : polygon) sorted.push_back(corner->position);
+  std::sort(sorted.begin(), sorted.end());
+  if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+    throw InputError(file, where(), "face passes through vertex " + std::to_string(*twice) + " twice (repeated vertex index)");
+}
+
+void triangulate(const PolygonSoup& soup, const std::vector<const Corner*>& polygon, std::size_t face,
+                 MeshAssembler& mesh) {
+  const auto position = [&](std::size_t k) { return soup.positions[polygon[k]->position]; };
+  if (polygon.size() == 4 && glm::length(position(3) - position(1)) < glm::length(position(2) - position(0))) {
+    // A quad is cut along its shorter diagonal: the two triangles are then the least skewed, and
+    // a bent quad gets the fold that bulges least. A tie keeps the fan's diagonal 0–2.
+    mesh.emit({polygon[0], polygon[1], polygon[3]}, face);
+    mesh.emit({polygon[1], polygon[2], polygon[3]}, face);
+  } else {
+    // Larger polygons become a fan from their first corner, right for the convex ones writers emit.
+    for (std::size_t k = 2; k < polygon.size(); ++k) mesh.emit({polygon[0], polygon[k - 1], polygon[k]}, face);
+  }
+}
+
 }  // namespace
 
 ProxyMesh assemble_proxy_mesh(const PolygonSoup& soup, const std::string& file) {
   for (std::size_t v = 0; v < soup.positions.size(); ++v)
     if (!finite(soup.positions[v]))
       throw InputError(file, place("vertex", v, soup.position_lines[v]), "coordinate is not a finite number");
-
-  Deduplicator<glm::dvec3> welded_positions;
-  Deduplicator<glm::dvec2> uvs;
-  Deduplicator<glm::dvec3> normals;
-  ProxyMesh mesh;
-  bool every_corner_has_uv = true;
-  bool every_corner_has_normal = true;
-  std::size_t face = 0;
-  const auto emit = [&](std::array<const PolygonSoup::Corner*, 3> corners) {
-    Triangle t{}, uv_t{}, normal_t{};
-    for (int k = 0; k < 3; ++k) {
-      const PolygonSoup::Corner& corner = *corners[k];
-      t[k] = welded_positions.index_of(soup.positions[corner.position]);
-      if (corner.uv >= 0) {
-        const glm::dvec2& uv = soup.uvs[corner.uv];
-        if (!finite(uv))
-          throw InputError(file, place("face", face, soup.face_lines[face]), "texture coordinate is not a finite number");
-        uv_t[k] = uvs.index_of(uv);
-      } else {
-        every_corner_has_uv = false;
-      }
-      if (corner.normal >= 0) {
-        normal_t[k] = normals.index_of(soup.normals[corner.normal]);
-      } else {
-        every_corner_has_normal = false;
-      }
-    }
-    mesh.triangles.push_back(t);
-    mesh.uv_triangles.push_back(uv_t);
-    mesh.normal_triangles.push_back(normal_t);
-  };
-
-  std::vector<const PolygonSoup::Corner*> polygon;  // the face's corners, a vertex repeated in a row once
+  MeshAssembler mesh(soup, file);
+  std::vector<const Corner*> polygon;
   std::vector<std::int64_t> sorted;
+  std::size_t face = 0;
   for (std::size_t begin = 0; face < soup.face_ends.size(); begin = soup.face_ends[face++]) {
-    const auto where = [&] { return place("face", face, soup.face_lines[face]); };
-    polygon.clear();
-    for (std::size_t c = begin; c < soup.face_ends[face]; ++c) {
-      const PolygonSoup::Corner& corner = soup.corners[c];
-      if (!in_range(corner.position, soup.positions.size()))
-        throw InputError(file, where(), "references a vertex that does not exist");
-      if (corner.uv >= 0 && !in_range(corner.uv, soup.uvs.size()))
-        throw InputError(file, where(), "references a texture coordinate that does not exist");
-      if (corner.normal >= 0 && !in_range(corner.normal, soup.normals.size()))
-        throw InputError(file, where(), "references a normal that does not exist");
-      if (polygon.empty() || polygon.back()->position != corner.position) polygon.push_back(&corner);
-    }
-    // Some writers pad a triangle to a quad by repeating a corner ("4 a b c c"): such a face is
-    // that triangle, as nobody could mean anything else by it.
-    while (polygon.size() > 1 && polygon.back()->position == polygon.front()->position) polygon.pop_back();
-    if (soup.face_ends[face] - begin < 3) throw InputError(file, where(), "face has fewer than 3 vertices");
-    if (polygon.size() < 3)
-      throw InputError(file, where(), "degenerate face: fewer than 3 distinct vertices (repeated vertex index)");
-    sorted.clear();
-    for (const PolygonSoup::Corner* corner : polygon) sorted.push_back(corner->position);
-    std::sort(sorted.begin(), sorted.end());
-    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
-      throw InputError(file, where(),
-                       "face passes through vertex " + std::to_string(*twice) + " twice (repeated vertex index)");
-
-    const auto position = [&](std::size_t k) { return soup.positions[polygon[k]->position]; };
-    if (polygon.size() == 4 && glm::length(position(3) - position(1)) < glm::length(position(2) - position(0))) {
-      // A quad is cut along its shorter diagonal: the two triangles are then the least skewed, and
-      // a bent quad gets the fold that bulges least. A tie keeps the fan's diagonal 0–2.
-      emit({polygon[0], polygon[1], polygon[3]});
-      emit({polygon[1], polygon[2], polygon[3]});
-    } else {
-      // Larger polygons become a fan from their first corner, right for the convex ones writers emit.
-      for (std::size_t k = 2; k < polygon.size(); ++k) emit({polygon[0], polygon[k - 1], polygon[k]});
-    }
+    read_polygon(soup, file, face, begin, polygon, sorted);
+    triangulate(soup, polygon, face, mesh);
   }
-  if (mesh.triangles.empty()) throw InputError(file, "", "mesh has no faces");
-
-  mesh.positions = std::move(welded_positions.values);
-  if (every_corner_has_uv) {
-    mesh.uvs = std::move(uvs.values);
-  } else {
-    mesh.uv_triangles.clear();
-  }
-  bool normals_usable = every_corner_has_normal;
-  for (glm::dvec3& normal : normals.values) {
-    const double length = std::sqrt(normal.x * normal.x + normal.y * normal.y + normal.z * normal.z);
-    if (!(length > 0.0) || !std::isfinite(length)) normals_usable = false;
-    else normal /= length;
-  }
-  if (normals_usable) {
-    mesh.normals = std::move(normals.values);
-  } else {
-    compute_angle_weighted_normals(mesh);
-  }
-  return mesh;
+  return mesh.finish();
 }
 
 }  // namespace nano::mesh

@@ -94,6 +94,138 @@ std::string gigabytes(double bytes) {
   return text;
 }
 
+// The work of the stages after the meshes, each in its own measure.
+struct StageWork {
+  double tile_atoms = 0.0;  // atoms of the copies in every tile and cube set
+  double checked_copies = 0.0, core_box_copies = 0.0, core_boxes = 0.0, triangles = 0.0;
+};
+
+struct EstimateInputs {
+  const scene::SceneDescription& scene;
+  const std::vector<BakedMolecule>& library;
+  const std::vector<std::optional<BakedLipidPatch>>& patches;
+  std::vector<MembraneLipids> lipids;  // per membrane
+};
+
+double tile_set_atoms(const EstimateInputs& in) {
+  const scene::SceneDescription& scene = in.scene;
+  double atoms = 0.0;
+  for (std::size_t i = 0; i < scene.membranes.size(); ++i) {
+    const scene::MembraneDescription& m = scene.membranes[i];
+    double atoms_per_a2 = in.lipids[i].per_a2 * in.lipids[i].atoms;
+    for (const scene::MembraneProtein& p : m.proteins)
+      atoms_per_a2 += scene::copies_per_a2(m, p.abundance) * static_cast<double>(in.library[p.molecule.index].atoms.size());
+    atoms += m.tiles * m.tile_size * m.tile_size * atoms_per_a2;
+  }
+  for (const scene::SolubleDescription& s : scene.solubles)
+    for (const scene::SolubleMolecule& molecule : s.molecules)
+      atoms += s.cubes * std::pow(s.cube_size, 3) * scene::copies_per_a3(molecule.abundance) *
+               static_cast<double>(in.library[molecule.molecule.index].atoms.size());
+  return atoms;
+}
+
+// Adds the membrane's copies to `out`; returns how many of them the shells check.
+double estimate_membrane(const EstimateInputs& in, std::size_t membrane, const EstimatedMesh& mesh, CompartmentEstimate& out) {
+  const scene::MembraneDescription& m = in.scene.membranes[membrane];
+  const MembraneLipids& l = in.lipids[membrane];
+  const scene::CompartmentMeasure& measure = mesh.measure;
+  double copies = 0.0;
+  for (const scene::MembraneProtein& p : m.proteins) {
+    double n = scene::copies_per_a2(m, p.abundance) * measure.area;
+    if (p.per_compartment) n = std::min(n, static_cast<double>(*p.per_compartment));
+    named_entry(out.copies, p.molecule.name) += n;
+    copies += n;
+  }
+  const double lipid_copies = kPatchLipidsKept * l.per_a2 * measure.area;
+  for (const auto& [name, share] : l.share) named_entry(out.copies, name) += share * lipid_copies;
+  copies += lipid_copies;
+  // The shells check every copy of a small membrane, only those along the UV seams of a large one.
+  const bool everywhere = membrane_copies_for_pruning(measure.area, m, in.patches[membrane]) <=
+                          static_cast<double>(shell::PruningSettings{}.whole_surface_budget);
+  return everywhere ? copies : std::min(copies, mesh.seam_length * kSeamBand * copies / measure.area);
+}
+
+// Adds the core grid's copies to `out` and its boxes to `work`; the solubles start `inset` inside the mesh.
+void estimate_core(const EstimateInputs& in, std::size_t soluble, const scene::CompartmentMeasure& measure, double inset,
+                   CompartmentEstimate& out, StageWork& work) {
+  const scene::SolubleDescription& s = in.scene.solubles[soluble];
+  const double cube = std::pow(s.cube_size, 3);
+  const double boundary = measure.area / (s.cube_size * s.cube_size);
+  work.core_boxes += std::max(0.0, measure.volume) / cube;
+  for (const scene::SolubleMolecule& molecule : s.molecules) {
+    const double reach = inset + s.clearance + in.library[molecule.molecule.index].properties.bounding_radius;
+    const double volume = std::max(0.0, measure.volume - measure.area * reach);
+    named_entry(out.copies, molecule.molecule.name) += scene::copies_per_a3(molecule.abundance) * volume;
+    work.core_box_copies += boundary * scene::copies_per_a3(molecule.abundance) * cube;
+  }
+}
+
+CompartmentEstimate estimate_compartment(const EstimateInputs& in, const scene::CompartmentDescription& description,
+                                         const EstimatedMesh& mesh, StageWork& work) {
+  const scene::CompartmentMeasure& measure = mesh.measure;
+  CompartmentEstimate out;
+  out.name = description.name;
+  out.area_um2 = measure.area / kA2PerUm2;
+  out.volume_um3 = std::max(0.0, measure.volume) / kA3PerUm3;
+  work.triangles += static_cast<double>(measure.triangles);
+  double inset = 0.0;  // how far inside the mesh the core grid's solubles start
+  if (description.membrane) {
+    work.checked_copies += estimate_membrane(in, description.membrane->index, mesh, out);
+    inset = 0.5 * measure.bilayer_thickness;
+  }
+  if (description.soluble) estimate_core(in, description.soluble->index, measure, inset, out, work);
+  return out;
+}
+
+double represented_atoms(const scene::SceneDescription& scene, const std::vector<CompartmentEstimate>& compartments,
+                         const std::vector<BakedMolecule>& library) {
+  double atoms = 0.0;
+  for (const scene::InstanceEntry& entry : scene.instances) {
+    const std::size_t c = std::holds_alternative<scene::ExplicitInstance>(entry)
+                              ? std::get<scene::ExplicitInstance>(entry).compartment.index
+                              : std::get<scene::RandomPlacement>(entry).compartment.index;
+    const double n = std::holds_alternative<scene::ExplicitInstance>(entry) ? 1.0 : std::get<scene::RandomPlacement>(entry).count;
+    double atoms_in_one = 0.0;
+    for (const auto& [name, copies] : compartments[c].copies) {
+      auto it = std::find_if(library.begin(), library.end(), [&](const BakedMolecule& b) { return b.name == name; });
+      if (it != library.end()) atoms_in_one += copies * static_cast<double>(it->atoms.size());
+    }
+    atoms += n * atoms_in_one;
+  }
+  return atoms;
+}
+
+void add_stage_costs(const StageWork& work, BakeEstimate& e) {
+  const auto stage = [&](const StageCost& cost, double amount) {
+    e.stages.push_back({cost.stage, amount, cost.seconds + cost.seconds_per_work * amount});
+  };
+  stage(kTileSets, work.tile_atoms);
+  stage(kShells, work.checked_copies);
+  stage(kCoreGrids, work.core_box_copies);
+  stage(kPackage, work.tile_atoms);
+  const double threads = e.jobs;
+  for (const StageEstimate& s : e.stages) {
+    e.cpu_seconds += s.cpu_seconds;
+    e.wall_seconds += s.cpu_seconds * ((1.0 - kParallelShare) + kParallelShare / threads);
+  }
+}
+
+std::vector<MemoryTerm> memory_terms(const StageWork& w, std::uint64_t instances) {
+  return {
+      {"the baker itself", kBaseBytes, ""},
+      {"compressing the package", kCompressionBytes, ""},
+      {"tile and cube sets (" + count_text(w.tile_atoms) + " atoms of copies)", kBytesPerTileAtom * w.tile_atoms,
+       "lower densities or concentrations, a smaller tile_size or cube_size, or fewer tiles or cubes"},
+      {"meshes (" + count_text(w.triangles) + " triangles)", kBytesPerTriangle * w.triangles,
+       "fewer triangles (\"triangles\", or \"remesh\": {\"edge\": ...} with a longer edge)"},
+      {"membrane copies checked on the surface (" + count_text(w.checked_copies) + ")", kBytesPerCheckedCopy * w.checked_copies,
+       "a smaller membrane or fewer copies on it"},
+      {"core grids (" + count_text(w.core_boxes) + " boxes)", kBytesPerCoreBox * w.core_boxes, "a larger cube_size"},
+      {"instances (" + count_text(static_cast<double>(instances)) + ")", kBytesPerInstance * static_cast<double>(instances),
+       "fewer instances (\"count\")"},
+  };
+}
+
 }  // namespace
 
 double membrane_copies_for_pruning(double area, const scene::MembraneDescription& membrane,
@@ -108,105 +240,19 @@ double membrane_copies_for_pruning(double area, const scene::MembraneDescription
 BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vector<BakedMolecule>& library,
                            const std::vector<std::optional<BakedLipidPatch>>& patches,
                            const std::vector<EstimatedMesh>& meshes, int jobs) {
+  EstimateInputs in{scene, library, patches, {}};
+  for (std::size_t i = 0; i < scene.membranes.size(); ++i)
+    in.lipids.push_back(membrane_lipids(scene.membranes[i], patches[i], library));
   BakeEstimate e;
-  std::vector<MembraneLipids> lipids;
-  double tile_atoms = 0.0;  // atoms of the copies in every tile and cube set
-  for (std::size_t i = 0; i < scene.membranes.size(); ++i) {
-    const scene::MembraneDescription& m = scene.membranes[i];
-    lipids.push_back(membrane_lipids(m, patches[i], library));
-    double atoms_per_a2 = lipids.back().per_a2 * lipids.back().atoms;
-    for (const scene::MembraneProtein& p : m.proteins)
-      atoms_per_a2 += scene::copies_per_a2(m, p.abundance) * static_cast<double>(library[p.molecule.index].atoms.size());
-    tile_atoms += m.tiles * m.tile_size * m.tile_size * atoms_per_a2;
-  }
-  for (const scene::SolubleDescription& s : scene.solubles)
-    for (const scene::SolubleMolecule& molecule : s.molecules)
-      tile_atoms += s.cubes * std::pow(s.cube_size, 3) * scene::copies_per_a3(molecule.abundance) *
-                    static_cast<double>(library[molecule.molecule.index].atoms.size());
-
-  double checked_copies = 0.0, core_box_copies = 0.0, core_boxes = 0.0, triangles = 0.0;
-  for (std::size_t c = 0; c < scene.compartments.size(); ++c) {
-    const scene::CompartmentDescription& description = scene.compartments[c];
-    const scene::CompartmentMeasure& measure = meshes[c].measure;
-    CompartmentEstimate out;
-    out.name = description.name;
-    out.area_um2 = measure.area / kA2PerUm2;
-    out.volume_um3 = std::max(0.0, measure.volume) / kA3PerUm3;
-    triangles += static_cast<double>(measure.triangles);
-    double inset = 0.0;  // how far inside the mesh the core grid's solubles start
-    if (description.membrane) {
-      const scene::MembraneDescription& m = scene.membranes[description.membrane->index];
-      const MembraneLipids& l = lipids[description.membrane->index];
-      double copies = 0.0;
-      for (const scene::MembraneProtein& p : m.proteins) {
-        double n = scene::copies_per_a2(m, p.abundance) * measure.area;
-        if (p.per_compartment) n = std::min(n, static_cast<double>(*p.per_compartment));
-        named_entry(out.copies, p.molecule.name) += n;
-        copies += n;
-      }
-      const double lipid_copies = kPatchLipidsKept * l.per_a2 * measure.area;
-      for (const auto& [name, share] : l.share) named_entry(out.copies, name) += share * lipid_copies;
-      copies += lipid_copies;
-      // The shells check every copy of a small membrane, only those along the UV seams of a large one.
-      const bool everywhere = membrane_copies_for_pruning(measure.area, m, patches[description.membrane->index]) <=
-                              static_cast<double>(shell::PruningSettings{}.whole_surface_budget);
-      checked_copies += everywhere ? copies : std::min(copies, meshes[c].seam_length * kSeamBand * copies / measure.area);
-      inset = 0.5 * measure.bilayer_thickness;
-    }
-    if (description.soluble) {
-      const scene::SolubleDescription& s = scene.solubles[description.soluble->index];
-      const double cube = std::pow(s.cube_size, 3);
-      const double boundary = measure.area / (s.cube_size * s.cube_size);
-      core_boxes += std::max(0.0, measure.volume) / cube;
-      for (const scene::SolubleMolecule& molecule : s.molecules) {
-        const double reach = inset + s.clearance + library[molecule.molecule.index].properties.bounding_radius;
-        const double volume = std::max(0.0, measure.volume - measure.area * reach);
-        named_entry(out.copies, molecule.molecule.name) += scene::copies_per_a3(molecule.abundance) * volume;
-        core_box_copies += boundary * scene::copies_per_a3(molecule.abundance) * cube;
-      }
-    }
-    e.compartments.push_back(std::move(out));
-  }
+  StageWork work;
+  work.tile_atoms = tile_set_atoms(in);
+  for (std::size_t c = 0; c < scene.compartments.size(); ++c)
+    e.compartments.push_back(estimate_compartment(in, scene.compartments[c], meshes[c], work));
   e.instances = scene::expanded_instance_count(scene);
-  for (const scene::InstanceEntry& entry : scene.instances) {
-    const std::size_t c = std::holds_alternative<scene::ExplicitInstance>(entry)
-                              ? std::get<scene::ExplicitInstance>(entry).compartment.index
-                              : std::get<scene::RandomPlacement>(entry).compartment.index;
-    const double n = std::holds_alternative<scene::ExplicitInstance>(entry) ? 1.0 : std::get<scene::RandomPlacement>(entry).count;
-    double atoms_in_one = 0.0;
-    for (const auto& [name, copies] : e.compartments[c].copies) {
-      auto it = std::find_if(library.begin(), library.end(), [&](const BakedMolecule& b) { return b.name == name; });
-      if (it != library.end()) atoms_in_one += copies * static_cast<double>(it->atoms.size());
-    }
-    e.represented_atoms += n * atoms_in_one;
-  }
-
-  const auto stage = [&](const StageCost& cost, double work) {
-    e.stages.push_back({cost.stage, work, cost.seconds + cost.seconds_per_work * work});
-  };
-  stage(kTileSets, tile_atoms);
-  stage(kShells, checked_copies);
-  stage(kCoreGrids, core_box_copies);
-  stage(kPackage, tile_atoms);
+  e.represented_atoms = represented_atoms(scene, e.compartments, library);
   e.jobs = std::max(1, jobs);
-  const double threads = e.jobs;
-  for (const StageEstimate& s : e.stages) {
-    e.cpu_seconds += s.cpu_seconds;
-    e.wall_seconds += s.cpu_seconds * ((1.0 - kParallelShare) + kParallelShare / threads);
-  }
-  e.memory = {
-      {"the baker itself", kBaseBytes, ""},
-      {"compressing the package", kCompressionBytes, ""},
-      {"tile and cube sets (" + count_text(tile_atoms) + " atoms of copies)", kBytesPerTileAtom * tile_atoms,
-       "lower densities or concentrations, a smaller tile_size or cube_size, or fewer tiles or cubes"},
-      {"meshes (" + count_text(triangles) + " triangles)", kBytesPerTriangle * triangles,
-       "fewer triangles (\"triangles\", or \"remesh\": {\"edge\": ...} with a longer edge)"},
-      {"membrane copies checked on the surface (" + count_text(checked_copies) + ")", kBytesPerCheckedCopy * checked_copies,
-       "a smaller membrane or fewer copies on it"},
-      {"core grids (" + count_text(core_boxes) + " boxes)", kBytesPerCoreBox * core_boxes, "a larger cube_size"},
-      {"instances (" + count_text(static_cast<double>(e.instances)) + ")", kBytesPerInstance * static_cast<double>(e.instances),
-       "fewer instances (\"count\")"},
-  };
+  add_stage_costs(work, e);
+  e.memory = memory_terms(work, e.instances);
   for (const MemoryTerm& t : e.memory) e.peak_bytes += t.bytes;
   return e;
 }

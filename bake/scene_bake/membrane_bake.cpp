@@ -49,81 +49,90 @@ InputError unshellable(const shell::MembraneMapping& mapping, const shell::Shell
   return InputError("", "membrane", text);
 }
 
-}  // namespace
-
-BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
-                            std::uint64_t seed, int threads,
-                            const std::vector<std::pair<std::uint32_t, std::uint64_t>>& per_compartment) {
-  BakedMembrane baked;
-  // Tile space per Å of surface. Tiles packed for what the meshes do to them (a cell's) must never be
-  // compressed: molecules are rigid, so where the map shrinks tile space (cube-sphere corners, σ_min
-  // ≈ 0.76 of the mean) copies packed collision-free would overlap; scaling by the smallest singular
-  // value only spreads them, which costs density wherever σ is larger (a sphere: 1/1.26 on average).
-  // Tiles packed rigid are checked copy by copy on the real surface anyway: they take the mean scale,
-  // so that the surface holds the patch's density on average; what compression pushes together is
-  // pruned.
+// Tile space per Å of surface, as a float (rounded down) so that s = S / k is reproducible by the
+// shader's float division; some float s have no float k at all.
+// Tiles packed for what the meshes do to them (a cell's) must never be compressed: molecules are
+// rigid, so where the map shrinks tile space (cube-sphere corners, σ_min ≈ 0.76 of the mean) copies
+// packed collision-free would overlap; scaling by the smallest singular value only spreads them,
+// which costs density wherever σ is larger (a sphere: 1/1.26 on average). Tiles packed rigid are
+// checked copy by copy on the real surface anyway: they take the mean scale, so that the surface
+// holds the patch's density on average; what compression pushes together is pruned.
+double tile_scale(const mesh::ProxyMesh& mesh, const BakedWangSet& tiles) {
   const double target = tiles.packed_rigid ? mesh::uv_scale(mesh) : mesh::smallest_stretch(mesh);
   if (!(target > 0)) throw InputError("", "membrane", "the mesh has no triangle with a usable UV chart");
-  // A float k (rounded down) makes s = S / k reproducible by the shader's float division; some float s
-  // have no float k at all.
   float k_float = static_cast<float>(target);
   if (double(k_float) > target) k_float = std::nextafter(k_float, 0.f);
-  const double k = k_float;
-  baked.tile_size = tiles.set.edge;
-  baked.recipe = membrane_recipe(tiles.set, tiles.set.edge / k, seed);
-  std::vector<tiles::MoleculeType> types;
-  for (const std::uint32_t m : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[m]));
-  // Copies that clash across seams (and wherever the surface distorts the tiles) are found and
-  // dropped by the pruning below, so no seam band is emptied.
-  baked.smooth = kMembraneSurfaceSmoothness;
-  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, types, "membrane", shell::SeamRule::ignore,
-                                       baked.smooth);
-  baked.uv_scale = stored_uv_scale(tiles.set.edge, mapping.tile_uv_size());
-  // The package stores the UVs ownership was decided on.
-  const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();
-  for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = glm::dvec2(snapped[i]);
+  return k_float;
+}
 
-  std::vector<bool> droppable(types.size(), false);
-  for (const std::uint32_t t : tiles.protein_types) droppable.at(t) = true;
-  shell::ShellResult shells = shell::compute_shell_offsets(mapping, types, threads, droppable);
-  if (shells.stats.uncontained_triangles > 0) throw unshellable(mapping, shells);
+// What the shells and the pruning of one membrane read.
+struct MembraneSurface {
+  const shell::MembraneMapping& mapping;
+  const mesh::ProxyMesh& mesh;
+  const std::vector<tiles::MoleculeType>& types;  // the set's
+  const BakedWangSet& tiles;
+  const std::vector<BakedMolecule>& library;
+  int threads;
+};
 
-  shell::PruningSettings pruning;
-  pruning.flat_clearance = tiles.flat_clearance;
-  pruning.whole_surface = tiles.packed_rigid;
-  pruning.owned_copies = shells.stats.owned_molecules;  // the same mapping, the same ownership
-  pruning.always_tested = tiles.laid_through;
-  // Proteins no prism could hold where they were are dropped first; per-compartment counts are settled
-  // next, on the whole surface and among the copies left, so a dropped spike is placed elsewhere: the
-  // copies dropped then take no lipid with them (the patch was laid through them), and the pruning
-  // below removes the lipids that the kept ones displace.
+shell::ShellResult compute_shells(const MembraneSurface& m) {
+  std::vector<bool> droppable(m.types.size(), false);
+  for (const std::uint32_t t : m.tiles.protein_types) droppable.at(t) = true;
+  shell::ShellResult shells = shell::compute_shell_offsets(m.mapping, m.types, m.threads, droppable);
+  if (shells.stats.uncontained_triangles > 0) throw unshellable(m.mapping, shells);
+  return shells;
+}
+
+// Proteins no prism could hold where they were are dropped first; per-compartment counts are settled
+// next, on the whole surface and among the copies left, so a dropped spike is placed elsewhere: the
+// copies dropped then take no lipid with them (the patch was laid through them), and the pruning
+// removes the lipids that the kept ones displace.
+shell::PrunedMembrane drops_before_pruning(const MembraneSurface& m, shell::ShellResult& shells,
+                                           const PerCompartment& per_compartment, const shell::PruningSettings& pruning) {
   shell::PrunedMembrane limited;
   limited.dropped = std::move(shells.dropped);
   limited.dropped_by_type.assign(shells.dropped_by_type.begin(), shells.dropped_by_type.end());
-  baked.unfit_by_molecule.assign(library.size(), 0);
-  for (std::size_t i = 0; i < types.size(); ++i) baked.unfit_by_molecule[tiles.molecule_of_type[i]] += shells.dropped_by_type[i];
-  if (!per_compartment.empty()) {
-    if (!tiles.packed_rigid && shells.stats.owned_molecules > pruning.whole_surface_budget)
-      throw InputError("", "membrane", library[per_compartment.front().first].name +
-                                           ": a per-compartment count needs a membrane checked everywhere (at most " +
-                                           std::to_string(pruning.whole_surface_budget) + " copies)");
-    for (const auto& [molecule, count] : per_compartment)
-      for (std::uint32_t i = 0; i < tiles.molecule_of_type.size(); ++i)
-        if (tiles.molecule_of_type[i] == molecule) shell::limit_copies(mapping, limited, i, count);
-  }
+  if (per_compartment.empty()) return limited;
+  if (!m.tiles.packed_rigid && shells.stats.owned_molecules > pruning.whole_surface_budget)
+    throw InputError("", "membrane", m.library[per_compartment.front().first].name +
+                                         ": a per-compartment count needs a membrane checked everywhere (at most " +
+                                         std::to_string(pruning.whole_surface_budget) + " copies)");
+  for (const auto& [molecule, count] : per_compartment)
+    for (std::uint32_t i = 0; i < m.tiles.molecule_of_type.size(); ++i)
+      if (m.tiles.molecule_of_type[i] == molecule) shell::limit_copies(m.mapping, limited, i, count);
+  return limited;
+}
+
+shell::PrunedMembrane prune(const MembraneSurface& m, shell::ShellResult& shells, const PerCompartment& per_compartment) {
+  shell::PruningSettings pruning;
+  pruning.flat_clearance = m.tiles.flat_clearance;
+  pruning.whole_surface = m.tiles.packed_rigid;
+  pruning.owned_copies = shells.stats.owned_molecules;  // the same mapping, the same ownership
+  pruning.always_tested = m.tiles.laid_through;
+  const shell::PrunedMembrane limited = drops_before_pruning(m, shells, per_compartment, pruning);
   if (shells.stats.unfit_triangles > 0 || !per_compartment.empty()) pruning.dropped_before = limited.dropped;
-  baked.pruning = shell::prune_membrane(mapping, mesh, types, pruning, threads);
-  for (std::size_t i = 0; i < types.size(); ++i) baked.pruning.dropped_by_type[i] += limited.dropped_by_type[i];
-  baked.dropped = std::move(baked.pruning.dropped);
-  baked.copies_by_molecule.assign(library.size(), 0);
-  baked.dropped_by_molecule.assign(library.size(), 0);
-  baked.alternates_by_molecule.assign(library.size(), 0);
-  for (std::size_t i = 0; i < types.size(); ++i) {
-    baked.copies_by_molecule[tiles.molecule_of_type[i]] +=
+  shell::PrunedMembrane pruned = shell::prune_membrane(m.mapping, m.mesh, m.types, pruning, m.threads);
+  for (std::size_t i = 0; i < m.types.size(); ++i) pruned.dropped_by_type[i] += limited.dropped_by_type[i];
+  return pruned;
+}
+
+// Per library molecule: copies kept, dropped, alternates shown and proteins no prism held.
+void count_by_molecule(const MembraneSurface& m, const shell::ShellResult& shells, BakedMembrane& baked) {
+  const std::vector<std::uint32_t>& molecule_of_type = m.tiles.molecule_of_type;
+  baked.unfit_by_molecule.assign(m.library.size(), 0);
+  baked.copies_by_molecule.assign(m.library.size(), 0);
+  baked.dropped_by_molecule.assign(m.library.size(), 0);
+  baked.alternates_by_molecule.assign(m.library.size(), 0);
+  for (std::size_t i = 0; i < m.types.size(); ++i) {
+    baked.unfit_by_molecule[molecule_of_type[i]] += shells.dropped_by_type[i];
+    baked.copies_by_molecule[molecule_of_type[i]] +=
         shells.owned_by_type[i] - baked.pruning.dropped_by_type[i] + baked.pruning.alternates_by_type[i];
-    baked.dropped_by_molecule[tiles.molecule_of_type[i]] += baked.pruning.dropped_by_type[i];
-    baked.alternates_by_molecule[tiles.molecule_of_type[i]] += baked.pruning.alternates_by_type[i];
+    baked.dropped_by_molecule[molecule_of_type[i]] += baked.pruning.dropped_by_type[i];
+    baked.alternates_by_molecule[molecule_of_type[i]] += baked.pruning.alternates_by_type[i];
   }
+}
+
+void store_shells(const shell::MembraneMapping& mapping, const shell::ShellResult& shells, BakedMembrane& baked) {
   baked.shells.resize(mapping.triangle_count());
   for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
     const shell::TriangleMapping& tm = mapping.triangle(t);
@@ -138,6 +147,34 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   const glm::ivec2 area = mapping.replication_area();
   baked.replication_width = static_cast<std::uint32_t>(area.x);
   baked.replication_height = static_cast<std::uint32_t>(area.y);
+}
+
+}  // namespace
+
+BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
+                            std::uint64_t seed, int threads, const PerCompartment& per_compartment) {
+  BakedMembrane baked;
+  const double k = tile_scale(mesh, tiles);
+  baked.tile_size = tiles.set.edge;
+  baked.recipe = membrane_recipe(tiles.set, tiles.set.edge / k, seed);
+  std::vector<tiles::MoleculeType> types;
+  for (const std::uint32_t m : tiles.molecule_of_type) types.push_back(to_tile_molecule(library[m]));
+  // Copies that clash across seams (and wherever the surface distorts the tiles) are found and
+  // dropped by the pruning, so no seam band is emptied.
+  baked.smooth = kMembraneSurfaceSmoothness;
+  const shell::MembraneMapping mapping(mesh, tiles.set, baked.recipe, k, types, "membrane", shell::SeamRule::ignore,
+                                       baked.smooth);
+  baked.uv_scale = stored_uv_scale(tiles.set.edge, mapping.tile_uv_size());
+  // The package stores the UVs ownership was decided on.
+  const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();
+  for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = glm::dvec2(snapped[i]);
+
+  const MembraneSurface surface{mapping, mesh, types, tiles, library, threads};
+  shell::ShellResult shells = compute_shells(surface);
+  baked.pruning = prune(surface, shells, per_compartment);
+  baked.dropped = std::move(baked.pruning.dropped);
+  count_by_molecule(surface, shells, baked);
+  store_shells(mapping, shells, baked);
   return baked;
 }
 

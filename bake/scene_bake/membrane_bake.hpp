@@ -38,12 +38,13 @@ struct BakedMembrane {
 // The float UV scale k stored in the package: float(S) / k == s exactly, as the renderer computes it.
 float stored_uv_scale(float tile_size, float tile_uv_size);
 
+// (library molecule, copies) the compartment keeps of a protein at most (scene `per_compartment`).
+using PerCompartment = std::vector<std::pair<std::uint32_t, std::uint64_t>>;
+
 // Snaps the mesh's UVs in place (the ownership contract) and computes everything above.
-// `per_compartment`: (library molecule, copies) the compartment keeps of a protein at most
-// (scene `per_compartment`); needs a membrane pruned everywhere (InputError otherwise).
+// `per_compartment` needs a membrane pruned everywhere (InputError otherwise).
 BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
-                            std::uint64_t seed, int threads,
-                            const std::vector<std::pair<std::uint32_t, std::uint64_t>>& per_compartment = {});
+                            std::uint64_t seed, int threads, const PerCompartment& per_compartment = {});
 
 // Shells of a compartment without a membrane: flat prisms of zero height, so the core renderer
 // still has the mesh's front/back intervals and no membrane copy is ever looked for.

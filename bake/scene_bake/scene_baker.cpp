@@ -229,253 +229,385 @@ BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& o
 
 namespace {
 
-BakedScene bake_described_scene(const scene::SceneDescription& scene, const BakeOptions& options) {
-  BakedScene baked;
-  StageClock clock(baked, options);
-  const std::uint64_t seed = options.seed.value_or(scene.seed);
-  const int threads = std::max(1, options.jobs);
+// What every stage reads: the scene, how to bake it, and the seed and jobs the options settle.
+struct BakeInputs {
+  const scene::SceneDescription& scene;
+  const BakeOptions& options;
+  std::uint64_t seed;
+  int threads;
+};
 
-  // What the scene asks must fit before anything is read or packed (scene_feasibility.hpp).
-  scene::check_scene_amounts(scene);
-  std::vector<std::optional<BakedLipidPatch>> patches(scene.membranes.size());
+// The molecules stage: the library, each membrane's lipid patch (with its mix), and the sizes the
+// feasibility checks weigh the meshes against.
+struct Molecules {
+  std::vector<BakedMolecule> library;
+  std::vector<std::optional<BakedLipidPatch>> patches;  // per membrane
   std::vector<scene::MoleculeMeasure> measures;
-  const std::vector<BakedMolecule> library = clock.run("molecules", [&] {
-    std::vector<BakedMolecule> molecules = load_molecule_library(scene);
-    for (std::size_t i = 0; i < scene.membranes.size(); ++i)
-      if (const auto& patch = scene.membranes[i].lipid_patch) {
-        patches[i] = load_lipid_patch(*patch, molecules.size(), molecules);
-        for (const scene::LipidPatchDescription& species : scene.membranes[i].lipid_mix) {
-          BakedLipidPatch mixed = load_lipid_patch(species, molecules.size(), molecules);
-          mixed.outer = species.outer;
-          mixed.inner = species.inner;
-          patches[i]->mix.push_back(std::move(mixed));
-        }
-      }
-    measures = measure_molecules(scene, molecules);
-    scene::check_molecule_amounts(scene, measures);
-    return molecules;
-  });
+};
 
-  std::vector<CompartmentBake> compartments(scene.compartments.size());
-  for (std::size_t c = 0; c < scene.compartments.size(); ++c)
-    compartments[c].mesh = clock.run("meshes", [&] {
-      std::optional<double> thickness;
-      if (const auto& membrane = scene.compartments[c].membrane) {
-        const auto& patch = patches[membrane->index];
-        thickness = patch ? bilayer_thickness(*patch, library) : kBilayerThicknessWithoutPatch;
+Molecules load_molecules(const scene::SceneDescription& scene) {
+  Molecules m;
+  m.patches.resize(scene.membranes.size());
+  m.library = load_molecule_library(scene);
+  for (std::size_t i = 0; i < scene.membranes.size(); ++i)
+    if (const auto& patch = scene.membranes[i].lipid_patch) {
+      m.patches[i] = load_lipid_patch(*patch, m.library.size(), m.library);
+      for (const scene::LipidPatchDescription& species : scene.membranes[i].lipid_mix) {
+        BakedLipidPatch mixed = load_lipid_patch(species, m.library.size(), m.library);
+        mixed.outer = species.outer;
+        mixed.inner = species.inner;
+        m.patches[i]->mix.push_back(std::move(mixed));
       }
-      CompartmentMesh loaded = load_compartment_mesh(scene.compartments[c], thickness, [&](const mesh::ProxyMesh& m) {
-        scene::CompartmentMeasure measure = measure_compartment(m);
-        measure.bilayer_thickness = thickness.value_or(0.0);
-        scene::check_compartment_amounts(scene, c, measure, measures);
-      });
-      if (options.mesh_codec != MeshCodec::zstd) put_on_storage_grids(loaded);
-      else loaded.storage = "exact as read (--mesh-codec zstd)";
-      if (options.mesh_codec == MeshCodec::draco && !loaded.on_storage_grids)
-        throw InputError(loaded.origin, "", "--mesh-codec draco: " + loaded.storage);
-      return loaded;
-    });
+    }
+  m.measures = measure_molecules(scene, m.library);
+  scene::check_molecule_amounts(scene, m.measures);
+  return m;
+}
 
-  std::vector<scene::CompartmentMeasure> mesh_measures;
-  std::vector<double> mesh_radii;
-  for (const CompartmentBake& c : compartments) {
-    mesh_measures.push_back(measure_compartment(c.mesh.mesh));
-    mesh_measures.back().bilayer_thickness = c.mesh.bilayer_thickness;
-    mesh_radii.push_back(mesh_measures.back().extent);
+CompartmentMesh load_mesh(const BakeInputs& in, const Molecules& molecules, std::size_t c) {
+  std::optional<double> thickness;
+  if (const auto& membrane = in.scene.compartments[c].membrane) {
+    const auto& patch = molecules.patches[membrane->index];
+    thickness = patch ? bilayer_thickness(*patch, molecules.library) : kBilayerThicknessWithoutPatch;
   }
-  scene::check_placement_amounts(scene, mesh_radii);
+  CompartmentMesh loaded = load_compartment_mesh(in.scene.compartments[c], thickness, [&](const mesh::ProxyMesh& m) {
+    scene::CompartmentMeasure measure = measure_compartment(m);
+    measure.bilayer_thickness = thickness.value_or(0.0);
+    scene::check_compartment_amounts(in.scene, c, measure, molecules.measures);
+  });
+  if (in.options.mesh_codec != MeshCodec::zstd) put_on_storage_grids(loaded);
+  else loaded.storage = "exact as read (--mesh-codec zstd)";
+  if (in.options.mesh_codec == MeshCodec::draco && !loaded.on_storage_grids)
+    throw InputError(loaded.origin, "", "--mesh-codec draco: " + loaded.storage);
+  return loaded;
+}
+
+// Each mesh is measured once, after the meshes stage: the estimate, the choice of where to prune and
+// the placements all read these.
+struct MeshMeasures {
+  std::vector<scene::CompartmentMeasure> measures;
+  std::vector<double> radii;  // each mesh's extent
+};
+
+MeshMeasures measure_meshes(const std::vector<CompartmentBake>& compartments) {
+  MeshMeasures out;
+  for (const CompartmentBake& c : compartments) {
+    out.measures.push_back(measure_compartment(c.mesh.mesh));
+    out.measures.back().bilayer_thickness = c.mesh.bilayer_thickness;
+    out.radii.push_back(out.measures.back().extent);
+  }
+  return out;
+}
+
+void check_placements(const scene::SceneDescription& scene, const MeshMeasures& measured) {
+  scene::check_placement_amounts(scene, measured.radii);
   // A trial of the random placements with the meshes' own radii (the real one, after the shells,
   // adds their margin): a box too crowded to fill is refused now, not after the heavy stages.
-  if (scene::expanded_instance_count(scene) > scene.instances.size()) scene::expand_random_instances(scene, mesh_radii);
+  if (scene::expanded_instance_count(scene) > scene.instances.size()) scene::expand_random_instances(scene, measured.radii);
+}
 
+BakeEstimate estimate(const BakeInputs& in, const Molecules& molecules, const std::vector<CompartmentBake>& compartments,
+                      const MeshMeasures& measured) {
   std::vector<EstimatedMesh> meshes;
-  for (std::size_t c = 0; c < compartments.size(); ++c) meshes.push_back({mesh_measures[c], compartments[c].mesh.report.seam_length});
-  baked.estimate = estimate_bake(scene, library, patches, meshes, threads);
-  baked.cpu_seconds_at_estimate = process_cpu_seconds();
-  if (options.max_memory && baked.estimate.peak_bytes > *options.max_memory)
-    throw InputError(scene.source.string(), "", over_memory_budget(baked.estimate, *options.max_memory));
-  if (options.estimate_only) return baked;
+  for (std::size_t c = 0; c < compartments.size(); ++c)
+    meshes.push_back({measured.measures[c], compartments[c].mesh.report.seam_length});
+  return estimate_bake(in.scene, molecules.library, molecules.patches, meshes, in.threads);
+}
 
-  // A membrane's tiles must survive the most anisotropic chart, the most curved surface and the
-  // most tilted normals among the meshes that wear it (5% on the curvature for what the
-  // corner-normal estimate misses).
-  // Small membranes (a virion's) are pruned on their real surface everywhere (membrane_pruning.hpp),
-  // so their tiles are packed rigid, as dense as the patch; a large one (a cell's 10^8 lipids) is
-  // pruned only along its seams and its tiles must survive what its charts do elsewhere.
-  std::vector<tiles::SurfaceDistortion> membrane_surface(scene.membranes.size());
+// A membrane's tiles must survive the most anisotropic chart, the most curved surface and the most
+// tilted normals among the meshes that wear it (5% on the curvature for what the corner-normal
+// estimate misses). Small membranes (a virion's) are pruned on their real surface everywhere
+// (membrane_pruning.hpp), so their tiles are packed rigid, as dense as the patch; a large one (a
+// cell's 10^8 lipids) is pruned only along its seams and its tiles must survive what its charts do
+// elsewhere.
+std::vector<tiles::SurfaceDistortion> membrane_surfaces(const scene::SceneDescription& scene, const Molecules& molecules,
+                                                        const std::vector<CompartmentBake>& compartments,
+                                                        const MeshMeasures& measured) {
+  std::vector<tiles::SurfaceDistortion> surfaces(scene.membranes.size());
   for (std::size_t c = 0; c < scene.compartments.size(); ++c)
     if (const auto& membrane = scene.compartments[c].membrane) {
       const mesh::ProxyMesh& m = compartments[c].mesh.mesh;
-      if (membrane_copies_for_pruning(mesh_measures[c].area, scene.membranes[membrane->index], patches[membrane->index]) <=
-          shell::PruningSettings{}.whole_surface_budget)
+      if (membrane_copies_for_pruning(measured.measures[c].area, scene.membranes[membrane->index],
+                                      molecules.patches[membrane->index]) <= shell::PruningSettings{}.whole_surface_budget)
         continue;
-      tiles::SurfaceDistortion& s = membrane_surface[membrane->index];
+      tiles::SurfaceDistortion& s = surfaces[membrane->index];
       s.lateral_stretch = std::max(s.lateral_stretch, static_cast<float>(mesh::chart_anisotropy(m) - 1.0));
       s.curvature = std::max(s.curvature, static_cast<float>(1.05 * mesh::normal_turn_rate(m)));
       s.tilt = std::max(s.tilt, static_cast<float>(mesh::largest_smooth_normal_tilt(m, kMembraneSurfaceSmoothness)));
       s.max_rise = std::max(s.max_rise, static_cast<float>(mesh::largest_facet_sag(m)));
     }
+  return surfaces;
+}
 
-  // Every Wang set is generated on its own (own seed, shared read-only inputs), so the sets run
-  // side by side on the jobs: a scene's slowest set, not their sum, bounds the stage.
+struct TileSets {
+  std::vector<BakedWangSet> membrane, soluble;  // indexed like the scene's membranes and solubles
+};
+
+// Every Wang set is generated on its own (own seed, shared read-only inputs), so the sets run side by
+// side on the jobs: a scene's slowest set, not their sum, bounds the stage.
+TileSets bake_tile_sets(const BakeInputs& in, const Molecules& molecules,
+                        const std::vector<tiles::SurfaceDistortion>& surfaces) {
+  const scene::SceneDescription& scene = in.scene;
   const std::size_t membrane_count = scene.membranes.size();
-  std::vector<BakedWangSet> membrane_sets(membrane_count), soluble_sets(scene.solubles.size());
-  clock.run("tile sets", [&] {
-    parallel_for(membrane_count + scene.solubles.size(), threads, [&](std::size_t k) {
-      if (k < membrane_count) {
-        membrane_sets[k] = bake_membrane_tiles(scene.membranes[k], library, patches[k] ? &*patches[k] : nullptr,
-                                               membrane_surface[k], derive_seed(seed, SeedTag::membrane_tiles, k));
-      } else {
-        const std::size_t i = k - membrane_count;
-        soluble_sets[i] = bake_soluble_cubes(scene.solubles[i], library, derive_seed(seed, SeedTag::soluble_cubes, i));
-      }
-    });
-    return 0;
+  TileSets sets{std::vector<BakedWangSet>(membrane_count), std::vector<BakedWangSet>(scene.solubles.size())};
+  parallel_for(membrane_count + scene.solubles.size(), in.threads, [&](std::size_t k) {
+    if (k < membrane_count) {
+      const auto& patch = molecules.patches[k];
+      sets.membrane[k] = bake_membrane_tiles(scene.membranes[k], molecules.library, patch ? &*patch : nullptr,
+                                             surfaces[k], derive_seed(in.seed, SeedTag::membrane_tiles, k));
+    } else {
+      const std::size_t i = k - membrane_count;
+      sets.soluble[i] =
+          bake_soluble_cubes(scene.solubles[i], molecules.library, derive_seed(in.seed, SeedTag::soluble_cubes, i));
+    }
   });
-  for (std::size_t i = 0; i < membrane_count; ++i)
-    baked.wang_sets.push_back({scene.membranes[i].name, membrane_sets[i].set.densities, membrane_surface[i]});
-  for (std::size_t i = 0; i < scene.solubles.size(); ++i)
-    baked.wang_sets.push_back({scene.solubles[i].name, soluble_sets[i].set.densities});
+  return sets;
+}
 
-  for (std::size_t c = 0; c < scene.compartments.size(); ++c) {
-    const scene::CompartmentDescription& description = scene.compartments[c];
+void summarise_tile_sets(BakedScene& baked, const scene::SceneDescription& scene, const TileSets& sets,
+                         const std::vector<tiles::SurfaceDistortion>& surfaces) {
+  for (std::size_t i = 0; i < sets.membrane.size(); ++i)
+    baked.wang_sets.push_back({scene.membranes[i].name, sets.membrane[i].set.densities, surfaces[i]});
+  for (std::size_t i = 0; i < sets.soluble.size(); ++i)
+    baked.wang_sets.push_back({scene.solubles[i].name, sets.soluble[i].set.densities});
+}
+
+BakedMembrane bake_shell(const BakeInputs& in, const Molecules& molecules, const TileSets& sets, std::size_t c,
+                         CompartmentBake& bake) {
+  const scene::CompartmentDescription& description = in.scene.compartments[c];
+  const std::size_t membrane = description.membrane->index;
+  PerCompartment per_compartment;
+  for (const scene::MembraneProtein& p : in.scene.membranes[membrane].proteins)
+    if (p.per_compartment) per_compartment.emplace_back(static_cast<std::uint32_t>(p.molecule.index), *p.per_compartment);
+  try {
+    return bake_membrane(bake.mesh.mesh, sets.membrane[membrane], molecules.library,
+                         derive_seed(in.seed, SeedTag::membrane_recipe, c), in.threads, per_compartment);
+  } catch (const InputError& e) {
+    // What the membrane cannot do on this mesh is the mesh's file's business, not an anonymous input's.
+    if (!e.file().empty()) throw;
+    throw InputError(bake.mesh.origin, "compartment '" + description.name + "' " + e.where(), e.rule());
+  }
+}
+
+// How far the membrane's copies reach outside the mesh (Å).
+double shell_margin(const BakedMembrane& membrane) {
+  double margin = 0.0;
+  for (const gpu::TriangleShell& s : membrane.shells) margin = std::max({margin, double(s.h_plus), double(s.side_offset)});
+  return margin;
+}
+
+BakedCore bake_core_grid(const BakeInputs& in, const Molecules& molecules, const TileSets& sets, std::size_t c,
+                         const CompartmentBake& bake) {
+  const std::size_t soluble = in.scene.compartments[c].soluble->index;
+  const double inner = bake.membrane ? bake.membrane->inner_height : 0.0;
+  return bake_core(bake.mesh.mesh, sets.soluble[soluble], in.scene.solubles[soluble], molecules.library, inner,
+                   derive_seed(in.seed, SeedTag::soluble_recipe, c), in.threads);
+}
+
+std::vector<scene::PlacedInstance> place_instances(const scene::SceneDescription& scene,
+                                                   const std::vector<CompartmentBake>& compartments,
+                                                   const MeshMeasures& measured) {
+  std::vector<double> radii;
+  for (std::size_t c = 0; c < compartments.size(); ++c) radii.push_back(measured.radii[c] + compartments[c].shell_margin);
+  return scene::expand_random_instances(scene, radii);
+}
+
+// What the package content stage writes from: every earlier stage's result.
+struct PackageInputs {
+  const BakeInputs& in;
+  const Molecules& molecules;
+  const TileSets& sets;
+  const std::vector<CompartmentBake>& compartments;
+};
+
+struct TileSetRanges {
+  std::vector<TileRange> membrane, soluble;  // where each set's tiles lie in the package
+};
+
+// One compartment's record, what the bake report says of it, and its copies per library molecule.
+struct CompartmentContent {
+  gpu::Compartment record{};
+  CompartmentSummary summary;
+  std::vector<std::uint64_t> copies;
+};
+
+format::Compression mesh_compression(MeshCodec codec) {
+  return codec == MeshCodec::zstd    ? format::Compression::zstd_if_smaller
+         : codec == MeshCodec::draco ? format::Compression::draco
+                                     : format::Compression::draco_if_smaller;
+}
+
+CompartmentSummary mesh_summary(const std::string& name, const CompartmentMesh& mesh) {
+  CompartmentSummary summary;
+  summary.name = name;
+  summary.mesh_origin = mesh.origin;
+  summary.mesh_scale = mesh.scale;
+  summary.uv_origin = mesh.uv_origin;
+  summary.mesh_storage = mesh.storage;
+  summary.bilayer_thickness = mesh.bilayer_thickness;
+  summary.thinnest_wall = mesh.thinnest_wall;
+  summary.charts = mesh.charts;
+  summary.repair = mesh.repair;
+  summary.remesh = mesh.remesh;
+  summary.triangles = static_cast<std::uint32_t>(mesh.mesh.triangles.size());
+  return summary;
+}
+
+void add_membrane(PackageContent& content, const BakedMembrane& m, TileRange range, CompartmentContent& out) {
+  gpu::Compartment& record = out.record;
+  record.membrane_first_tile = range.first;
+  record.membrane_tile_count = range.count;
+  record.membrane_recipe = content.add_recipe(m.recipe, range);
+  record.replication_width = m.replication_width;
+  record.replication_height = m.replication_height;
+  record.scales.x = static_cast<float>(m.uv_scale);
+  record.scales.y = static_cast<float>(m.tile_size);
+  record.scales.w = m.smooth;
+  for (std::size_t i = 0; i < out.copies.size(); ++i) out.copies[i] += m.copies_by_molecule[i];
+  out.summary.replication_width = m.replication_width;
+  out.summary.replication_height = m.replication_height;
+}
+
+void add_core(PackageContent& content, const BakedCore& core, TileRange range, std::uint32_t largest_cube,
+              CompartmentContent& out) {
+  gpu::Compartment& record = out.record;
+  const grid::CoreGrid& grid = core.occupancy.grid;
+  record.soluble_first_tile = range.first;
+  record.soluble_tile_count = range.count;
+  record.soluble_recipe = content.add_recipe(core.recipe, range);
+  record.scales.z = static_cast<float>(grid.box_size);
+  record.grid_min = glm::vec4(glm::vec3(grid.min), static_cast<float>(grid.box_size));
+  std::vector<std::uint8_t> classes(core.occupancy.classes.size());
+  std::transform(core.occupancy.classes.begin(), core.occupancy.classes.end(), classes.begin(),
+                 [](grid::BoxClass b) { return static_cast<std::uint8_t>(b); });
+  record.grid_dims = glm::uvec4(glm::uvec3(grid.dims), content.add_occupancy(classes));
+  const auto [first, count] = content.add_keep_masks(core.masks, largest_cube);
+  record.core_masks = glm::uvec4(first, count, 0u, 0u);
+  for (std::size_t i = 0; i < out.copies.size(); ++i) out.copies[i] += core.copies_by_molecule[i];
+  out.summary.core_boxes_inside = core.occupancy.inside;
+  out.summary.core_boxes_boundary = core.occupancy.boundary;
+}
+
+// By name: a lipid patch's conformers are one kind of molecule to a reader.
+void count_copies(const std::vector<BakedMolecule>& library, CompartmentContent& out) {
+  CompartmentSummary& summary = out.summary;
+  for (std::size_t i = 0; i < library.size(); ++i) {
+    if (out.copies[i] == 0) continue;
+    auto named = std::find_if(summary.copies.begin(), summary.copies.end(),
+                              [&](const auto& entry) { return entry.first == library[i].name; });
+    if (named == summary.copies.end()) summary.copies.emplace_back(library[i].name, out.copies[i]);
+    else named->second += out.copies[i];
+    summary.represented_atoms += out.copies[i] * library[i].atoms.size();
+  }
+}
+
+CompartmentContent compartment_content(PackageContent& content, const PackageInputs& p, const TileSetRanges& ranges,
+                                       std::size_t c) {
+  const scene::CompartmentDescription& description = p.in.scene.compartments[c];
+  const CompartmentBake& bake = p.compartments[c];
+  const std::vector<BakedMolecule>& library = p.molecules.library;
+  CompartmentContent out;
+  out.record.membrane_recipe = out.record.soluble_recipe = gpu::NANO_NO_INDEX;
+  const PackedMesh packed = bake.mesh.on_storage_grids ? pack_mesh_canonical(bake.mesh.mesh) : pack_mesh(bake.mesh.mesh);
+  out.record.mesh = bake.membrane ? content.add_mesh(packed, bake.membrane->shells, bake.membrane->dropped)
+                                  : content.add_mesh(packed, empty_shells(bake.mesh.mesh));
+  std::tie(out.record.name_offset, out.record.name_length) = content.add_string(description.name);
+  out.copies.assign(library.size(), 0);
+  out.summary = mesh_summary(description.name, bake.mesh);
+  if (bake.membrane) {
+    const std::size_t m = description.membrane->index;
+    add_membrane(content, *bake.membrane, ranges.membrane[m], out);
+    out.summary.membrane = membrane_summary(bake.mesh.mesh, *bake.membrane, p.sets.membrane[m], library,
+                                            p.molecules.patches[m], p.in.scene.membranes[m]);
+  }
+  if (bake.core) {
+    const std::size_t s = description.soluble->index;
+    add_core(content, *bake.core, ranges.soluble[s], largest_tile(p.sets.soluble[s]), out);
+  }
+  count_copies(library, out);
+  return out;
+}
+
+void add_instance(BakedScene& baked, const scene::PlacedInstance& p, const CompartmentBake& bake) {
+  PackageContent& content = baked.content;
+  gpu::CompartmentInstance record{};
+  for (int row = 0; row < 3; ++row) record.transform[row] = glm::vec4(p.transform[row]);
+  record.compartment = static_cast<std::uint32_t>(p.compartment.index);
+  content.compartment_instances.push_back(record);
+  const glm::dvec3 margin(bake.shell_margin);
+  InstanceSummary summary;
+  summary.compartment = p.compartment.name;
+  const gpu::Mesh& mesh = content.meshes[content.compartments[p.compartment.index].mesh];
+  const glm::vec3 lo = glm::vec3(mesh.aabb_min);
+  const glm::vec3 hi = glm::vec3(mesh.aabb_max);
+  world_aabb(p.transform, glm::dvec3(lo) - margin, glm::dvec3(hi) + margin, summary);
+  baked.instances.push_back(summary);
+  baked.represented_atoms += baked.compartments[p.compartment.index].represented_atoms;
+}
+
+void fill_package_content(BakedScene& baked, const PackageInputs& p, const std::vector<scene::PlacedInstance>& placed) {
+  PackageContent& content = baked.content;
+  const std::vector<BakedMolecule>& library = p.molecules.library;
+  content.mesh_compression = mesh_compression(p.in.options.mesh_codec);
+  for (const BakedMolecule& m : library) content.add_molecule(m);
+  TileSetRanges ranges;
+  for (const BakedWangSet& s : p.sets.membrane) ranges.membrane.push_back(content.add_wang_set(s, library));
+  for (const BakedWangSet& s : p.sets.soluble) ranges.soluble.push_back(content.add_wang_set(s, library));
+  for (std::size_t c = 0; c < p.compartments.size(); ++c) {
+    CompartmentContent compartment = compartment_content(content, p, ranges, c);
+    content.compartments.push_back(compartment.record);
+    baked.compartments.push_back(std::move(compartment.summary));
+  }
+  for (const scene::PlacedInstance& instance : placed) add_instance(baked, instance, p.compartments[instance.compartment.index]);
+  const scene::SceneDescription& scene = p.in.scene;
+  content.scene = scene_settings(scene, baked.instances);
+  content.effects = scene_effects(scene.effects);
+  content.keyframes = scene_keyframes(scene.effects);
+  content.provenance = provenance_json(scene, p.in.seed);
+}
+
+// The stages, in the order the bake report names them; the estimate (and --dry-run's stop) between
+// the meshes and the heavy stages, once the meshes can be measured.
+BakedScene bake_described_scene(const scene::SceneDescription& scene, const BakeOptions& options) {
+  BakedScene baked;
+  StageClock clock(baked, options);
+  const BakeInputs in{scene, options, options.seed.value_or(scene.seed), std::max(1, options.jobs)};
+
+  // What the scene asks must fit before anything is read or packed (scene_feasibility.hpp).
+  scene::check_scene_amounts(scene);
+  const Molecules molecules = clock.run("molecules", [&] { return load_molecules(scene); });
+
+  std::vector<CompartmentBake> compartments(scene.compartments.size());
+  for (std::size_t c = 0; c < compartments.size(); ++c)
+    compartments[c].mesh = clock.run("meshes", [&] { return load_mesh(in, molecules, c); });
+  const MeshMeasures measured = measure_meshes(compartments);
+  check_placements(scene, measured);
+
+  baked.estimate = estimate(in, molecules, compartments, measured);
+  baked.cpu_seconds_at_estimate = process_cpu_seconds();
+  if (options.max_memory && baked.estimate.peak_bytes > *options.max_memory)
+    throw InputError(scene.source.string(), "", over_memory_budget(baked.estimate, *options.max_memory));
+  if (options.estimate_only) return baked;
+
+  const std::vector<tiles::SurfaceDistortion> surfaces = membrane_surfaces(scene, molecules, compartments, measured);
+  const TileSets sets = clock.run("tile sets", [&] { return bake_tile_sets(in, molecules, surfaces); });
+  summarise_tile_sets(baked, scene, sets, surfaces);
+
+  // A compartment's core grid starts below its own membrane's shells (inner_height): each
+  // compartment bakes its shells, then its core grid.
+  for (std::size_t c = 0; c < compartments.size(); ++c) {
     CompartmentBake& bake = compartments[c];
-    if (description.membrane) {
-      bake.membrane = clock.run("shells", [&] {
-        std::vector<std::pair<std::uint32_t, std::uint64_t>> per_compartment;
-        for (const scene::MembraneProtein& p : scene.membranes[description.membrane->index].proteins)
-          if (p.per_compartment) per_compartment.emplace_back(static_cast<std::uint32_t>(p.molecule.index), *p.per_compartment);
-        try {
-          return bake_membrane(bake.mesh.mesh, membrane_sets[description.membrane->index], library,
-                               derive_seed(seed, SeedTag::membrane_recipe, c), threads, per_compartment);
-        } catch (const InputError& e) {
-          // What the membrane cannot do on this mesh is the mesh's file's business, not an anonymous input's.
-          if (!e.file().empty()) throw;
-          throw InputError(bake.mesh.origin, "compartment '" + description.name + "' " + e.where(), e.rule());
-        }
-      });
-      for (const gpu::TriangleShell& s : bake.membrane->shells)
-        bake.shell_margin = std::max({bake.shell_margin, double(s.h_plus), double(s.side_offset)});
+    if (scene.compartments[c].membrane) {
+      bake.membrane = clock.run("shells", [&] { return bake_shell(in, molecules, sets, c, bake); });
+      bake.shell_margin = shell_margin(*bake.membrane);
     }
-    if (description.soluble) {
-      const double inner = bake.membrane ? bake.membrane->inner_height : 0.0;
-      bake.core = clock.run("core grids", [&] {
-        return bake_core(bake.mesh.mesh, soluble_sets[description.soluble->index], scene.solubles[description.soluble->index],
-                         library, inner, derive_seed(seed, SeedTag::soluble_recipe, c), threads);
-      });
-    }
+    if (scene.compartments[c].soluble)
+      bake.core = clock.run("core grids", [&] { return bake_core_grid(in, molecules, sets, c, bake); });
   }
 
-  const std::vector<scene::PlacedInstance> placed = clock.run("instances", [&] {
-    std::vector<double> radii;
-    for (std::size_t c = 0; c < compartments.size(); ++c) radii.push_back(mesh_radii[c] + compartments[c].shell_margin);
-    return scene::expand_random_instances(scene, radii);
-  });
-
-  clock.run("package content", [&] {
-    PackageContent& content = baked.content;
-    content.mesh_compression = options.mesh_codec == MeshCodec::zstd    ? format::Compression::zstd_if_smaller
-                               : options.mesh_codec == MeshCodec::draco ? format::Compression::draco
-                                                                        : format::Compression::draco_if_smaller;
-    for (const BakedMolecule& m : library) content.add_molecule(m);
-    std::vector<TileRange> membrane_ranges, soluble_ranges;
-    for (const BakedWangSet& s : membrane_sets) membrane_ranges.push_back(content.add_wang_set(s, library));
-    for (const BakedWangSet& s : soluble_sets) soluble_ranges.push_back(content.add_wang_set(s, library));
-
-    for (std::size_t c = 0; c < compartments.size(); ++c) {
-      const scene::CompartmentDescription& description = scene.compartments[c];
-      CompartmentBake& bake = compartments[c];
-      gpu::Compartment record{};
-      record.membrane_recipe = record.soluble_recipe = gpu::NANO_NO_INDEX;
-      const PackedMesh packed = bake.mesh.on_storage_grids ? pack_mesh_canonical(bake.mesh.mesh) : pack_mesh(bake.mesh.mesh);
-      record.mesh = bake.membrane ? content.add_mesh(packed, bake.membrane->shells, bake.membrane->dropped)
-                                  : content.add_mesh(packed, empty_shells(bake.mesh.mesh));
-      std::tie(record.name_offset, record.name_length) = content.add_string(description.name);
-      std::vector<std::uint64_t> copies(library.size(), 0);
-      CompartmentSummary summary;
-      summary.name = description.name;
-      summary.mesh_origin = bake.mesh.origin;
-      summary.mesh_scale = bake.mesh.scale;
-      summary.uv_origin = bake.mesh.uv_origin;
-      summary.mesh_storage = bake.mesh.storage;
-      summary.bilayer_thickness = bake.mesh.bilayer_thickness;
-      summary.thinnest_wall = bake.mesh.thinnest_wall;
-      summary.charts = bake.mesh.charts;
-      summary.repair = bake.mesh.repair;
-      summary.remesh = bake.mesh.remesh;
-      summary.triangles = static_cast<std::uint32_t>(bake.mesh.mesh.triangles.size());
-      if (bake.membrane) {
-        const BakedMembrane& m = *bake.membrane;
-        const TileRange range = membrane_ranges[description.membrane->index];
-        record.membrane_first_tile = range.first;
-        record.membrane_tile_count = range.count;
-        record.membrane_recipe = content.add_recipe(m.recipe, range);
-        record.replication_width = m.replication_width;
-        record.replication_height = m.replication_height;
-        record.scales.x = static_cast<float>(m.uv_scale);
-        record.scales.y = static_cast<float>(m.tile_size);
-        record.scales.w = m.smooth;
-        for (std::size_t i = 0; i < copies.size(); ++i) copies[i] += m.copies_by_molecule[i];
-        summary.membrane = membrane_summary(bake.mesh.mesh, m, membrane_sets[description.membrane->index], library,
-                                            patches[description.membrane->index],
-                                            scene.membranes[description.membrane->index]);
-        summary.replication_width = m.replication_width;
-        summary.replication_height = m.replication_height;
-      }
-      if (bake.core) {
-        const BakedCore& core = *bake.core;
-        const grid::CoreGrid& grid = core.occupancy.grid;
-        const TileRange range = soluble_ranges[description.soluble->index];
-        record.soluble_first_tile = range.first;
-        record.soluble_tile_count = range.count;
-        record.soluble_recipe = content.add_recipe(core.recipe, range);
-        record.scales.z = static_cast<float>(grid.box_size);
-        record.grid_min = glm::vec4(glm::vec3(grid.min), static_cast<float>(grid.box_size));
-        std::vector<std::uint8_t> classes(core.occupancy.classes.size());
-        std::transform(core.occupancy.classes.begin(), core.occupancy.classes.end(), classes.begin(),
-                       [](grid::BoxClass b) { return static_cast<std::uint8_t>(b); });
-        record.grid_dims = glm::uvec4(glm::uvec3(grid.dims), content.add_occupancy(classes));
-        const auto [first, count] =
-            content.add_keep_masks(core.masks, largest_tile(soluble_sets[description.soluble->index]));
-        record.core_masks = glm::uvec4(first, count, 0u, 0u);
-        for (std::size_t i = 0; i < copies.size(); ++i) copies[i] += core.copies_by_molecule[i];
-        summary.core_boxes_inside = core.occupancy.inside;
-        summary.core_boxes_boundary = core.occupancy.boundary;
-      }
-      for (std::size_t i = 0; i < library.size(); ++i) {
-        if (copies[i] == 0) continue;
-        // By name: a lipid patch's conformers are one kind of molecule to a reader.
-        auto named = std::find_if(summary.copies.begin(), summary.copies.end(),
-                                  [&](const auto& entry) { return entry.first == library[i].name; });
-        if (named == summary.copies.end()) summary.copies.emplace_back(library[i].name, copies[i]);
-        else named->second += copies[i];
-        summary.represented_atoms += copies[i] * library[i].atoms.size();
-      }
-      content.compartments.push_back(record);
-      baked.compartments.push_back(std::move(summary));
-    }
-
-    for (const scene::PlacedInstance& p : placed) {
-      gpu::CompartmentInstance record{};
-      for (int row = 0; row < 3; ++row) record.transform[row] = glm::vec4(p.transform[row]);
-      record.compartment = static_cast<std::uint32_t>(p.compartment.index);
-      content.compartment_instances.push_back(record);
-      const CompartmentBake& bake = compartments[p.compartment.index];
-      const glm::dvec3 margin(bake.shell_margin);
-      InstanceSummary summary;
-      summary.compartment = p.compartment.name;
-      const glm::vec3 lo = glm::vec3(content.meshes[content.compartments[p.compartment.index].mesh].aabb_min);
-      const glm::vec3 hi = glm::vec3(content.meshes[content.compartments[p.compartment.index].mesh].aabb_max);
-      world_aabb(p.transform, glm::dvec3(lo) - margin, glm::dvec3(hi) + margin, summary);
-      baked.instances.push_back(summary);
-      baked.represented_atoms += baked.compartments[p.compartment.index].represented_atoms;
-    }
-    content.scene = scene_settings(scene, baked.instances);
-    content.effects = scene_effects(scene.effects);
-    content.keyframes = scene_keyframes(scene.effects);
-    content.provenance = provenance_json(scene, seed);
-    return 0;
-  });
+  const std::vector<scene::PlacedInstance> placed =
+      clock.run("instances", [&] { return place_instances(scene, compartments, measured); });
+  clock.run("package content", [&] { fill_package_content(baked, {in, molecules, sets, compartments}, placed); });
   return baked;
 }
 

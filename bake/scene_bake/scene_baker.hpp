@@ -1,6 +1,6 @@
 #pragma once
-// nanobake's pipeline: scene description -> molecule library -> Wang sets -> per compartment
-// (mesh, shell, core grid) -> placed instances -> package content, timing every stage.
+// nanobake's pipeline, in the stages the bake report times: molecules -> meshes -> (the estimate)
+// -> tile sets -> per compartment shells, core grids -> instances -> package content.
 #include <cstdint>
 #include <functional>
 #include <optional>

@@ -103,103 +103,123 @@ std::uint64_t PrunedMembrane::dropped_count() const {
   return n;
 }
 
-PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh,
-                              const std::vector<tiles::MoleculeType>& types, const PruningSettings& settings,
-                              int threads) {
-  const std::size_t triangles = mapping.triangle_count();
-  PrunedMembrane out;
-  out.dropped.assign(triangles, {});
-  out.dropped_by_type.assign(types.size(), 0);
-  out.alternates_by_type.assign(types.size(), 0);
-  if (triangles == 0 || types.empty()) return out;
+namespace {
 
+// The molecule types as the pruning tests them, and how far the set's copies reach.
+struct TypeShapes {
   std::vector<tiles::CollisionShape> shapes;
   std::vector<double> radius, smallest_atom;
+  double highest = 0.0, widest = 0.0;  // largest |z| of an instance and largest type radius
+};
+
+TypeShapes type_shapes(const std::vector<tiles::MoleculeType>& types, const tiles::WangSet& set) {
+  TypeShapes out;
   for (const tiles::MoleculeType& t : types) {
-    shapes.emplace_back(t);
-    radius.push_back(shapes.back().radius());
+    out.shapes.emplace_back(t);
+    out.radius.push_back(out.shapes.back().radius());
     double r = INFINITY;
     for (const tiles::AtomSphere& a : t.atoms) r = std::min(r, double(a.radius));
-    smallest_atom.push_back(r);
+    out.smallest_atom.push_back(r);
   }
-  const tiles::WangSet& set = mapping.set();
-  double highest = 0.0, widest = 0.0;  // largest |z| of an instance and largest type radius
   for (const tiles::WangTile& tile : set.tiles)
     for (const tiles::Instance& in : tile.instances) {
-      highest = std::max(highest, std::abs(double(in.position.z)));
-      widest = std::max(widest, radius[in.type]);
+      out.highest = std::max(out.highest, std::abs(double(in.position.z)));
+      out.widest = std::max(out.widest, out.radius[in.type]);
     }
+  return out;
+}
 
-  if (settings.owned_copies) {
-    out.owned_copies = *settings.owned_copies;
-  } else {
-    std::vector<std::uint64_t> owned(triangles, 0);
-    parallel_for(triangles, threads, [&](std::size_t t) {
-      mapping.for_each_owned_membrane_place(t, [&](const OwnedPlace&) { ++owned[t]; }, SeamRule::ignore);
-    });
-    out.owned_copies = std::accumulate(owned.begin(), owned.end(), std::uint64_t{0});
-  }
-  out.whole_surface = settings.whole_surface || out.owned_copies <= settings.whole_surface_budget;
+std::uint64_t count_owned_copies(const MembraneMapping& mapping, const PruningSettings& settings, int threads) {
+  if (settings.owned_copies) return *settings.owned_copies;
+  std::vector<std::uint64_t> owned(mapping.triangle_count(), 0);
+  parallel_for(owned.size(), threads, [&](std::size_t t) {
+    mapping.for_each_owned_membrane_place(t, [&](const OwnedPlace&) { ++owned[t]; }, SeamRule::ignore);
+  });
+  return std::accumulate(owned.begin(), owned.end(), std::uint64_t{0});
+}
 
-  // Which triangles, and within them which copies, to check. Two copies on the two sides of a seam
-  // that clash have surface points X, X' with |X − X'| < r + r' + |z| + |z'|, and the seam passes
-  // between them: each lies within its own r + |z| plus the widest r' + |z'| of the seam.
-  const std::vector<Segment> seams = out.whole_surface ? std::vector<Segment>{} : seam_segments(mapping);
-  const double reach_other = widest + highest + 2.0;
-  std::vector<std::vector<std::uint32_t>> near_seams(triangles);
-  if (!out.whole_surface) {
-    parallel_for(triangles, threads, [&](std::size_t t) {
-      const TriangleMapping& tm = mapping.triangle(t);
-      const dvec3 centre = (dvec3(tm.position[0]) + dvec3(tm.position[1]) + dvec3(tm.position[2])) / 3.0;
-      double extent = 0.0;
-      for (const glm::vec3& p : tm.position) extent = std::max(extent, glm::length(dvec3(p) - centre));
-      for (std::uint32_t s = 0; s < seams.size(); ++s)
-        if (point_segment_distance(centre, seams[s]) < extent + widest + highest + reach_other)
-          near_seams[t].push_back(s);
-    });
-  }
+// Which triangles, and within them which copies, to check. Two copies on the two sides of a seam
+// that clash have surface points X, X' with |X − X'| < r + r' + |z| + |z'|, and the seam passes
+// between them: each lies within its own r + |z| plus the widest r' + |z'| of the seam.
+struct CheckedRegion {
+  bool whole_surface = false;
+  std::vector<Segment> seams;
+  std::vector<std::vector<std::uint32_t>> near_seams;  // per triangle: the seams its copies may clash across
+  double reach_other = 0.0;
+};
 
-  const std::vector<std::uint32_t> island = uv_islands(mesh);
-  const double S = set.edge;
+CheckedRegion checked_region(const MembraneMapping& mapping, const TypeShapes& t, bool whole_surface, int threads) {
+  const std::size_t triangles = mapping.triangle_count();
+  CheckedRegion region{whole_surface, whole_surface ? std::vector<Segment>{} : seam_segments(mapping),
+                       std::vector<std::vector<std::uint32_t>>(triangles), t.widest + t.highest + 2.0};
+  if (whole_surface) return region;
+  parallel_for(triangles, threads, [&](std::size_t tri) {
+    const TriangleMapping& tm = mapping.triangle(tri);
+    const dvec3 centre = (dvec3(tm.position[0]) + dvec3(tm.position[1]) + dvec3(tm.position[2])) / 3.0;
+    double extent = 0.0;
+    for (const glm::vec3& p : tm.position) extent = std::max(extent, glm::length(dvec3(p) - centre));
+    for (std::uint32_t s = 0; s < region.seams.size(); ++s)
+      if (point_segment_distance(centre, region.seams[s]) < extent + t.widest + t.highest + region.reach_other)
+        region.near_seams[tri].push_back(s);
+  });
+  return region;
+}
+
+void check_key_room(const MembraneMapping& mapping) {
   const std::uint32_t W = static_cast<std::uint32_t>(mapping.replication_area().x);
   std::size_t largest_tile = 0;
-  for (const tiles::WangTile& tile : set.tiles) largest_tile = std::max(largest_tile, tile.instances.size());
+  for (const tiles::WangTile& tile : mapping.set().tiles) largest_tile = std::max(largest_tile, tile.instances.size());
   const std::uint64_t slots = std::uint64_t(W) * std::uint64_t(mapping.replication_area().y);
   if (largest_tile > (std::size_t{1} << gpu::NANO_DROP_INSTANCE_BITS) || slots > (std::uint64_t{1} << (32 - gpu::NANO_DROP_INSTANCE_BITS)))
     throw InputError("", "membrane", "a Wang square of " + std::to_string(largest_tile) + " copies or a replication area of " +
                                          std::to_string(slots) + " slots is too large for the dropped-copy keys (2^16 each)");
+}
+
+Placed placed_copy(const MembraneMapping& mapping, std::size_t t, const OwnedPlace& m, std::uint32_t key,
+                   std::uint32_t island) {
+  const tiles::Instance& in = mapping.set().tiles[m.tile].instances[m.instance];
+  const double S = mapping.set().edge;
+  Placed p;
+  p.triangle = static_cast<std::uint32_t>(t);
+  p.key = key;
+  p.type = m.type;
+  p.island = island;
+  p.alternate = in.alternate;
+  p.has_alternate = in.has_alternate;
+  p.flat = dvec3(m.cell.x * S + in.position.x, m.cell.y * S + in.position.y, in.position.z);
+  p.flat_rotation = dmat3(glm::mat3_cast(in.rotation));
+  const gpu::Affine3 transform = mapping.transform_of(t, m);
+  p.centre = dvec3(transform.translation);
+  p.rotation = dmat3(transform.linear);
+  return p;
+}
+
+// The owned copies to check, in triangle order, less those dropped before.
+std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh, const TypeShapes& t,
+                                    const CheckedRegion& region, const PruningSettings& settings, int threads) {
+  const std::size_t triangles = mapping.triangle_count();
+  const std::vector<std::uint32_t> island = uv_islands(mesh);
   std::vector<std::vector<Placed>> per_triangle(triangles);
-  parallel_for(triangles, threads, [&](std::size_t t) {
-    if (!out.whole_surface && near_seams[t].empty()) return;
-    const TriangleMapping& tm = mapping.triangle(t);
+  parallel_for(triangles, threads, [&](std::size_t tri) {
+    if (!region.whole_surface && region.near_seams[tri].empty()) return;
+    const TriangleMapping& tm = mapping.triangle(tri);
+    const std::vector<std::uint32_t>& near_seams = region.near_seams[tri];
     // Placed only once kept: most copies of a triangle near a seam stand too far from it.
     mapping.for_each_owned_membrane_place(
-        t,
+        tri,
         [&](const OwnedPlace& m) {
-          const tiles::Instance& in = set.tiles[m.tile].instances[m.instance];
-          const std::uint32_t key = mapping.copy_key(t, m);
+          const std::uint32_t key = mapping.copy_key(tri, m);
           if (!settings.dropped_before.empty() &&
-              std::binary_search(settings.dropped_before[t].begin(), settings.dropped_before[t].end(), key))
+              std::binary_search(settings.dropped_before[tri].begin(), settings.dropped_before[tri].end(), key))
             return;
-          if (!out.whole_surface) {
+          if (!region.whole_surface) {
+            const tiles::Instance& in = mapping.set().tiles[m.tile].instances[m.instance];
             const dvec3 surface(gpu::chart_position(tm.chart, m.uv));
-            const double reach = radius[m.type] + std::abs(double(in.position.z)) + reach_other;
-            const auto near = [&](std::uint32_t s) { return point_segment_distance(surface, seams[s]) < reach; };
-            if (std::none_of(near_seams[t].begin(), near_seams[t].end(), near)) return;
+            const double reach = t.radius[m.type] + std::abs(double(in.position.z)) + region.reach_other;
+            const auto near = [&](std::uint32_t s) { return point_segment_distance(surface, region.seams[s]) < reach; };
+            if (std::none_of(near_seams.begin(), near_seams.end(), near)) return;
           }
-          Placed p;
-          p.triangle = static_cast<std::uint32_t>(t);
-          p.key = key;
-          p.type = m.type;
-          p.island = island[t];
-          p.alternate = in.alternate;
-          p.has_alternate = in.has_alternate;
-          p.flat = dvec3(m.cell.x * S + in.position.x, m.cell.y * S + in.position.y, in.position.z);
-          p.flat_rotation = dmat3(glm::mat3_cast(in.rotation));
-          const gpu::Affine3 transform = mapping.transform_of(t, m);
-          p.centre = dvec3(transform.translation);
-          p.rotation = dmat3(transform.linear);
-          per_triangle[t].push_back(p);
+          per_triangle[tri].push_back(placed_copy(mapping, tri, m, key, island[tri]));
         },
         SeamRule::ignore);
   });
@@ -208,91 +228,109 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   for (const auto& v : per_triangle) placed += v.size();
   copies.reserve(placed);  // one allocation: growing it copy by copy costs page faults and moves
   for (auto& v : per_triangle) copies.insert(copies.end(), v.begin(), v.end());
-  per_triangle = {};
-  out.checked_copies = copies.size();
-  if (!settings.dropped_before.empty()) out.dropped = settings.dropped_before;
-  if (copies.empty()) return out;
-  std::vector<char> always_tested(types.size(), 0);
-  for (const std::uint32_t type : settings.always_tested)
-    if (type < types.size()) always_tested[type] = 1;
+  return copies;
+}
 
-  // Small copies (lipids and the like) in a hash grid of cells twice their largest radius; the few
-  // large ones (proteins) look through the grid within their own reach and at each other directly.
+// Small copies (lipids and the like) in a hash grid of cells twice their largest radius; the few
+// large ones (proteins) look through the grid within their own reach and at each other directly.
+struct CopyGrid {
+  double small_limit = 0.0, small_max = 0.0, cell = 1.0;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+  std::vector<std::uint32_t> large;
+
+  glm::ivec3 cell_of(const dvec3& c) const { return glm::ivec3(glm::floor(c / cell)); }
+  const std::vector<std::uint32_t>* at(const glm::ivec3& c) const {
+    const auto it = cells.find(cell_key(c));
+    return it == cells.end() ? nullptr : &it->second;
+  }
+};
+
+CopyGrid grid_copies(const std::vector<Placed>& copies, const std::vector<double>& radius) {
+  CopyGrid grid;
   std::vector<double> sorted_radii;
   for (const Placed& p : copies) sorted_radii.push_back(radius[p.type]);
   std::nth_element(sorted_radii.begin(), sorted_radii.begin() + sorted_radii.size() / 2, sorted_radii.end());
-  const double small_limit = 1.5 * sorted_radii[sorted_radii.size() / 2];
-  double small_max = 0.0;
+  grid.small_limit = 1.5 * sorted_radii[sorted_radii.size() / 2];
   for (const Placed& p : copies)
-    if (radius[p.type] <= small_limit) small_max = std::max(small_max, radius[p.type]);
-  const double cell = std::max(2.0 * small_max, 1.0);
-  const auto cell_of = [&](const dvec3& c) { return glm::ivec3(glm::floor(c / cell)); };
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
-  std::vector<std::uint32_t> large;
+    if (radius[p.type] <= grid.small_limit) grid.small_max = std::max(grid.small_max, radius[p.type]);
+  grid.cell = std::max(2.0 * grid.small_max, 1.0);
   for (std::uint32_t i = 0; i < copies.size(); ++i) {
-    if (radius[copies[i].type] <= small_limit) grid[cell_key(cell_of(copies[i].centre))].push_back(i);
-    else large.push_back(i);
+    if (radius[copies[i].type] <= grid.small_limit) grid.cells[cell_key(grid.cell_of(copies[i].centre))].push_back(i);
+    else grid.large.push_back(i);
   }
+  return grid;
+}
 
-  struct Found {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> clashes;
-    std::uint64_t candidates = 0, atom_tests = 0;
-  };
-  const auto test_pair = [&](std::uint32_t i, std::uint32_t j, Found& f) {
+struct Found {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> clashes;
+  std::uint64_t candidates = 0, atom_tests = 0;
+};
+
+// Tests a pair of copies for a clash: bounding spheres first, then (unless the flat tiling vouches
+// for the pair) their atoms.
+struct PairTest {
+  const std::vector<Placed>& copies;
+  const TypeShapes& types;
+  const PruningSettings& settings;
+  std::vector<char> always_tested;  // per type
+
+  void operator()(std::uint32_t i, std::uint32_t j, Found& f) const {
     const Placed& a = copies[i];
     const Placed& b = copies[j];
+    const std::vector<double>& radius = types.radius;
     const double reach = radius[a.type] + radius[b.type];
     const dvec3 between = b.centre - a.centre;
     if (glm::dot(between, between) >= reach * reach) return;
     ++f.candidates;
     if (a.island == b.island && settings.flat_clearance > settings.clearance && !always_tested[a.type] &&
         !always_tested[b.type] && !a.alternate && !b.alternate) {
-      const double slack = (double(settings.flat_clearance) - settings.clearance) * (smallest_atom[a.type] + smallest_atom[b.type]);
+      const double slack =
+          (double(settings.flat_clearance) - settings.clearance) * (types.smallest_atom[a.type] + types.smallest_atom[b.type]);
       if (relative_displacement(a, b, radius[b.type]) < slack) return;
     }
     ++f.atom_tests;
-    if (atoms_clash(shapes[a.type], a, shapes[b.type], b, settings.clearance)) f.clashes.emplace_back(i, j);
-  };
+    if (atoms_clash(types.shapes[a.type], a, types.shapes[b.type], b, settings.clearance)) f.clashes.emplace_back(i, j);
+  }
+};
+
+// Every clashing pair, found in chunks of small copies on the jobs plus one last entry for the large ones.
+std::vector<Found> find_clashes(const std::vector<Placed>& copies, const CopyGrid& grid, const PairTest& test, int threads) {
   constexpr std::size_t kChunk = 2048;
+  const std::vector<double>& radius = test.types.radius;
   const std::size_t chunks = (copies.size() + kChunk - 1) / kChunk;
   std::vector<Found> found(chunks + 1);
   parallel_for(chunks, threads, [&](std::size_t chunk) {
     Found& f = found[chunk];
     for (std::size_t i = chunk * kChunk; i < std::min(copies.size(), (chunk + 1) * kChunk); ++i) {
-      if (radius[copies[i].type] > small_limit) continue;
-      const glm::ivec3 c = cell_of(copies[i].centre);
+      if (radius[copies[i].type] > grid.small_limit) continue;
+      const glm::ivec3 c = grid.cell_of(copies[i].centre);
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const auto it = grid.find(cell_key(c + glm::ivec3(dx, dy, dz)));
-            if (it == grid.end()) continue;
-            for (const std::uint32_t j : it->second)
-              if (j > i) test_pair(std::uint32_t(i), j, f);
-          }
+          for (int dx = -1; dx <= 1; ++dx)
+            if (const std::vector<std::uint32_t>* cell = grid.at(c + glm::ivec3(dx, dy, dz)))
+              for (const std::uint32_t j : *cell)
+                if (j > i) test(std::uint32_t(i), j, f);
     }
   });
-  {
-    Found& f = found[chunks];
-    for (std::size_t k = 0; k < large.size(); ++k) {
-      const std::uint32_t i = large[k];
-      for (std::size_t l = k + 1; l < large.size(); ++l) test_pair(i, large[l], f);
-      const int span = static_cast<int>(std::ceil((radius[copies[i].type] + small_max) / cell));
-      const glm::ivec3 c = cell_of(copies[i].centre);
-      for (int dz = -span; dz <= span; ++dz)
-        for (int dy = -span; dy <= span; ++dy)
-          for (int dx = -span; dx <= span; ++dx) {
-            const auto it = grid.find(cell_key(c + glm::ivec3(dx, dy, dz)));
-            if (it == grid.end()) continue;
-            for (const std::uint32_t j : it->second) test_pair(i, j, f);
-          }
-    }
+  Found& f = found[chunks];
+  for (std::size_t k = 0; k < grid.large.size(); ++k) {
+    const std::uint32_t i = grid.large[k];
+    for (std::size_t l = k + 1; l < grid.large.size(); ++l) test(i, grid.large[l], f);
+    const int span = static_cast<int>(std::ceil((radius[copies[i].type] + grid.small_max) / grid.cell));
+    const glm::ivec3 c = grid.cell_of(copies[i].centre);
+    for (int dz = -span; dz <= span; ++dz)
+      for (int dy = -span; dy <= span; ++dy)
+        for (int dx = -span; dx <= span; ++dx)
+          if (const std::vector<std::uint32_t>* cell = grid.at(c + glm::ivec3(dx, dy, dz)))
+            for (const std::uint32_t j : *cell) test(i, j, f);
   }
+  return found;
+}
 
-  // Greedy independent set: proteins (larger radius) first, then the copies of the set proper (those
-  // without an alternate before those with one, which lose less when dropped), then the alternates
-  // (each only where what it stands in for was dropped), each group the copies with fewer clashes
-  // first. An alternate without a clash is shown: its original was dropped before.
-  std::vector<std::vector<std::uint32_t>> conflicts(copies.size());
+// Per copy, the copies it clashes with; the counts go to `out`.
+std::vector<std::vector<std::uint32_t>> conflict_lists(const std::vector<Found>& found, std::size_t copies,
+                                                       PrunedMembrane& out) {
+  std::vector<std::vector<std::uint32_t>> conflicts(copies);
   for (const Found& f : found) {
     out.candidate_pairs += f.candidates;
     out.atom_tests += f.atom_tests;
@@ -302,6 +340,15 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
       conflicts[j].push_back(i);
     }
   }
+  return conflicts;
+}
+
+// Greedy independent set: proteins (larger radius) first, then the copies of the set proper (those
+// without an alternate before those with one, which lose less when dropped), then the alternates
+// (each only where what it stands in for was dropped), each group the copies with fewer clashes
+// first. An alternate without a clash is shown: its original was dropped before.
+std::vector<char> kept_copies(const std::vector<Placed>& copies, const std::vector<std::vector<std::uint32_t>>& conflicts,
+                              const std::vector<double>& radius, double small_limit) {
   std::vector<std::uint32_t> order;
   for (std::uint32_t i = 0; i < copies.size(); ++i)
     if (!conflicts[i].empty()) order.push_back(i);
@@ -323,6 +370,11 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
         break;
       }
   }
+  return kept;
+}
+
+// A dropped copy and a shown alternate are both listed with the drops.
+void record_drops(const std::vector<Placed>& copies, const std::vector<char>& kept, PrunedMembrane& out) {
   for (std::uint32_t i = 0; i < copies.size(); ++i)
     if (copies[i].alternate && kept[i]) {
       out.dropped[copies[i].triangle].push_back(copies[i].key);
@@ -332,6 +384,37 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
       ++out.dropped_by_type[copies[i].type];
     }
   for (auto& keys : out.dropped) std::sort(keys.begin(), keys.end());
+}
+
+}  // namespace
+
+PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh,
+                              const std::vector<tiles::MoleculeType>& types, const PruningSettings& settings,
+                              int threads) {
+  const std::size_t triangles = mapping.triangle_count();
+  PrunedMembrane out;
+  out.dropped.assign(triangles, {});
+  out.dropped_by_type.assign(types.size(), 0);
+  out.alternates_by_type.assign(types.size(), 0);
+  if (triangles == 0 || types.empty()) return out;
+
+  const TypeShapes shapes = type_shapes(types, mapping.set());
+  out.owned_copies = count_owned_copies(mapping, settings, threads);
+  out.whole_surface = settings.whole_surface || out.owned_copies <= settings.whole_surface_budget;
+  const CheckedRegion region = checked_region(mapping, shapes, out.whole_surface, threads);
+  check_key_room(mapping);
+  const std::vector<Placed> copies = copies_to_check(mapping, mesh, shapes, region, settings, threads);
+  out.checked_copies = copies.size();
+  if (!settings.dropped_before.empty()) out.dropped = settings.dropped_before;
+  if (copies.empty()) return out;
+
+  PairTest test{copies, shapes, settings, std::vector<char>(types.size(), 0)};
+  for (const std::uint32_t type : settings.always_tested)
+    if (type < types.size()) test.always_tested[type] = 1;
+  const CopyGrid grid = grid_copies(copies, shapes.radius);
+  const std::vector<std::vector<std::uint32_t>> conflicts =
+      conflict_lists(find_clashes(copies, grid, test, threads), copies.size(), out);
+  record_drops(copies, kept_copies(copies, conflicts, shapes.radius, grid.small_limit), out);
   return out;
 }
 

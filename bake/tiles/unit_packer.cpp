@@ -201,14 +201,45 @@ public:
   // Decides every layer copy in every unit instance against the packed copies only (the layer is
   // clash-free with itself), then adds the kept ones. Returns kept copies per tile, per type.
   std::vector<double> lay(const FixedLayer& layer, SplitMix64& rng) {
-    std::vector<std::pair<size_t, Instance>> kept, refused, alternates;
-    ClashRule rule = rule_;
-    if (layer.clearance > 0.f) rule.clearance = layer.clearance;
-    std::vector<double> per_tile(shapes_.size(), 0.0);
-    constexpr size_t kNone = ~size_t(0);
-    std::vector<char> laid_through(shapes_.size(), 0);
+    LayerLaying laying{layer, rule_, std::vector<char>(shapes_.size(), 0), {}};
+    if (layer.clearance > 0.f) laying.rule.clearance = layer.clearance;
     for (const uint32_t type : layer.laid_through)
-      if (type < laid_through.size()) laid_through[type] = 1;
+      if (type < laying.laid_through.size()) laying.laid_through[type] = 1;
+    laying.per_tile.assign(shapes_.size(), 0.0);
+    const LayerDecision decided = decide_layer(laying);
+    for (const auto& [a, copy] : decided.kept) add(a, copy, kLayerSpec);
+    refill_holes(laying, decided.refused, rng);
+    for (const auto& [a, copy] : decided.alternates) add(a, copy, kLayerSpec);
+    const double measure = std::pow(static_cast<double>(S_), D_);
+    for (double& v : laying.per_tile) v /= measure;
+    return laying.per_tile;
+  }
+
+private:
+  static constexpr uint32_t kLayerSpec = ~0u;  // never shaken: the layer comes last
+  static constexpr size_t kNone = ~size_t(0);
+
+  struct LayerLaying {
+    const FixedLayer& layer;
+    ClashRule rule;                 // between a layer copy and a packed one
+    std::vector<char> laid_through;  // per type
+    std::vector<double> per_tile;    // per type: kept copies per tile
+  };
+  // Layer copies placed in unit instances: (unit, copy relative to its anchor).
+  using UnitCopies = std::vector<std::pair<size_t, Instance>>;
+  struct LayerDecision {
+    UnitCopies kept, refused, alternates;
+  };
+
+  void add(size_t a, const Instance& copy, uint32_t spec) {
+    units_[a].copies.push_back(copy);
+    units_[a].spec_of.push_back(spec);
+    track(a, copy);
+  }
+
+  LayerDecision decide_layer(LayerLaying& laying) const {
+    const FixedLayer& layer = laying.layer;
+    LayerDecision out;
     for (const Instance& copy : layer.copies) {
       unsigned mask = 0;
       Instance local = copy;  // relative to the anchor of the unit holding it
@@ -221,79 +252,74 @@ public:
       }
       for (size_t a = 0; a < units_.size(); ++a) {
         if (units_[a].mask != mask) continue;
-        if (!fits(a, local, kNone, rule, laid_through)) {
-          if (!copy.alternate) refused.emplace_back(a, local);
+        if (!fits(a, local, kNone, laying.rule, laying.laid_through)) {
+          if (!copy.alternate) out.refused.emplace_back(a, local);
           continue;
         }
         if (copy.alternate) {  // overlaps its original by design: added last, and no part of the density
-          alternates.emplace_back(a, local);
+          out.alternates.emplace_back(a, local);
           continue;
         }
-        kept.emplace_back(a, local);
-        per_tile[copy.type] += units_[a].per_tile;
+        out.kept.emplace_back(a, local);
+        laying.per_tile[copy.type] += units_[a].per_tile;
       }
     }
-    for (const auto& [a, copy] : kept) {
-      units_[a].copies.push_back(copy);
-      units_[a].spec_of.push_back(kLayerSpec);
-      track(a, copy);
-    }
-    // Where a packed copy (a protein) pushed a layer lipid out, the hole would show what lies
-    // beneath the membrane. Membrane builders pack lipids right against the protein: try other
-    // conformers of the same leaflet there, turned about the normal and moved away from the
-    // protein, and keep the first that fits.
+    return out;
+  }
+
+  // Where a packed copy (a protein) pushed a layer lipid out, the hole would show what lies
+  // beneath the membrane. Membrane builders pack lipids right against the protein: try other
+  // conformers of the same leaflet there, turned about the normal and moved away from the
+  // protein, and keep the first that fits.
+  void refill_holes(LayerLaying& laying, const UnitCopies& refused, SplitMix64& rng) {
     std::vector<const Instance*> upper, lower;
-    for (const Instance& c : layer.copies)
+    for (const Instance& c : laying.layer.copies)
       if (!c.alternate) (c.position.z >= 0.f ? upper : lower).push_back(&c);
     float layer_reach = 0.f;
-    for (const Instance& c : layer.copies) layer_reach = std::max(layer_reach, shapes_[c.type].radius());
+    for (const Instance& c : laying.layer.copies) layer_reach = std::max(layer_reach, shapes_[c.type].radius());
     for (const auto& [a, hole] : refused) {
       const std::vector<const Instance*>& pool = hole.position.z >= 0.f ? upper : lower;
       if (pool.empty() || D_ != 2) continue;
-      // The copy that pushed the lipid out is the one reaching deepest into its place: candidates
-      // go from the hole away from it, into the rim a protein leaves between itself and the layer.
-      glm::vec2 away(0.f);
-      float deepest = INFINITY;
-      any_near(a, hole.position, layer_reach, kNone, [&](uint32_t type, const Pose& other) {
-        const glm::vec2 d = glm::vec2(hole.position) - glm::vec2(other.position);
-        const float gap = glm::length(d) - shapes_[type].radius();
-        if (!laid_through[type] && shapes_[type].radius() > layer_reach && gap < deepest && glm::dot(d, d) > 0.f) {
-          deepest = gap;
-          away = glm::normalize(d);
-        }
-        return false;
-      });
-      const glm::vec2 across(-away.y, away.x);
-      for (int attempt = 0; attempt < layer.refill_attempts; ++attempt) {
-        const Instance& conformer = *pool[rng.below(static_cast<uint32_t>(pool.size()))];
-        Instance candidate = conformer;
-        const glm::vec2 shift = attempt == 0 ? glm::vec2(0.f)
-                                             : away * static_cast<float>(rng.uniform(0.0, 8.0)) +
-                                                   across * static_cast<float>(rng.uniform(-3.0, 3.0));
-        for (int k = 0; k < 2; ++k) candidate.position[k] = hole.position[k] + shift[k];
-        candidate.rotation = glm::normalize(spin_about_z(static_cast<float>(rng.uniform(0.0, 2.0 * M_PI))) * conformer.rotation);
-        if (!in_zone(candidate.position, units_[a].mask, layer.band, D_, S_) ||
-            !fits(a, candidate, kNone, rule, laid_through))
-          continue;
-        units_[a].copies.push_back(candidate);
-        units_[a].spec_of.push_back(kLayerSpec);
-        track(a, candidate);
-        per_tile[candidate.type] += units_[a].per_tile;
-        break;
-      }
+      refill_hole(laying, a, hole, pool, away_from_intruder(a, hole, layer_reach, laying.laid_through), rng);
     }
-    for (const auto& [a, copy] : alternates) {
-      units_[a].copies.push_back(copy);
-      units_[a].spec_of.push_back(kLayerSpec);
-      track(a, copy);
-    }
-    const double measure = std::pow(static_cast<double>(S_), D_);
-    for (double& v : per_tile) v /= measure;
-    return per_tile;
   }
 
-private:
-  static constexpr uint32_t kLayerSpec = ~0u;  // never shaken: the layer comes last
+  // The copy that pushed the lipid out is the one reaching deepest into its place: candidates go
+  // from the hole away from it, into the rim a protein leaves between itself and the layer.
+  glm::vec2 away_from_intruder(size_t a, const Instance& hole, float layer_reach, const std::vector<char>& laid_through) const {
+    glm::vec2 away(0.f);
+    float deepest = INFINITY;
+    any_near(a, hole.position, layer_reach, kNone, [&](uint32_t type, const Pose& other) {
+      const glm::vec2 d = glm::vec2(hole.position) - glm::vec2(other.position);
+      const float gap = glm::length(d) - shapes_[type].radius();
+      if (!laid_through[type] && shapes_[type].radius() > layer_reach && gap < deepest && glm::dot(d, d) > 0.f) {
+        deepest = gap;
+        away = glm::normalize(d);
+      }
+      return false;
+    });
+    return away;
+  }
+
+  void refill_hole(LayerLaying& laying, size_t a, const Instance& hole, const std::vector<const Instance*>& pool,
+                   glm::vec2 away, SplitMix64& rng) {
+    const glm::vec2 across(-away.y, away.x);
+    for (int attempt = 0; attempt < laying.layer.refill_attempts; ++attempt) {
+      const Instance& conformer = *pool[rng.below(static_cast<uint32_t>(pool.size()))];
+      Instance candidate = conformer;
+      const glm::vec2 shift = attempt == 0 ? glm::vec2(0.f)
+                                           : away * static_cast<float>(rng.uniform(0.0, 8.0)) +
+                                                 across * static_cast<float>(rng.uniform(-3.0, 3.0));
+      for (int k = 0; k < 2; ++k) candidate.position[k] = hole.position[k] + shift[k];
+      candidate.rotation = glm::normalize(spin_about_z(static_cast<float>(rng.uniform(0.0, 2.0 * M_PI))) * conformer.rotation);
+      if (!in_zone(candidate.position, units_[a].mask, laying.layer.band, D_, S_) ||
+          !fits(a, candidate, kNone, laying.rule, laying.laid_through))
+        continue;
+      add(a, candidate, kLayerSpec);
+      laying.per_tile[candidate.type] += units_[a].per_tile;
+      return;
+    }
+  }
 
   void track(size_t a, const Instance& copy) {
     poses_[a].push_back(pose_of(copy, {0, 0, 0}, D_, S_));
@@ -382,7 +408,6 @@ private:
     size_t a = 0;
     while (a + 1 < units_.size() && (pick -= weight[a]) >= 0.0) ++a;
     const float radius = shapes_[spec.type].radius();
-    constexpr size_t kNone = ~size_t(0);
     Instance best;
     float best_room = -INFINITY;
     for (int k = 0; k < kVoidProbes; ++k) {
@@ -397,9 +422,7 @@ private:
     for (int k = 0; k < kTurns; ++k) {
       if (k > 0) best.rotation = random_orientation(spec, rng);
       if (!fits(a, best, kNone)) continue;
-      units_[a].copies.push_back(best);
-      units_[a].spec_of.push_back(static_cast<uint32_t>(si));
-      track(a, best);
+      add(a, best, static_cast<uint32_t>(si));
       return units_[a].per_tile;
     }
     return 0.0;
@@ -426,71 +449,76 @@ ClashRule clash_rule(const PackerSettings& settings, int dims) {
   return {settings.clearance, settings.surface};
 }
 
-PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std::vector<PlacementSpec>& specs,
-                            const WangColouring& set, const PackerSettings& settings, const FixedLayer& layer) {
+namespace {
+
+// What the sequential fill reads.
+struct Packing {
+  const std::vector<CollisionShape>& shapes;
+  const std::vector<PlacementSpec>& specs;
+  const WangColouring& set;
+  const PackerSettings& settings;
+};
+
+// What the sequential fill carries from unit to unit.
+struct Fill {
+  std::vector<Offset> offsets;  // neighbour_offsets of the lattice
+  float largest;                // largest radius among the specs' types, at least 1 Å
+  SplitMix64 rng;
+  std::vector<double> carry, achieved;  // per spec: rounding shortfall passed on; copies per tile placed
+};
+
+// Sequential fill of unit ui by random darts against the units filled before it (and its own
+// copies one lattice step away); `carry` passes each spec's rounding shortfall on to the next unit.
+void fill_unit(const Packing& p, std::vector<Unit>& units, size_t ui, Fill& fill) {
+  const auto& [shapes, specs, set, settings] = p;
   const int D = set.dims;
   const float S = settings.edge;
-  std::vector<Unit> units = make_units(set);
-  const std::vector<Offset> offsets = neighbour_offsets(D);
+  Unit& u = units[ui];
+  CopyNeighbourhood context(shapes, 2.f * fill.largest);
+  for (size_t vi = 0; vi < ui; ++vi)
+    for (const Offset& d : fill.offsets)
+      if (can_meet(u, units[vi], d, set))
+        for (const Instance& copy : units[vi].copies) context.add(copy.type, pose_of(copy, d, D, S));
+  std::vector<Offset> self;
+  for (const Offset& d : fill.offsets)
+    if (can_meet(u, u, d, set)) self.push_back(d);
 
-  float largest = 1.f;
-  for (const PlacementSpec& s : specs) largest = std::max(largest, shapes[s.type].radius());
-
-  SplitMix64 rng(mix64(settings.seed ^ 0xA5A5F00Dull));
-  std::vector<double> carry(specs.size(), 0.0), achieved(specs.size(), 0.0);
-  // Progress counts units packed, then relaxation rounds (all announced; those an early stop skips
-  // are marked done when it stops).
-  progress::add_work(units.size() + static_cast<std::uint64_t>(std::max(settings.relaxation_rounds, 0)));
-
-  for (size_t ui = 0; ui < units.size(); ++ui) {
-    progress::advance();
-    Unit& u = units[ui];
-    CopyNeighbourhood context(shapes, 2.f * largest);
-    for (size_t vi = 0; vi < ui; ++vi)
-      for (const Offset& d : offsets)
-        if (can_meet(u, units[vi], d, set))
-          for (const Instance& copy : units[vi].copies) context.add(copy.type, pose_of(copy, d, D, S));
-    std::vector<Offset> self;
-    for (const Offset& d : offsets)
-      if (can_meet(u, u, d, set)) self.push_back(d);
-
-    for (size_t si = 0; si < specs.size(); ++si) {
-      const PlacementSpec& spec = specs[si];
-      const double zone = zone_measure(u.mask, spec.band, D, S);
-      const double ideal = spec.copies_per_volume * zone;
-      const double want = ideal + carry[si] / u.per_tile;
-      const long target = zone > 0.0 ? std::max(0L, static_cast<long>(std::floor(want + 0.5))) : 0L;
-      const double budget = static_cast<double>(target) * settings.attempts_per_copy;
-      long placed = 0, misses = 0;
-      for (double attempts = 0; placed < target && attempts < budget && misses < settings.max_consecutive_failures;
-           ++attempts) {
-        const Instance copy = random_copy(spec, u.mask, D, S, rng);
-        Offset shift;
-        if (!owner_shift(copy, u.mask, D, S, shift) ||
-            context.collides(copy.type, pose_of(copy, {0, 0, 0}, D, S), clash_rule(settings, D))) {
-          ++misses;
-          continue;
-        }
-        misses = 0;
-        ++placed;
-        u.copies.push_back(copy);
-        u.spec_of.push_back(static_cast<uint32_t>(si));
-        for (const Offset& d : self) context.add(copy.type, pose_of(copy, d, D, S));
+  for (size_t si = 0; si < specs.size(); ++si) {
+    const PlacementSpec& spec = specs[si];
+    const double zone = zone_measure(u.mask, spec.band, D, S);
+    const double ideal = spec.copies_per_volume * zone;
+    const double want = ideal + fill.carry[si] / u.per_tile;
+    const long target = zone > 0.0 ? std::max(0L, static_cast<long>(std::floor(want + 0.5))) : 0L;
+    const double budget = static_cast<double>(target) * settings.attempts_per_copy;
+    long placed = 0, misses = 0;
+    for (double attempts = 0; placed < target && attempts < budget && misses < settings.max_consecutive_failures;
+         ++attempts) {
+      const Instance copy = random_copy(spec, u.mask, D, S, fill.rng);
+      Offset shift;
+      if (!owner_shift(copy, u.mask, D, S, shift) ||
+          context.collides(copy.type, pose_of(copy, {0, 0, 0}, D, S), clash_rule(settings, D))) {
+        ++misses;
+        continue;
       }
-      carry[si] += u.per_tile * (ideal - static_cast<double>(placed));
-      achieved[si] += u.per_tile * static_cast<double>(placed);
+      misses = 0;
+      ++placed;
+      u.copies.push_back(copy);
+      u.spec_of.push_back(static_cast<uint32_t>(si));
+      for (const Offset& d : self) context.add(copy.type, pose_of(copy, d, D, S));
     }
+    fill.carry[si] += u.per_tile * (ideal - static_cast<double>(placed));
+    fill.achieved[si] += u.per_tile * static_cast<double>(placed);
   }
+}
 
-  PackedUnits out;
-  if (settings.relaxation_rounds > 0 || !layer.copies.empty()) {
-    UnitWorld world(units, shapes, specs, set, settings);
-    if (settings.relaxation_rounds > 0) world.run(achieved, rng);
-    if (!layer.copies.empty()) out.layer_per_volume = world.lay(layer, rng);
-  }
-  out.tiles.resize(set.tile_count());
+// Each tile gathers the copies of the units it holds: every shared and interior unit of its own, and
+// the face units whose colour its faces carry.
+std::vector<WangTile> assemble_tiles(const std::vector<Unit>& units, const std::vector<CollisionShape>& shapes,
+                                     const WangColouring& set, float S) {
+  const int D = set.dims;
+  std::vector<WangTile> tiles(set.tile_count());
   for (uint32_t t = 0; t < set.tile_count(); ++t) {
-    WangTile& tile = out.tiles[t];
+    WangTile& tile = tiles[t];
     tile.colours = set.tiles[t];
     for (const Unit& u : units) {
       if (u.kind == Kind::Interior && u.tile != t) continue;
@@ -505,8 +533,34 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
     }
     compute_atom_bounds(tile, shapes);
   }
-  const double measure = std::pow(static_cast<double>(S), D);
-  for (double a : achieved) out.achieved_per_volume.push_back(a / measure);
+  return tiles;
+}
+
+}  // namespace
+
+PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std::vector<PlacementSpec>& specs,
+                            const WangColouring& set, const PackerSettings& settings, const FixedLayer& layer) {
+  std::vector<Unit> units = make_units(set);
+  Fill fill{neighbour_offsets(set.dims), 1.f, SplitMix64(mix64(settings.seed ^ 0xA5A5F00Dull)),
+            std::vector<double>(specs.size(), 0.0), std::vector<double>(specs.size(), 0.0)};
+  for (const PlacementSpec& s : specs) fill.largest = std::max(fill.largest, shapes[s.type].radius());
+  // Progress counts units packed, then relaxation rounds (all announced; those an early stop skips
+  // are marked done when it stops).
+  progress::add_work(units.size() + static_cast<std::uint64_t>(std::max(settings.relaxation_rounds, 0)));
+  for (size_t ui = 0; ui < units.size(); ++ui) {
+    progress::advance();
+    fill_unit({shapes, specs, set, settings}, units, ui, fill);
+  }
+
+  PackedUnits out;
+  if (settings.relaxation_rounds > 0 || !layer.copies.empty()) {
+    UnitWorld world(units, shapes, specs, set, settings);
+    if (settings.relaxation_rounds > 0) world.run(fill.achieved, fill.rng);
+    if (!layer.copies.empty()) out.layer_per_volume = world.lay(layer, fill.rng);
+  }
+  out.tiles = assemble_tiles(units, shapes, set, settings.edge);
+  const double measure = std::pow(static_cast<double>(settings.edge), set.dims);
+  for (double a : fill.achieved) out.achieved_per_volume.push_back(a / measure);
   return out;
 }
 

@@ -115,72 +115,99 @@ std::vector<CollisionShape> shapes_of(const std::vector<MoleculeType>& types) {
   return shapes;
 }
 
-// The patch repeated over one tile with centres rescaled to the tile edge, minus the lipids that
-// clash with kept ones (in patch order) or with their images one edge away.
-FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, const std::vector<MoleculeType>& types,
-                     const std::vector<CollisionShape>& shapes, SurfaceDistortion surface, uint64_t seed,
-                     std::vector<double>& requested) {
-  const float period[2] = {patch.period_x, patch.period_y};
-  for (float p : period)
-    if (!(p > 0.f) || !std::isfinite(p)) throw InputError(what, "lipid patch", "the patch period must be positive");
-  if (patch.lipids.empty()) throw InputError(what, "lipid patch", "the patch has no lipids");
+// What laying a lipid patch over one tile reads.
+struct PatchLaying {
+  const char* what;
+  const LipidPatch& patch;
+  float edge;
+  const std::vector<MoleculeType>& types;
+  const std::vector<CollisionShape>& shapes;
+  ClashRule rule;  // between the patch's lipids
+};
+
+// How much of each leaflet's places the mixed species take.
+struct LeafletShares {
+  double outer = 0.0, inner = 0.0;
+};
+
+LeafletShares check_patch(const PatchLaying& p) {
+  const LipidPatch& patch = p.patch;
+  for (float period : {patch.period_x, patch.period_y})
+    if (!(period > 0.f) || !std::isfinite(period)) throw InputError(p.what, "lipid patch", "the patch period must be positive");
+  if (patch.lipids.empty()) throw InputError(p.what, "lipid patch", "the patch has no lipids");
   if (!(patch.clearance > 0.f) || patch.clearance > 2.f)
-    throw InputError(what, "lipid patch", "the patch clearance must be in (0, 2]");
-  requested.assign(types.size(), 0.0);
-  double outer_taken = 0.0, inner_taken = 0.0;
+    throw InputError(p.what, "lipid patch", "the patch clearance must be in (0, 2]");
+  LeafletShares taken;
   for (const LipidSpecies& species : patch.mix) {
     if (!(species.outer >= 0.f) || !(species.inner >= 0.f) || species.conformers.empty())
-      throw InputError(what, "lipid mix", "a mixed species needs conformers and fractions >= 0");
-    outer_taken += species.outer;
-    inner_taken += species.inner;
-    for (const Instance& c : species.conformers) check_type(what, types, c.type, 1.0);
+      throw InputError(p.what, "lipid mix", "a mixed species needs conformers and fractions >= 0");
+    taken.outer += species.outer;
+    taken.inner += species.inner;
+    for (const Instance& c : species.conformers) check_type(p.what, p.types, c.type, 1.0);
   }
-  if (outer_taken > 1.0 + 1e-6 || inner_taken > 1.0 + 1e-6)
-    throw InputError(what, "lipid mix", "the mixed species take more than all of a leaflet's places");
-  SplitMix64 rng(mix64(seed ^ 0x11D1DC0FFEEull));
-  FixedLayer layer;
-  layer.clearance = patch.clearance;
+  if (taken.outer > 1.0 + 1e-6 || taken.inner > 1.0 + 1e-6)
+    throw InputError(p.what, "lipid mix", "the mixed species take more than all of a leaflet's places");
+  return taken;
+}
+
+// Adds what each lipid asks per µm² to `requested` and widens `band` to every lipid and conformer;
+// returns the largest radius among them.
+float request_places(const PatchLaying& p, LeafletShares mixed, float& band, std::vector<double>& requested) {
+  const LipidPatch& patch = p.patch;
   float largest = 0.f;
   for (const Instance& l : patch.lipids) {
-    check_type(what, types, l.type, 1.0);
+    check_type(p.what, p.types, l.type, 1.0);
     if (!std::isfinite(l.position.x) || !std::isfinite(l.position.y) || !std::isfinite(l.position.z))
-      throw InputError(what, types[l.type].name, "patch lipid positions must be finite");
+      throw InputError(p.what, p.types[l.type].name, "patch lipid positions must be finite");
     // Each place asks for the base species by what the mix leaves it, and for each mixed species
     // by its fraction of the place's leaflet.
-    const double place = kA2PerUm2 / (static_cast<double>(period[0]) * period[1]);
+    const double place = kA2PerUm2 / (static_cast<double>(patch.period_x) * patch.period_y);
     const bool outer = l.position.z >= 0.f;
-    requested[l.type] += place * (1.0 - (outer ? outer_taken : inner_taken));
+    requested[l.type] += place * (1.0 - (outer ? mixed.outer : mixed.inner));
     for (const LipidSpecies& species : patch.mix)
       requested[species.conformers.front().type] += place * (outer ? species.outer : species.inner);
     const glm::quat q = glm::normalize(l.rotation);
     const glm::vec3 up = glm::conjugate(q) * glm::vec3(0.f, 0.f, 1.f);  // the normal in the lipid's frame
-    layer.band = std::max(layer.band, shapes[l.type].radius_about_axis(up) * 1.0001f);
-    largest = std::max(largest, shapes[l.type].radius());
-    check_fits(what, types[l.type], layer.band, edge);
+    band = std::max(band, p.shapes[l.type].radius_about_axis(up) * 1.0001f);
+    largest = std::max(largest, p.shapes[l.type].radius());
+    check_fits(p.what, p.types[l.type], band, p.edge);
   }
   for (const LipidSpecies& species : patch.mix)
     for (const Instance& c : species.conformers) {
-      layer.band = std::max(layer.band, shapes[c.type].radius_about_axis(glm::vec3(0.f, 0.f, 1.f)) * 1.0001f);
-      largest = std::max(largest, shapes[c.type].radius());
-      check_fits(what, types[c.type], layer.band, edge);
+      band = std::max(band, p.shapes[c.type].radius_about_axis(glm::vec3(0.f, 0.f, 1.f)) * 1.0001f);
+      largest = std::max(largest, p.shapes[c.type].radius());
+      check_fits(p.what, p.types[c.type], band, p.edge);
     }
+  return largest;
+}
+
+// A copy and its periodic images one edge away, so that the tile's edges are checked too; returns
+// their ids in `n`.
+std::array<std::size_t, 9> add_with_images(CopyNeighbourhood& n, const Instance& c, float edge) {
+  std::array<std::size_t, 9> ids{};
+  const glm::mat3 rotation = glm::mat3_cast(c.rotation);
+  int k = 0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) ids[k++] = n.add(c.type, {c.position + edge * glm::vec3(dx, dy, 0), rotation});
+  return ids;
+}
+
+bool collides(const CopyNeighbourhood& n, const Instance& c, const ClashRule& rule) {
+  return n.collides(c.type, {c.position, glm::mat3_cast(c.rotation)}, rule);
+}
+
+// The base patch, repeated and rescaled, minus the lipids that then clash (in patch order).
+std::vector<Instance> repeat_patch(const PatchLaying& p, float largest) {
+  const LipidPatch& patch = p.patch;
+  const float period[2] = {patch.period_x, patch.period_y};
   int repeats[2];
   float scale[2];
   for (int a = 0; a < 2; ++a) {
-    repeats[a] = std::max(1, static_cast<int>(std::lround(edge / period[a])));
-    scale[a] = edge / (static_cast<float>(repeats[a]) * period[a]);
+    repeats[a] = std::max(1, static_cast<int>(std::lround(p.edge / period[a])));
+    scale[a] = p.edge / (static_cast<float>(repeats[a]) * period[a]);
   }
-  const ClashRule rule{patch.clearance, surface};
-  const auto add_with_images = [&](CopyNeighbourhood& n, const Instance& c) {
-    const glm::mat3 rotation = glm::mat3_cast(c.rotation);
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) n.add(c.type, {c.position + edge * glm::vec3(dx, dy, 0), rotation});
-  };
-  const auto collides = [&](const CopyNeighbourhood& n, const Instance& c) {
-    return n.collides(c.type, {c.position, glm::mat3_cast(c.rotation)}, rule);
-  };
-  // The base patch, repeated and rescaled, minus the lipids that then clash (in patch order).
-  CopyNeighbourhood kept(shapes, 2.f * largest);
+  std::vector<Instance> copies;
+  CopyNeighbourhood kept(p.shapes, 2.f * largest);
   for (int j = 0; j < repeats[1]; ++j)
     for (int i = 0; i < repeats[0]; ++i)
       for (const Instance& l : patch.lipids) {
@@ -188,111 +215,127 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
         copy.rotation = glm::normalize(l.rotation);
         const int cell[2] = {i, j};
         for (int a = 0; a < 2; ++a) {
-          double p = std::fmod(static_cast<double>(l.position[a]), static_cast<double>(period[a]));
-          if (p < 0.0) p += period[a];
-          copy.position[a] = static_cast<float>((p + cell[a] * static_cast<double>(period[a])) * scale[a]);
-          if (!(copy.position[a] < edge)) copy.position[a] = 0.f;  // rounded onto the edge: its periodic twin
+          double x = std::fmod(static_cast<double>(l.position[a]), static_cast<double>(period[a]));
+          if (x < 0.0) x += period[a];
+          copy.position[a] = static_cast<float>((x + cell[a] * static_cast<double>(period[a])) * scale[a]);
+          if (!(copy.position[a] < p.edge)) copy.position[a] = 0.f;  // rounded onto the edge: its periodic twin
         }
-        if (collides(kept, copy)) continue;
-        add_with_images(kept, copy);
-        layer.copies.push_back(copy);
+        if (collides(kept, copy, p.rule)) continue;
+        add_with_images(kept, copy, p.edge);
+        copies.push_back(copy);
       }
-  if (patch.mix.empty()) return layer;
-  // The mix: each species takes its fraction of each leaflet's places, tried in a random order, each
-  // place taking the first of its conformers (same leaflet, turned about the normal) that fits among
-  // all the others: places where the species fits are found until the leaflet holds its share.
-  // Every place starts with its base lipid, and a place is given to a species only when a conformer
-  // fits among everything standing then, its own base lipid set aside: a conformer never takes room
-  // a neighbour's base lipid still needs, so a place where none fits keeps its base lipid, and mixing
-  // opens no hole.
-  CopyNeighbourhood mixed(shapes, 2.f * largest);
-  const auto add_with_images_ids = [&](const Instance& c) {
-    std::array<std::size_t, 9> ids{};
-    const glm::mat3 rotation = glm::mat3_cast(c.rotation);
-    int k = 0;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) ids[k++] = mixed.add(c.type, {c.position + edge * glm::vec3(dx, dy, 0), rotation});
-    return ids;
-  };
-  std::vector<std::array<std::size_t, 9>> standing(layer.copies.size());
-  for (std::size_t i = 0; i < layer.copies.size(); ++i) standing[i] = add_with_images_ids(layer.copies[i]);
-  std::vector<char> taken(layer.copies.size(), 0);  // given to a mixed species
-  // Only a membrane pruned on its whole surface (tiles packed rigid) can pick alternates.
-  const std::vector<Instance> base_lipids = surface.rigid() ? layer.copies : std::vector<Instance>{};
-  // Candidates for a place, best first: conformers of the species from the same leaflet at kSpins
-  // turns, scored by how far their atoms stand from the base lipid's (the room that lipid proved
-  // free): the closest shape is the likeliest to fit.
-  struct Candidate {
-    double score;
-    Instance copy;
-  };
-  const auto ranked = [&](const Instance& place, const LipidSpecies& species) {
-    const glm::mat3 base_rotation = glm::mat3_cast(place.rotation);
-    std::vector<glm::vec3> base;
-    for (const AtomSphere& a : shapes[place.type].atoms()) base.push_back(place.position + base_rotation * a.centre);
-    std::vector<Candidate> out;
-    for (const Instance& conformer : species.conformers) {
-      if ((conformer.position.z >= 0.f) != (place.position.z >= 0.f)) continue;
-      for (int k = 0; k < kSpins; ++k) {
-        Instance c = conformer;
-        c.position = glm::vec3(place.position.x, place.position.y, conformer.position.z);
-        c.rotation = glm::normalize(spin_about_z(static_cast<float>(2.0 * M_PI * k / kSpins)) * conformer.rotation);
-        const glm::mat3 r = glm::mat3_cast(c.rotation);
-        double score = 0.0;
-        for (const AtomSphere& a : shapes[c.type].atoms()) {
-          const glm::vec3 p = c.position + r * a.centre;
-          float nearest = INFINITY;
-          for (const glm::vec3& b : base) nearest = std::min(nearest, glm::dot(p - b, p - b));
-          score += std::sqrt(static_cast<double>(nearest));
-        }
-        out.push_back({score / static_cast<double>(shapes[c.type].atoms().size()), c});
+  return copies;
+}
+
+struct Candidate {
+  double score;
+  Instance copy;
+};
+
+// Candidates for a place, best first: conformers of the species from the same leaflet at kSpins
+// turns, scored by how far their atoms stand from the base lipid's (the room that lipid proved
+// free): the closest shape is the likeliest to fit.
+std::vector<Candidate> ranked_conformers(const Instance& place, const LipidSpecies& species,
+                                         const std::vector<CollisionShape>& shapes) {
+  const glm::mat3 base_rotation = glm::mat3_cast(place.rotation);
+  std::vector<glm::vec3> base;
+  for (const AtomSphere& a : shapes[place.type].atoms()) base.push_back(place.position + base_rotation * a.centre);
+  std::vector<Candidate> out;
+  for (const Instance& conformer : species.conformers) {
+    if ((conformer.position.z >= 0.f) != (place.position.z >= 0.f)) continue;
+    for (int k = 0; k < kSpins; ++k) {
+      Instance c = conformer;
+      c.position = glm::vec3(place.position.x, place.position.y, conformer.position.z);
+      c.rotation = glm::normalize(spin_about_z(static_cast<float>(2.0 * M_PI * k / kSpins)) * conformer.rotation);
+      const glm::mat3 r = glm::mat3_cast(c.rotation);
+      double score = 0.0;
+      for (const AtomSphere& a : shapes[c.type].atoms()) {
+        const glm::vec3 pos = c.position + r * a.centre;
+        float nearest = INFINITY;
+        for (const glm::vec3& b : base) nearest = std::min(nearest, glm::dot(pos - b, pos - b));
+        score += std::sqrt(static_cast<double>(nearest));
       }
+      out.push_back({score / static_cast<double>(shapes[c.type].atoms().size()), c});
     }
-    std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
-    if (out.size() > static_cast<std::size_t>(kMixAttempts)) out.resize(kMixAttempts);
-    return out;
-  };
-  const auto try_species = [&](std::size_t i, const LipidSpecies& species) {
-    Instance& place = layer.copies[i];
-    for (const std::size_t id : standing[i]) mixed.retire(id);
+  }
+  std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
+  if (out.size() > static_cast<std::size_t>(kMixAttempts)) out.resize(kMixAttempts);
+  return out;
+}
+
+// The mix: each species takes its fraction of each leaflet's places, tried in a random order, each
+// place taking the first of its conformers (same leaflet, turned about the normal) that fits among
+// all the others: places where the species fits are found until the leaflet holds its share.
+// Every place starts with its base lipid, and a place is given to a species only when a conformer
+// fits among everything standing then, its own base lipid set aside: a conformer never takes room
+// a neighbour's base lipid still needs, so a place where none fits keeps its base lipid, and mixing
+// opens no hole.
+class PatchMixer {
+public:
+  PatchMixer(const PatchLaying& p, float largest, std::vector<Instance>& places)
+      : p_(p), places_(places), standing_(places.size()), mixed_(p.shapes, 2.f * largest) {
+    for (std::size_t i = 0; i < places_.size(); ++i) standing_[i] = add_with_images(mixed_, places_[i], p_.edge);
+  }
+
+  // Whether place i now holds a conformer of the species.
+  bool try_species(std::size_t i, const LipidSpecies& species) {
+    Instance& place = places_[i];
+    for (const std::size_t id : standing_[i]) mixed_.retire(id);
     bool fitted = false;
-    const std::vector<Candidate> candidates = ranked(place, species);
+    const std::vector<Candidate> candidates = ranked_conformers(place, species, p_.shapes);
     for (std::size_t k = 0; k < candidates.size() && !fitted; ++k) {
       // The best-ranked shapes also nudged a little: equilibrated neighbours leave no room to spare.
       const int nudges = k < kNudgedCandidates ? 5 : 1;
       for (int n = 0; n < nudges && !fitted; ++n) {
         Instance c = candidates[k].copy;
         if (n > 0) c.position += kNudge * glm::vec3(n == 1 ? 1.f : n == 2 ? -1.f : 0.f, n == 3 ? 1.f : n == 4 ? -1.f : 0.f, 0.f);
-        if (collides(mixed, c)) continue;
+        if (collides(mixed_, c, p_.rule)) continue;
         place = c;
         fitted = true;
       }
     }
-    standing[i] = add_with_images_ids(place);  // the conformer, or the base lipid back
+    standing_[i] = add_with_images(mixed_, place, p_.edge);  // the conformer, or the base lipid back
     return fitted;
-  };
-  std::vector<std::size_t> order(layer.copies.size());
+  }
+
+private:
+  const PatchLaying& p_;
+  std::vector<Instance>& places_;
+  std::vector<std::array<std::size_t, 9>> standing_;  // per place, the ids of it and its images
+  CopyNeighbourhood mixed_;
+};
+
+// Gives each mixed species its share of each leaflet's places; returns per place whether a species took it.
+std::vector<char> mix_species(const PatchLaying& p, float largest, uint64_t seed, std::vector<Instance>& places) {
+  SplitMix64 rng(mix64(seed ^ 0x11D1DC0FFEEull));
+  PatchMixer mixer(p, largest, places);
+  std::vector<char> taken(places.size(), 0);
+  std::vector<std::size_t> order(places.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(static_cast<uint32_t>(i))]);
-  for (const LipidSpecies& species : patch.mix)
+  for (const LipidSpecies& species : p.patch.mix)
     for (const bool outer : {true, false}) {
-      std::size_t places = 0;
-      for (const Instance& c : layer.copies) places += (c.position.z >= 0.f) == outer;
-      std::size_t wanted = static_cast<std::size_t>(std::lround((outer ? species.outer : species.inner) * double(places)));
+      std::size_t leaflet_places = 0;
+      for (const Instance& c : places) leaflet_places += (c.position.z >= 0.f) == outer;
+      std::size_t wanted = static_cast<std::size_t>(std::lround((outer ? species.outer : species.inner) * double(leaflet_places)));
       for (const std::size_t i : order) {
         if (wanted == 0) break;
-        if (taken[i] || (layer.copies[i].position.z >= 0.f) != outer) continue;
-        if (try_species(i, species)) {
+        if (taken[i] || (places[i].position.z >= 0.f) != outer) continue;
+        if (mixer.try_species(i, species)) {
           taken[i] = 1;
           --wanted;
         }
       }
     }
-  if (base_lipids.empty()) return layer;
-  // A conformer of another species fits its place in the flat patch with no room to spare, and the
-  // surface's compression (the inner leaflet, a chart's corners) can push it into a neighbour: the
-  // place's base lipid, which proved the room free in an equilibrated patch, stays behind as its
-  // alternate, shown by the pruning where the conformer had to go.
+  return taken;
+}
+
+// A conformer of another species fits its place in the flat patch with no room to spare, and the
+// surface's compression (the inner leaflet, a chart's corners) can push it into a neighbour: the
+// place's base lipid, which proved the room free in an equilibrated patch, stays behind as its
+// alternate, shown by the pruning where the conformer had to go.
+void keep_base_lipids_as_alternates(const std::vector<Instance>& base_lipids, const std::vector<char>& taken,
+                                    FixedLayer& layer) {
   for (std::size_t i = 0; i < taken.size(); ++i)
     if (taken[i]) {
       layer.copies[i].has_alternate = true;
@@ -300,6 +343,25 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
       alternate.alternate = true;
       layer.copies.push_back(alternate);
     }
+}
+
+// The patch repeated over one tile with centres rescaled to the tile edge, minus the lipids that
+// clash with kept ones (in patch order) or with their images one edge away.
+FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, const std::vector<MoleculeType>& types,
+                     const std::vector<CollisionShape>& shapes, SurfaceDistortion surface, uint64_t seed,
+                     std::vector<double>& requested) {
+  const PatchLaying p{what, patch, edge, types, shapes, ClashRule{patch.clearance, surface}};
+  requested.assign(types.size(), 0.0);
+  const LeafletShares mixed = check_patch(p);
+  FixedLayer layer;
+  layer.clearance = patch.clearance;
+  const float largest = request_places(p, mixed, layer.band, requested);
+  layer.copies = repeat_patch(p, largest);
+  if (patch.mix.empty()) return layer;
+  // Only a membrane pruned on its whole surface (tiles packed rigid) can pick alternates.
+  const std::vector<Instance> base_lipids = surface.rigid() ? layer.copies : std::vector<Instance>{};
+  const std::vector<char> taken = mix_species(p, largest, seed, layer.copies);
+  if (!base_lipids.empty()) keep_base_lipids_as_alternates(base_lipids, taken, layer);
   return layer;
 }
 
