@@ -12,9 +12,9 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "bake/scene/json_document.hpp"
+#include "common/json_document.hpp"
 
-namespace nano::scene {
+namespace nano {
 
 class JsonCursor {
 public:
@@ -70,4 +70,4 @@ private:
   std::string path_;
 };
 
-}  // namespace nano::scene
+}  // namespace nano
