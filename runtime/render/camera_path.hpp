@@ -17,8 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "common/json_document.hpp"
 #include "runtime/render/camera_spec.hpp"
 
 namespace nano::render {
@@ -40,11 +39,14 @@ struct CameraPath {
 
 // Strict: unknown keys, wrong types, times that do not increase, invalid cameras (also between
 // keyframes, at every frame time) throw InputError naming `file` and the key path (keyframes[2].up).
-CameraPath parse_camera_path(const nlohmann::json& json, const std::string& file);
+// Read with the scene file's reader (common/json_cursor.hpp), so the two word their errors alike.
+CameraPath parse_camera_path(const Json& json, const std::string& file);
+// The file is read as scene.json is (common/json_document.hpp): line:column syntax errors,
+// duplicate keys refused, the same limits against hostile files.
 CameraPath read_camera_path(const std::filesystem::path& path);
 
 // The object form of every keyframe, numbers written so they read back bit for bit.
-nlohmann::json to_json(const CameraPath& path);
+Json to_json(const CameraPath& path);
 // Written atomically (temporary file, then rename): the viewer records paths while a movie job may
 // be reading the previous version. Throws InputError (as parse_camera_path) for a path that would
 // not read back, before anything is written.
