@@ -24,7 +24,8 @@ struct Camera {
   void check() const;
   // The shader's camera for an image of width × height pixels (checks first).
   gpu::Camera to_gpu(std::uint32_t width, std::uint32_t height) const;
-  // "pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG" with the shortest numbers that read back to the same doubles.
+  // "position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG" (the --camera form) with the shortest
+  // numbers that read back to the same doubles.
   std::string to_string() const;
   bool operator==(const Camera&) const = default;
 };

@@ -2,13 +2,14 @@
 // Camera paths for movies: keyframed cameras in a JSON file, evaluated at any time.
 //
 //   {"format": "nanouniverse-camera-path", "version": 1, "fps": 30,
-//    "keyframes": [{"time": 0, "camera": "pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG"},
+//    "keyframes": [{"time": 0, "camera": "position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG"},
 //                  {"time": 2.5, "position": [x, y, z], "look_at": [x, y, z], "up": [x, y, z], "fov_degrees": 40}]}
 //
-// Times are seconds ≥ 0, strictly increasing. Keys a keyframe leaves out keep the previous
-// keyframe's values (Camera's defaults for the first). Frame k is at time k / fps, so a movie
-// starts at time 0 and ends at the last keyframe; before the first keyframe the camera holds still.
-// Eye and target follow a C¹ cubic Hermite spline in time with Catmull–Rom tangents (one-sided at
+// The "camera" string is the --camera form (camera_spec.hpp, where pos, at and fov are aliases, so
+// older paths still read). Times are seconds ≥ 0, strictly increasing. Keys a keyframe leaves out
+// keep the previous keyframe's values (Camera's defaults for the first). Frame k is at time k / fps,
+// so a movie starts at time 0 and ends at the last keyframe; before the first keyframe the camera
+// holds still. Position and look_at follow a C¹ cubic Hermite spline in time with Catmull–Rom tangents (one-sided at
 // the ends), up is a normalised lerp and the field of view a lerp between neighbouring keys; each
 // keyframe is reached exactly.
 #include <cstdint>
