@@ -10,10 +10,10 @@ namespace nano {
 
 void Camera::check() const {
   const glm::dvec3 f = at - eye;
-  if (!(glm::length(f) > 0)) throw std::invalid_argument("camera: pos and at are the same point");
+  if (!(glm::length(f) > 0)) throw std::invalid_argument("camera: position and look_at are the same point");
   if (!(glm::length(glm::cross(f / glm::length(f), up)) > 1e-9 * glm::length(up)))
     throw std::invalid_argument("camera: up is zero or parallel to the viewing direction");
-  if (!(fov_degrees > 0 && fov_degrees < 180)) throw std::invalid_argument("camera: fov must lie in (0, 180) degrees");
+  if (!(fov_degrees > 0 && fov_degrees < 180)) throw std::invalid_argument("camera: fov_degrees must lie in (0, 180)");
 }
 
 gpu::Camera Camera::to_gpu(std::uint32_t width, std::uint32_t height) const {
@@ -30,7 +30,7 @@ std::string Camera::to_string() const {
     return std::string(buffer, end);
   };
   const auto triple = [&](const glm::dvec3& v) { return number(v.x) + "," + number(v.y) + "," + number(v.z); };
-  return "pos=" + triple(eye) + ";at=" + triple(at) + ";up=" + triple(up) + ";fov=" + number(fov_degrees);
+  return "position=" + triple(eye) + ";look_at=" + triple(at) + ";up=" + triple(up) + ";fov_degrees=" + number(fov_degrees);
 }
 
 Camera camera_from_scene(const gpu::SceneSettings& scene) {

@@ -14,17 +14,23 @@
 
 namespace nano {
 
+// The vertical field of view of a camera that names none: scene.json's documented default
+// (docs/scene.md), and also what the baker frames a scene without a camera with, what a camera
+// path's first keyframe starts from and what --camera keys fill in when no scene camera is known.
+inline constexpr double kDefaultFovDegrees = 45;
+
 struct Camera {
   glm::dvec3 eye{0.0, 0.0, 1000.0};
   glm::dvec3 at{0.0};
   glm::dvec3 up{0.0, 1.0, 0.0};
-  double fov_degrees = 40;  // vertical
+  double fov_degrees = kDefaultFovDegrees;  // vertical
 
   // Throws std::invalid_argument unless eye ≠ at, up is not parallel to at − eye and 0 < fov < 180.
   void check() const;
   // The shader's camera for an image of width × height pixels (checks first).
   gpu::Camera to_gpu(std::uint32_t width, std::uint32_t height) const;
-  // "pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG" with the shortest numbers that read back to the same doubles.
+  // "position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG" (the --camera form) with the shortest
+  // numbers that read back to the same doubles.
   std::string to_string() const;
   bool operator==(const Camera&) const = default;
 };

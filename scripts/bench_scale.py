@@ -65,7 +65,7 @@ for cells in [int(c) for c in a.cells.split(",")]:
     lo, hi = rep["instances"][0]["aabb"]
     centre = [(l + h) / 2 for l, h in zip(lo, hi)]
     distance = 150000.0  # Å: an 8 µm cell fills about half the height of a 45° view
-    camera = "pos={},{},{};at={},{},{};up=0,1,0;fov=45".format(centre[0], centre[1], centre[2] + distance, *centre)
+    camera = "position={},{},{};look_at={},{},{};up=0,1,0;fov_degrees=45".format(centre[0], centre[1], centre[2] + distance, *centre)
     bench_json = os.path.join(work, name + "-bench.json")
     subprocess.run([nanoview, "bench", pkg, "--size", a.size, "--frames", str(a.frames), "--camera", camera,
                     "--json", bench_json], check=True, stdout=subprocess.DEVNULL)

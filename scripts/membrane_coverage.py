@@ -120,7 +120,7 @@ def main():
         for name, p, n in sample_points(args.scene, args.radius):
             eye = tuple(p[i] + args.distance * n[i] for i in range(3))
             up = (0.0, 0.0, 1.0) if abs(n[2]) < 0.9 else (0.0, 1.0, 0.0)
-            camera = "pos={:.3f},{:.3f},{:.3f};at={:.3f},{:.3f},{:.3f};up={},{},{};fov={}".format(*eye, *p, *up, args.fov)
+            camera = "position={:.3f},{:.3f},{:.3f};look_at={:.3f},{:.3f},{:.3f};up={},{},{};fov_degrees={}".format(*eye, *p, *up, args.fov)
             ids = os.path.join(tmp, "ids.bin")
             subprocess.run([args.nanoview, "render", args.package, "-o", os.path.join(tmp, "f.png"), "--ids", ids,
                             "--size", f"{args.size}x{args.size}", "--camera", camera],

@@ -168,8 +168,7 @@ Effects parse_effects(const JsonCursor& c, std::size_t instance_count) {
 
 Camera parse_camera(const JsonCursor& c) {
   c.only_keys({"position", "look_at", "up", "fov_degrees"});
-  Camera cam;
-  cam.fov_degrees = 45.0;  // scene.json's default (docs/scene.md)
+  Camera cam;  // fov_degrees: kDefaultFovDegrees unless given
   cam.eye = c.required("position").vec3();
   const JsonCursor look_at = c.required("look_at");
   cam.at = look_at.vec3();

@@ -2,7 +2,7 @@
 // The "effects" and "camera" members of scene.json.
 #include <cstddef>
 
-#include "bake/scene/json_cursor.hpp"
+#include "common/json_cursor.hpp"
 #include "bake/scene/scene_description.hpp"
 
 namespace nano::scene {

@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "bake/scene/effects_parser.hpp"
-#include "bake/scene/json_cursor.hpp"
+#include "common/json_cursor.hpp"
 #include "bake/scene/random_placement.hpp"
 #include "bake/scene/transform_parser.hpp"
 

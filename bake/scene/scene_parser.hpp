@@ -3,7 +3,7 @@
 // nano::InputError whose message reads "scene.json:KEY.PATH: RULE".
 #include <filesystem>
 
-#include "bake/scene/json_document.hpp"
+#include "common/json_document.hpp"
 #include "bake/scene/scene_description.hpp"
 
 namespace nano::scene {

@@ -1,7 +1,7 @@
 #pragma once
 // The placement transform of an instance or keyframe object: its optional "transform"
 // ({translate, rotate {axis, degrees}, scale}) or "matrix" (3 rows of 4 numbers) member.
-#include "bake/scene/json_cursor.hpp"
+#include "common/json_cursor.hpp"
 #include "bake/scene/transform.hpp"
 
 namespace nano::scene {

@@ -434,7 +434,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--frames", o->frames, "timed frames (default 24), or rounds with --effects (5) and --matrix (3)")
       ->check(CLI::Range(1u, 10000u));
   cmd->add_option("--path", o->path, "camera path (.json) of the timed frames (default: an orbit about the scene's target)");
-  cmd->add_option("--camera", o->camera, "\"pos=..;at=..;up=..;fov=..\" start of the orbit / the --effects and --explicit view");
+  cmd->add_option("--camera", o->camera, "\"position=..;look_at=..;up=..;fov_degrees=..\" (aliases pos, at, fov) start of the orbit / the --effects and --explicit view");
   cmd->add_option("--json", o->json, "write the results as JSON");
   cmd->add_flag("--effects", o->effects, "each effect off vs on, and all off vs the renderer without effect code");
   cmd->add_flag("--explicit", o->explicit_instancing,

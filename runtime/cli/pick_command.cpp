@@ -36,7 +36,7 @@ void add_pick_command(CLI::App& app) {
   cmd->add_option("Y", o->y, "pixel row (0 = top)")->required();
   cmd->add_option("--size", o->size, "image size WxH")->capture_default_str();
   cmd->add_option("--camera", o->camera,
-                  "\"pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG\" (world Å, vertical fov); keys left out keep the scene's camera");
+                  "\"position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG\" (world Å, vertical; aliases pos, at, fov); keys left out keep the scene's camera");
   cmd->add_flag("--oracle", o->oracle,
                 "trace the pixel with the CPU oracle (explicit instancing, no device needed) instead of the GPU; "
                 "the variant options then do not apply, the effect options do");

@@ -142,7 +142,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "colour image (.png); with --path a pattern such as frames/%05d.png")->required();
   cmd->add_option("--size", o->size, "image size WxH")->capture_default_str();
   auto* camera_flag = cmd->add_option(
-      "--camera", o->camera, "\"pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG\" (world Å, vertical fov); keys left out keep the scene's camera");
+      "--camera", o->camera, "\"position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG\" (world Å, vertical; aliases pos, at, fov); keys left out keep the scene's camera");
   cmd->add_option("--depth", o->depth, "depth along the unit ray in Å as PFM (+inf: background); a pattern with --path");
   cmd->add_option("--ids", o->ids, "per-pixel hit ids (docs/rendering.md, \"Ids\"); a pattern with --path");
   add_variant_options(*cmd, o->variant);

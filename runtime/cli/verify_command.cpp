@@ -147,7 +147,7 @@ void add_verify_command(CLI::App& app) {
                   "relative 1e-3 (all at once, or each on its own along the pixel's ray): grazing touches and float ties")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON (key `agreement`) instead of text");
-  cmd->add_option("--camera", o->camera, "one view \"pos=..;at=..;up=..;fov=..\" instead of the chosen set (keys left out keep the scene's)");
+  cmd->add_option("--camera", o->camera, "one view \"position=..;look_at=..;up=..;fov_degrees=..\" (aliases pos, at, fov) instead of the chosen set (keys left out keep the scene's)");
   cmd->add_option("--ids", o->ids, "judge this ids file (render --ids, a viewer screenshot) instead of rendering; needs --camera");
   add_effect_options(*cmd, o->effects);
   cmd->callback([o] { run_verify(*o); });

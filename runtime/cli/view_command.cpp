@@ -26,7 +26,7 @@ void add_view_command(CLI::App& app) {
                   "runtime/viewer/script.hpp), then exit");
   cmd->add_option("--size", o->size, "window size WxH; with --script also exactly the size every frame is rendered at");
   cmd->add_option("--camera", o->viewer.camera,
-                  "start camera \"pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG\" (keys left out keep the scene's camera)");
+                  "start camera \"position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG\" (aliases pos, at, fov; keys left out keep the scene's camera)");
   cmd->add_option("--path", o->viewer.path,
                   "camera path (.json, as render --path reads) to start with: L plays it, K adds keyframes, "
                   "\"Save path\" writes it back");

@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/json_cursor.hpp"
 
 namespace nano::render {
 namespace {
@@ -19,16 +18,6 @@ constexpr const char* kFormat = "nanouniverse-camera-path";
 constexpr double kMaxFps = 1000;
 // Parsing evaluates the camera at every frame time; this bounds that work (≈ 92 hours at 30 fps).
 constexpr std::uint64_t kMaxFrames = 10'000'000;
-
-double number(const nlohmann::json& j, const std::string& file, const std::string& where) {
-  if (!j.is_number() || !std::isfinite(j.get<double>())) throw InputError(file, where, "expected a finite number");
-  return j.get<double>();
-}
-
-glm::dvec3 vector3(const nlohmann::json& j, const std::string& file, const std::string& where) {
-  if (!j.is_array() || j.size() != 3) throw InputError(file, where, "expected an array of three numbers [x, y, z]");
-  return {number(j[0], file, where + "[0]"), number(j[1], file, where + "[1]"), number(j[2], file, where + "[2]")};
-}
 
 // Hermite tangent of eye or target at key i, per second: Catmull–Rom's central difference over
 // the neighbours' time span (so unequal key spacing keeps the speed continuous), one-sided at the ends.
@@ -71,90 +60,74 @@ Camera camera_at(const CameraPath& path, double time) {
   return c;
 }
 
-CameraPath parse_camera_path(const nlohmann::json& json, const std::string& file) {
-  if (!json.is_object()) throw InputError(file, "", "a camera path is a JSON object");
-  for (const auto& [key, value] : json.items())
-    if (key != "format" && key != "version" && key != "fps" && key != "keyframes")
-      throw InputError(file, key, "unknown key (format, version, fps, keyframes)");
-  if (!json.contains("format") || json["format"] != kFormat)
-    throw InputError(file, "format", std::string("expected \"") + kFormat + "\"");
-  if (!json.contains("version") || json["version"] != 1) throw InputError(file, "version", "expected 1");
+CameraPath parse_camera_path(const Json& json, const std::string& file) {
+  const JsonCursor root(json, file);
+  root.only_keys({"format", "version", "fps", "keyframes"});
+  const JsonCursor format = root.required("format");
+  if (format.string() != kFormat) format.fail(std::string("expected \"") + kFormat + "\", got " + format.shown());
+  const JsonCursor version = root.required("version");
+  if (version.json() != 1) version.fail("expected 1, got " + version.shown());
   CameraPath path;
-  if (json.contains("fps")) path.fps = number(json["fps"], file, "fps");
-  if (!(path.fps > 0 && path.fps <= kMaxFps)) throw InputError(file, "fps", "frames per second must lie in (0, 1000]");
-  if (!json.contains("keyframes") || !json["keyframes"].is_array() || json["keyframes"].empty())
-    throw InputError(file, "keyframes", "expected a non-empty array of keyframes");
+  if (const auto fps = root.optional("fps")) {
+    path.fps = fps->number();
+    if (!(path.fps > 0 && path.fps <= kMaxFps)) fps->fail("frames per second must lie in (0, 1000], got " + fps->shown());
+  }
+  const JsonCursor keyframes = root.required("keyframes");
 
   Camera previous;
-  for (std::size_t i = 0; i < json["keyframes"].size(); ++i) {
-    const nlohmann::json& k = json["keyframes"][i];
-    const std::string where = "keyframes[" + std::to_string(i) + "]";
-    if (!k.is_object()) throw InputError(file, where, "expected an object");
-    for (const auto& [key, value] : k.items())
-      if (key != "time" && key != "camera" && key != "position" && key != "look_at" && key != "up" && key != "fov_degrees")
-        throw InputError(file, where + "." + key, "unknown key (time, camera, or position, look_at, up, fov_degrees)");
+  for (const JsonCursor& k : keyframes.elements(1)) {
+    k.only_keys({"time", "camera", "position", "look_at", "up", "fov_degrees"});
     CameraKeyframe key;
-    if (!k.contains("time")) throw InputError(file, where + ".time", "missing");
-    key.time = number(k["time"], file, where + ".time");
-    if (key.time < 0) throw InputError(file, where + ".time", "must be ≥ 0 s");
-    if (!path.keyframes.empty() && !(key.time > path.keyframes.back().time))
-      throw InputError(file, where + ".time", "times must increase strictly");
+    const JsonCursor time = k.required("time");
+    key.time = time.number_at_least(0);
+    if (!path.keyframes.empty() && !(key.time > path.keyframes.back().time)) time.fail("times must increase strictly");
     key.camera = previous;
-    try {
-      if (k.contains("camera")) {
-        for (const char* other : {"position", "look_at", "up", "fov_degrees"})
-          if (k.contains(other))
-            throw InputError(file, where + "." + other, "give either \"camera\" or position/look_at/up/fov_degrees, not both");
-        if (!k["camera"].is_string()) throw InputError(file, where + ".camera", "expected a string pos=..;at=..;up=..;fov=..");
-        key.camera = parse_camera(k["camera"].get<std::string>(), previous);
-      } else {
-        if (k.contains("position")) key.camera.eye = vector3(k["position"], file, where + ".position");
-        if (k.contains("look_at")) key.camera.at = vector3(k["look_at"], file, where + ".look_at");
-        if (k.contains("up")) key.camera.up = vector3(k["up"], file, where + ".up");
-        if (k.contains("fov_degrees")) key.camera.fov_degrees = number(k["fov_degrees"], file, where + ".fov_degrees");
-        key.camera.check();
+    if (const auto spec = k.optional("camera")) {
+      for (const char* other : {"position", "look_at", "up", "fov_degrees"})
+        if (k.has(other))
+          k.required(other).fail("give either \"camera\" or position/look_at/up/fov_degrees, not both");
+      try {
+        key.camera = parse_camera(spec->string(), previous);
+      } catch (const std::invalid_argument& e) {
+        spec->fail(e.what());
       }
-    } catch (const std::invalid_argument& e) {
-      throw InputError(file, where, e.what());
+    } else {
+      if (const auto position = k.optional("position")) key.camera.eye = position->vec3();
+      if (const auto look_at = k.optional("look_at")) key.camera.at = look_at->vec3();
+      if (const auto up = k.optional("up")) key.camera.up = up->vec3();
+      if (const auto fov = k.optional("fov_degrees")) key.camera.fov_degrees = fov->number_strictly_between(0, 180);
+      try {
+        key.camera.check();
+      } catch (const std::invalid_argument& e) {
+        k.fail(e.what());
+      }
     }
     // Normalised lerp has no answer halfway between opposite up vectors.
     if (!path.keyframes.empty() &&
         glm::dot(glm::normalize(key.camera.up), glm::normalize(path.keyframes.back().camera.up)) < -1 + 1e-9)
-      throw InputError(file, where + ".up", "turns by 180° from the previous keyframe's up; add a keyframe between them");
+      (k.has("up") ? k.required("up") : k)
+          .fail("turns by 180° from the previous keyframe's up; add a keyframe between them");
     previous = key.camera;
     path.keyframes.push_back(key);
   }
   if (double(path.duration()) * path.fps >= double(kMaxFrames))
-    throw InputError(file, "keyframes", "more than " + std::to_string(kMaxFrames) + " frames");
+    keyframes.fail("more than " + std::to_string(kMaxFrames) + " frames");
   // Keyframes can be fine while the spline between them passes the eye through the target.
   for (std::uint64_t f = 0; f < path.frame_count(); ++f) {
     try {
       camera_at(path, path.frame_time(f));
     } catch (const std::invalid_argument& e) {
-      throw InputError(file, "keyframes", "frame " + std::to_string(f) + " (time " + std::to_string(path.frame_time(f)) +
-                                              " s) has a degenerate camera: " + e.what());
+      keyframes.fail("frame " + std::to_string(f) + " (time " + std::to_string(path.frame_time(f)) +
+                     " s) has a degenerate camera: " + e.what());
     }
   }
   return path;
 }
 
-CameraPath read_camera_path(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(name, "", "cannot open the camera path for reading");
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(name, "", std::string("not valid JSON: ") + e.what());
-  }
-  return parse_camera_path(json, name);
-}
+CameraPath read_camera_path(const std::filesystem::path& path) { return parse_camera_path(read_json_file(path), path.string()); }
 
-nlohmann::json to_json(const CameraPath& path) {
-  nlohmann::json keys = nlohmann::json::array();
+Json to_json(const CameraPath& path) {
+  Json keys = Json::array();
   for (const CameraKeyframe& k : path.keyframes)
     keys.push_back({{"time", k.time},
                     {"position", {k.camera.eye.x, k.camera.eye.y, k.camera.eye.z}},
@@ -165,9 +138,8 @@ nlohmann::json to_json(const CameraPath& path) {
 }
 
 void write_camera_path(const std::filesystem::path& path, const CameraPath& camera_path) {
-  const nlohmann::json json = to_json(camera_path);
-  parse_camera_path(json, path.string());  // never write a file that would not read back
-  const std::string text = json.dump(2) + "\n";
+  const std::string text = to_json(camera_path).dump(2) + "\n";
+  parse_camera_path(parse_json_text(text, path.string()), path.string());  // never write a file that would not read back
   write_file_atomically(path, std::as_bytes(std::span(text.data(), text.size())));
 }
 

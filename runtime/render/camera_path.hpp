@@ -2,13 +2,14 @@
 // Camera paths for movies: keyframed cameras in a JSON file, evaluated at any time.
 //
 //   {"format": "nanouniverse-camera-path", "version": 1, "fps": 30,
-//    "keyframes": [{"time": 0, "camera": "pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG"},
+//    "keyframes": [{"time": 0, "camera": "position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG"},
 //                  {"time": 2.5, "position": [x, y, z], "look_at": [x, y, z], "up": [x, y, z], "fov_degrees": 40}]}
 //
-// Times are seconds ≥ 0, strictly increasing. Keys a keyframe leaves out keep the previous
-// keyframe's values (Camera's defaults for the first). Frame k is at time k / fps, so a movie
-// starts at time 0 and ends at the last keyframe; before the first keyframe the camera holds still.
-// Eye and target follow a C¹ cubic Hermite spline in time with Catmull–Rom tangents (one-sided at
+// The "camera" string is the --camera form (camera_spec.hpp, where pos, at and fov are aliases, so
+// older paths still read). Times are seconds ≥ 0, strictly increasing. Keys a keyframe leaves out
+// keep the previous keyframe's values (Camera's defaults for the first). Frame k is at time k / fps,
+// so a movie starts at time 0 and ends at the last keyframe; before the first keyframe the camera
+// holds still. Position and look_at follow a C¹ cubic Hermite spline in time with Catmull–Rom tangents (one-sided at
 // the ends), up is a normalised lerp and the field of view a lerp between neighbouring keys; each
 // keyframe is reached exactly.
 #include <cstdint>
@@ -17,8 +18,7 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "common/json_document.hpp"
 #include "runtime/render/camera_spec.hpp"
 
 namespace nano::render {
@@ -40,11 +40,14 @@ struct CameraPath {
 
 // Strict: unknown keys, wrong types, times that do not increase, invalid cameras (also between
 // keyframes, at every frame time) throw InputError naming `file` and the key path (keyframes[2].up).
-CameraPath parse_camera_path(const nlohmann::json& json, const std::string& file);
+// Read with the scene file's reader (common/json_cursor.hpp), so the two word their errors alike.
+CameraPath parse_camera_path(const Json& json, const std::string& file);
+// The file is read as scene.json is (common/json_document.hpp): line:column syntax errors,
+// duplicate keys refused, the same limits against hostile files.
 CameraPath read_camera_path(const std::filesystem::path& path);
 
 // The object form of every keyframe, numbers written so they read back bit for bit.
-nlohmann::json to_json(const CameraPath& path);
+Json to_json(const CameraPath& path);
 // Written atomically (temporary file, then rename): the viewer records paths while a movie job may
 // be reading the previous version. Throws InputError (as parse_camera_path) for a path that would
 // not read back, before anything is written.

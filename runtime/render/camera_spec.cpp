@@ -1,8 +1,7 @@
 #include "runtime/render/camera_spec.hpp"
 
-#include <charconv>
-
 #include <cmath>
+#include <iterator>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -27,7 +26,13 @@ glm::dvec3 parse_vector(std::string_view key, std::string_view value) {
 float depth_cue_for(const Camera& camera) { return float(4 * glm::length(camera.at - camera.eye)); }
 
 Camera parse_camera(std::string_view text, const Camera& base) {
+  // The scene file's words, and the short aliases older command lines and scripts use.
+  struct Key {
+    std::string_view name, alias;
+  };
+  static constexpr Key keys[] = {{"position", "pos"}, {"look_at", "at"}, {"up", ""}, {"fov_degrees", "fov"}};
   Camera c = base;
+  std::string_view given[std::size(keys)] = {};  // the spelling each key came as, to refuse it twice
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t end = std::min(text.find(';', start), text.size());
@@ -37,16 +42,22 @@ Camera parse_camera(std::string_view text, const Camera& base) {
     const std::size_t eq = part.find('=');
     if (eq == std::string_view::npos) throw std::invalid_argument("camera: '" + std::string(part) + "' has no '='");
     const std::string_view key = part.substr(0, eq), value = part.substr(eq + 1);
-    if (key == "pos") c.eye = parse_vector(key, value);
-    else if (key == "at") c.at = parse_vector(key, value);
-    else if (key == "up") c.up = parse_vector(key, value);
-    else if (key == "fov") {
+    std::size_t k = 0;
+    while (k < std::size(keys) && key != keys[k].name && (keys[k].alias.empty() || key != keys[k].alias)) ++k;
+    if (k == std::size(keys))
+      throw std::invalid_argument("camera: unknown key '" + std::string(key) +
+                                  "' (position, look_at, up, fov_degrees; aliases pos, at, fov)");
+    if (!given[k].empty())
+      throw std::invalid_argument("camera: '" + std::string(key) + "' repeats '" + std::string(given[k]) + "'");
+    given[k] = key;
+    if (k == 0) c.eye = parse_vector(key, value);
+    else if (k == 1) c.at = parse_vector(key, value);
+    else if (k == 2) c.up = parse_vector(key, value);
+    else {
       std::string s(value);
       char tail = 0;
       if (std::sscanf(s.c_str(), "%lf%c", &c.fov_degrees, &tail) != 1)
-        throw std::invalid_argument("camera: 'fov=" + s + "' is not a number of degrees");
-    } else {
-      throw std::invalid_argument("camera: unknown key '" + std::string(key) + "' (pos, at, up, fov)");
+        throw std::invalid_argument("camera: '" + std::string(key) + "=" + s + "' is not a number of degrees");
     }
   }
   c.check();

@@ -1,6 +1,7 @@
 #pragma once
 // The camera (common/camera.hpp) as `render`, `verify`, `bench` and the viewer take it: parsed from
-// "pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG" or from the package's scene record.
+// "position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG" (scene.json's words; pos, at and fov are
+// aliases) or from the package's scene record.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -16,8 +17,8 @@ namespace nano::render {
 // distance to the target (RenderSettings::depth_cue). One rule, so their frames stay identical.
 float depth_cue_for(const Camera& camera);
 
-// Keys may come in any order and any may be left out (they keep `base`'s value). Throws
-// std::invalid_argument naming the part that does not parse.
+// Keys may come in any order and any may be left out (they keep `base`'s value); a key given twice
+// (also once by its alias) is an error. Throws std::invalid_argument naming the part that does not parse.
 Camera parse_camera(std::string_view text, const Camera& base = {});
 
 // The package's default camera (section scene), or a view of everything when it has none.

@@ -52,10 +52,10 @@ void camera_section(ViewerState& s, const PanelContext& c) {
   bool changed = false;
   changed |= ImGui::InputScalarN("position", ImGuiDataType_Double, &camera.eye, 3, nullptr, nullptr, "%.1f",
                                  ImGuiInputTextFlags_EnterReturnsTrue);
-  changed |= ImGui::InputScalarN("target", ImGuiDataType_Double, &camera.at, 3, nullptr, nullptr, "%.1f",
+  changed |= ImGui::InputScalarN("look_at", ImGuiDataType_Double, &camera.at, 3, nullptr, nullptr, "%.1f",
                                  ImGuiInputTextFlags_EnterReturnsTrue);
   const double fov_min = 1, fov_max = 150;
-  changed |= ImGui::SliderScalar("fov", ImGuiDataType_Double, &camera.fov_degrees, &fov_min, &fov_max, "%.1f°");
+  changed |= ImGui::SliderScalar("fov_degrees", ImGuiDataType_Double, &camera.fov_degrees, &fov_min, &fov_max, "%.1f°");
   ImGui::Text("distance %.1f Å, fly speed %.1f Å/s", s.camera.distance(), s.camera.fly_speed());
   if (ImGui::Button("reset view")) {
     // Looks at the whole scene from the current direction.

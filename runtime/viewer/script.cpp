@@ -57,7 +57,7 @@ void expect_no_more(std::string_view rest, std::string_view command) {
 // A camera spec may leave keys out (they keep the camera current when the line runs), so it can
 // only be checked against a stand-in camera here. Two unrelated stand-ins: a spec that parses
 // against either is well formed; one that fails against both is wrong whatever camera it meets
-// (bad syntax, pos = at, fov out of range).
+// (bad syntax, position = look_at, fov_degrees out of range).
 void check_camera_syntax(const std::string& spec) {
   const Camera a{};
   Camera b;
@@ -122,7 +122,7 @@ ScriptCommand parse_line(std::string_view line) {
   const std::string_view word = next_word(line, rest);
   using K = ScriptCommand::Kind;
   if (word == "camera") {
-    if (rest.empty()) throw std::invalid_argument("camera needs a spec pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG");
+    if (rest.empty()) throw std::invalid_argument("camera needs a spec position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG");
     c.kind = K::camera;
     c.text = std::string(rest);
     check_camera_syntax(c.text);

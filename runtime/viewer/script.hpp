@@ -3,7 +3,9 @@
 // starts a comment. The whole file is parsed before the window opens, so a typo on line 40 fails
 // at once instead of after 39 rendered frames. Errors are InputError("FILE", "line N", what).
 //
-//   camera pos=x,y,z;at=x,y,z;up=x,y,z;fov=DEG   keys left out keep the current camera
+//   camera position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG
+//                                                keys left out keep the current camera; as --camera,
+//                                                pos, at and fov are aliases
 //   clip plane nx,ny,nz,d                        adds a plane (points with n·p + d ≥ 0 stay)
 //   clip box x0,y0,z0,x1,y1,z1                   sets the clip box
 //   clip off                                     removes every plane and the box

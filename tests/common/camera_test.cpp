@@ -45,7 +45,7 @@ TEST(Camera, RejectsDegenerateViews) {
 
 TEST(Camera, TextNamesEveryFieldExactly) {
   const Camera c{{0.1, -2.0, 3e7}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 33.3};
-  EXPECT_EQ(c.to_string(), "pos=0.1,-2,3e+07;at=0,0,0;up=0,1,0;fov=33.3");
+  EXPECT_EQ(c.to_string(), "position=0.1,-2,3e+07;look_at=0,0,0;up=0,1,0;fov_degrees=33.3");
 }
 
 }  // namespace

@@ -18,7 +18,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "bake/scene/json_document.hpp"
+#include "common/json_document.hpp"
 #include "bake/scene/random_placement.hpp"
 #include "bake/scene/scene_feasibility.hpp"
 #include "bake/scene/scene_parser.hpp"

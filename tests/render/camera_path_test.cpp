@@ -4,9 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string_view>
 
 #include <gtest/gtest.h>
 
+#include "bake/scene/scene_parser.hpp"
 #include "common/error.hpp"
 #include "runtime/render/camera_path.hpp"
 
@@ -14,7 +16,8 @@ namespace {
 
 using namespace nano;
 using namespace nano::render;
-using nlohmann::json;
+using json = nano::Json;
+using namespace std::string_view_literals;
 
 // Unequal key spacing, turning up vectors, a changing field of view, both key syntaxes.
 json sample_json() {
@@ -150,23 +153,23 @@ TEST(CameraPath, StrictErrorsNameFileAndKeyPath) {
   j = sample_json(), j["fps"] = 0;
   expect_error(j, "fps", "(0, 1000]");
   j = sample_json(), j["keyframes"] = json::array();
-  expect_error(j, "keyframes", "non-empty");
+  expect_error(j, "keyframes", "at least 1 element");
   j = sample_json(), j["keyframes"][1]["zoom"] = 2;
   expect_error(j, "keyframes[1].zoom", "unknown key");
   j = sample_json(), j["keyframes"][2]["time"] = 0.5;
   expect_error(j, "keyframes[2].time", "increase strictly");
   j = sample_json(), j["keyframes"][0]["time"] = -1;
-  expect_error(j, "keyframes[0].time", "≥ 0");
+  expect_error(j, "keyframes[0].time", ">= 0");
   j = sample_json(), j["keyframes"][1].erase("time");
   expect_error(j, "keyframes[1].time", "missing");
   j = sample_json(), j["keyframes"][1]["position"] = {1, 2};
-  expect_error(j, "keyframes[1].position", "three numbers");
+  expect_error(j, "keyframes[1].position", "3 numbers");
   j = sample_json(), j["keyframes"][1]["fov_degrees"] = "wide";
-  expect_error(j, "keyframes[1].fov_degrees", "finite number");
+  expect_error(j, "keyframes[1].fov_degrees", "a number in (0, 180)");
   j = sample_json(), j["keyframes"][1]["look_at"] = {1200, -100, 600};  // = position
   expect_error(j, "keyframes[1]", "same point");
   j = sample_json(), j["keyframes"][0]["camera"] = "pos=1,2;at=0,0,0";
-  expect_error(j, "keyframes[0]", "three finite numbers");
+  expect_error(j, "keyframes[0].camera", "three finite numbers");
   j = sample_json(), j["keyframes"][0]["position"] = {1, 2, 3};
   expect_error(j, "keyframes[0].position", "not both");
   j = sample_json(), j["keyframes"][1]["up"] = {0, -1, 0};
@@ -209,10 +212,70 @@ TEST(CameraPath, ReadErrorsNameTheFile) {
     ADD_FAILURE();
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), file.string());
-    EXPECT_NE(std::string(e.what()).find("not valid JSON"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("invalid JSON"), std::string::npos) << e.what();
   }
   std::filesystem::remove(file);
   EXPECT_THROW(read_camera_path(file), InputError);
+}
+
+// scene.json's camera and a camera path's keyframe are read by one reader (common/json_cursor.hpp):
+// the same malformed camera is refused by both, in the same words, each naming its own file and
+// the key path (camera.* in the scene, keyframes[0].* in the path).
+TEST(CameraPath, RefusesWhatTheSceneReaderRefusesInTheSameWords) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "nano_camera_path_shared_reader";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path scene_file = dir / "scene.json", path_file = dir / "path.json";
+  const auto refusal = [](const auto& read, const std::filesystem::path& file) {
+    try {
+      read(file);
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), file.string()) << e.what();
+      return e;
+    }
+    ADD_FAILURE() << file << " was accepted";
+    return InputError("", "", "");
+  };
+  struct Case {
+    std::string_view camera;  // the members of the camera object
+    const char* where;   // the key path below it; empty: a line:column
+    const char* rule;    // what both errors say (a prefix of it)
+  };
+  const Case cases[] = {
+      {R"("position": [1, 2], "look_at": [0, 0, 0])", ".position", "expected an array of 3 numbers [x, y, z], got [1,2]"},
+      {R"("position": [0, 0, 9], "look_at": [0, "a", 0])", ".look_at[1]", "expected a number, got \"a\""},
+      {R"("position": [0, 0, 9], "look_at": [0, 0, 0], "fov_degrees": 180)", ".fov_degrees", "expected a number in (0, 180), got 180"},
+      {R"("position": [0, 0, 9], "look_at": [0, 0, 0], "fov_degrees": 1e400)", ".fov_degrees", ""},
+      {R"("position": [0, 0, 9], "position": [0, 0, 8], "look_at": [0, 0, 0])", ".position", "key \"position\" appears more than once"},
+      {R"("position": [0, 0, 9], "look_at": [0, 0, 0], "zoom": 2)", ".zoom", "unknown key; allowed here: "},
+      {R"("position": [0, 0, 9],, "look_at": [0, 0, 0])", "", "invalid JSON: "},
+      {"\"position\": [0, 0, 9], \"look_at\": [0, 0, 0], \"up\": [0, 1, 0\0]"sv, "", "a NUL byte"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.camera);
+    std::ofstream(scene_file, std::ios::binary)
+        << R"({"format": "nanouniverse-scene", "version": 1, "molecules": {"hb": {"file": "h.pdb"}},
+              "solubles": {"lumen": {"cube_size": 100, "molecules": [{"molecule": "hb", "concentration_mM": 1}]}},
+              "compartments": {"cell": {"mesh": {"generate": "sphere", "triangles": 1000, "radius": 500}, "soluble": "lumen"}},
+              "instances": [{"compartment": "cell"}],
+              "camera": {)"
+        << c.camera << "}}";
+    std::ofstream(path_file, std::ios::binary)
+        << R"({"format": "nanouniverse-camera-path", "version": 1, "keyframes": [{"time": 0, )" << c.camera << "}]}";
+    const InputError in_scene = refusal([](const auto& f) { nano::scene::load_scene_description(f); }, scene_file);
+    const InputError in_path = refusal([](const auto& f) { read_camera_path(f); }, path_file);
+    if (*c.where) {
+      EXPECT_EQ(in_scene.where(), std::string("camera") + c.where);
+      EXPECT_EQ(in_path.where(), std::string("keyframes[0]") + c.where);
+    } else {  // a syntax error: its line and column
+      EXPECT_NE(in_scene.where().find(':'), std::string::npos) << in_scene.what();
+      EXPECT_NE(in_path.where().find(':'), std::string::npos) << in_path.what();
+    }
+    EXPECT_EQ(std::string(in_scene.rule()).rfind(c.rule, 0), 0u) << in_scene.what();
+    EXPECT_EQ(std::string(in_path.rule()).rfind(c.rule, 0), 0u) << in_path.what();
+    if (std::string_view(c.rule).find("unknown key") == std::string_view::npos)  // the allowed keys differ
+      EXPECT_EQ(std::string(in_scene.rule()), std::string(in_path.rule()));
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(FramePattern, FormatsAndRejects) {

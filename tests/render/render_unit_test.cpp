@@ -6,6 +6,8 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -60,10 +62,47 @@ TEST(Camera, ParsesKeysInAnyOrderAndKeepsTheRest) {
   EXPECT_DOUBLE_EQ(again.fov_degrees, c.fov_degrees);
 }
 
+// to_string writes the --camera form; it reads back to the same doubles through the long keys, and
+// through the aliases too, which mean exactly the same.
+TEST(Camera, TextRoundTripsThroughTheLongKeysAndTheAliases) {
+  Camera c;
+  c.eye = {0.1 + 0.2, -2.0, 3e7};
+  c.at = {1.0 / 3.0, 0.0, -7.5};
+  c.up = {0.2, 1.0, std::nextafter(0.0, 1.0)};
+  c.fov_degrees = std::nextafter(45.0, 90.0);
+  const std::string text = c.to_string();
+  EXPECT_EQ(text.rfind("position=", 0), 0u) << text;
+  for (const char* key : {";look_at=", ";up=", ";fov_degrees="}) EXPECT_NE(text.find(key), std::string::npos) << text;
+  EXPECT_EQ(parse_camera(text), c);
+  EXPECT_EQ(parse_camera(text, Camera{{5, 5, 5}, {1, 1, 1}, {0, 0, 1}, 10}), c);  // nothing of the base is left
+  std::string aliased = text;
+  for (const auto& [word, alias] : {std::pair<std::string, std::string>{"position=", "pos="}, {"look_at=", "at="}, {"fov_degrees=", "fov="}})
+    aliased.replace(aliased.find(word), word.size(), alias);
+  EXPECT_EQ(aliased.rfind("pos=", 0), 0u) << aliased;
+  EXPECT_EQ(parse_camera(aliased), c);
+  // Long keys and aliases mix.
+  EXPECT_EQ(parse_camera("pos=1,2,3;look_at=4,5,6;fov_degrees=30"), parse_camera("position=1,2,3;at=4,5,6;fov=30"));
+}
+
+TEST(Camera, RefusesAKeyGivenTwice) {
+  for (const char* twice : {"position=1,2,3;pos=1,2,3", "at=0,0,0;look_at=0,0,0", "fov=30;fov=30", "up=0,1,0;up=0,1,0"}) {
+    try {
+      (void)parse_camera(twice);
+      ADD_FAILURE() << "accepted: " << twice;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("repeats"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Camera, RejectsWhatCannotBeACamera) {
   EXPECT_THROW(parse_camera("pos=1,2"), std::invalid_argument);
   EXPECT_THROW(parse_camera("pos=1,2,3,4"), std::invalid_argument);
   EXPECT_THROW(parse_camera("zoom=2"), std::invalid_argument);
+  EXPECT_THROW(parse_camera("eye=1,2,3"), std::invalid_argument);  // no other spellings than the aliases
+  EXPECT_THROW(parse_camera("target=1,2,3"), std::invalid_argument);
+  EXPECT_THROW(parse_camera("position=0,0,0;look_at=0,0,0"), std::invalid_argument);
+  EXPECT_THROW(parse_camera("fov_degrees=0"), std::invalid_argument);
   EXPECT_THROW(parse_camera("pos=0,0,0;at=0,0,0"), std::invalid_argument);
   EXPECT_THROW(parse_camera("pos=0,0,5;at=0,0,0;up=0,0,1"), std::invalid_argument);  // up ∥ view
   EXPECT_THROW(parse_camera("fov=180"), std::invalid_argument);

@@ -1,4 +1,4 @@
-#include "bake/scene/json_cursor.hpp"
+#include "common/json_cursor.hpp"
 
 #include <gtest/gtest.h>
 

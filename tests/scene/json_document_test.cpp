@@ -1,4 +1,4 @@
-#include "bake/scene/json_document.hpp"
+#include "common/json_document.hpp"
 
 #include <gtest/gtest.h>
 

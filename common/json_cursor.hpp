@@ -13,9 +13,9 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "bake/scene/json_document.hpp"
+#include "common/json_document.hpp"
 
-namespace nano::scene {
+namespace nano {
 
 class JsonCursor {
 public:
@@ -72,4 +72,4 @@ private:
   std::string path_;
 };
 
-}  // namespace nano::scene
+}  // namespace nano

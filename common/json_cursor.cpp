@@ -1,4 +1,4 @@
-#include "bake/scene/json_cursor.hpp"
+#include "common/json_cursor.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "common/error.hpp"
 
-namespace nano::scene {
+namespace nano {
 namespace {
 
 std::string format_number(double v) {
@@ -215,4 +215,4 @@ glm::dvec4 JsonCursor::vec4() const {
   return {e[0].number(), e[1].number(), e[2].number(), e[3].number()};
 }
 
-}  // namespace nano::scene
+}  // namespace nano

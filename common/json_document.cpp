@@ -1,4 +1,4 @@
-#include "bake/scene/json_document.hpp"
+#include "common/json_document.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -9,7 +9,7 @@
 
 #include "common/error.hpp"
 
-namespace nano::scene {
+namespace nano {
 namespace {
 
 std::string bytes_in_words(std::uintmax_t bytes) {
@@ -269,4 +269,4 @@ Json read_json_file(const std::filesystem::path& path) {
   return parse_json_text(content, path.string());
 }
 
-}  // namespace nano::scene
+}  // namespace nano

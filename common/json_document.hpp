@@ -1,6 +1,7 @@
 #pragma once
-// Strict JSON reading for hand-written input files: a syntax error names its line and column,
-// and a repeated key in one object is an error (plain JSON parsers silently keep one of them).
+// Strict JSON reading for hand-written input files (scene.json, camera paths): a syntax error names
+// its line and column, and a repeated key in one object is an error (plain JSON parsers silently
+// keep one of them).
 // Hostile input (a huge file, endless nesting, a giant string, a number beyond a double) is
 // refused with an InputError in time and memory proportional to the bounds below.
 #include <cstddef>
@@ -11,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace nano::scene {
+namespace nano {
 
 // Object members keep the file's order, so everything derived from them is deterministic.
 using Json = nlohmann::ordered_json;
@@ -35,4 +36,4 @@ Json parse_json_text(std::string_view text, const std::string& file_for_messages
 // kMaxJsonFileBytes (refused before it is read), is an InputError too.
 Json read_json_file(const std::filesystem::path& path);
 
-}  // namespace nano::scene
+}  // namespace nano
