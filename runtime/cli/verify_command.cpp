@@ -22,10 +22,10 @@
 #include "runtime/session/session.hpp"
 #include "runtime/session/view_judge.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 namespace {
 
-void print_view(const std::string& name, std::uint32_t w, std::uint32_t h, const ViewVerdict& v, double gpu_seconds) {
+void print_view(const std::string& name, std::uint32_t w, std::uint32_t h, const session::ViewVerdict& v, double gpu_seconds) {
   const oracle::CompareResult& r = v.comparison;
   std::printf("%-24s %4ux%-4u agreement %.5f (%llu pixels hit; missed %llu, other atom %llu, other ids %llu, depth %llu, "
               "bad depth %llu; %llu not explained by radii ±%g or by float placement) gpu %.2f s, oracle %.2f s over %llu atoms\n",
@@ -38,7 +38,7 @@ void print_view(const std::string& name, std::uint32_t w, std::uint32_t h, const
                 oracle::to_json(m.reference).dump().c_str(), oracle::to_json(m.test).dump().c_str());
 }
 
-nlohmann::json view_json(const oracle::VerifyCamera& vc, std::uint32_t w, std::uint32_t h, const ViewVerdict& v,
+nlohmann::json view_json(const oracle::VerifyCamera& vc, std::uint32_t w, std::uint32_t h, const session::ViewVerdict& v,
                          double gpu_seconds) {
   nlohmann::json view = oracle::to_json(v.comparison);
   view["name"] = vc.name;
@@ -60,23 +60,23 @@ void add_to_total(oracle::CompareResult& total, const oracle::CompareResult& r) 
 
 struct VerifyOptions {
   std::string package, size = "96x96";
-  VariantOptions variant;
+  session::VariantOptions variant;
   std::size_t cameras = 8;
   bool json = false;
   double require = 0.999;
   std::uint64_t max_unexplained = 0;
   std::string camera, ids;
-  EffectOptions effects;
+  session::EffectOptions effects;
 };
 
 void run_verify(const VerifyOptions& o) {
   auto [w, h] = parse_size(o.size);
   if (!o.ids.empty() && o.camera.empty()) throw InputError("--ids", "", "needs --camera: the view the ids file shows");
   render::RenderSettings settings = o.variant.render_settings();
-  RenderSession session(o.package, o.variant.scene_options());
+  session::RenderSession session(o.package, o.variant.scene_options());
   settings.effects = o.effects.settings(session.package);
   // The oracle sees what the effects change: moved instances, jittered copies, clipped atoms.
-  const OracleEffects oracle_view = oracle_effects(session.package, settings.effects);
+  const session::OracleEffects oracle_view = session::oracle_effects(session.package, settings.effects);
   const oracle::ExplicitScene scene(session.package, oracle_view.scene);
   if (settings.effects.ambient_occlusion_on || settings.effects.shadows_on)
     std::fprintf(stderr, "verify: ambient occlusion and shadows change colours only; the ids compared here do not see them\n");
@@ -86,11 +86,11 @@ void run_verify(const VerifyOptions& o) {
   if (o.camera.empty()) {
     cameras = oracle::verify_cameras(session.package, scene, o.cameras);
   } else {
-    cameras.push_back({"--camera", camera_option(session.package, o.camera)});
+    cameras.push_back({"--camera", session::camera_option(session.package, o.camera)});
     if (!o.ids.empty()) given = render::read_ids(o.ids, w, h);
   }
 
-  const ViewJudge judge(session.package, scene, oracle_view.clip);
+  const session::ViewJudge judge(session.package, scene, oracle_view.clip);
   oracle::CompareResult total;
   std::uint64_t total_unexplained = 0;
   nlohmann::json views = nlohmann::json::array();
@@ -100,7 +100,7 @@ void run_verify(const VerifyOptions& o) {
     render::Frame frame;
     if (given.empty()) frame = renderer.render(camera);
     else frame.width = w, frame.height = h, frame.hits = given;
-    const ViewVerdict v = judge.judge(vc.name, camera, frame.hits, cw, ch);
+    const session::ViewVerdict v = judge.judge(vc.name, camera, frame.hits, cw, ch);
     add_to_total(total, v.comparison);
     total_unexplained += v.unexplained;
     views.push_back(view_json(vc, cw, ch, v, frame.seconds));
@@ -153,4 +153,4 @@ void add_verify_command(CLI::App& app) {
   cmd->callback([o] { run_verify(*o); });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

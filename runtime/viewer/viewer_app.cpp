@@ -67,10 +67,10 @@ public:
         window_(options.size.value_or(kDefaultSize).first, options.size.value_or(kDefaultSize).second,
                 "nanoview — " + options.package),
         session_(options.package, options.variant.scene_options(),
-                 view::PresentationOptions{window_.required_instance_extensions(), {VK_KHR_SWAPCHAIN_EXTENSION_NAME},
+                 session::PresentationOptions{window_.required_instance_extensions(), {VK_KHR_SWAPCHAIN_EXTENSION_NAME},
                                            [this](VkInstance instance) { return window_.create_surface(instance); }}),
         bounds_(scene_bounds(session_.package)),
-        state_(CameraController(view::camera_option(session_.package, options.camera), bounds_.radius()), settings) {
+        state_(CameraController(session::camera_option(session_.package, options.camera), bounds_.radius()), settings) {
     settings.effects = options.effects.settings(session_.package);
     state_.settings = settings;
     state_.ao_samples = std::max(options.ao_samples, 1u);
@@ -468,7 +468,7 @@ private:
   ViewerOptions options_;
   std::optional<Script> script_;
   Window window_;
-  view::RenderSession session_;
+  session::RenderSession session_;
   Bounds bounds_;
   ViewerState state_;
   std::unique_ptr<Presenter> presenter_;
