@@ -31,7 +31,7 @@ void print_view(const std::string& name, std::uint32_t w, std::uint32_t h, const
               "bad depth %llu; %llu not explained by radii ±%g or by float placement) gpu %.2f s, oracle %.2f s over %llu atoms\n",
               name.c_str(), w, h, r.agreement(), (unsigned long long)v.reference_hits, (unsigned long long)r.missed,
               (unsigned long long)r.different_atom, (unsigned long long)r.different_ids, (unsigned long long)r.depth_only,
-              (unsigned long long)r.bad_depth, (unsigned long long)v.unexplained, kRadiusEpsilon, gpu_seconds,
+              (unsigned long long)r.bad_depth, (unsigned long long)v.unexplained, session::kRadiusEpsilon, gpu_seconds,
               v.oracle.seconds, (unsigned long long)v.oracle.atoms_last_round);
   for (const auto& m : r.first)
     std::printf("    (%u, %u) %s: oracle %s | gpu %s\n", m.x, m.y, oracle::to_string(m.why),
@@ -108,7 +108,7 @@ void run_verify(const VerifyOptions& o) {
   }
   nlohmann::json out{{"agreement", total.agreement()},
                      {"unexplained", total_unexplained},
-                     {"radius_epsilon", kRadiusEpsilon},
+                     {"radius_epsilon", session::kRadiusEpsilon},
                      {"pixels", total.pixels},
                      {"device", session.device.description()},
                      {"shell", o.variant.shell},
@@ -119,12 +119,12 @@ void run_verify(const VerifyOptions& o) {
   if (o.json) std::printf("%s\n", out.dump(2).c_str());
   else std::printf("agreement %.5f over %llu pixels on %s; %llu differences not explained by radii ±%g or by float placement\n",
                    total.agreement(), (unsigned long long)total.pixels, session.device.description().c_str(),
-                   (unsigned long long)total_unexplained, kRadiusEpsilon);
+                   (unsigned long long)total_unexplained, session::kRadiusEpsilon);
   if (session.validation_errors() != 0)
     throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");
   if (total_unexplained > o.max_unexplained)
     throw std::runtime_error(std::to_string(total_unexplained) + " differing pixels are not explained by a relative radius change of " +
-                             std::to_string(kRadiusEpsilon) + " (more than --max-unexplained " +
+                             std::to_string(session::kRadiusEpsilon) + " (more than --max-unexplained " +
                              std::to_string(o.max_unexplained) + ")");
   if (total.agreement() < o.require)
     throw std::runtime_error("agreement " + std::to_string(total.agreement()) + " is below --require " + std::to_string(o.require));

@@ -168,8 +168,8 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
       words.insert(words.end(), f.counters.begin(), f.counters.end());
     }
     const bench::CounterSummary work = bench::summarize_counters(words);
-    row.queries_per_pixel = work.rows[kQueriesStarted].mean;
-    row.candidates_per_pixel = work.rows[kCandidatesMet].mean;
+    row.queries_per_pixel = work.rows[bench::kQueriesStarted].mean;
+    row.candidates_per_pixel = work.rows[bench::kCandidatesMet].mean;
     // Time: the variant and the default alternately on the same frames, the order flipping per
     // round, so both see the same machine.
     std::vector<double> mine, theirs;
