@@ -46,7 +46,7 @@
 #include "shared/bindings.h"
 #include "runtime/viewer/progressive.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 namespace {
 
 struct Options {
@@ -55,8 +55,8 @@ struct Options {
   unsigned matrix_cameras = 4;
   bool effects = false, matrix = false, explicit_instancing = false, counters = false, compile = false;
   bool warm = false;  // with --compile: the caches as they are (the rows checked, not measured cold)
-  VariantOptions variant;
-  EffectOptions effect_options;
+  session::VariantOptions variant;
+  session::EffectOptions effect_options;
 };
 
 void write_text(const std::string& path, const std::string& text) {
@@ -105,9 +105,9 @@ nlohmann::ordered_json memory_json(const render::MemoryReport& m) {
           {"ulas", m.ulas}, {"flat", m.flat}, {"package_imported_in_place", m.package_imported}, {"build_scratch_peak", m.scratch_peak}};
 }
 
-void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+void run_frames(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
-  const Camera start = camera_option(session.package, o.camera);
+  const Camera start = session::camera_option(session.package, o.camera);
   render::RenderSettings settings = o.variant.render_settings();
   settings.effects = o.effect_options.settings(session.package);
   settings.depth_cue = render::depth_cue_for(start);
@@ -128,7 +128,7 @@ void run_frames(const Options& o, RenderSession& session, nlohmann::ordered_json
   }
   const bench::FrameStats stats = bench::frame_stats(seconds);
   const render::LoadReport& load = session.scene->report();
-  const SessionTimings& t = session.timings;
+  const session::SessionTimings& t = session.timings;
   const std::uint64_t rays = render::Renderer::rays_per_frame(settings, std::uint64_t(w) * h);
   out["size"] = {w, h};
   out["frames"] = cameras.size();
@@ -256,8 +256,8 @@ std::vector<CompileRow> compile_rows(const render::RenderSettings& command, cons
 
 // Each variant built on its own, cold, then dispatched once over one workgroup (8×8 pixels) of the
 // scene's view: a driver that compiles at first use (lavapipe: LLVM) does it there.
-void run_compile(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
-  const Camera camera = camera_option(session.package, o.camera);
+void run_compile(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
+  const Camera camera = session::camera_option(session.package, o.camera);
   render::RenderSettings command = o.variant.render_settings();
   command.effects = o.effect_options.settings(session.package);
   command.depth_cue = render::depth_cue_for(camera);
@@ -298,10 +298,10 @@ void run_compile(const Options& o, RenderSession& session, nlohmann::ordered_jso
               "dispatch of one workgroup, where a driver that compiles lazily generates code (lavapipe: LLVM)\n");
 }
 
-void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+void run_effects(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "256x256" : o.size);
   const unsigned rounds = o.frames ? o.frames : 5;
-  const Camera camera = camera_option(session.package, o.camera);
+  const Camera camera = session::camera_option(session.package, o.camera);
   render::RenderSettings base = o.variant.render_settings();
   base.depth_cue = render::depth_cue_for(camera);
   // Each effect's cost on the virtual traversal: jitter turns the flat level off, which would
@@ -336,7 +336,7 @@ void run_effects(const Options& o, RenderSession& session, nlohmann::ordered_jso
   }
 }
 
-void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+void run_matrix(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "96x96" : o.size);
   const unsigned rounds = o.frames ? o.frames : 3;
   // The verify views: chosen so the oracle can resolve them, the hard cases first.
@@ -346,7 +346,7 @@ void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json
   std::vector<gpu::Camera> cameras;
   for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o.matrix_cameras))
     cameras.push_back(vc.view.to_gpu(w, h));
-  const gpu::Camera far = camera_option(session.package, o.camera).to_gpu(w, h);
+  const gpu::Camera far = session::camera_option(session.package, o.camera).to_gpu(w, h);
   try {
     oracle::OracleRenderOptions probe;
     probe.camera_name = "the matrix's far view";
@@ -357,40 +357,40 @@ void run_matrix(const Options& o, RenderSession& session, nlohmann::ordered_json
   }
   if (o.variant.shell != "adaptive-overlap" || o.variant.levels != "3+rep" || o.variant.prism != "exact")
     throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
-  const std::vector<bench::MatrixVariant> variants = bench::matrix_variants(o.variant.render_settings(), session.package);
-  const std::vector<bench::MatrixRow> rows = bench::run_accuracy_matrix(
+  const std::vector<session::MatrixVariant> variants = session::matrix_variants(o.variant.render_settings(), session.package);
+  const std::vector<session::MatrixRow> rows = session::run_accuracy_matrix(
       session.device, session.package, *session.scene, cameras, variants, rounds,
       [](const std::string& what) { std::fprintf(stderr, "matrix: %s\n", what.c_str()); });
   out["size"] = {w, h};
   out["cameras"] = cameras.size();
   out["rounds"] = rounds;
-  out["matrix"] = bench::to_json(rows);
+  out["matrix"] = session::to_json(rows);
   const std::string heading = "Accuracy/time matrix of " + session.package.name() + " on " + session.device.description() + ", " +
                               std::to_string(cameras.size()) + " verify views at " + std::to_string(w) + "×" + std::to_string(h) +
                               ", " + std::to_string(rounds) + " rounds";
   // The level of detail's own views: the scene camera and the same view from four times as far,
   // against full detail (no oracle reaches a whole cell).
-  const Camera scene_camera = camera_option(session.package, o.camera);
+  const Camera scene_camera = session::camera_option(session.package, o.camera);
   Camera farther = scene_camera;
   farther.eye = scene_camera.at + 4.0 * (scene_camera.eye - scene_camera.at);
-  const std::vector<bench::LodFarRow> far_rows = bench::run_lod_far_views(
+  const std::vector<session::LodFarRow> far_rows = session::run_lod_far_views(
       session.device, *session.scene, {{"scene camera", far}, {"4× as far", farther.to_gpu(w, h)}}, variants, rounds,
       [](const std::string& what) { std::fprintf(stderr, "matrix: %s\n", what.c_str()); });
-  out["lod_far_views"] = bench::to_json(far_rows);
-  const std::string md = bench::matrix_markdown(rows, heading) + bench::lod_far_markdown(far_rows);
+  out["lod_far_views"] = session::to_json(far_rows);
+  const std::string md = session::matrix_markdown(rows, heading) + session::lod_far_markdown(far_rows);
   std::printf("%s", md.c_str());
   if (!o.markdown.empty()) write_text(o.markdown, md);
   if (!o.plot.empty())
-    write_text(o.plot, bench::svg_plot(bench::matrix_plot(rows, "Error against time: " + std::filesystem::path(session.package.name()).filename().string())));
+    write_text(o.plot, bench::svg_plot(session::matrix_plot(rows, "Error against time: " + std::filesystem::path(session.package.name()).filename().string())));
 }
 
-void run_explicit(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+void run_explicit(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "128x128" : o.size);
   const unsigned rounds = o.frames ? o.frames : 3;
   std::vector<gpu::Camera> cameras;
-  for (const Camera& c : frame_cameras(o, camera_option(session.package, o.camera), 4)) cameras.push_back(c.to_gpu(w, h));
-  const instanced::ExplicitVsVirtual r =
-      instanced::compare_explicit_and_virtual(session.device, session.package, *session.scene, cameras, rounds,
+  for (const Camera& c : frame_cameras(o, session::camera_option(session.package, o.camera), 4)) cameras.push_back(c.to_gpu(w, h));
+  const explicit_instancing::ExplicitVsVirtual r =
+      explicit_instancing::compare_explicit_and_virtual(session.device, session.package, *session.scene, cameras, rounds,
                                               o.variant.render_settings());
   out["size"] = {w, h};
   out["explicit_vs_virtual"] = r.to_json();
@@ -401,11 +401,11 @@ void run_explicit(const Options& o, RenderSession& session, nlohmann::ordered_js
               r.agreement, (unsigned long long)r.frames);
 }
 
-void run_counters(const Options& o, RenderSession& session, nlohmann::ordered_json& out) {
+void run_counters(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "128x128" : o.size);
   const unsigned rounds = o.frames ? o.frames : 3;
-  const Camera camera = camera_option(session.package, o.camera);
-  const instanced::WorkCounters r = instanced::count_work(session.device, session.package, *session.scene,
+  const Camera camera = session::camera_option(session.package, o.camera);
+  const explicit_instancing::WorkCounters r = explicit_instancing::count_work(session.device, session.package, *session.scene,
                                                           {camera.to_gpu(w, h)}, rounds, o.variant.render_settings());
   out["size"] = {w, h};
   out["camera"] = camera.to_string();
@@ -457,14 +457,14 @@ void add_bench_command(CLI::App& app) {
     if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) + int(o->counters) + int(o->compile) > 1)
       throw InputError("--effects/--matrix/--explicit/--counters/--compile", "", "choose one mode");
     if ((!o->markdown.empty() || !o->plot.empty()) && !o->matrix) throw InputError("--markdown/--plot", "", "need --matrix");
-    SessionOptions session_options = o->variant.scene_options();
+    session::SessionOptions session_options = o->variant.scene_options();
     if (o->warm && !o->compile) throw InputError("--warm", "", "needs --compile");
     if (o->compile && !o->warm) {
       // Cold: Mesa's disk cache off (read when the device opens) and no pipeline cache of ours.
       setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
       session_options.persistent_pipeline_cache = false;
     }
-    RenderSession session(o->package, session_options);
+    session::RenderSession session(o->package, session_options);
     nlohmann::ordered_json out;
     out["package"] = o->package;
     out["package_bytes"] = session.package.file_size();
@@ -485,4 +485,4 @@ void add_bench_command(CLI::App& app) {
   });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

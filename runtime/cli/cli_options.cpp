@@ -4,9 +4,9 @@
 
 #include "runtime/session/session.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 
-void add_variant_options(CLI::App& command, VariantOptions& o) {
+void add_variant_options(CLI::App& command, session::VariantOptions& o) {
   command.add_option("--shell", o.shell, "adaptive-overlap | adaptive | fixed-overlap | fixed")->capture_default_str();
   command.add_option("--prism", o.prism, "exact (ray-prism with bilinear walls) | aabb (the prism's box only)")
       ->capture_default_str();
@@ -30,7 +30,7 @@ void add_variant_options(CLI::App& command, VariantOptions& o) {
                    "every run compiles its shaders afresh (for measurements)");
 }
 
-void add_effect_options(CLI::App& command, EffectOptions& o) {
+void add_effect_options(CLI::App& command, session::EffectOptions& o) {
   command.add_option("--clip-plane", o.clip_planes, "keep points with n·p + d ≥ 0: \"nx,ny,nz,d\" (world Å; repeatable, ≤ 8)");
   command.add_option("--clip-box", o.clip_box, "keep points inside \"x0,y0,z0,x1,y1,z1\" (world Å)");
   command.add_option("--time", o.time, "seconds: proxy animation and jitter are evaluated at this time")->capture_default_str();
@@ -45,4 +45,4 @@ void add_effect_options(CLI::App& command, EffectOptions& o) {
     }
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

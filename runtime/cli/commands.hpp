@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-namespace nano::view {
+namespace nano::cli {
 void add_validate_command(CLI::App& app);  // runtime/cli/validate_command.cpp
 void add_devices_command(CLI::App& app);   // runtime/cli/devices_command.cpp
 void add_export_command(CLI::App& app);    // runtime/cli/export_command.cpp
@@ -18,4 +18,4 @@ void add_pick_command(CLI::App& app);      // runtime/cli/pick_command.cpp
 void add_view_command(CLI::App& app);      // runtime/cli/view_command.cpp
 // "WxH" → (W, H); InputError naming --size otherwise.
 std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text);
-}  // namespace nano::view
+}  // namespace nano::cli

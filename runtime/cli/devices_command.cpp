@@ -13,7 +13,7 @@
 #include "runtime/vk/error.hpp"
 #include "runtime/vk/instance.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 namespace {
 
 struct Survey {
@@ -95,4 +95,4 @@ void add_devices_command(CLI::App& app) {
   });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

@@ -11,7 +11,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/oracle/atom_export.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 namespace {
 
 oracle::WorldBox parse_box(const std::string& text) {
@@ -49,4 +49,4 @@ void add_export_command(CLI::App& app) {
   });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

@@ -19,15 +19,15 @@
 #include "runtime/render/renderer.hpp"
 #include "runtime/session/session.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 
 void add_pick_command(CLI::App& app) {
   struct Options {
     std::string package, size = "384x384", camera;
     std::uint32_t x = 0, y = 0;
     bool oracle = false;
-    VariantOptions variant;
-    EffectOptions effects;
+    session::VariantOptions variant;
+    session::EffectOptions effects;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("pick", "Name the atom, molecule, compartment and copy one pixel of a view shows (JSON)");
@@ -55,19 +55,19 @@ void add_pick_command(CLI::App& app) {
       // What the effects change for ids, as verify gives them to the oracle: moved instances,
       // jittered copies, clipped atoms (AO and shadows change colours only).
       const render::EffectSettings effects = o->effects.settings(package);
-      const OracleEffects oracle_view = oracle_effects(package, effects);
+      const session::OracleEffects oracle_view = session::oracle_effects(package, effects);
       const oracle::ExplicitScene scene(package, oracle_view.scene);
       oracle::OracleRenderOptions render_options;
       render_options.clip = oracle_view.clip;
-      const gpu::Camera camera = camera_option(package, o->camera).to_gpu(w, h);
+      const gpu::Camera camera = session::camera_option(package, o->camera).to_gpu(w, h);
       // The oracle renders whole images only; --size should be kept small.
       out = render::describe_hit(package, oracle::oracle_render(scene, package, camera, render_options)[pixel]);
     } else {
       render::RenderSettings settings = o->variant.render_settings();
-      RenderSession session(o->package, o->variant.scene_options());
+      session::RenderSession session(o->package, o->variant.scene_options());
       settings.effects = o->effects.settings(session.package);
       render::Renderer renderer(session.device, *session.scene, settings);
-      const render::Frame frame = renderer.render(camera_option(session.package, o->camera).to_gpu(w, h));
+      const render::Frame frame = renderer.render(session::camera_option(session.package, o->camera).to_gpu(w, h));
       out = render::describe_hit(session.package, frame.hits[pixel]);
       if (session.validation_errors() != 0)
         throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");
@@ -78,4 +78,4 @@ void add_pick_command(CLI::App& app) {
   });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

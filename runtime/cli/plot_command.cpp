@@ -13,7 +13,7 @@
 #include "runtime/bench/svg_plot.hpp"
 #include "runtime/cli/commands.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 
 void add_plot_command(CLI::App& app) {
   struct Options {
@@ -55,4 +55,4 @@ void add_plot_command(CLI::App& app) {
   });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

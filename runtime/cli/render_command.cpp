@@ -23,7 +23,7 @@
 #include "runtime/bench/frame_stats.hpp"
 #include "runtime/session/session.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 
 std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text) {
   try {
@@ -56,8 +56,8 @@ std::string frame_output(const std::string& pattern, std::uint64_t frame) {
 struct RenderOptions {
   std::string package, output, size = "384x384", camera, depth, ids, path, frames;
   unsigned repeat = 1;
-  VariantOptions variant;
-  EffectOptions effects;
+  session::VariantOptions variant;
+  session::EffectOptions effects;
 };
 
 std::size_t count_hits(const render::Frame& frame) {
@@ -166,9 +166,9 @@ void add_render_command(CLI::App& app) {
     std::pair<std::uint64_t, std::uint64_t> frames{0, 0};
     if (movie) frames = movie_frames(*o, *path);
     render::RenderSettings settings = o->variant.render_settings();
-    RenderSession session(o->package, o->variant.scene_options());
+    session::RenderSession session(o->package, o->variant.scene_options());
     settings.effects = o->effects.settings(session.package);
-    Camera camera = camera_option(session.package, o->camera);
+    Camera camera = session::camera_option(session.package, o->camera);
     if (path) camera = render::camera_at(*path, settings.effects.time);
     settings.depth_cue = render::depth_cue_for(camera);
     render::Renderer renderer(session.device, *session.scene, settings);
@@ -180,4 +180,4 @@ void add_render_command(CLI::App& app) {
   });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

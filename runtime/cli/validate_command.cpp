@@ -7,7 +7,7 @@
 #include "format/validator.hpp"
 #include "runtime/cli/commands.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 namespace {
 
 using format::SectionEntry;
@@ -98,4 +98,4 @@ void add_validate_command(CLI::App& app) {
   });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

@@ -22,23 +22,23 @@
 #include "runtime/session/session.hpp"
 #include "runtime/session/view_judge.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 namespace {
 
-void print_view(const std::string& name, std::uint32_t w, std::uint32_t h, const ViewVerdict& v, double gpu_seconds) {
+void print_view(const std::string& name, std::uint32_t w, std::uint32_t h, const session::ViewVerdict& v, double gpu_seconds) {
   const oracle::CompareResult& r = v.comparison;
   std::printf("%-24s %4ux%-4u agreement %.5f (%llu pixels hit; missed %llu, other atom %llu, other ids %llu, depth %llu, "
               "bad depth %llu; %llu not explained by radii ±%g or by float placement) gpu %.2f s, oracle %.2f s over %llu atoms\n",
               name.c_str(), w, h, r.agreement(), (unsigned long long)v.reference_hits, (unsigned long long)r.missed,
               (unsigned long long)r.different_atom, (unsigned long long)r.different_ids, (unsigned long long)r.depth_only,
-              (unsigned long long)r.bad_depth, (unsigned long long)v.unexplained, kRadiusEpsilon, gpu_seconds,
+              (unsigned long long)r.bad_depth, (unsigned long long)v.unexplained, session::kRadiusEpsilon, gpu_seconds,
               v.oracle.seconds, (unsigned long long)v.oracle.atoms_last_round);
   for (const auto& m : r.first)
     std::printf("    (%u, %u) %s: oracle %s | gpu %s\n", m.x, m.y, oracle::to_string(m.why),
                 oracle::to_json(m.reference).dump().c_str(), oracle::to_json(m.test).dump().c_str());
 }
 
-nlohmann::json view_json(const oracle::VerifyCamera& vc, std::uint32_t w, std::uint32_t h, const ViewVerdict& v,
+nlohmann::json view_json(const oracle::VerifyCamera& vc, std::uint32_t w, std::uint32_t h, const session::ViewVerdict& v,
                          double gpu_seconds) {
   nlohmann::json view = oracle::to_json(v.comparison);
   view["name"] = vc.name;
@@ -60,23 +60,23 @@ void add_to_total(oracle::CompareResult& total, const oracle::CompareResult& r) 
 
 struct VerifyOptions {
   std::string package, size = "96x96";
-  VariantOptions variant;
+  session::VariantOptions variant;
   std::size_t cameras = 8;
   bool json = false;
   double require = 0.999;
   std::uint64_t max_unexplained = 0;
   std::string camera, ids;
-  EffectOptions effects;
+  session::EffectOptions effects;
 };
 
 void run_verify(const VerifyOptions& o) {
   auto [w, h] = parse_size(o.size);
   if (!o.ids.empty() && o.camera.empty()) throw InputError("--ids", "", "needs --camera: the view the ids file shows");
   render::RenderSettings settings = o.variant.render_settings();
-  RenderSession session(o.package, o.variant.scene_options());
+  session::RenderSession session(o.package, o.variant.scene_options());
   settings.effects = o.effects.settings(session.package);
   // The oracle sees what the effects change: moved instances, jittered copies, clipped atoms.
-  const OracleEffects oracle_view = oracle_effects(session.package, settings.effects);
+  const session::OracleEffects oracle_view = session::oracle_effects(session.package, settings.effects);
   const oracle::ExplicitScene scene(session.package, oracle_view.scene);
   if (settings.effects.flag(EffectId::ambient_occlusion) || settings.effects.flag(EffectId::shadows))
     std::fprintf(stderr, "verify: ambient occlusion and shadows change colours only; the ids compared here do not see them\n");
@@ -86,11 +86,11 @@ void run_verify(const VerifyOptions& o) {
   if (o.camera.empty()) {
     cameras = oracle::verify_cameras(session.package, scene, o.cameras);
   } else {
-    cameras.push_back({"--camera", camera_option(session.package, o.camera)});
+    cameras.push_back({"--camera", session::camera_option(session.package, o.camera)});
     if (!o.ids.empty()) given = render::read_ids(o.ids, w, h);
   }
 
-  const ViewJudge judge(session.package, scene, oracle_view.clip);
+  const session::ViewJudge judge(session.package, scene, oracle_view.clip);
   oracle::CompareResult total;
   std::uint64_t total_unexplained = 0;
   nlohmann::json views = nlohmann::json::array();
@@ -100,7 +100,7 @@ void run_verify(const VerifyOptions& o) {
     render::Frame frame;
     if (given.empty()) frame = renderer.render(camera);
     else frame.width = w, frame.height = h, frame.hits = given;
-    const ViewVerdict v = judge.judge(vc.name, camera, frame.hits, cw, ch);
+    const session::ViewVerdict v = judge.judge(vc.name, camera, frame.hits, cw, ch);
     add_to_total(total, v.comparison);
     total_unexplained += v.unexplained;
     views.push_back(view_json(vc, cw, ch, v, frame.seconds));
@@ -108,7 +108,7 @@ void run_verify(const VerifyOptions& o) {
   }
   nlohmann::json out{{"agreement", total.agreement()},
                      {"unexplained", total_unexplained},
-                     {"radius_epsilon", kRadiusEpsilon},
+                     {"radius_epsilon", session::kRadiusEpsilon},
                      {"pixels", total.pixels},
                      {"device", session.device.description()},
                      {"shell", o.variant.shell},
@@ -119,12 +119,12 @@ void run_verify(const VerifyOptions& o) {
   if (o.json) std::printf("%s\n", out.dump(2).c_str());
   else std::printf("agreement %.5f over %llu pixels on %s; %llu differences not explained by radii ±%g or by float placement\n",
                    total.agreement(), (unsigned long long)total.pixels, session.device.description().c_str(),
-                   (unsigned long long)total_unexplained, kRadiusEpsilon);
+                   (unsigned long long)total_unexplained, session::kRadiusEpsilon);
   if (session.validation_errors() != 0)
     throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(session.validation_errors()) + " error(s)");
   if (total_unexplained > o.max_unexplained)
     throw std::runtime_error(std::to_string(total_unexplained) + " differing pixels are not explained by a relative radius change of " +
-                             std::to_string(kRadiusEpsilon) + " (more than --max-unexplained " +
+                             std::to_string(session::kRadiusEpsilon) + " (more than --max-unexplained " +
                              std::to_string(o.max_unexplained) + ")");
   if (total.agreement() < o.require)
     throw std::runtime_error("agreement " + std::to_string(total.agreement()) + " is below --require " + std::to_string(o.require));
@@ -153,4 +153,4 @@ void add_verify_command(CLI::App& app) {
   cmd->callback([o] { run_verify(*o); });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

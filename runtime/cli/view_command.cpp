@@ -9,7 +9,7 @@
 #include "runtime/viewer/script.hpp"
 #include "runtime/viewer/viewer_app.hpp"
 
-namespace nano::view {
+namespace nano::cli {
 
 void add_view_command(CLI::App& app) {
   struct Options {
@@ -43,4 +43,4 @@ void add_view_command(CLI::App& app) {
   });
 }
 
-}  // namespace nano::view
+}  // namespace nano::cli

@@ -8,7 +8,7 @@
 #include "runtime/explicit_instancing/instanced_renderer.hpp"
 #include "runtime/render/renderer.hpp"
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 
 oracle::CompareResult compare_hits(std::vector<gpu::PixelHit> reference, const std::vector<gpu::PixelHit>& test) {
   for (gpu::PixelHit& h : reference) {
@@ -28,7 +28,7 @@ nlohmann::json ExplicitVsVirtual::to_json() const {
           {"copies", copies},
           {"agreement", agreement},
           {"frames", frames},
-          {"explicit_scene", instanced::to_json(explicit_report)}};
+          {"explicit_scene", explicit_instancing::to_json(explicit_report)}};
 }
 
 ExplicitVsVirtual compare_explicit_and_virtual(const vk::Device& device, const format::Package& package,
@@ -68,4 +68,4 @@ ExplicitVsVirtual compare_explicit_and_virtual(const vk::Device& device, const f
   return out;
 }
 
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

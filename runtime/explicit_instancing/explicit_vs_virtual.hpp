@@ -14,7 +14,7 @@
 #include "runtime/vk/device.hpp"
 #include "shared/camera.h"
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 
 // oracle::compare_images of two frames after blanking `reference`'s placement ids (compartment
 // instance, element, kind, cell, instance): explicit instancing names a copy only by its number, so
@@ -43,4 +43,4 @@ ExplicitVsVirtual compare_explicit_and_virtual(const vk::Device& device, const f
                                                render::GpuScene& virtual_scene, const std::vector<gpu::Camera>& cameras,
                                                unsigned rounds, const render::RenderSettings& virtual_settings = {});
 
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

@@ -15,7 +15,7 @@
 extern const std::uint32_t nano_spv_instanced_comp[];
 extern const std::size_t nano_spv_instanced_comp_words;
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 namespace {
 
 using FrameRecord = gpu::InstancedFrameRecord;
@@ -83,4 +83,4 @@ InstancedRenderer::~InstancedRenderer() = default;
 InstancedFrame InstancedRenderer::render(const gpu::Camera& camera) { return impl_->render(camera); }
 void InstancedRenderer::set_counters(bool on) { impl_->counters = on; }
 
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

@@ -13,7 +13,7 @@
 #include "runtime/vk/device.hpp"
 #include "shared/camera.h"
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 
 struct InstancedFrame {
   std::uint32_t width = 0, height = 0;
@@ -41,4 +41,4 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

@@ -21,7 +21,7 @@
 #include "shared/bindings.h"
 #include "shared/instanced_records.h"
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 namespace {
 
 using glm::dvec3;
@@ -253,4 +253,4 @@ void InstancedScene::write_descriptors(VkDescriptorSet set) const { impl_->write
 const format::Package& InstancedScene::package() const { return impl_->p; }
 const InstancedReport& InstancedScene::report() const { return impl_->report; }
 
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

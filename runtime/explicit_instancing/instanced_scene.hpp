@@ -20,7 +20,7 @@
 #include "format/package.hpp"
 #include "runtime/vk/device.hpp"
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 
 struct InstancedOptions {
   // Refuse scenes with more molecule copies (InputError naming the package): explicit instancing's
@@ -81,4 +81,4 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

@@ -9,7 +9,7 @@
 #include "runtime/explicit_instancing/instanced_renderer.hpp"
 #include "runtime/render/renderer.hpp"
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 
 nlohmann::ordered_json WorkCounters::to_json() const {
   nlohmann::ordered_json out;
@@ -107,4 +107,4 @@ WorkCounters count_work(const vk::Device& device, const format::Package& package
   return out;
 }
 
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

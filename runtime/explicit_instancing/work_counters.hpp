@@ -16,7 +16,7 @@
 #include "runtime/vk/device.hpp"
 #include "shared/camera.h"
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 
 struct WorkCounters {
   bench::CounterSummary virtual_work;                 // over every pixel of every view
@@ -41,4 +41,4 @@ WorkCounters count_work(const vk::Device& device, const format::Package& package
                         const std::vector<gpu::Camera>& cameras, unsigned rounds,
                         const render::RenderSettings& virtual_settings = {});
 
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

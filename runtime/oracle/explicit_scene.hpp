@@ -6,6 +6,9 @@
 // it can: bounding radii come from the atoms themselves, and culling never relies on the triangle
 // shells or the mesh AABB (checking those is part of what verify is for).
 //
+// The copies come from nano::placement::CopyEnumerator (runtime/placement/), which the flat level
+// uses too; this adds the atoms.
+//
 // Precision: each copy's compartment-space placement is the float Affine3 of
 // chart_membrane_molecule / core_soluble_molecule, exactly as a shader computes it; atoms and the
 // compartment instance transform are then applied in double.
@@ -13,61 +16,22 @@
 // Streaming: copies and atoms go to a callback as they are computed, nothing is materialised.
 #include <cstdint>
 #include <functional>
-#include <limits>
 #include <memory>
 #include <vector>
 
-#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
 
 #include "format/package.hpp"
 #include "format/package_view.hpp"
+#include "runtime/placement/copy_enumerator.hpp"
 
 namespace nano::oracle {
 
-// Closed world-space box [min, max] (Å). Infinite bounds are allowed: everything() disables culling.
-struct WorldBox {
-  glm::dvec3 min{0.0};
-  glm::dvec3 max{0.0};
-
-  static WorldBox everything() {
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    return {glm::dvec3(-inf), glm::dvec3(inf)};
-  }
-  bool contains(const glm::dvec3& p) const {
-    return p.x >= min.x && p.y >= min.y && p.z >= min.z && p.x <= max.x && p.y <= max.y && p.z <= max.z;
-  }
-  // True iff the closed ball (centre, radius) meets the box.
-  bool meets_sphere(const glm::dvec3& centre, double radius) const;
-};
-
-enum class CopyKind : std::uint8_t { membrane = 0, core = 1 };
-
-// The identity of a copy as docs/placement.md names it.
-struct CopyId {
-  std::uint32_t compartment_instance = 0;
-  CopyKind kind = CopyKind::membrane;
-  std::uint32_t element = 0;    // membrane: triangle (index into section triangles); core: box linear index
-  glm::ivec3 cell{0};           // membrane: tile cell (a, b, 0); core: box (i, j, k)
-  std::uint32_t instance = 0;   // index of the molecule within its Wang square / cube (0-based)
-};
-
-struct Copy {
-  CopyId id;
-  // Compact unique number, decodable back into the id (ExplicitScene::copy_number_limit):
-  //   base(instance) + (t_local·W·H + slot)·I₂ + instance   for membrane copies,
-  //   base(instance) + T·W·H·I₂ + box·I₃ + instance         for core copies,
-  // with T the mesh's triangle count, slot = (a − origin_a) + W·(b − origin_b) in the triangle's
-  // replication area, I₂ / I₃ the largest instance count of the compartment's squares / cubes, and
-  // base the prefix sum of those ranges over the compartment instances.
-  std::uint64_t number = 0;
-  std::uint32_t molecule_type = 0;
-  glm::dmat3 linear{1.0};  // molecule space -> world, linear part (rotation · instance linear part)
-  glm::dvec3 origin{0.0};  // world position of the molecule's origin
-  double stretch = 1.0;     // largest singular value of the instance's linear part (1 when rigid)
-  double radius = 0.0;      // world bounding radius: max over atoms of |centre| + radius, times stretch
-};
+using placement::Copy;
+using placement::CopyId;
+using placement::CopyKind;
+using placement::WorldBox;
+using ExplicitSceneOptions = placement::CopyOptions;
 
 struct AtomSample {
   const Copy* copy = nullptr;
@@ -77,37 +41,17 @@ struct AtomSample {
   double radius = 0.0;                        // atom radius times Copy::stretch
 };
 
-// What the scene's effects change in the copies (runtime/render/effects.hpp): instances moved by
-// animation, and protein jitter with the shader's own function (shared/effects.h) on the same floats.
-struct ExplicitSceneOptions {
-  std::vector<format::InstanceTransform> instance_transforms;  // empty: the package's; else one per instance
-  bool jitter = false;
-  glm::vec3 jitter_parameters{0.0f};  // time (s), amplitude (radians), frequency (Hz), as the frame holds them
-  // Clipping half-spaces (unit n, d), world Å: copies, core boxes and membrane triangles whose
-  // every atom centre lies outside one of them are skipped (an oracle view behind a clip plane
-  // would otherwise enumerate everything it removes). Atoms are still judged one by one by the caller.
-  std::vector<glm::dvec4> clip;
-};
-
 class ExplicitScene {
 public:
   // `package` must have passed format::validate_semantics and must outlive this object. Throws
-  // nano::InputError for what the validator does not check but placement needs (UVs off the 2^-24
-  // grid or |uv| ≥ 16, a triangle needing more than W×H tiles, tile or cube sizes that differ
-  // from the compartment's, a singular instance transform, copy numbers beyond 64 bits).
+  // what placement::CopyEnumerator throws.
   explicit ExplicitScene(const format::Package& package, const ExplicitSceneOptions& options = {});
   ~ExplicitScene();
   ExplicitScene(ExplicitScene&&) noexcept;
 
-  // The Copy handed to `visit` is only valid during the call (one object is reused).
-  // Every copy whose bounding sphere meets `box`, each once, in a deterministic order (compartment
-  // instance, membrane triangles then core boxes; BOUNDARY boxes yield the molecules their
-  // keep-mask keeps).
+  // Copies as placement::CopyEnumerator hands them (the Copy is only valid during the call).
   void for_each_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit) const;
-  // The same for compartment instance `instance` alone (std::out_of_range beyond the last).
   void for_each_copy_of(std::uint32_t instance, const WorldBox& box, const std::function<void(const Copy&)>& visit) const;
-  // The membrane copies local triangle `triangle` of compartment instance `instance` owns (none
-  // beyond the mesh's last triangle), in for_each_copy's order.
   void for_each_membrane_copy(std::uint32_t instance, std::uint32_t triangle, const std::function<void(const Copy&)>& visit) const;
   // Every atom whose centre lies in `box`; atoms of a copy are consecutive, in the type's order.
   void for_each_atom(const WorldBox& box, const std::function<void(const AtomSample&)>& visit) const;

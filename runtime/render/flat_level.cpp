@@ -13,7 +13,7 @@
 
 #include "common/singular_value.hpp"
 #include "format/package_view.hpp"
-#include "runtime/oracle/explicit_scene.hpp"
+#include "runtime/placement/copy_enumerator.hpp"
 #include "runtime/render/morton.hpp"
 #include "shared/render_scene.h"
 
@@ -26,7 +26,7 @@ using glm::vec3;
 // The instance custom index (24 bits) names the copy record.
 constexpr std::uint64_t kCopyLimit = std::uint64_t{1} << 24;
 
-// One copy as the oracle placed it.
+// One copy as placement::CopyEnumerator placed it.
 struct Placed {
   dvec3 origin;      // world position of the molecule origin
   glm::mat3 linear;  // molecule → world linear part
@@ -55,7 +55,7 @@ struct FlatLevel::Impl : format::PackageView {
   const vk::Device& device;
   const format::Package& p;
   std::function<const vk::AccelerationStructure*(std::uint32_t)> molecule_blas;
-  std::unique_ptr<oracle::ExplicitScene> oracle;  // made on the first non-empty choice
+  std::unique_ptr<placement::CopyEnumerator> enumerator;  // made on the first non-empty choice
   // Per compartment instance: its first bit, a sphere around its mesh (world), and its triangles in
   // the world, made the first time the instance could matter (a scene of a thousand cells keeps
   // only those ever near the eye).
@@ -167,8 +167,8 @@ struct FlatLevel::Impl : format::PackageView {
     std::vector<Placed>& slot = cache[bit];
     const auto [instance, local] = locate(bit);
     if (!triangles_of(instance)[local].owns) return slot;
-    if (!oracle) oracle = std::make_unique<oracle::ExplicitScene>(p);
-    oracle->for_each_membrane_copy(instance, local, [&](const oracle::Copy& c) {
+    if (!enumerator) enumerator = std::make_unique<placement::CopyEnumerator>(p);
+    enumerator->for_each_membrane_copy(instance, local, [&](const placement::Copy& c) {
       if (c.molecule_type >= molecules.size() || !molecule_blas(c.molecule_type)) return;  // nothing to hit
       gpu::FlatCopy r{};
       r.compartment_instance = c.id.compartment_instance;

@@ -10,9 +10,10 @@
 // prisms of those triangles (one bit each, NANO_B_FLAT_TRIANGLES). The choice is remade for every
 // camera; the level is rebuilt when it or the eye changes. Core-grid copies stay virtual.
 //
-// The copies come from the CPU oracle (oracle::ExplicitScene): the shaders' own placement math,
-// with the compartment instance transform applied in double, so the flat level draws the copies
-// the virtual path draws, with the same identities (FlatCopy → PixelHit).
+// The copies come from placement::CopyEnumerator (runtime/placement/, which the CPU oracle uses too;
+// the renderer does not link the oracle): the shaders' own placement math, with the compartment
+// instance transform applied in double, so the flat level draws the copies the virtual path draws,
+// with the same identities (FlatCopy → PixelHit).
 //
 // Precision: TLAS transforms are float, relative to the eye (the camera's float position, as the
 // µLAS): the level is rebuilt whenever the eye moves, like the µLAS.

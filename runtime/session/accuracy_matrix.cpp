@@ -13,7 +13,7 @@
 #include "runtime/oracle/render_compare.hpp"
 #include "runtime/session/session.hpp"
 
-namespace nano::bench {
+namespace nano::session {
 namespace {
 
 constexpr double kClipViewDepth = 400;  // Å from the eye: views' targets lie ~100–300 Å away
@@ -119,7 +119,7 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
     auto it = oracle_images.find({key, k});
     if (it != oracle_images.end()) return it->second;
     say("oracle for " + key + ", view " + std::to_string(k));
-    const view::OracleEffects o = view::oracle_effects(package, e);
+    const OracleEffects o = oracle_effects(package, e);
     const oracle::ExplicitScene scene(package, o.scene);
     oracle::OracleRenderOptions options;
     options.camera_name = "matrix view " + std::to_string(k);
@@ -164,9 +164,9 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
       const render::Frame f = renderer.render(cameras[k]);
       words.insert(words.end(), f.counters.begin(), f.counters.end());
     }
-    const CounterSummary work = summarize_counters(words);
-    row.queries_per_pixel = work.rows[kQueriesStarted].mean;
-    row.candidates_per_pixel = work.rows[kCandidatesMet].mean;
+    const bench::CounterSummary work = bench::summarize_counters(words);
+    row.queries_per_pixel = work.rows[bench::kQueriesStarted].mean;
+    row.candidates_per_pixel = work.rows[bench::kCandidatesMet].mean;
     // Time: the variant and the default alternately on the same frames, the order flipping per
     // round, so both see the same machine.
     std::vector<double> mine, theirs;
@@ -175,8 +175,8 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
         renderer.set_settings(per_view[k]);
         time_alternately(round, renderer, default_renderer, cameras[k], mine, theirs);
       }
-    row.seconds_median = frame_stats(mine).median;
-    row.default_seconds_median = frame_stats(theirs).median;
+    row.seconds_median = bench::frame_stats(mine).median;
+    row.default_seconds_median = bench::frame_stats(theirs).median;
     row.time_ratio = row.seconds_median / row.default_seconds_median;
     rows.push_back(std::move(row));
   }
@@ -214,8 +214,8 @@ std::vector<LodFarRow> run_lod_far_views(const vk::Device& device, render::GpuSc
       std::vector<double> mine, theirs;
       for (unsigned round = 0; round < rounds; ++round)
         time_alternately(round, renderer, full_renderer, view.camera, mine, theirs);
-      row.seconds_median = frame_stats(mine).median;
-      row.full_seconds_median = frame_stats(theirs).median;
+      row.seconds_median = bench::frame_stats(mine).median;
+      row.full_seconds_median = bench::frame_stats(theirs).median;
       row.time_ratio = row.seconds_median / row.full_seconds_median;
       rows.push_back(std::move(row));
     }
@@ -282,12 +282,12 @@ std::string matrix_markdown(const std::vector<MatrixRow>& rows, const std::strin
   return md;
 }
 
-PlotSpec matrix_plot(const std::vector<MatrixRow>& rows, const std::string& title) {
-  PlotSpec spec;
+bench::PlotSpec matrix_plot(const std::vector<MatrixRow>& rows, const std::string& title) {
+  bench::PlotSpec spec;
   spec.title = title;
   spec.x_label = "frame time / default";
   spec.y_label = "% pixels differing from the oracle";
-  std::map<std::string, PlotSeries> by_knob;
+  std::map<std::string, bench::PlotSeries> by_knob;
   std::vector<std::string> order;
   for (const MatrixRow& r : rows) {
     if (!by_knob.count(r.variant.knob)) order.push_back(r.variant.knob), by_knob[r.variant.knob].name = r.variant.knob;
@@ -297,4 +297,4 @@ PlotSpec matrix_plot(const std::vector<MatrixRow>& rows, const std::string& titl
   return spec;
 }
 
-}  // namespace nano::bench
+}  // namespace nano::session

@@ -17,7 +17,7 @@
 #include "runtime/render/renderer.hpp"
 #include "runtime/vk/device.hpp"
 
-namespace nano::bench {
+namespace nano::session {
 
 struct MatrixVariant {
   std::string knob, value;
@@ -75,6 +75,6 @@ std::string lod_far_markdown(const std::vector<LodFarRow>& rows);
 
 nlohmann::json to_json(const std::vector<MatrixRow>& rows);
 std::string matrix_markdown(const std::vector<MatrixRow>& rows, const std::string& heading);
-PlotSpec matrix_plot(const std::vector<MatrixRow>& rows, const std::string& title);
+bench::PlotSpec matrix_plot(const std::vector<MatrixRow>& rows, const std::string& title);
 
-}  // namespace nano::bench
+}  // namespace nano::session

@@ -9,7 +9,7 @@
 #include "runtime/render/animation.hpp"
 #include "runtime/vk/embedded_shaders.hpp"
 
-namespace nano::view {
+namespace nano::session {
 
 SessionOptions VariantOptions::scene_options() const {
   SessionOptions o;
@@ -172,4 +172,4 @@ RenderSession::~RenderSession() { scene.reset(); }  // before the device goes
 
 std::uint64_t RenderSession::validation_errors() const { return instance.validation_errors(); }
 
-}  // namespace nano::view
+}  // namespace nano::session

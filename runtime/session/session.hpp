@@ -20,7 +20,7 @@
 #include "runtime/vk/device.hpp"
 #include "runtime/vk/instance.hpp"
 
-namespace nano::view {
+namespace nano::session {
 
 // What opening a RenderSession takes besides the package: how the scene's acceleration structures
 // are built, and whether the device keeps compiled pipelines across runs (vk::DeviceOptions).
@@ -113,4 +113,4 @@ struct RenderSession {
   std::uint64_t validation_errors() const;
 };
 
-}  // namespace nano::view
+}  // namespace nano::session

@@ -5,7 +5,7 @@
 
 #include "runtime/oracle/atom_radii_judge.hpp"
 
-namespace nano::view {
+namespace nano::session {
 
 ViewJudge::ViewJudge(const format::Package& package, const oracle::ExplicitScene& scene, std::vector<glm::dvec4> clip)
     : package_(package), scene_(scene), clip_(std::move(clip)), bounds_(oracle::scene_world_bounds(package, &scene)) {
@@ -71,4 +71,4 @@ std::uint64_t ViewJudge::unexplained_pixels(const oracle::OracleRenderOptions& o
   return unexplained;
 }
 
-}  // namespace nano::view
+}  // namespace nano::session

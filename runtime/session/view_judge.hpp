@@ -15,7 +15,7 @@
 #include "runtime/oracle/render_compare.hpp"
 #include "shared/camera.h"
 
-namespace nano::view {
+namespace nano::session {
 
 // Relative radius change that separates grazing touches and float ties from real differences:
 // 1e-3·r is 0.0017 Å on a carbon, far above float error in molecule space yet far below any
@@ -60,4 +60,4 @@ private:
   oracle::WorldBox bounds_;
 };
 
-}  // namespace nano::view
+}  // namespace nano::session

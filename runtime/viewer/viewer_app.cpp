@@ -67,10 +67,10 @@ public:
         window_(options.size.value_or(kDefaultSize).first, options.size.value_or(kDefaultSize).second,
                 "nanoview — " + options.package),
         session_(options.package, options.variant.scene_options(),
-                 view::PresentationOptions{window_.required_instance_extensions(), {VK_KHR_SWAPCHAIN_EXTENSION_NAME},
+                 session::PresentationOptions{window_.required_instance_extensions(), {VK_KHR_SWAPCHAIN_EXTENSION_NAME},
                                            [this](VkInstance instance) { return window_.create_surface(instance); }}),
         bounds_(scene_bounds(session_.package)),
-        state_(CameraController(view::camera_option(session_.package, options.camera), bounds_.radius()), settings) {
+        state_(CameraController(session::camera_option(session_.package, options.camera), bounds_.radius()), settings) {
     settings.effects = options.effects.settings(session_.package);
     state_.settings = settings;
     state_.ao_samples = std::max(options.ao_samples, 1u);
@@ -285,6 +285,25 @@ private:
   static double wall_seconds() {
     return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   }
+  // A time of the viewer's clock on wall_seconds()'s scale (the log's).
+  static double wall_seconds(Clock::time_point t) {
+    return wall_seconds() - std::chrono::duration<double>(Clock::now() - t).count();
+  }
+
+  // NANO_VIEW_INPUT_LOG: each key handled, once the window has presented a frame made after it
+  // (its overlay shows the key's effect), with the viewer's own times: the latest the key can have
+  // waited since (Window::KeyTimes::queued_after), its callback, its handling and the present.
+  void log_presented_keys() {
+    const auto now = Clock::now();
+    for (const HandledKey& k : unpresented_keys_)
+      std::fprintf(stderr,
+                   "view: key %d presented %.1f ms after it was queued at the earliest (%llu window frame(s) later): "
+                   "queued after %.3f, received %.3f, handled %.3f, presented %.3f\n",
+                   k.key, 1000 * std::chrono::duration<double>(now - k.times.queued_after).count(),
+                   (unsigned long long)(presented_ - k.presented_before), wall_seconds(k.times.queued_after),
+                   wall_seconds(k.times.received), wall_seconds(k.handled), wall_seconds(now));
+    unpresented_keys_.clear();
+  }
 
   // At rest: the scale of the next refinement step towards the full-resolution frame of the
   // current state (coarse steps first, so something of a new state shows at once).
@@ -303,6 +322,7 @@ private:
     const bool shown = presenter_->present(image, shown_->width, shown_->height,
                                            [this](VkCommandBuffer commands) { overlay_->record(commands); });
     presented_ += shown;
+    if (shown) log_presented_keys();
     return shown;
   }
 
@@ -381,8 +401,13 @@ private:
 
       overlay_->begin_frame();
       const InputResult input = handle_camera_input(window_, state_.camera, dt);
-      if (input_log_)
-        for (int key : input.keys) std::fprintf(stderr, "view: key %d handled at %.3f\n", key, wall_seconds());
+      if (input_log_) {
+        const std::vector<Window::KeyTimes>& times = window_.last_key_times();
+        for (std::size_t k = 0; k < input.keys.size(); ++k) {
+          std::fprintf(stderr, "view: key %d handled at %.3f\n", input.keys[k], wall_seconds());
+          if (k < times.size()) unpresented_keys_.push_back({input.keys[k], times[k], Clock::now(), presented_});
+        }
+      }
       if (input.camera_moved) {
         state_.touch();
         if (state_.path.play_time) {  // the user takes the camera back
@@ -468,7 +493,7 @@ private:
   ViewerOptions options_;
   std::optional<Script> script_;
   Window window_;
-  view::RenderSession session_;
+  session::RenderSession session_;
   Bounds bounds_;
   ViewerState state_;
   std::unique_ptr<Presenter> presenter_;
@@ -488,6 +513,13 @@ private:
   double part_seconds_per_pixel_ = 0;  // the dearest cost per pixel of its parts so far
   Clock::time_point last_present_{};
   const bool input_log_ = std::getenv("NANO_VIEW_INPUT_LOG") != nullptr;  // tests: input and full-frame times
+  struct HandledKey {
+    int key;
+    Window::KeyTimes times;
+    Clock::time_point handled;
+    std::uint64_t presented_before;  // presented_ when it was handled
+  };
+  std::vector<HandledKey> unpresented_keys_;  // handled, not yet presented (only with input_log_)
   std::string logged_status_;
   std::string compiling_;  // the pipeline being built on a worker thread (its variant name), if any
   std::uint64_t rendered_ = 0, presented_ = 0;

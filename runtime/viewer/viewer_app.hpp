@@ -18,8 +18,8 @@ struct ViewerOptions {
   std::string path;                                         // camera path (JSON) to start with; empty: none
   bool stay = false;                                        // after the script, stay interactive
   std::uint32_t ao_samples = 16;
-  view::VariantOptions variant;
-  view::EffectOptions effects;
+  session::VariantOptions variant;
+  session::EffectOptions effects;
 };
 
 // Returns the process exit status; throws InputError / std::runtime_error for failures.

@@ -47,10 +47,16 @@ Window::Window(std::uint32_t width, std::uint32_t height, const std::string& tit
 void Window::on_key(GLFWwindow* window, int key, int, int action, int) {
   if (action != GLFW_PRESS) return;
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
-  if (self && self->pressed_.size() < 256) self->pressed_.push_back(key);
+  if (self && self->pressed_.size() < 256) {
+    self->pressed_.push_back(key);
+    self->pressed_times_.push_back({self->polled_, std::chrono::steady_clock::now()});
+  }
 }
 
-std::vector<int> Window::take_key_presses() { return std::exchange(pressed_, {}); }
+std::vector<int> Window::take_key_presses() {
+  taken_times_ = std::exchange(pressed_times_, {});
+  return std::exchange(pressed_, {});
+}
 bool Window::key_down(int key) const { return glfwGetKey(window_, key) == GLFW_PRESS; }
 
 Window::~Window() {
@@ -84,7 +90,13 @@ std::pair<std::uint32_t, std::uint32_t> Window::framebuffer_size() const {
 
 void Window::resize(std::uint32_t width, std::uint32_t height) { glfwSetWindowSize(window_, int(width), int(height)); }
 void Window::set_title(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
-void Window::poll_events() { glfwPollEvents(); }
-void Window::wait_events(double seconds) { glfwWaitEventsTimeout(seconds); }
+void Window::poll_events() {
+  glfwPollEvents();
+  polled_ = std::chrono::steady_clock::now();
+}
+void Window::wait_events(double seconds) {
+  glfwWaitEventsTimeout(seconds);
+  polled_ = std::chrono::steady_clock::now();
+}
 
 }  // namespace nano::viewer

@@ -1,6 +1,7 @@
 #pragma once
 // The GLFW window: initialisation with a clear message when no display is available, the instance
 // extensions its Vulkan surface needs, and the surface itself. One window per process.
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -38,6 +39,15 @@ public:
   std::vector<int> take_key_presses();
   bool key_down(int key) const;
 
+  // When each key of the last take_key_presses() reached the viewer, by the viewer's clock: its
+  // callback ran at `received`, and it cannot have waited in the event queue since before
+  // `queued_after`, the end of the poll before the one that delivered it (the viewer's own bound on
+  // how long input waited for it; NANO_VIEW_INPUT_LOG reports it).
+  struct KeyTimes {
+    std::chrono::steady_clock::time_point queued_after, received;
+  };
+  const std::vector<KeyTimes>& last_key_times() const { return taken_times_; }
+
   void poll_events();
   // Sleeps until an event arrives or `seconds` pass (a resting viewer uses no CPU).
   void wait_events(double seconds);
@@ -47,6 +57,8 @@ private:
 
   GLFWwindow* window_ = nullptr;
   std::vector<int> pressed_;
+  std::vector<KeyTimes> pressed_times_, taken_times_;   // parallel to pressed_ / the last presses taken
+  std::chrono::steady_clock::time_point polled_{std::chrono::steady_clock::now()};  // the last poll's end
 };
 
 }  // namespace nano::viewer

@@ -25,7 +25,7 @@
 #include "shared/ray_counters.h"
 #include "runtime/vk/instance.hpp"
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 namespace {
 
 // One package, device and virtual scene for every test of the process (opening them dominates).
@@ -265,9 +265,9 @@ TEST_F(Instanced, PackageWithoutBeadsRefusesLevelOfDetail) {
 }
 
 }  // namespace
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing
 
-namespace nano::instanced {
+namespace nano::explicit_instancing {
 namespace {
 
 // The flat level (runtime/render/flat_level.hpp) puts the copies of the triangles in view into one
@@ -372,4 +372,4 @@ TEST_F(Instanced, FlatLevelGrowsWithinItsEnumerationBound) {
 }
 
 }  // namespace
-}  // namespace nano::instanced
+}  // namespace nano::explicit_instancing

@@ -3,7 +3,7 @@
 set(bad ${WORK}/truncated.nup)
 set(png ${WORK}/truncated.png)
 file(REMOVE ${png})
-execute_process(COMMAND /usr/bin/python3 -c
+execute_process(COMMAND ${PYTHON} -c
                 "import sys; b = open(sys.argv[1], 'rb').read(); open(sys.argv[2], 'wb').write(b[:len(b) // 2])"
                 ${PACKAGE} ${bad} RESULT_VARIABLE cut_rc)
 if(NOT cut_rc EQUAL 0)
