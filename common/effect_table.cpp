@@ -26,7 +26,6 @@ constexpr EffectParameter kAmbientOcclusion[] = {
 constexpr EffectParameter kShadows[] = {
     {"light_direction", "", ParameterKind::unit_vector, 0, 0, false, true, {0.3, 0.5, 0.8}, 224, PanelWidget::direction, -1, 1},
 };
-
 constexpr EffectDeclaration kEffects[] = {
     {EffectId::clipping, "clipping", "clipping", "", "keep what lies inside up to 8 planes and a box (an atom whole, by its centre)",
      1u, gpu::NANO_SPEC_CLIPPING, {}, "planes, box", "clips atoms by centre with the same half-spaces", false},
@@ -139,7 +138,7 @@ std::string parameter_problem(const EffectParameter& p, const glm::dvec3& v) {
       return {};
     case ParameterKind::colour:
       for (int i = 0; i < 3; ++i)
-        if (!(v[i] >= 0.0 && v[i] <= 1.0)) return "must be three numbers in [0, 1] (linear red, green, blue)";
+        if (!(v[i] >= 0.0 && v[i] <= 1.0)) return "must be three numbers in [0, 1] (red, green, blue as the image shows them)";
       return {};
   }
   return "unknown parameter kind";

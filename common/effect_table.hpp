@@ -30,7 +30,7 @@ enum class ParameterKind : std::uint8_t {
   number,        // one float
   whole_number,  // one float holding an integer
   unit_vector,   // three floats, normalised when parsed
-  colour,        // linear RGB in [0, 1], stored as one RGBA8 word (alpha 255)
+  colour,        // RGB in [0, 1] as the image shows it (sRGB), stored as one RGBA8 word (alpha 255)
 };
 enum class PanelWidget : std::uint8_t { slider, log_slider, direction, colour_picker };
 

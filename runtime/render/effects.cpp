@@ -97,7 +97,7 @@ std::string parameter_help(const EffectDeclaration& effect, const EffectParamete
               number(p.fallback.z) + ")";
       break;
     case ParameterKind::colour:
-      what += " (linear r,g,b in [0, 1]; default: the scene's, or " + number(p.fallback.x) + "," + number(p.fallback.y) + "," +
+      what += " (r,g,b in [0, 1], as the image shows it; default: the scene's, or " + number(p.fallback.x) + "," + number(p.fallback.y) + "," +
               number(p.fallback.z) + ")";
       break;
   }
