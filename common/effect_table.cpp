@@ -26,6 +26,14 @@ constexpr EffectParameter kAmbientOcclusion[] = {
 constexpr EffectParameter kShadows[] = {
     {"light_direction", "", ParameterKind::unit_vector, 0, 0, false, true, {0.3, 0.5, 0.8}, 224, PanelWidget::direction, -1, 1},
 };
+// Goodsell's and Mol*'s illustrative contours: silhouettes where the molecule copy changes, creases
+// where one copy folds over itself by more than crease_depth.
+constexpr EffectParameter kOutlines[] = {
+    {"width_pixels", "px", ParameterKind::whole_number, 1, 8, false, false, {1, 0, 0}, 244, PanelWidget::slider, 1, 8},
+    {"crease_depth", "Å", ParameterKind::number, 0, kNoLimit, true, false, {5, 0, 0}, 248, PanelWidget::log_slider, 0.5, 100},
+    {"colour", "", ParameterKind::colour, 0, 1, false, false, {0, 0, 0}, 252, PanelWidget::colour_picker, 0, 1},
+};
+
 constexpr EffectDeclaration kEffects[] = {
     {EffectId::clipping, "clipping", "clipping", "", "keep what lies inside up to 8 planes and a box (an atom whole, by its centre)",
      1u, gpu::NANO_SPEC_CLIPPING, {}, "planes, box", "clips atoms by centre with the same half-spaces", false},
@@ -37,6 +45,8 @@ constexpr EffectDeclaration kEffects[] = {
      8u, gpu::NANO_SPEC_AMBIENT_OCCLUSION, kAmbientOcclusion, "", "none: colour only (render.effects.shading checks it)", false},
     {EffectId::shadows, "shadows", "shadows", "shadows", "one ray a pixel towards the light",
      16u, gpu::NANO_SPEC_SHADOWS, kShadows, "", "none: colour only (render.effects.shading checks it)", false},
+    {EffectId::outlines, "outlines", "outlines", "outlines", "dark contours where the molecule or the depth changes between pixels",
+     32u, gpu::NANO_SPEC_OUTLINES, kOutlines, "", "none: colour only (render.effects.outlines checks it against the ids image)", true},
 };
 static_assert(std::size(kEffects) == kEffectCount, "one row per EffectId");
 

@@ -22,8 +22,8 @@
 
 namespace nano {
 
-enum class EffectId : std::uint8_t { clipping, animation, jitter, ambient_occlusion, shadows };
-inline constexpr std::size_t kEffectCount = 5;
+enum class EffectId : std::uint8_t { clipping, animation, jitter, ambient_occlusion, shadows, outlines };
+inline constexpr std::size_t kEffectCount = 6;
 inline constexpr std::size_t kMaxEffectParameters = 3;
 
 enum class ParameterKind : std::uint8_t {

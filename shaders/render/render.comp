@@ -62,6 +62,7 @@ const bool kClipping = false;
 const bool kJitter = false;
 const bool kAmbientOcclusion = false;
 const bool kShadows = false;
+const bool kOutlines = false;
 const bool kCounters = false;
 const bool kLod = false;
 #else
@@ -69,6 +70,7 @@ layout(constant_id = NANO_SPEC_CLIPPING) const bool kClipping = false;         /
 layout(constant_id = NANO_SPEC_JITTER) const bool kJitter = false;           // protein jitter (frame.effect_parameters)
 layout(constant_id = NANO_SPEC_AMBIENT_OCCLUSION) const bool kAmbientOcclusion = false; // frame.effects.y short rays per pixel
 layout(constant_id = NANO_SPEC_SHADOWS) const bool kShadows = false;          // one shadow ray towards frame.light
+layout(constant_id = NANO_SPEC_OUTLINES) const bool kOutlines = false;        // contours, in the image pass
 // Work counters per pixel (shared/ray_counters.h, `nanoview bench --counters`).
 layout(constant_id = NANO_SPEC_COUNTERS) const bool kCounters = false;
 // Level of detail: copies whose atoms span less than frame.lod.y pixels are drawn as their beads.
@@ -709,7 +711,32 @@ vec3 srgb_from_linear(vec3 c) {
 
 // The image pass (frame.pass.x = 1, after every pixel is traced): effects that read the finished
 // hits of a pixel's neighbours (EffectDeclaration::image_pass in common/effect_table.hpp).
+
+// Outlines (Goodsell's illustrations; Mol*'s illustrative style): a pixel takes the outline colour when
+// a pixel within `width` (Chebyshev distance) is nearer and shows another molecule copy — the
+// silhouette, drawn just outside the nearer copy — or the same copy nearer by more than the crease
+// depth, where a copy folds over itself. The background is a copy of its own at infinite depth.
+bool outline_pixel(uvec2 px, uint index) {
+  int width = int(frame.effect_record.outline_width_pixels);
+  float crease = frame.effect_record.outline_crease_depth;
+  PixelHit here = hits[index];
+  bool here_hit = here.atom != kNoHit;
+  float here_depth = here_hit ? here.depth : placement_inf();
+  ivec2 size = ivec2(frame.camera.size.xy);
+  for (int dy = -width; dy <= width; ++dy)
+    for (int dx = -width; dx <= width; ++dx) {
+      ivec2 q = ivec2(px) + ivec2(dx, dy);
+      if (q.x < 0 || q.y < 0 || q.x >= size.x || q.y >= size.y) continue;
+      PixelHit there = hits[uint(q.y) * uint(size.x) + uint(q.x)];
+      if (there.atom == kNoHit || !(there.depth < here_depth)) continue;  // only a nearer neighbour draws here
+      bool same = here_hit && there.copy_number_lo == here.copy_number_lo && there.copy_number_hi == here.copy_number_hi;
+      if (!same || here_depth - there.depth > crease) return true;
+    }
+  return false;
+}
+
 void image_pass(uvec2 px, uint index) {
+  if (kOutlines && outline_pixel(px, index)) colours[index] = frame.effect_record.outline_colour;
 }
 
 void main() {

@@ -199,9 +199,9 @@ struct SceneEffects {
   vec4 ambient_occlusion;  // x: rays per pixel, y: radius (Å); zw: reserved
   vec4 shadow_light;       // xyz: unit direction towards the light (world); w: reserved
   uint clip_plane_count;   // ≤ NANO_MAX_CLIP_PLANES
-  uint reserved0;
-  uint reserved1;
-  uint reserved2;
+  float outline_width_pixels;  // format 2.1 readers saw these three as reserved zeros; outlines off keeps them zero
+  float outline_crease_depth;  // Å
+  uint outline_colour;         // RGBA8 as the image shows it (sRGB), R in the low byte, alpha 255
 };
 
 // Section "keyframes" (format 2.1, optional): keyframed proxy motion, ascending by (instance, time).

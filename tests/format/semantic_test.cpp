@@ -198,7 +198,20 @@ const Case kCases[] = {
      },
      Rule::bad_value, SectionKind::effects, 192},
     {"shadow light zero", [](SampleScene& s) { s.effects[0].shadow_light = vec4(0); }, Rule::bad_value, SectionKind::effects, 224},
-    {"effects reserved", [](SampleScene& s) { s.effects[0].reserved1 = 1; }, Rule::nonzero_reserved, SectionKind::effects, 248},
+    {"outline parameter while outlines are off", [](SampleScene& s) { s.effects[0].outline_crease_depth = 1; }, Rule::nonzero_reserved, SectionKind::effects, 248},
+    {"effects reserved", [](SampleScene& s) { s.effects[0].jitter.w = 1; }, Rule::nonzero_reserved, SectionKind::effects, 204},
+    {"outline width beyond 8 px",
+     [](SampleScene& s) {
+       s.scene[0].effect_flags |= package_flag(EffectId::outlines);
+       s.effects[0].outline_width_pixels = 9, s.effects[0].outline_crease_depth = 5, s.effects[0].outline_colour = 0xff000000u;
+     },
+     Rule::bad_value, SectionKind::effects, 244},
+    {"outline colour not opaque",
+     [](SampleScene& s) {
+       s.scene[0].effect_flags |= package_flag(EffectId::outlines);
+       s.effects[0].outline_width_pixels = 1, s.effects[0].outline_crease_depth = 5, s.effects[0].outline_colour = 0x000000ffu;
+     },
+     Rule::bad_value, SectionKind::effects, 252},
     {"keyframe instance", [](SampleScene& s) { s.keyframes[1].instance = 2; }, Rule::index_out_of_range, SectionKind::keyframes,
      64 + 52},
     {"keyframe times not increasing", [](SampleScene& s) { s.keyframes[1].time = 0; }, Rule::bad_value, SectionKind::keyframes,
