@@ -176,92 +176,110 @@ void check_scene_amounts(const SceneDescription& scene) {
   }
 }
 
+namespace {
+
+// Each protein and the lipid fit a tile, and the lipid's area is no smaller than its own cross-section.
+void check_membrane_sizes(const SceneDescription& scene, const MembraneDescription& m,
+                          std::span<const MoleculeMeasure> molecules) {
+  const std::string key = membrane_key(m);
+  for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+    const MoleculeMeasure& p = molecules[m.proteins[i].molecule.index];
+    if (2.0 * p.lateral_radius > m.tile_size)
+      refuse(scene, key + ".tile_size",
+             short_number(m.tile_size) + " Å: '" + m.proteins[i].molecule.name + "' spans " +
+                 short_number(2.0 * p.lateral_radius) + " Å across the membrane, more than a tile; at least " +
+                 short_number(2.0 * p.lateral_radius) + " Å");
+  }
+  check_membrane_places_some(scene, m);
+  if (!m.lipids) return;
+  const MoleculeMeasure& l = molecules[m.lipids->molecule.index];
+  if (2.0 * l.lateral_radius > m.tile_size)
+    refuse(scene, key + ".tile_size",
+           short_number(m.tile_size) + " Å: lipid '" + m.lipids->molecule.name + "' spans " +
+               short_number(2.0 * l.lateral_radius) + " Å, more than a tile; at least " +
+               short_number(2.0 * l.lateral_radius) + " Å");
+  // Copies standing side by side in one leaflet fill a slab as thick as one of them is long.
+  const double least = l.height > 0.0 ? l.volume / l.height : 0.0;
+  if (m.lipids->area_per_lipid < least)
+    refuse(scene, key + ".lipids.area_per_lipid",
+           short_number(m.lipids->area_per_lipid) + " Å² cannot fit: lipid '" + m.lipids->molecule.name + "' takes " +
+               short_number(l.volume) + " Å³ over its " + short_number(l.height) +
+               " Å length, so at least " + short_number(least) + " Å² per lipid (a real bilayer: 55-75 Å²)");
+}
+
+// Proteins share each leaflet: their footprints add up to at most the whole leaflet.
+void check_leaflet_coverage(const SceneDescription& scene, const MembraneDescription& m,
+                            std::span<const MoleculeMeasure> molecules) {
+  double outer = 0.0, inner = 0.0;  // leaflet fractions covered so far
+  for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+    const MembraneProtein& protein = m.proteins[i];
+    const MoleculeMeasure& p = molecules[protein.molecule.index];
+    const double d = copies_per_a2(m, protein.abundance);
+    const double covered_outer = outer + d * p.outer_footprint, covered_inner = inner + d * p.inner_footprint;
+    const double layer = p.height > 0.0 ? d * p.volume / p.height : 0.0;  // its own slab, alone
+    const bool over_leaflet = covered_outer > kMaxLeafletCoverage || covered_inner > kMaxLeafletCoverage;
+    if (over_leaflet || layer > kMaxLeafletCoverage) {
+      const double footprint = std::max(p.outer_footprint, p.inner_footprint);
+      const double before = p.outer_footprint >= p.inner_footprint ? outer : inner;
+      double most = over_leaflet ? (kMaxLeafletCoverage - before) / footprint : kMaxLeafletCoverage * p.height / p.volume;
+      if (over_leaflet && p.height > 0.0) most = std::min(most, kMaxLeafletCoverage * p.height / p.volume);
+      most = std::max(most, 0.0);
+      std::string rule = short_number(protein.abundance.value) + " cannot fit: '" + protein.molecule.name + "' ";
+      if (over_leaflet)
+        rule += "covers " + short_number(footprint / kA2PerNm2) + " nm² of a leaflet";
+      else
+        rule += "takes " + short_number(p.volume / p.height / kA2PerNm2) + " nm² of its layer on average";
+      rule += ", at most " + surface_amount_text(m, protein.abundance, most);
+      if (over_leaflet && before > 0.0)
+        rule += " beside the proteins listed before it (they cover " + short_number(100.0 * before) + "% of the leaflet)";
+      refuse(scene, amount_key(m, i), rule);
+    }
+    outer = covered_outer;
+    inner = covered_inner;
+  }
+}
+
+// Each soluble fits a cube, and together they fill at most close-packed spheres' share of the volume.
+void check_soluble_amounts(const SceneDescription& scene, const SolubleDescription& s,
+                           std::span<const MoleculeMeasure> molecules) {
+  for (const SolubleMolecule& molecule : s.molecules) {
+    const MoleculeMeasure& mm = molecules[molecule.molecule.index];
+    if (2.0 * mm.bounding_radius > s.cube_size)
+      refuse(scene, soluble_key(s) + ".cube_size",
+             short_number(s.cube_size) + " Å: '" + molecule.molecule.name + "' spans " +
+                 short_number(2.0 * mm.bounding_radius) + " Å, more than a cube; at least " +
+                 short_number(2.0 * mm.bounding_radius) + " Å");
+  }
+  check_soluble_places_some(scene, s);
+  double filled = 0.0;  // volume fraction of the cubes taken so far
+  for (std::size_t i = 0; i < s.molecules.size(); ++i) {
+    const SolubleMolecule& molecule = s.molecules[i];
+    const MoleculeMeasure& mm = molecules[molecule.molecule.index];
+    const double fraction = copies_per_a3(molecule.abundance) * mm.volume;
+    if (filled + fraction > kMaxSolubleVolumeFraction) {
+      const double most = std::max(0.0, (kMaxSolubleVolumeFraction - filled) / mm.volume);
+      std::string rule = short_number(molecule.abundance.value) + " cannot fit: '" + molecule.molecule.name + "' takes " +
+                         short_number(mm.volume) + " Å³ a copy, which would fill " + short_number(100.0 * fraction) +
+                         "% of the volume; at most " + volume_amount_text(molecule.abundance, most);
+      if (filled > 0.0)
+        rule += " beside the molecules listed before it (they fill " + short_number(100.0 * filled) + "%)";
+      rule += " (atoms fill at most " + short_number(100.0 * kMaxSolubleVolumeFraction) + "% of space, as close-packed spheres)";
+      refuse(scene, amount_key(s, i), rule);
+    }
+    filled += fraction;
+  }
+}
+
+}  // namespace
+
 void check_molecule_amounts(const SceneDescription& scene, std::span<const MoleculeMeasure> molecules) {
   if (molecules.size() != scene.molecules.size())
     throw std::invalid_argument("check_molecule_amounts: one measure per molecule is needed");
   for (const MembraneDescription& m : scene.membranes) {
-    const std::string key = membrane_key(m);
-    for (std::size_t i = 0; i < m.proteins.size(); ++i) {
-      const MoleculeMeasure& p = molecules[m.proteins[i].molecule.index];
-      if (2.0 * p.lateral_radius > m.tile_size)
-        refuse(scene, key + ".tile_size",
-               short_number(m.tile_size) + " Å: '" + m.proteins[i].molecule.name + "' spans " +
-                   short_number(2.0 * p.lateral_radius) + " Å across the membrane, more than a tile; at least " +
-                   short_number(2.0 * p.lateral_radius) + " Å");
-    }
-    check_membrane_places_some(scene, m);
-    if (m.lipids) {
-      const MoleculeMeasure& l = molecules[m.lipids->molecule.index];
-      if (2.0 * l.lateral_radius > m.tile_size)
-        refuse(scene, key + ".tile_size",
-               short_number(m.tile_size) + " Å: lipid '" + m.lipids->molecule.name + "' spans " +
-                   short_number(2.0 * l.lateral_radius) + " Å, more than a tile; at least " +
-                   short_number(2.0 * l.lateral_radius) + " Å");
-      // Copies standing side by side in one leaflet fill a slab as thick as one of them is long.
-      const double least = l.height > 0.0 ? l.volume / l.height : 0.0;
-      if (m.lipids->area_per_lipid < least)
-        refuse(scene, key + ".lipids.area_per_lipid",
-               short_number(m.lipids->area_per_lipid) + " Å² cannot fit: lipid '" + m.lipids->molecule.name + "' takes " +
-                   short_number(l.volume) + " Å³ over its " + short_number(l.height) +
-                   " Å length, so at least " + short_number(least) + " Å² per lipid (a real bilayer: 55-75 Å²)");
-    }
-    // Proteins share each leaflet: their footprints add up to at most the whole leaflet.
-    double outer = 0.0, inner = 0.0;  // leaflet fractions covered so far
-    for (std::size_t i = 0; i < m.proteins.size(); ++i) {
-      const MembraneProtein& protein = m.proteins[i];
-      const MoleculeMeasure& p = molecules[protein.molecule.index];
-      const double d = copies_per_a2(m, protein.abundance);
-      const double covered_outer = outer + d * p.outer_footprint, covered_inner = inner + d * p.inner_footprint;
-      const double layer = p.height > 0.0 ? d * p.volume / p.height : 0.0;  // its own slab, alone
-      const bool over_leaflet = covered_outer > kMaxLeafletCoverage || covered_inner > kMaxLeafletCoverage;
-      if (over_leaflet || layer > kMaxLeafletCoverage) {
-        const double footprint = std::max(p.outer_footprint, p.inner_footprint);
-        const double before = p.outer_footprint >= p.inner_footprint ? outer : inner;
-        double most = over_leaflet ? (kMaxLeafletCoverage - before) / footprint : kMaxLeafletCoverage * p.height / p.volume;
-        if (over_leaflet && p.height > 0.0) most = std::min(most, kMaxLeafletCoverage * p.height / p.volume);
-        most = std::max(most, 0.0);
-        std::string rule = short_number(protein.abundance.value) + " cannot fit: '" + protein.molecule.name + "' ";
-        if (over_leaflet)
-          rule += "covers " + short_number(footprint / kA2PerNm2) + " nm² of a leaflet";
-        else
-          rule += "takes " + short_number(p.volume / p.height / kA2PerNm2) + " nm² of its layer on average";
-        rule += ", at most " + surface_amount_text(m, protein.abundance, most);
-        if (over_leaflet && before > 0.0)
-          rule += " beside the proteins listed before it (they cover " + short_number(100.0 * before) + "% of the leaflet)";
-        refuse(scene, amount_key(m, i), rule);
-      }
-      outer = covered_outer;
-      inner = covered_inner;
-    }
+    check_membrane_sizes(scene, m, molecules);
+    check_leaflet_coverage(scene, m, molecules);
   }
-  for (const SolubleDescription& s : scene.solubles) {
-    for (const SolubleMolecule& molecule : s.molecules) {
-      const MoleculeMeasure& mm = molecules[molecule.molecule.index];
-      if (2.0 * mm.bounding_radius > s.cube_size)
-        refuse(scene, soluble_key(s) + ".cube_size",
-               short_number(s.cube_size) + " Å: '" + molecule.molecule.name + "' spans " +
-                   short_number(2.0 * mm.bounding_radius) + " Å, more than a cube; at least " +
-                   short_number(2.0 * mm.bounding_radius) + " Å");
-    }
-    check_soluble_places_some(scene, s);
-    double filled = 0.0;  // volume fraction of the cubes taken so far
-    for (std::size_t i = 0; i < s.molecules.size(); ++i) {
-      const SolubleMolecule& molecule = s.molecules[i];
-      const MoleculeMeasure& mm = molecules[molecule.molecule.index];
-      const double fraction = copies_per_a3(molecule.abundance) * mm.volume;
-      if (filled + fraction > kMaxSolubleVolumeFraction) {
-        const double most = std::max(0.0, (kMaxSolubleVolumeFraction - filled) / mm.volume);
-        std::string rule = short_number(molecule.abundance.value) + " cannot fit: '" + molecule.molecule.name + "' takes " +
-                           short_number(mm.volume) + " Å³ a copy, which would fill " + short_number(100.0 * fraction) +
-                           "% of the volume; at most " + volume_amount_text(molecule.abundance, most);
-        if (filled > 0.0)
-          rule += " beside the molecules listed before it (they fill " + short_number(100.0 * filled) + "%)";
-        rule += " (atoms fill at most " + short_number(100.0 * kMaxSolubleVolumeFraction) + "% of space, as close-packed spheres)";
-        refuse(scene, amount_key(s, i), rule);
-      }
-      filled += fraction;
-    }
-  }
+  for (const SolubleDescription& s : scene.solubles) check_soluble_amounts(scene, s, molecules);
 }
 
 void check_compartment_amounts(const SceneDescription& scene, std::size_t compartment, const CompartmentMeasure& mesh,

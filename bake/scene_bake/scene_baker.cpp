@@ -204,7 +204,7 @@ gpu::SceneSettings scene_settings(const scene::SceneDescription& scene, const st
     if (instances.empty()) lo = hi = glm::dvec3(0.0);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * glm::length(hi - lo), 1.0);
-    camera.fov_degrees = 45.0;
+    camera.fov_degrees = kDefaultFovDegrees;
     camera.at = centre;
     camera.eye = centre + glm::dvec3(0.0, 0.0, 1.1 * radius / std::tan(glm::radians(camera.fov_degrees) / 2));
     camera.up = {0.0, 1.0, 0.0};
