@@ -26,6 +26,7 @@
 
 namespace {
 
+using namespace nano;
 using namespace nano::scene;
 
 // Placing more copies than this is left out: the scene is valid, but each run would take long
