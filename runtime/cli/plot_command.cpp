@@ -1,15 +1,14 @@
 // `nanoview plot SPEC.json -o OUT.svg`: draws a bench plot from a JSON description, so report
 // scripts (scripts/bench_docs.sh) use the same SVG writer as `bench --matrix --plot`.
 // SPEC: {"title", "x_label", "y_label", "log_x", "log_y", "series": [{"name", "lines", "points": [[x, y, "label"?], ...]}]}
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
-
-#include <nlohmann/json.hpp>
+#include <vector>
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/json_cursor.hpp"
+#include "common/json_document.hpp"
 #include "runtime/bench/svg_plot.hpp"
 #include "runtime/cli/commands.hpp"
 
@@ -24,26 +23,27 @@ void add_plot_command(CLI::App& app) {
   cmd->add_option("SPEC", o->spec, "plot description (.json)")->required();
   cmd->add_option("-o,--output", o->output, "SVG file")->required();
   cmd->callback([o] {
-    std::ifstream in(o->spec);
-    if (!in) throw InputError(o->spec, "", "cannot open for reading");
+    // The strict reader of scene files: a bad key or value is named by its key path.
+    const std::string file = o->spec;
+    const Json json = read_json_file(file);
+    const JsonCursor root(json, file);
+    root.only_keys({"title", "x_label", "y_label", "log_x", "log_y", "series"});
     bench::PlotSpec spec;
-    try {
-      const nlohmann::json j = nlohmann::json::parse(in);
-      spec.title = j.value("title", "");
-      spec.x_label = j.value("x_label", "");
-      spec.y_label = j.value("y_label", "");
-      spec.log_x = j.value("log_x", false);
-      spec.log_y = j.value("log_y", false);
-      for (const auto& s : j.at("series")) {
-        bench::PlotSeries series;
-        series.name = s.value("name", "");
-        series.lines = s.value("lines", false);
-        for (const auto& p : s.at("points"))
-          series.points.push_back({p.at(0).get<double>(), p.at(1).get<double>(), p.size() > 2 ? p.at(2).get<std::string>() : ""});
-        spec.series.push_back(std::move(series));
+    const auto text = [&](const char* key) { return root.has(key) ? root.required(key).string() : std::string(); };
+    const auto flag = [&](const char* key) { return root.has(key) && root.required(key).boolean(); };
+    spec.title = text("title"), spec.x_label = text("x_label"), spec.y_label = text("y_label");
+    spec.log_x = flag("log_x"), spec.log_y = flag("log_y");
+    for (const JsonCursor& s : root.required("series").elements()) {
+      s.only_keys({"name", "lines", "points"});
+      bench::PlotSeries series;
+      series.name = s.has("name") ? s.required("name").string() : "";
+      series.lines = s.has("lines") && s.required("lines").boolean();
+      for (const JsonCursor& p : s.required("points").elements()) {
+        const std::vector<JsonCursor> v = p.elements(2);
+        if (v.size() > 3) p.fail("expected [x, y] or [x, y, \"label\"], got " + p.shown());
+        series.points.push_back({v[0].number(), v[1].number(), v.size() > 2 ? v[2].string() : ""});
       }
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(o->spec, "", std::string("not a plot description: ") + e.what());
+      spec.series.push_back(std::move(series));
     }
     std::string svg;
     try {
