@@ -169,11 +169,11 @@ Effects parse_effects(const JsonCursor& c, std::size_t instance_count) {
 Camera parse_camera(const JsonCursor& c) {
   c.only_keys({"position", "look_at", "up", "fov_degrees"});
   Camera cam;  // fov_degrees: kDefaultFovDegrees unless given
-  cam.eye = c.required("position").vec3();
+  cam.position = c.required("position").vec3();
   const JsonCursor look_at = c.required("look_at");
-  cam.at = look_at.vec3();
-  if (cam.at == cam.eye) look_at.fail("look_at must differ from position");
-  const glm::dvec3 towards = cam.at - cam.eye;  // not 0: IEEE subtraction of distinct numbers never is
+  cam.look_at = look_at.vec3();
+  if (cam.look_at == cam.position) look_at.fail("look_at must differ from position");
+  const glm::dvec3 towards = cam.look_at - cam.position;  // not 0: IEEE subtraction of distinct numbers never is
   if (!std::isfinite(towards.x) || !std::isfinite(towards.y) || !std::isfinite(towards.z))
     look_at.fail("look_at is too far from position: look_at - position overflows a double");
   const auto up = c.optional("up");

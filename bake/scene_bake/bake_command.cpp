@@ -13,6 +13,8 @@
 #include "format/validator.hpp"
 
 namespace nano::bake {
+// The command drives the pipeline of bake/scene_bake.
+using namespace nano::scene_bake;
 
 void add_bake_command(CLI::App& app) {
   struct Options {

@@ -14,7 +14,7 @@
 #include "bake/scene_bake/named_totals.hpp"
 #include "bake/shell/membrane_pruning.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 constexpr double kA2PerUm2 = 1e8;
@@ -340,4 +340,4 @@ double peak_resident_bytes() {
   return 1024.0 * static_cast<double>(usage.ru_maxrss);  // Linux: KiB
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -15,7 +15,7 @@
 #include "bake/scene/scene_feasibility.hpp"
 #include "bake/scene_bake/molecule_library.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 struct CompartmentEstimate {
   std::string name;
@@ -81,4 +81,4 @@ double available_memory_bytes();
 double process_cpu_seconds();
 double peak_resident_bytes();
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -4,7 +4,7 @@
 
 #include "common/progress.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 constexpr auto kRedrawEvery = std::chrono::milliseconds(200);
@@ -76,4 +76,4 @@ void ProgressDisplay::redraw_loop() {
   }
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -9,7 +9,7 @@
 #include <string>
 #include <thread>
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 // "nanobake: shells  47%  3.1 s, about 3.5 s left" ("about" once a second has passed and some
 // work is done; before that, elapsed only).
@@ -41,4 +41,4 @@ private:
   std::thread redraw_;
 };
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

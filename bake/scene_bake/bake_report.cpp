@@ -8,7 +8,7 @@
 #include "format/section_kind.hpp"
 #include "format/writer.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 nlohmann::ordered_json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
@@ -240,4 +240,4 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
   return out.str();
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -5,7 +5,7 @@
 #include "bake/scene_bake/scene_baker.hpp"
 #include "format/package.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 // Keys: represented_atoms, compartments [{name, mesh, triangles, represented_atoms, copies {type: n},
 // core_boxes {inside, boundary}, replication_area [W, H]}], instances [{compartment, aabb}],
@@ -18,4 +18,4 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
 // A short human summary of the same.
 std::string bake_summary(const BakedScene& scene, const format::Package& package);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

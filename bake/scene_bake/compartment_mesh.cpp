@@ -15,7 +15,7 @@
 #include "bake/scene_bake/mesh_packing.hpp"
 #include "common/error.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 constexpr int kDefaultSphereTriangles = 1452;
@@ -191,4 +191,4 @@ void put_on_storage_grids(CompartmentMesh& m) {
   m.on_storage_grids = true;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

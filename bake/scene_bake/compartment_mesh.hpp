@@ -14,7 +14,7 @@
 #include "bake/scene/scene_description.hpp"
 #include "bake/scene/scene_feasibility.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 struct CompartmentMesh {
   mesh::ProxyMesh mesh;     // compartment space (scale applied)
@@ -52,4 +52,4 @@ void put_on_storage_grids(CompartmentMesh& mesh);
 // Positions multiplied by `scale` (> 0); UVs and normals unchanged.
 void scale_mesh(mesh::ProxyMesh& mesh, double scale);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -4,7 +4,7 @@
 
 #include "bake/grid/mesh_surface.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 int wrap(int i, int n) { return ((i % n) + n) % n; }
@@ -53,4 +53,4 @@ BakedCore bake_core(const mesh::ProxyMesh& mesh, const BakedWangSet& cubes, cons
   return core;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -11,7 +11,7 @@
 #include "bake/scene_bake/molecule_library.hpp"
 #include "bake/scene_bake/wang_bake.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 struct BakedCore {
   grid::BoxOccupancy occupancy;  // holds the grid
@@ -30,4 +30,4 @@ BakedCore bake_core(const mesh::ProxyMesh& mesh, const BakedWangSet& cubes, cons
                     const std::vector<BakedMolecule>& library, double shell_inner_height, std::uint64_t seed,
                     int threads);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -9,7 +9,7 @@
 #include "bake/shell/shell_offsets.hpp"
 #include "common/error.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 float stored_uv_scale(float tile_size, float tile_uv_size) {
   // The renderer derives s = S / k in float; pick the float k for which that gives exactly the s
@@ -192,4 +192,4 @@ std::vector<gpu::TriangleShell> empty_shells(const mesh::ProxyMesh& mesh) {
   return shells;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -10,7 +10,7 @@
 #include "bake/shell/membrane_pruning.hpp"
 #include "shared/package_records.h"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 // Shape factor of the smooth surface membrane copies stand on (chart_smooth_position; stored as
 // Compartment.scales.w). Flat facets tilt copies against each other by up to half the dihedral angle
@@ -50,4 +50,4 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
 // still has the mesh's front/back intervals and no membrane copy is ever looked for.
 std::vector<gpu::TriangleShell> empty_shells(const mesh::ProxyMesh& mesh);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -12,7 +12,7 @@
 #include "bake/shell/membrane_mapping.hpp"
 #include "format/draco_mesh_sections.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 namespace {
 
@@ -112,4 +112,4 @@ PackedMesh pack_mesh_canonical(const mesh::ProxyMesh& mesh) {
   return out;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

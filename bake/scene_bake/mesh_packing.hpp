@@ -11,7 +11,7 @@
 #include "bake/mesh/proxy_mesh.hpp"
 #include "shared/package_records.h"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 struct PackedMesh {
   std::vector<glm::vec4> positions;  // xyz, w = 0
@@ -37,4 +37,4 @@ float storage_position_step(const mesh::ProxyMesh& mesh);
 // order already: the shells baked per triangle stay parallel). Throws std::logic_error otherwise.
 PackedMesh pack_mesh_canonical(const mesh::ProxyMesh& mesh);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

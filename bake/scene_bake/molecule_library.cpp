@@ -9,7 +9,7 @@
 #include "bake/structure/structure_text.hpp"
 #include "common/error.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 double srgb_to_linear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
@@ -144,4 +144,4 @@ double bilayer_thickness(const BakedLipidPatch& patch, const std::vector<BakedMo
   return hi > lo ? hi - lo : 0.0;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

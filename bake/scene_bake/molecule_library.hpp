@@ -11,7 +11,7 @@
 #include "bake/structure/atom.hpp"
 #include "bake/structure/molecule_properties.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 struct BakedMolecule {
   std::string name;                         // the scene's name for the type
@@ -57,4 +57,4 @@ BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description,
 // mixed species, as laid (z from the mid-plane).
 double bilayer_thickness(const BakedLipidPatch& patch, const std::vector<BakedMolecule>& library);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

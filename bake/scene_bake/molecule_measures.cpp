@@ -11,7 +11,7 @@
 #include "bake/tiles/bilayer_footprint.hpp"
 #include "bake/tiles/rotation_sampling.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 // The finest grid cell (Å) for the union volume, coarsened so a large molecule needs at most
@@ -88,4 +88,4 @@ std::vector<scene::MoleculeMeasure> measure_molecules(const scene::SceneDescript
   return measures;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

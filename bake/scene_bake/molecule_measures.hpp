@@ -8,7 +8,7 @@
 #include "bake/scene/scene_feasibility.hpp"
 #include "bake/scene_bake/molecule_library.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 // One measure per scene.molecules entry (the library's first entries, in the scene's order). A
 // membrane protein's leaflet footprints are taken at the depth of its first entry in a membrane.
@@ -19,4 +19,4 @@ std::vector<scene::MoleculeMeasure> measure_molecules(const scene::SceneDescript
 // molecule over 400 Å across): within 5 % for a single atom, closer for a protein's thousands.
 double union_volume(const std::vector<structure::Atom>& atoms);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

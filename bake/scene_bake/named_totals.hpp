@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 template <class T>
 T& named_entry(std::vector<std::pair<std::string, T>>& list, const std::string& name) {
@@ -15,4 +15,4 @@ T& named_entry(std::vector<std::pair<std::string, T>>& list, const std::string& 
   return list.emplace_back(name, T{}).second;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

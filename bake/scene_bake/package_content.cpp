@@ -10,7 +10,7 @@
 
 #include "bake/structure/coarse_beads.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 template <class Vector>
@@ -229,4 +229,4 @@ std::vector<format::SectionSource> PackageContent::sections() const {
   return s;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

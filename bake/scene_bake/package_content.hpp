@@ -14,7 +14,7 @@
 #include "format/writer.hpp"
 #include "shared/package_records.h"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 struct TileRange {
   std::uint32_t first = 0, count = 0;
@@ -72,4 +72,4 @@ struct PackageContent {
   std::vector<format::SectionSource> sections() const;
 };
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -14,7 +14,7 @@
 #define NANO_VERSION "unknown"
 #endif
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 std::string relative_to_scene(const std::filesystem::path& file, const scene::SceneDescription& scene) {
@@ -56,4 +56,4 @@ std::string provenance_json(const scene::SceneDescription& scene, std::uint64_t 
   return j.dump(2);
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

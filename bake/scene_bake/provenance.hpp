@@ -7,11 +7,11 @@
 
 #include "bake/scene/scene_description.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 // XXH3-64 of a file's bytes as 16 hex digits; throws InputError naming an unreadable file.
 std::string file_hash(const std::filesystem::path& path);
 
 std::string provenance_json(const scene::SceneDescription& scene, std::uint64_t seed);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -22,7 +22,7 @@
 #include "common/parallel_for.hpp"
 #include "common/progress.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 // A membrane of proteins alone still lines its surface about as thick as a lipid bilayer (Å).
@@ -205,8 +205,8 @@ gpu::SceneSettings scene_settings(const scene::SceneDescription& scene, const st
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * glm::length(hi - lo), 1.0);
     camera.fov_degrees = kDefaultFovDegrees;
-    camera.at = centre;
-    camera.eye = centre + glm::dvec3(0.0, 0.0, 1.1 * radius / std::tan(glm::radians(camera.fov_degrees) / 2));
+    camera.look_at = centre;
+    camera.position = centre + glm::dvec3(0.0, 0.0, 1.1 * radius / std::tan(glm::radians(camera.fov_degrees) / 2));
     camera.up = {0.0, 1.0, 0.0};
   }
   store_camera(settings, camera);
@@ -618,4 +618,4 @@ double MembraneSummary::fraction_of_real_bilayer_beside_proteins() const {
   return room > 0.0 ? static_cast<double>(outer_lipids + inner_lipids) / (0.5 * kRealBilayerLipidsPerUm2 * room) : 0.0;
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -16,7 +16,7 @@
 #include "bake/mesh/mesh_repair.hpp"
 #include "bake/mesh/uv_charts.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 // How the package stores its meshes: Draco where smaller than zstd (the meshes baked on Draco's exact
 // grids), Draco always (an error if it cannot), or zstd with the meshes exactly as read.
@@ -104,4 +104,4 @@ struct BakedScene {
 
 BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& options);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

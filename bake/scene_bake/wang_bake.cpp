@@ -8,7 +8,7 @@
 #include "bake/tiles/wang_sets.hpp"
 #include "common/error.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 constexpr double kSquareAngstromPerSquareMicrometre = 1e8;
@@ -189,4 +189,4 @@ tiles::TilingRecipe soluble_recipe(const tiles::WangSet& set, std::array<int, 3>
   return tiles::make_tiling_recipe(set.colouring, block, seed, /*periodic=*/true);
 }
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -11,7 +11,7 @@
 #include "bake/tiles/tiling_recipe.hpp"
 #include "bake/tiles/wang_set.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 
 struct BakedWangSet {
   tiles::WangSet set;
@@ -54,4 +54,4 @@ tiles::TilingRecipe membrane_recipe(const tiles::WangSet& set, double tile_uv_si
 tiles::TilingRecipe soluble_recipe(const tiles::WangSet& set, std::array<int, 3> grid_dims, std::uint64_t seed,
                                    const std::string& soluble_name);
 
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

@@ -11,7 +11,7 @@
 #include "bake/scene_bake/molecule_measures.hpp"
 #include "bake/scene_bake/named_totals.hpp"
 
-namespace nano::bake {
+namespace nano::scene_bake {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -174,4 +174,4 @@ TEST(BakeProgress, LinesSayPercentElapsedAndRemaining) {
 }
 
 }  // namespace
-}  // namespace nano::bake
+}  // namespace nano::scene_bake

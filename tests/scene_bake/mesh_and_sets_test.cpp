@@ -21,7 +21,7 @@ using namespace nano;
 
 TEST(MeshPacking, EveryCornerKeepsItsPositionUvAndNormal) {
   const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(300, 100.0);
-  const bake::PackedMesh packed = bake::pack_mesh(sphere);
+  const scene_bake::PackedMesh packed = scene_bake::pack_mesh(sphere);
   ASSERT_EQ(packed.triangles.size(), sphere.triangles.size());
   std::set<std::array<std::uint32_t, 3>> distinct_corners;
   for (std::size_t t = 0; t < sphere.triangles.size(); ++t) {
@@ -49,14 +49,14 @@ TEST(MeshPacking, EveryCornerKeepsItsPositionUvAndNormal) {
 TEST(MeshPacking, RefusesAMeshWithoutUvs) {
   mesh::ProxyMesh sphere = mesh::make_sphere_mesh(48, 10.0);
   sphere.uv_triangles.clear();
-  EXPECT_THROW(bake::pack_mesh(sphere), std::invalid_argument);
+  EXPECT_THROW(scene_bake::pack_mesh(sphere), std::invalid_argument);
 }
 
 // On Draco's grids a mesh moves by at most half a grid step, keeps its topology and every corner's
 // attributes, and packs in canonical order to exactly what a Draco package decodes to.
 TEST(MeshPacking, StorageGridsMoveLittleAndPackToWhatDracoDecodes) {
   const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(1200, 3000.0);
-  const mesh::ProxyMesh moved = bake::on_storage_grids(sphere);
+  const mesh::ProxyMesh moved = scene_bake::on_storage_grids(sphere);
   ASSERT_EQ(moved.triangles.size(), sphere.triangles.size());
   EXPECT_EQ(moved.positions.size(), sphere.positions.size());  // welded as before: nothing merged
   const float step = format::storage_position_step(3000.0);
@@ -108,7 +108,7 @@ TEST(MeshPacking, StorageGridsMoveLittleAndPackToWhatDracoDecodes) {
   EXPECT_TRUE(report.usable());
 
   // Packed canonically, the arrays are what Draco streams decode to, bit for bit.
-  const bake::PackedMesh packed = bake::pack_mesh_canonical(moved);
+  const scene_bake::PackedMesh packed = scene_bake::pack_mesh_canonical(moved);
   gpu::Mesh record{};
   record.vertex_count = std::uint32_t(packed.positions.size());
   record.triangle_count = std::uint32_t(packed.triangles.size());
@@ -118,13 +118,13 @@ TEST(MeshPacking, StorageGridsMoveLittleAndPackToWhatDracoDecodes) {
   const format::MeshArrays decoded = format::decode_draco_meshes(draco.section, std::span(&record, 1), 1u << 20, 1u << 20);
   EXPECT_TRUE(format::same_bits(decoded, {packed.positions, packed.normals, packed.uvs, packed.triangles}));
   // The exact input packs to arrays Draco cannot store exactly (floats off every coarse grid).
-  const bake::PackedMesh exact = bake::pack_mesh(sphere);
+  const scene_bake::PackedMesh exact = scene_bake::pack_mesh(sphere);
   gpu::Mesh exact_record{};
   exact_record.vertex_count = std::uint32_t(exact.positions.size());
   exact_record.triangle_count = std::uint32_t(exact.triangles.size());
   EXPECT_NE(format::encode_draco_meshes(std::span(&exact_record, 1), exact.positions, exact.normals, exact.uvs, exact.triangles).why, "");
   // A mesh in another order is refused by pack_mesh_canonical (its shells would not be parallel).
-  EXPECT_THROW(bake::pack_mesh_canonical(sphere), std::logic_error);
+  EXPECT_THROW(scene_bake::pack_mesh_canonical(sphere), std::logic_error);
 }
 
 // A generated 300-triangle sphere of radius 400 Å, as a virion's compartment.
@@ -138,13 +138,13 @@ scene::CompartmentDescription sphere_compartment() {
 }
 
 TEST(CompartmentMesh, PutOnStorageGridsSaysWhatItDid) {
-  bake::CompartmentMesh m = bake::load_compartment_mesh(sphere_compartment());
+  scene_bake::CompartmentMesh m = scene_bake::load_compartment_mesh(sphere_compartment());
   EXPECT_FALSE(m.on_storage_grids);
-  bake::put_on_storage_grids(m);
+  scene_bake::put_on_storage_grids(m);
   EXPECT_TRUE(m.on_storage_grids);
   EXPECT_TRUE(m.report.usable());
   EXPECT_NE(m.storage.find("0.03125 Å"), std::string::npos) << m.storage;
-  EXPECT_NO_THROW(bake::pack_mesh_canonical(m.mesh));
+  EXPECT_NO_THROW(scene_bake::pack_mesh_canonical(m.mesh));
 }
 
 TEST(CompartmentMesh, ScalesPositionsOnly) {
@@ -152,7 +152,7 @@ TEST(CompartmentMesh, ScalesPositionsOnly) {
   const auto uvs = sphere.uvs;
   const auto normals = sphere.normals;
   const glm::dvec3 p = sphere.positions[3];
-  bake::scale_mesh(sphere, 2.5);
+  scene_bake::scale_mesh(sphere, 2.5);
   EXPECT_EQ(sphere.positions[3], p * 2.5);
   EXPECT_EQ(sphere.uvs, uvs);
   EXPECT_EQ(sphere.normals, normals);
@@ -161,7 +161,7 @@ TEST(CompartmentMesh, ScalesPositionsOnly) {
 TEST(CompartmentMesh, GeneratedSphereIsScaledAndChecked) {
   scene::CompartmentDescription c = sphere_compartment();
   c.scale = 1.5;
-  const bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  const scene_bake::CompartmentMesh m = scene_bake::load_compartment_mesh(c);
   EXPECT_TRUE(m.report.usable());
   double r = 0.0;
   for (const glm::dvec3& p : m.mesh.positions) r = std::max(r, glm::length(p));
@@ -186,7 +186,7 @@ scene::CompartmentDescription tetrahedron(const fs::path& path) {
 
 std::string load_error(const scene::CompartmentDescription& c) {
   try {
-    bake::load_compartment_mesh(c);
+    scene_bake::load_compartment_mesh(c);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -205,7 +205,7 @@ TEST(CompartmentMesh, UnusableMeshNamesTheFileAndTheProblem) {
 // Without UVs the baker makes them and the result passes check-mesh: a tetrahedron's face normals
 // lie 109.5° apart, so two faces stay within 60° (54.7° each) of their mean and pair up: 2 charts.
 TEST(CompartmentMesh, MeshWithoutUvsGetsCharts) {
-  const bake::CompartmentMesh m = bake::load_compartment_mesh(tetrahedron(tetrahedron_file("nano_scene_bake_charts.obj")));
+  const scene_bake::CompartmentMesh m = scene_bake::load_compartment_mesh(tetrahedron(tetrahedron_file("nano_scene_bake_charts.obj")));
   ASSERT_TRUE(m.charts.has_value());
   EXPECT_EQ(m.charts->charts.size(), 2u);
   EXPECT_TRUE(m.report.usable());
@@ -225,7 +225,7 @@ TEST(CompartmentMesh, RepairClosesTheHoleAndTheBakerChartsTheResult) {
   scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_repair.obj", true));
   c.mesh.repair = true;
   c.mesh.volume = 1000.0;  // measured on the closed, repaired surface
-  const bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  const scene_bake::CompartmentMesh m = scene_bake::load_compartment_mesh(c);
   ASSERT_TRUE(m.report.volume.has_value());
   EXPECT_NEAR(*m.report.volume, 1000.0, 1e-6);
   ASSERT_TRUE(m.repair.has_value());
@@ -240,20 +240,20 @@ TEST(CompartmentMesh, RepairClosesTheHoleAndTheBakerChartsTheResult) {
 TEST(CompartmentMesh, UnitsDiameterAndVolumeScaleTheMesh) {
   scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_units.obj"));
   c.mesh.unit = 10.0;  // nm
-  bake::CompartmentMesh m = bake::load_compartment_mesh(c);
+  scene_bake::CompartmentMesh m = scene_bake::load_compartment_mesh(c);
   EXPECT_DOUBLE_EQ(m.scale, 10.0);
   double largest_x = 0;
   for (const glm::dvec3& p : m.mesh.positions) largest_x = std::max(largest_x, p.x);
   EXPECT_DOUBLE_EQ(largest_x, 10.0);
   c.mesh.diameter = 250.0;
-  m = bake::load_compartment_mesh(c);
+  m = scene_bake::load_compartment_mesh(c);
   EXPECT_NEAR(m.scale, 250.0, 1e-9);
   double largest_z = 0;
   for (const glm::dvec3& p : m.mesh.positions) largest_z = std::max(largest_z, p.z);
   EXPECT_NEAR(largest_z, 250.0, 1e-9);
   c.mesh.diameter.reset();
   c.mesh.volume = 1000.0;  // (1/6)·s³ = 1000 → s = 6000^(1/3)
-  m = bake::load_compartment_mesh(c);
+  m = scene_bake::load_compartment_mesh(c);
   EXPECT_NEAR(m.scale, std::cbrt(6000.0), 1e-9);
   ASSERT_TRUE(m.report.volume.has_value());
   EXPECT_NEAR(*m.report.volume, 1000.0, 1e-6);
@@ -267,11 +267,11 @@ TEST(CompartmentMesh, UnitsDiameterAndVolumeScaleTheMesh) {
 
 TEST(WangBake, PerTileAbundanceConvertsToSurfaceDensity) {
   // 2 copies on a 200 Å tile: 2 / (4e4 Å²) = 2 / 4e-4 µm² = 5000 per µm².
-  EXPECT_DOUBLE_EQ(bake::copies_per_um2_from_per_tile(2.0, 200.0), 5000.0);
+  EXPECT_DOUBLE_EQ(scene_bake::copies_per_um2_from_per_tile(2.0, 200.0), 5000.0);
 }
 
 TEST(WangBake, TileMoleculeKeepsAtomsRadiusAndUpAxis) {
-  bake::BakedMolecule m;
+  scene_bake::BakedMolecule m;
   m.name = "two";
   structure::Atom a, b;
   a.position = {1, 2, 3};
@@ -281,7 +281,7 @@ TEST(WangBake, TileMoleculeKeepsAtomsRadiusAndUpAxis) {
   m.atoms = {a, b};
   m.properties.bounding_radius = 5.25;
   m.up = {0, 1, 0};
-  const tiles::MoleculeType t = bake::to_tile_molecule(m);
+  const tiles::MoleculeType t = scene_bake::to_tile_molecule(m);
   ASSERT_EQ(t.atoms.size(), 2u);
   EXPECT_EQ(t.atoms[0].centre, glm::vec3(1, 2, 3));
   EXPECT_FLOAT_EQ(t.atoms[1].radius, 1.7f);
@@ -291,8 +291,8 @@ TEST(WangBake, TileMoleculeKeepsAtomsRadiusAndUpAxis) {
 }
 
 // A small rigid "protein": eight atoms on a 6 Å cube, bounding radius √27 + 1.7.
-bake::BakedMolecule cube_molecule(const std::string& name) {
-  bake::BakedMolecule m;
+scene_bake::BakedMolecule cube_molecule(const std::string& name) {
+  scene_bake::BakedMolecule m;
   m.name = name;
   for (int i = 0; i < 8; ++i) {
     structure::Atom a;
@@ -305,12 +305,12 @@ bake::BakedMolecule cube_molecule(const std::string& name) {
 }
 
 TEST(WangBake, MembraneTilesReachTheDensityOrSayWhatTheSurfaceCosts) {
-  const std::vector<bake::BakedMolecule> library{cube_molecule("blob")};
+  const std::vector<scene_bake::BakedMolecule> library{cube_molecule("blob")};
   scene::MembraneDescription membrane;
   membrane.name = "m";
   membrane.tile_size = 60;
   membrane.proteins = {{{"blob", 0}, {scene::SurfaceAbundance::Unit::per_tile, 4.0}, 0.0}};
-  const bake::BakedWangSet flat = bake::bake_membrane_tiles(membrane, library, nullptr, {}, 3);
+  const scene_bake::BakedWangSet flat = scene_bake::bake_membrane_tiles(membrane, library, nullptr, {}, 3);
   ASSERT_EQ(flat.set.densities.size(), 1u);
   EXPECT_EQ(flat.set.densities[0].name, "blob");
   EXPECT_NEAR(flat.set.densities[0].achieved, flat.set.densities[0].requested, 0.1 * flat.set.densities[0].requested);
@@ -318,7 +318,7 @@ TEST(WangBake, MembraneTilesReachTheDensityOrSayWhatTheSurfaceCosts) {
   // the scene key of the amount and says what the meshes cost and what helps.
   membrane.proteins[0].abundance.value = 30.0;
   try {
-    bake::bake_membrane_tiles(membrane, library, nullptr, {0.5f, 0.01f, 0.4f, 50.f}, 3);
+    scene_bake::bake_membrane_tiles(membrane, library, nullptr, {0.5f, 0.01f, 0.4f, 50.f}, 3);
     ADD_FAILURE() << "an impossible density was accepted";
   } catch (const InputError& e) {
     const std::string what = e.what();
@@ -333,30 +333,30 @@ TEST(WangBake, MembraneRecipeCoversTheUvSquareAndIsPeriodic) {
   tiles::WangSet set;
   set.dims = 2;
   set.colouring = tiles::make_complete_colouring(2, 2);
-  const tiles::TilingRecipe r = bake::membrane_recipe(set, 0.03, 5);
+  const tiles::TilingRecipe r = scene_bake::membrane_recipe(set, 0.03, 5);
   EXPECT_EQ(r.size[0], 34);  // ceil(1 / 0.03)
   EXPECT_EQ(r.size[1], 34);
   EXPECT_TRUE(r.periodic);
-  const tiles::TilingRecipe capped = bake::membrane_recipe(set, 1e-5, 5);
-  EXPECT_EQ(capped.size[0], bake::kMaxRecipe2DCells);
+  const tiles::TilingRecipe capped = scene_bake::membrane_recipe(set, 1e-5, 5);
+  EXPECT_EQ(capped.size[0], scene_bake::kMaxRecipe2DCells);
 }
 
 TEST(WangBake, SolubleRecipeCoversSmallGridsAndRepeatsOnlyCompleteSets) {
   tiles::WangSet complete;
   complete.dims = 3;
   complete.colouring = tiles::make_complete_colouring(3, 2);
-  const tiles::TilingRecipe small = bake::soluble_recipe(complete, {5, 6, 7}, 1, "s");
+  const tiles::TilingRecipe small = scene_bake::soluble_recipe(complete, {5, 6, 7}, 1, "s");
   EXPECT_EQ(small.size, (std::array<int, 3>{5, 6, 7}));
-  const tiles::TilingRecipe big = bake::soluble_recipe(complete, {300, 300, 100}, 1, "s");
+  const tiles::TilingRecipe big = scene_bake::soluble_recipe(complete, {300, 300, 100}, 1, "s");
   EXPECT_EQ(big.size, (std::array<int, 3>{64, 64, 64}));
   EXPECT_TRUE(big.periodic);
 
   tiles::WangSet variants;
   variants.dims = 3;
   variants.colouring = tiles::make_variant_colouring(3, 2, 2, 9);
-  EXPECT_EQ(bake::soluble_recipe(variants, {10, 10, 10}, 1, "s").size, (std::array<int, 3>{10, 10, 10}));
+  EXPECT_EQ(scene_bake::soluble_recipe(variants, {10, 10, 10}, 1, "s").size, (std::array<int, 3>{10, 10, 10}));
   try {
-    bake::soluble_recipe(variants, {300, 300, 100}, 1, "cytoplasm");
+    scene_bake::soluble_recipe(variants, {300, 300, 100}, 1, "cytoplasm");
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("solubles.cytoplasm.cubes"), std::string::npos) << e.what();
@@ -371,14 +371,14 @@ namespace {
 
 TEST(MembraneBake, StoredUvScaleReproducesTheTileUvSizeInFloat) {
   for (const float s : {1.04e-3f, 0.0123f, 3.3e-5f, 0.25f}) {
-    const float k = nano::bake::stored_uv_scale(200.f, s);
+    const float k = nano::scene_bake::stored_uv_scale(200.f, s);
     EXPECT_EQ(200.f / k, s) << s;  // exactly what a shader computes from the package
   }
 }
 
 TEST(MembraneBake, EmptyShellsAreFlatAndSpanEachTriangleUvBox) {
   const nano::mesh::ProxyMesh sphere = nano::mesh::make_sphere_mesh(48, 10.0);
-  const auto shells = nano::bake::empty_shells(sphere);
+  const auto shells = nano::scene_bake::empty_shells(sphere);
   ASSERT_EQ(shells.size(), sphere.triangles.size());
   for (std::size_t t = 0; t < shells.size(); ++t) {
     EXPECT_EQ(shells[t].h_plus, 0.f);

@@ -13,7 +13,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-using nano::bake::load_baked_molecule;
+using nano::scene_bake::load_baked_molecule;
 
 // Four carbons at the corners of a 4 x 2 rectangle in z = 3, centred on (12, 21, 3), written in
 // PDB's fixed columns; the expected molecule-space values follow by hand.
@@ -65,21 +65,21 @@ TEST(MoleculeLibrary, GivenUpAxisAndColourAreUsed) {
 }
 
 TEST(MoleculeLibrary, SrgbToLinearMatchesTheStandardCurve) {
-  EXPECT_DOUBLE_EQ(nano::bake::srgb_to_linear(0.0), 0.0);
-  EXPECT_DOUBLE_EQ(nano::bake::srgb_to_linear(1.0), 1.0);
-  EXPECT_NEAR(nano::bake::srgb_to_linear(0.04045), 0.04045 / 12.92, 1e-15);
-  EXPECT_NEAR(nano::bake::srgb_to_linear(0.2), 0.0331047666, 1e-9);
+  EXPECT_DOUBLE_EQ(nano::scene_bake::srgb_to_linear(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(nano::scene_bake::srgb_to_linear(1.0), 1.0);
+  EXPECT_NEAR(nano::scene_bake::srgb_to_linear(0.04045), 0.04045 / 12.92, 1e-15);
+  EXPECT_NEAR(nano::scene_bake::srgb_to_linear(0.2), 0.0331047666, 1e-9);
 }
 
 TEST(MoleculeLibrary, DefaultColoursAreDistinctAndInRange) {
   for (std::size_t i = 0; i < 12; ++i) {
-    const glm::dvec3 a = nano::bake::default_molecule_colour(i);
+    const glm::dvec3 a = nano::scene_bake::default_molecule_colour(i);
     for (int c = 0; c < 3; ++c) {
       EXPECT_GE(a[c], 0.0);
       EXPECT_LE(a[c], 1.0);
     }
     for (std::size_t j = 0; j < i; ++j)
-      EXPECT_GT(glm::length(a - nano::bake::default_molecule_colour(j)), 0.05) << i << " vs " << j;
+      EXPECT_GT(glm::length(a - nano::scene_bake::default_molecule_colour(j)), 0.05) << i << " vs " << j;
   }
 }
 
@@ -91,7 +91,7 @@ TEST(MoleculeLibrary, LoadsEveryMoleculeOfTheSceneInOrder) {
     d.file = write_temp("nano_molecule_library_rectangle.pdb", kRectanglePdb);
     scene.molecules.push_back(d);
   }
-  const auto library = nano::bake::load_molecule_library(scene);
+  const auto library = nano::scene_bake::load_molecule_library(scene);
   ASSERT_EQ(library.size(), 2u);
   EXPECT_EQ(library[0].name, "first");
   EXPECT_EQ(library[1].name, "second");
@@ -113,7 +113,7 @@ TEST(MoleculeLibrary, UnreadableStructureNamesTheFile) {
 
 namespace {
 
-using nano::bake::load_lipid_patch;
+using nano::scene_bake::load_lipid_patch;
 
 // Two lipids of two atoms each, one per leaflet: centroids (1, 2, 14) and (5, 6, 6), so the
 // mid-plane (mean z of all four atoms) is at z = 10.
@@ -136,7 +136,7 @@ nano::scene::LipidPatchDescription patch_description(const fs::path& file) {
 }
 
 TEST(LipidPatch, EachResidueIsATypeAtItsCentroidAboveTheMidPlane) {
-  std::vector<nano::bake::BakedMolecule> library(3);  // the scene's own molecules come first
+  std::vector<nano::scene_bake::BakedMolecule> library(3);  // the scene's own molecules come first
   const auto patch = load_lipid_patch(patch_description(write_temp("nano_two_lipids.pdb", kTwoLipidPatch)), 3, library);
   EXPECT_DOUBLE_EQ(patch.period_x, 40.0);
   EXPECT_DOUBLE_EQ(patch.period_y, 50.0);
@@ -157,16 +157,16 @@ TEST(LipidPatch, EachResidueIsATypeAtItsCentroidAboveTheMidPlane) {
 }
 
 TEST(LipidPatch, BilayerThicknessRunsFromTheLowestToTheHighestAtomSurface) {
-  std::vector<nano::bake::BakedMolecule> library;
+  std::vector<nano::scene_bake::BakedMolecule> library;
   const auto patch = load_lipid_patch(patch_description(write_temp("nano_two_lipids_thickness.pdb", kTwoLipidPatch)), 0, library);
   // Atoms at z = 15 and 6 about the mid-plane z = 10: from 6 − r to 15 + r, r the carbon radius.
   const double r = library.at(0).atoms.at(0).radius;
   ASSERT_GT(r, 1.0);
-  EXPECT_DOUBLE_EQ(nano::bake::bilayer_thickness(patch, library), 9.0 + 2.0 * r);
+  EXPECT_DOUBLE_EQ(nano::scene_bake::bilayer_thickness(patch, library), 9.0 + 2.0 * r);
 }
 
 TEST(LipidPatch, BundledPopcBilayerHas128LipidsInTwoLeaflets) {
-  std::vector<nano::bake::BakedMolecule> library;
+  std::vector<nano::scene_bake::BakedMolecule> library;
   const auto patch = load_lipid_patch(
       patch_description(fs::path(NANO_SOURCE_DIR) / "data" / "structures" / "popc_bilayer.pdb.gz"), 0, library);
   // OpenMM's POPC.pdb (data/structures/SOURCES.md): 128 POPC, 64 per leaflet, 52 heavy atoms each.
@@ -183,7 +183,7 @@ TEST(LipidPatch, BundledPopcBilayerHas128LipidsInTwoLeaflets) {
 }
 
 TEST(LipidPatch, BoxAndFormatErrorsNameTheFile) {
-  std::vector<nano::bake::BakedMolecule> library;
+  std::vector<nano::scene_bake::BakedMolecule> library;
   std::string text = kTwoLipidPatch;
   const auto expect_error = [&](const std::string& file_text, const std::string& name, const std::string& what) {
     const fs::path file = write_temp(name, file_text);

@@ -16,8 +16,8 @@ namespace {
 
 using namespace nano;
 
-bake::BakedMolecule two_atom_molecule() {
-  bake::BakedMolecule m;
+scene_bake::BakedMolecule two_atom_molecule() {
+  scene_bake::BakedMolecule m;
   m.name = "pair";
   m.source = "pair.pdb";
   structure::Atom a, b;
@@ -41,8 +41,8 @@ bake::BakedMolecule two_atom_molecule() {
   return m;
 }
 
-bake::BakedWangSet one_square_set() {
-  bake::BakedWangSet s;
+scene_bake::BakedWangSet one_square_set() {
+  scene_bake::BakedWangSet s;
   s.set.dims = 2;
   s.set.edge = 100.f;
   s.set.colouring = tiles::make_complete_colouring(2, 1);
@@ -56,10 +56,10 @@ bake::BakedWangSet one_square_set() {
 }
 
 TEST(PackageContent, MoleculesTilesAndMeshPassTheValidatorWithTheirValues) {
-  const std::vector<bake::BakedMolecule> library{two_atom_molecule()};
-  bake::PackageContent content;
+  const std::vector<scene_bake::BakedMolecule> library{two_atom_molecule()};
+  scene_bake::PackageContent content;
   EXPECT_EQ(content.add_molecule(library[0]), 0u);
-  const bake::TileRange range = content.add_wang_set(one_square_set(), library);
+  const scene_bake::TileRange range = content.add_wang_set(one_square_set(), library);
   EXPECT_EQ(range.first, 0u);
   EXPECT_EQ(range.count, 1u);
   tiles::TilingRecipe recipe;
@@ -69,7 +69,7 @@ TEST(PackageContent, MoleculesTilesAndMeshPassTheValidatorWithTheirValues) {
   const std::uint32_t recipe_index = content.add_recipe(recipe, range);
 
   const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(48, 50.0);
-  const bake::PackedMesh packed = bake::pack_mesh(sphere);
+  const scene_bake::PackedMesh packed = scene_bake::pack_mesh(sphere);
   std::vector<gpu::TriangleShell> shells(packed.triangles.size());
   for (std::size_t t = 0; t < shells.size(); ++t) {
     const auto& tri = packed.triangles[t];
@@ -93,7 +93,7 @@ TEST(PackageContent, MoleculesTilesAndMeshPassTheValidatorWithTheirValues) {
   instance.transform[1] = {0, 1, 0, 0};
   instance.transform[2] = {0, 0, 1, 0};
   content.compartment_instances.push_back(instance);
-  content.scene.camera_eye = {0, 0, 500, 0.8f};
+  content.scene.camera_position = {0, 0, 500, 0.8f};
   content.scene.camera_up = {0, 1, 0, 0};
   content.provenance = "{}";
 
@@ -127,10 +127,10 @@ TEST(PackageContent, MoleculesTilesAndMeshPassTheValidatorWithTheirValues) {
 // inside the type's own range, hold every atom sphere (the baker's double beads widened for the
 // float centre) and pass the validator.
 TEST(PackageContent, BeadsArePerTypeRangesOverAbsoluteAtoms) {
-  bake::BakedMolecule second = two_atom_molecule();
+  scene_bake::BakedMolecule second = two_atom_molecule();
   second.atoms[1].residue_number = 8;  // two residues: two beads
-  const std::vector<bake::BakedMolecule> library{two_atom_molecule(), second};
-  bake::PackageContent content;
+  const std::vector<scene_bake::BakedMolecule> library{two_atom_molecule(), second};
+  scene_bake::PackageContent content;
   content.add_molecule(library[0]);
   content.add_molecule(library[1]);
   ASSERT_EQ(content.bead_ranges.size(), 2u);
@@ -147,7 +147,7 @@ TEST(PackageContent, BeadsArePerTypeRangesOverAbsoluteAtoms) {
   EXPECT_EQ(content.beads[1].atom, 2u);
   EXPECT_EQ(content.beads[2].atom, 3u);
   EXPECT_EQ(content.beads[2].centre_radius, glm::vec4(1, 0, 0, 1.501f));
-  content.scene.camera_eye = {0, 0, 500, 0.8f};
+  content.scene.camera_position = {0, 0, 500, 0.8f};
   content.scene.camera_up = {0, 1, 0, 0};
   const auto bytes = format::build_package(content.sections());
   const format::Package package = format::Package::from_bytes(bytes);
@@ -160,9 +160,9 @@ TEST(PackageContent, BeadsArePerTypeRangesOverAbsoluteAtoms) {
 // sections written (required: a 2.1 reader must refuse them) only when a copy is dropped at all,
 // and out-of-order keys refused.
 TEST(PackageContent, DroppedCopiesArePerTriangleRangesWrittenOnlyWhenAny) {
-  const bake::PackedMesh packed = bake::pack_mesh(mesh::make_sphere_mesh(48, 50.0));
+  const scene_bake::PackedMesh packed = scene_bake::pack_mesh(mesh::make_sphere_mesh(48, 50.0));
   const std::vector<gpu::TriangleShell> shells(packed.triangles.size());
-  bake::PackageContent none;
+  scene_bake::PackageContent none;
   none.add_mesh(packed, shells);
   EXPECT_EQ(none.triangle_drops.size(), packed.triangles.size());
   EXPECT_TRUE(none.dropped_copies.empty());
@@ -172,7 +172,7 @@ TEST(PackageContent, DroppedCopiesArePerTriangleRangesWrittenOnlyWhenAny) {
   std::vector<std::vector<std::uint32_t>> dropped(packed.triangles.size());
   dropped[1] = {3, (2u << 16) | 5u};
   dropped[7] = {1};
-  bake::PackageContent content;
+  scene_bake::PackageContent content;
   content.add_mesh(packed, shells);  // a first mesh without drops shifts nothing
   content.add_mesh(packed, shells, dropped);
   const std::size_t second = packed.triangles.size();
@@ -198,12 +198,12 @@ TEST(PackageContent, DroppedCopiesArePerTriangleRangesWrittenOnlyWhenAny) {
 }
 
 TEST(PackageContent, RecipesStoreAbsoluteTileIndices) {
-  bake::PackageContent content;
+  scene_bake::PackageContent content;
   tiles::TilingRecipe recipe;
   recipe.dims = 3;
   recipe.size = {1, 1, 2};
   recipe.cells = {0, 1};
-  content.add_recipe(recipe, bake::TileRange{5, 2});
+  content.add_recipe(recipe, scene_bake::TileRange{5, 2});
   EXPECT_EQ(content.recipe_indices, (std::vector<std::uint32_t>{5, 6}));
   EXPECT_EQ(content.recipes[0].dims.w, gpu::NANO_RECIPE_3D);
 }
@@ -213,7 +213,7 @@ TEST(PackageContent, KeepMasksArePaddedToTheLargestCube) {
   masks.boundary_boxes = {3, 9};
   masks.word_offsets = {0, 1, 2};
   masks.words = {0x5u, 0x1u};
-  bake::PackageContent content;
+  scene_bake::PackageContent content;
   const auto [first, count] = content.add_keep_masks(masks, 40);  // 40 molecules: 2 words per box
   EXPECT_EQ(first, 0u);
   EXPECT_EQ(count, 2u);
@@ -230,10 +230,10 @@ TEST(Provenance, HashesFilesAndNamesThemRelativeToTheScene) {
   std::ofstream(dir / "scene.json") << "{}";
   std::ofstream(dir / "structures" / "a.pdb") << "ATOM";
   std::ofstream(dir / "structures" / "b.pdb") << "ATOX";
-  EXPECT_EQ(bake::file_hash(dir / "structures" / "a.pdb"), bake::file_hash(dir / "structures" / "a.pdb"));
-  EXPECT_NE(bake::file_hash(dir / "structures" / "a.pdb"), bake::file_hash(dir / "structures" / "b.pdb"));
-  EXPECT_EQ(bake::file_hash(dir / "structures" / "a.pdb").size(), 16u);
-  EXPECT_THROW(bake::file_hash(dir / "missing.pdb"), nano::InputError);
+  EXPECT_EQ(scene_bake::file_hash(dir / "structures" / "a.pdb"), scene_bake::file_hash(dir / "structures" / "a.pdb"));
+  EXPECT_NE(scene_bake::file_hash(dir / "structures" / "a.pdb"), scene_bake::file_hash(dir / "structures" / "b.pdb"));
+  EXPECT_EQ(scene_bake::file_hash(dir / "structures" / "a.pdb").size(), 16u);
+  EXPECT_THROW(scene_bake::file_hash(dir / "missing.pdb"), nano::InputError);
 
   scene::SceneDescription s;
   s.source = dir / "scene.json";
@@ -241,7 +241,7 @@ TEST(Provenance, HashesFilesAndNamesThemRelativeToTheScene) {
   m.name = "a";
   m.file = dir / "structures" / "a.pdb";
   s.molecules.push_back(m);
-  const std::string json = bake::provenance_json(s, 42);
+  const std::string json = scene_bake::provenance_json(s, 42);
   EXPECT_NE(json.find("\"structures/a.pdb\""), std::string::npos) << json;
   EXPECT_EQ(json.find(dir.string()), std::string::npos) << "no absolute paths: " << json;
   EXPECT_NE(json.find("\"seed\": 42"), std::string::npos) << json;
