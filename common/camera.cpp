@@ -9,7 +9,7 @@
 namespace nano {
 
 void Camera::check() const {
-  const glm::dvec3 f = at - eye;
+  const glm::dvec3 f = look_at - position;
   if (!(glm::length(f) > 0)) throw std::invalid_argument("camera: position and look_at are the same point");
   if (!(glm::length(glm::cross(f / glm::length(f), up)) > 1e-9 * glm::length(up)))
     throw std::invalid_argument("camera: up is zero or parallel to the viewing direction");
@@ -19,7 +19,7 @@ void Camera::check() const {
 gpu::Camera Camera::to_gpu(std::uint32_t width, std::uint32_t height) const {
   check();
   if (width == 0 || height == 0) throw std::invalid_argument("camera: image size must be positive");
-  return gpu::camera_look_at(glm::vec3(eye), glm::vec3(at), glm::vec3(up), float(fov_degrees), width, height);
+  return gpu::camera_look_at(glm::vec3(position), glm::vec3(look_at), glm::vec3(up), float(fov_degrees), width, height);
 }
 
 std::string Camera::to_string() const {
@@ -30,21 +30,21 @@ std::string Camera::to_string() const {
     return std::string(buffer, end);
   };
   const auto triple = [&](const glm::dvec3& v) { return number(v.x) + "," + number(v.y) + "," + number(v.z); };
-  return "position=" + triple(eye) + ";look_at=" + triple(at) + ";up=" + triple(up) + ";fov_degrees=" + number(fov_degrees);
+  return "position=" + triple(position) + ";look_at=" + triple(look_at) + ";up=" + triple(up) + ";fov_degrees=" + number(fov_degrees);
 }
 
 Camera camera_from_scene(const gpu::SceneSettings& scene) {
   Camera c;
-  c.eye = glm::dvec3(glm::vec3(scene.camera_eye));
-  c.at = glm::dvec3(glm::vec3(scene.camera_target));
+  c.position = glm::dvec3(glm::vec3(scene.camera_position));
+  c.look_at = glm::dvec3(glm::vec3(scene.camera_look_at));
   c.up = glm::dvec3(glm::vec3(scene.camera_up));
-  c.fov_degrees = glm::degrees(double(scene.camera_eye.w));
+  c.fov_degrees = glm::degrees(double(scene.camera_position.w));
   return c;
 }
 
 void store_camera(gpu::SceneSettings& scene, const Camera& camera) {
-  scene.camera_eye = glm::vec4(glm::vec3(camera.eye), static_cast<float>(glm::radians(camera.fov_degrees)));
-  scene.camera_target = glm::vec4(glm::vec3(camera.at), 0.f);
+  scene.camera_position = glm::vec4(glm::vec3(camera.position), static_cast<float>(glm::radians(camera.fov_degrees)));
+  scene.camera_look_at = glm::vec4(glm::vec3(camera.look_at), 0.f);
   scene.camera_up = glm::vec4(glm::vec3(camera.up), 0.f);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// The one camera of Nanouniverse, from the scene file to the shader: eye, target, up hint and
+// The one camera of Nanouniverse, from the scene file to the shader: position, look_at, up hint and
 // vertical field of view in degrees. The baker reads it from scene.json and stores it in the
 // package's scene record, render/verify/bench/the viewer take it from there or from --camera, and
 // to_gpu makes the shader's record (shaders/shared/camera.h). The scene record keeps the field of
@@ -20,12 +20,13 @@ namespace nano {
 inline constexpr double kDefaultFovDegrees = 45;
 
 struct Camera {
-  glm::dvec3 eye{0.0, 0.0, 1000.0};
-  glm::dvec3 at{0.0};
+  glm::dvec3 position{0.0, 0.0, 1000.0};
+  glm::dvec3 look_at{0.0};
   glm::dvec3 up{0.0, 1.0, 0.0};
   double fov_degrees = kDefaultFovDegrees;  // vertical
 
-  // Throws std::invalid_argument unless eye ≠ at, up is not parallel to at − eye and 0 < fov < 180.
+  // Throws std::invalid_argument unless position ≠ look_at, up is not parallel to look_at − position
+  // and 0 < fov < 180.
   void check() const;
   // The shader's camera for an image of width × height pixels (checks first).
   gpu::Camera to_gpu(std::uint32_t width, std::uint32_t height) const;

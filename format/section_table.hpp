@@ -79,8 +79,8 @@
     "per core-grid box, x fastest: 0 outside (no molecule), 1 inside (every molecule of its cube), 2 boundary " \
     "(the molecules its keep-mask keeps)")                                                                      \
   X(scene, 18, gpu::SceneSettings, optional, 0, zstd, check_scene, (),                                           \
-    "exactly one record: camera eye (w = vertical FOV in (0, π)), target, up, effect flags (clipping, "         \
-    "animation, jitter, AO, shadows; unknown bits ignored)")                                                    \
+    "exactly one record: camera position (w = vertical FOV in (0, π)), look_at, up, effect flags (one bit "   \
+    "per effect of common/effect_table.hpp; unknown bits ignored)")                                            \
   X(compartment_instances, 19, gpu::CompartmentInstance, optional, 0, zstd, check_compartment_instances,         \
     (compartments), "3×4 row-major transform (3 vec4 rows), compartment < #compartments")                       \
   X(provenance, 20, char, optional, 0, zstd, check_provenance, (),                                               \
@@ -95,10 +95,10 @@
     "an effect that is off zero. clip_planes[8] (unit n, d: points with n·p + d ≥ 0 stay), the first "          \
     "clip_plane_count ≤ 8 used, the rest zero; clip_box_min.xyz / clip_box_max.xyz with clip_box_min.w = 1 "    \
     "(box on, min < max) or the box all zero; steady proxy motion spin (xyz unit axis, w °/s about the world "   \
-    "axis through each instance's origin) and velocity (Å/s), only without keyframes; jitter (x amplitude ° in " \
-    "[0, 180], y frequency Hz > 0); ambient_occlusion (x rays, a whole number in [1, 1024]; y radius Å > 0); "  \
-    "shadow_light (unit direction towards the light); 3 reserved u32. Absent: every effect off whatever the "   \
-    "flags say (2.0 packages)")                                                                                 \
+    "axis through each instance's origin) and velocity (Å/s), only without keyframes; the parameters of the "  \
+    "other effects at the slots common/effect_table.hpp gives them (docs/effects.md#parameters), in range "      \
+    "while their effect is on; every other word zero. Absent: every effect off whatever the flags say (2.0 "    \
+    "packages)")                                                                                                \
   X(keyframes, 24, gpu::InstanceKeyframe, optional, 1, zstd, check_keyframes, (compartment_instances),           \
     "keyframed proxy motion: 3×4 row-major transform (invertible) at time (f32 ≥ 0, offset 48) of instance "    \
     "(u32 < #compartment_instances, offset 52), ascending by (instance, time) with strictly increasing times "   \

@@ -519,10 +519,10 @@ private:
                          "section scene must hold exactly one record, not " + str(scene.size()));
     const gpu::SceneSettings& s = scene[0];
     const Cursor c = cursor<SectionKind::scene>(0);
-    finite(c, 0, s.camera_eye, "camera position");
-    finite(c, 16, s.camera_target, "camera target");
+    finite(c, 0, s.camera_position, "camera position");
+    finite(c, 16, s.camera_look_at, "camera look_at");
     finite(c, 32, s.camera_up, "camera up");
-    if (!(s.camera_eye.w > 0 && s.camera_eye.w < 3.14159265f)) fail(c, 12, Rule::bad_value, "field of view outside (0, pi)");
+    if (!(s.camera_position.w > 0 && s.camera_position.w < 3.14159265f)) fail(c, 12, Rule::bad_value, "field of view outside (0, pi)");
     zero(c, 52, s.reserved0);
     zero(c, 56, s.reserved1);
     zero(c, 60, s.reserved2);

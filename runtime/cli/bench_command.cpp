@@ -75,11 +75,11 @@ std::vector<Camera> frame_cameras(const Options& o, const Camera& start, unsigne
   const glm::dvec3 axis = glm::normalize(start.up);
   for (unsigned k = 0; k < count; ++k) {
     const double angle = 2 * M_PI * double(k) / double(count);
-    const glm::dvec3 r = start.eye - start.at;
+    const glm::dvec3 r = start.position - start.look_at;
     // Rodrigues: r turned by `angle` about `axis`.
     const glm::dvec3 turned = r * std::cos(angle) + glm::cross(axis, r) * std::sin(angle) + axis * glm::dot(axis, r) * (1 - std::cos(angle));
     Camera c = start;
-    c.eye = start.at + turned;
+    c.position = start.look_at + turned;
     cameras.push_back(c);
   }
   return cameras;
@@ -188,8 +188,8 @@ std::vector<EffectVariant> effect_variants(const render::RenderSettings& base, c
   render::EffectSettings with = scene;
   with.time = 1.0;
   if (!with.clipping.any()) {
-    const glm::dvec3 n = glm::normalize(camera.at - camera.eye);  // keep what lies beyond the target
-    with.clipping.planes.push_back(glm::dvec4(n, -glm::dot(n, camera.at)));
+    const glm::dvec3 n = glm::normalize(camera.look_at - camera.position);  // keep what lies beyond the target
+    with.clipping.planes.push_back(glm::dvec4(n, -glm::dot(n, camera.look_at)));
   }
   std::vector<EffectVariant> v;
   const auto add = [&](std::string name, render::EffectSettings e, bool no_code = false) {
@@ -372,7 +372,7 @@ void run_matrix(const Options& o, session::RenderSession& session, nlohmann::ord
   // against full detail (no oracle reaches a whole cell).
   const Camera scene_camera = session::camera_option(session.package, o.camera);
   Camera farther = scene_camera;
-  farther.eye = scene_camera.at + 4.0 * (scene_camera.eye - scene_camera.at);
+  farther.position = scene_camera.look_at + 4.0 * (scene_camera.position - scene_camera.look_at);
   const std::vector<session::LodFarRow> far_rows = session::run_lod_far_views(
       session.device, *session.scene, {{"scene camera", far}, {"4× as far", farther.to_gpu(w, h)}}, variants, rounds,
       [](const std::string& what) { std::fprintf(stderr, "matrix: %s\n", what.c_str()); });

@@ -158,12 +158,12 @@ std::vector<VerifyCamera> verify_cameras(const format::Package& p, const Explici
   for (std::size_t k = 0; cams.size() < count && hard > 0 && k < 8 * hard; ++k) {
     VerifyCamera extra = cams[k % hard];
     const double angle = (k % 2 == 0 ? 1.0 : -1.0) * 0.35 * double(1 + (k / hard) % 2);
-    const glm::dvec3 off = extra.view.eye - extra.view.at;
+    const glm::dvec3 off = extra.view.position - extra.view.look_at;
     const dvec3 axis = glm::normalize(extra.view.up);
-    extra.view.eye = extra.view.at + off * std::cos(angle) + glm::cross(axis, off) * std::sin(angle) +
+    extra.view.position = extra.view.look_at + off * std::cos(angle) + glm::cross(axis, off) * std::sin(angle) +
                 axis * glm::dot(axis, off) * (1 - std::cos(angle));
     extra.name += "-turned-" + std::to_string(k + 1);
-    if (glm::length(glm::cross(glm::normalize(extra.view.at - extra.view.eye), extra.view.up)) < 1e-3) continue;
+    if (glm::length(glm::cross(glm::normalize(extra.view.look_at - extra.view.position), extra.view.up)) < 1e-3) continue;
     cams.push_back(extra);
   }
   if (cams.size() > count) cams.resize(count);

@@ -52,8 +52,8 @@ Camera camera_at(const CameraPath& path, double time) {
            h11 * dt * tangent(keys, i + 1, member);
   };
   Camera c;
-  c.eye = hermite(&Camera::eye);
-  c.at = hermite(&Camera::at);
+  c.position = hermite(&Camera::position);
+  c.look_at = hermite(&Camera::look_at);
   c.up = glm::normalize((1 - s) * glm::normalize(a.camera.up) + s * glm::normalize(b.camera.up));
   c.fov_degrees = (1 - s) * a.camera.fov_degrees + s * b.camera.fov_degrees;
   c.check();
@@ -92,8 +92,8 @@ CameraPath parse_camera_path(const Json& json, const std::string& file) {
         spec->fail(e.what());
       }
     } else {
-      if (const auto position = k.optional("position")) key.camera.eye = position->vec3();
-      if (const auto look_at = k.optional("look_at")) key.camera.at = look_at->vec3();
+      if (const auto position = k.optional("position")) key.camera.position = position->vec3();
+      if (const auto look_at = k.optional("look_at")) key.camera.look_at = look_at->vec3();
       if (const auto up = k.optional("up")) key.camera.up = up->vec3();
       if (const auto fov = k.optional("fov_degrees")) key.camera.fov_degrees = fov->number_strictly_between(0, 180);
       try {
@@ -130,8 +130,8 @@ Json to_json(const CameraPath& path) {
   Json keys = Json::array();
   for (const CameraKeyframe& k : path.keyframes)
     keys.push_back({{"time", k.time},
-                    {"position", {k.camera.eye.x, k.camera.eye.y, k.camera.eye.z}},
-                    {"look_at", {k.camera.at.x, k.camera.at.y, k.camera.at.z}},
+                    {"position", {k.camera.position.x, k.camera.position.y, k.camera.position.z}},
+                    {"look_at", {k.camera.look_at.x, k.camera.look_at.y, k.camera.look_at.z}},
                     {"up", {k.camera.up.x, k.camera.up.y, k.camera.up.z}},
                     {"fov_degrees", k.camera.fov_degrees}});
   return {{"format", kFormat}, {"version", 1}, {"fps", path.fps}, {"keyframes", keys}};

@@ -23,7 +23,7 @@ glm::dvec3 parse_vector(std::string_view key, std::string_view value) {
 
 }  // namespace
 
-float depth_cue_for(const Camera& camera) { return float(4 * glm::length(camera.at - camera.eye)); }
+float depth_cue_for(const Camera& camera) { return float(4 * glm::length(camera.look_at - camera.position)); }
 
 Camera parse_camera(std::string_view text, const Camera& base) {
   // The scene file's words, and the short aliases older command lines and scripts use.
@@ -50,8 +50,8 @@ Camera parse_camera(std::string_view text, const Camera& base) {
     if (!given[k].empty())
       throw std::invalid_argument("camera: '" + std::string(key) + "' repeats '" + std::string(given[k]) + "'");
     given[k] = key;
-    if (k == 0) c.eye = parse_vector(key, value);
-    else if (k == 1) c.at = parse_vector(key, value);
+    if (k == 0) c.position = parse_vector(key, value);
+    else if (k == 1) c.look_at = parse_vector(key, value);
     else if (k == 2) c.up = parse_vector(key, value);
     else {
       std::string s(value);

@@ -57,18 +57,18 @@ void CameraController::set_camera(const Camera& camera) {
 
 void CameraController::set_mode(Mode mode) {
   if (mode == Mode::orbit && mode_ == Mode::fly && focus_depth_ && *focus_depth_ > kMinDistance) {
-    const glm::dvec3 forward = glm::normalize(camera_.at - camera_.eye);
-    camera_.at = camera_.eye + forward * *focus_depth_;
+    const glm::dvec3 forward = glm::normalize(camera_.look_at - camera_.position);
+    camera_.look_at = camera_.position + forward * *focus_depth_;
   }
   mode_ = mode;
 }
 
-double CameraController::distance() const { return glm::length(camera_.at - camera_.eye); }
+double CameraController::distance() const { return glm::length(camera_.look_at - camera_.position); }
 
 void CameraController::orbit(double dx, double dy, double viewport_height) {
   const double per_pixel = glm::pi<double>() / std::max(viewport_height, 1.0);
   const glm::dvec3 up = glm::normalize(camera_.up);
-  glm::dvec3 offset = camera_.eye - camera_.at;
+  glm::dvec3 offset = camera_.position - camera_.look_at;
   const double d = glm::length(offset);
   // Yaw about the up hint: dragging right moves the camera left around the target, so the scene
   // turns with the cursor.
@@ -79,37 +79,37 @@ void CameraController::orbit(double dx, double dy, double viewport_height) {
   const glm::dvec3 right = glm::cross(-offset, up);
   if (glm::length(right) > 0) offset = rotate(offset, right, target - elevation);
   // Renormalised so many small rotations never drift the distance.
-  camera_.eye = camera_.at + glm::normalize(offset) * d;
+  camera_.position = camera_.look_at + glm::normalize(offset) * d;
 }
 
 void CameraController::pan(double dx, double dy, double viewport_height) {
-  const glm::dvec3 forward = glm::normalize(camera_.at - camera_.eye);
+  const glm::dvec3 forward = glm::normalize(camera_.look_at - camera_.position);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, camera_.up));
   const glm::dvec3 up = glm::cross(right, forward);
   // Å per pixel at the target's depth: the viewport spans 2·d·tan(fov/2) vertically there.
   const double scale = 2 * distance() * std::tan(glm::radians(camera_.fov_degrees) * 0.5) / std::max(viewport_height, 1.0);
   const glm::dvec3 move = (-dx * right + dy * up) * scale;
-  camera_.eye += move;
-  camera_.at += move;
+  camera_.position += move;
+  camera_.look_at += move;
 }
 
 void CameraController::dolly(double wheel_steps) {
-  const glm::dvec3 forward = glm::normalize(camera_.at - camera_.eye);
+  const glm::dvec3 forward = glm::normalize(camera_.look_at - camera_.position);
   const double d = std::clamp(distance() * std::pow(0.85, wheel_steps), kMinDistance, 100 * scene_radius_);
-  camera_.eye = camera_.at - forward * d;
+  camera_.position = camera_.look_at - forward * d;
 }
 
 void CameraController::look(double dx, double dy, double viewport_height) {
   const double per_pixel = glm::radians(camera_.fov_degrees) / std::max(viewport_height, 1.0);
   const glm::dvec3 up = glm::normalize(camera_.up);
   const double d = distance();
-  glm::dvec3 forward = glm::normalize(camera_.at - camera_.eye);
+  glm::dvec3 forward = glm::normalize(camera_.look_at - camera_.position);
   forward = rotate(forward, up, -dx * per_pixel);
   const double elevation = std::acos(std::clamp(glm::dot(forward, up), -1.0, 1.0));
   const double target = std::clamp(elevation + dy * per_pixel, kPoleMargin, glm::pi<double>() - kPoleMargin);
   const glm::dvec3 right = glm::cross(forward, up);
   if (glm::length(right) > 0) forward = rotate(forward, right, -(target - elevation));
-  camera_.at = camera_.eye + glm::normalize(forward) * d;
+  camera_.look_at = camera_.position + glm::normalize(forward) * d;
 }
 
 double CameraController::fly_speed() const {
@@ -121,12 +121,12 @@ double CameraController::fly_speed() const {
 
 void CameraController::fly(const glm::dvec3& axes, double seconds, bool fast) {
   if (axes == glm::dvec3(0.0) || seconds <= 0) return;
-  const glm::dvec3 forward = glm::normalize(camera_.at - camera_.eye);
+  const glm::dvec3 forward = glm::normalize(camera_.look_at - camera_.position);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, camera_.up));
   const glm::dvec3 up = glm::cross(right, forward);
   const glm::dvec3 move = (axes.x * right + axes.y * up + axes.z * forward) * (fly_speed() * seconds * (fast ? 5.0 : 1.0));
-  camera_.eye += move;
-  camera_.at += move;
+  camera_.position += move;
+  camera_.look_at += move;
 }
 
 }  // namespace nano::viewer

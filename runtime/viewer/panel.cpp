@@ -50,18 +50,18 @@ void camera_section(ViewerState& s, const PanelContext& c) {
     s.camera.set_mode(mode == 0 ? CameraController::Mode::orbit : CameraController::Mode::fly);
   Camera camera = s.camera.camera();
   bool changed = false;
-  changed |= ImGui::InputScalarN("position", ImGuiDataType_Double, &camera.eye, 3, nullptr, nullptr, "%.1f",
+  changed |= ImGui::InputScalarN("position", ImGuiDataType_Double, &camera.position, 3, nullptr, nullptr, "%.1f",
                                  ImGuiInputTextFlags_EnterReturnsTrue);
-  changed |= ImGui::InputScalarN("look_at", ImGuiDataType_Double, &camera.at, 3, nullptr, nullptr, "%.1f",
+  changed |= ImGui::InputScalarN("look_at", ImGuiDataType_Double, &camera.look_at, 3, nullptr, nullptr, "%.1f",
                                  ImGuiInputTextFlags_EnterReturnsTrue);
   const double fov_min = 1, fov_max = 150;
   changed |= ImGui::SliderScalar("fov_degrees", ImGuiDataType_Double, &camera.fov_degrees, &fov_min, &fov_max, "%.1f°");
   ImGui::Text("distance %.1f Å, fly speed %.1f Å/s", s.camera.distance(), s.camera.fly_speed());
   if (ImGui::Button("reset view")) {
     // Looks at the whole scene from the current direction.
-    const glm::dvec3 dir = glm::normalize(camera.eye - camera.at);
-    camera.at = c.bounds.centre();
-    camera.eye = camera.at + dir * (c.bounds.radius() / std::tan(glm::radians(camera.fov_degrees) * 0.5));
+    const glm::dvec3 dir = glm::normalize(camera.position - camera.look_at);
+    camera.look_at = c.bounds.centre();
+    camera.position = camera.look_at + dir * (c.bounds.radius() / std::tan(glm::radians(camera.fov_degrees) * 0.5));
     changed = true;
   }
   if (changed && !c.scripted) {
@@ -97,7 +97,7 @@ void clipping_section(ViewerState& s, const PanelContext& c) {
   }
   if (e.clipping.planes.size() < render::kMaxClipPlanes && ImGui::Button("add plane")) {
     // Through the scene centre facing the camera: it removes the near half.
-    const glm::dvec3 n = glm::normalize(s.camera.camera().at - s.camera.camera().eye);
+    const glm::dvec3 n = glm::normalize(s.camera.camera().look_at - s.camera.camera().position);
     e.clipping.planes.emplace_back(n, -glm::dot(n, centre));
     e.flag(EffectId::clipping) = changed = true;
   }

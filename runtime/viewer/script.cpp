@@ -61,8 +61,8 @@ void expect_no_more(std::string_view rest, std::string_view command) {
 void check_camera_syntax(const std::string& spec) {
   const Camera a{};
   Camera b;
-  b.eye = {-311.0, 517.0, 1931.0};
-  b.at = {7.0, -11.0, 13.0};
+  b.position = {-311.0, 517.0, 1931.0};
+  b.look_at = {7.0, -11.0, 13.0};
   b.up = {0.3, 0.5, 0.8};
   b.fov_degrees = 33;
   try {

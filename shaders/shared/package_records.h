@@ -176,8 +176,8 @@ struct BoundaryBox {
 
 // Section "scene": exactly one record.
 struct SceneSettings {
-  vec4 camera_eye;     // xyz: default camera position (world, Å); w: vertical field of view (radians)
-  vec4 camera_target;  // xyz: point looked at; w: reserved
+  vec4 camera_position;  // xyz: default camera position (world, Å); w: vertical field of view (radians)
+  vec4 camera_look_at;   // xyz: the point looked at; w: reserved
   vec4 camera_up;      // xyz: up direction; w: reserved
   uint effect_flags;   // one bit per effect, EffectDeclaration::package_flag (common/effect_table.hpp); unknown bits are ignored
   uint reserved0;
@@ -304,7 +304,7 @@ NANO_AT(BeadRange, first, 0) NANO_AT(BeadRange, count, 4)
 NANO_PIN(BoundaryBox, 8)
 NANO_AT(BoundaryBox, box, 0) NANO_AT(BoundaryBox, first_word, 4)
 NANO_PIN(SceneSettings, 64)
-NANO_AT(SceneSettings, camera_eye, 0) NANO_AT(SceneSettings, camera_target, 16)
+NANO_AT(SceneSettings, camera_position, 0) NANO_AT(SceneSettings, camera_look_at, 16)
 NANO_AT(SceneSettings, camera_up, 32) NANO_AT(SceneSettings, effect_flags, 48)
 NANO_AT(SceneSettings, reserved0, 52) NANO_AT(SceneSettings, reserved1, 56) NANO_AT(SceneSettings, reserved2, 60)
 NANO_PIN(CompartmentInstance, 64)

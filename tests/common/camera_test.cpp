@@ -16,13 +16,13 @@ TEST(Camera, SceneRecordStoresRadiansAndReadsBackDegrees) {
   const Camera c{{1.0, 2.0, 3.0}, {4.0, -5.0, 6.5}, {0.0, 0.0, 1.0}, 60.0};
   nano::gpu::SceneSettings s{};
   nano::store_camera(s, c);
-  EXPECT_FLOAT_EQ(s.camera_eye.w, static_cast<float>(std::numbers::pi / 3.0));
-  EXPECT_EQ(glm::vec3(s.camera_eye), glm::vec3(1.0f, 2.0f, 3.0f));
-  EXPECT_EQ(glm::vec3(s.camera_target), glm::vec3(4.0f, -5.0f, 6.5f));
+  EXPECT_FLOAT_EQ(s.camera_position.w, static_cast<float>(std::numbers::pi / 3.0));
+  EXPECT_EQ(glm::vec3(s.camera_position), glm::vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(glm::vec3(s.camera_look_at), glm::vec3(4.0f, -5.0f, 6.5f));
   EXPECT_EQ(glm::vec3(s.camera_up), glm::vec3(0.0f, 0.0f, 1.0f));
   const Camera back = nano::camera_from_scene(s);
-  EXPECT_EQ(back.eye, c.eye);
-  EXPECT_EQ(back.at, c.at);
+  EXPECT_EQ(back.position, c.position);
+  EXPECT_EQ(back.look_at, c.look_at);
   EXPECT_EQ(back.up, c.up);
   EXPECT_NEAR(back.fov_degrees, 60.0, 1e-5);  // through one float
 }

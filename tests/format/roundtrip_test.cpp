@@ -48,7 +48,7 @@ auto fields(const gpu::TriangleDrops& d) { return std::tie(d.first, d.count); }
 auto fields(const gpu::Bead& b) { return std::tie(b.centre_radius, b.atom, b.atom_count, b.reserved0, b.reserved1); }
 auto fields(const gpu::BeadRange& r) { return std::tie(r.first, r.count); }
 auto fields(const gpu::SceneSettings& s) {
-  return std::tie(s.camera_eye, s.camera_target, s.camera_up, s.effect_flags, s.reserved0, s.reserved1, s.reserved2);
+  return std::tie(s.camera_position, s.camera_look_at, s.camera_up, s.effect_flags, s.reserved0, s.reserved1, s.reserved2);
 }
 auto fields(const gpu::CompartmentInstance& c) {
   return std::tie(c.transform[0], c.transform[1], c.transform[2], c.compartment, c.reserved0, c.reserved1, c.reserved2);

@@ -162,7 +162,7 @@ const Case kCases[] = {
      },
      Rule::bad_value, SectionKind::mask_words, 3 * 4},
     {"two scene records", [](SampleScene& s) { s.scene.push_back(s.scene[0]); }, Rule::record_size, SectionKind::scene, 0},
-    {"field of view", [](SampleScene& s) { s.scene[0].camera_eye.w = 0; }, Rule::bad_value, SectionKind::scene, 12},
+    {"field of view", [](SampleScene& s) { s.scene[0].camera_position.w = 0; }, Rule::bad_value, SectionKind::scene, 12},
     {"scene compartment index", [](SampleScene& s) { s.compartment_instances[1].compartment = 1; },
      Rule::index_out_of_range, SectionKind::compartment_instances, 64 + 48},
     {"NaN transform", [](SampleScene& s) { s.compartment_instances[0].transform[2].w = kNaN; }, Rule::non_finite,

@@ -31,7 +31,7 @@ json sample_json() {
 CameraPath sample() { return parse_camera_path(sample_json(), "path.json"); }
 
 double distance(const Camera& a, const Camera& b) {
-  return glm::length(a.eye - b.eye) + glm::length(a.at - b.at) + glm::length(glm::normalize(a.up) - glm::normalize(b.up)) +
+  return glm::length(a.position - b.position) + glm::length(a.look_at - b.look_at) + glm::length(glm::normalize(a.up) - glm::normalize(b.up)) +
          std::abs(a.fov_degrees - b.fov_degrees);
 }
 
@@ -39,10 +39,10 @@ TEST(CameraPath, ParsesBothSyntaxesAndInheritsLeftOutKeys) {
   const CameraPath p = sample();
   ASSERT_EQ(p.keyframes.size(), 4u);
   EXPECT_EQ(p.fps, 24);
-  EXPECT_EQ(p.keyframes[1].camera.eye, glm::dvec3(1200, -100, 600));
+  EXPECT_EQ(p.keyframes[1].camera.position, glm::dvec3(1200, -100, 600));
   EXPECT_EQ(p.keyframes[2].camera.up, glm::dvec3(0.2, 1, 0));  // kept from keyframe 1
   EXPECT_EQ(p.keyframes[2].camera.fov_degrees, 30);
-  EXPECT_EQ(p.keyframes[3].camera.at, glm::dvec3(0, 0, 0));
+  EXPECT_EQ(p.keyframes[3].camera.look_at, glm::dvec3(0, 0, 0));
   EXPECT_EQ(p.keyframes[3].camera.fov_degrees, 60);
   EXPECT_EQ(p.duration(), 2.25);
   EXPECT_EQ(p.frame_count(), 55u);  // floor(2.25 · 24) + 1
@@ -61,8 +61,8 @@ TEST(CameraPath, ExactAtKeyframes) {
   const CameraPath p = sample();
   for (const CameraKeyframe& k : p.keyframes) {
     const Camera c = camera_at(p, k.time);
-    EXPECT_EQ(c.eye, k.camera.eye);
-    EXPECT_EQ(c.at, k.camera.at);
+    EXPECT_EQ(c.position, k.camera.position);
+    EXPECT_EQ(c.look_at, k.camera.look_at);
     EXPECT_EQ(c.up, k.camera.up);
     EXPECT_EQ(c.fov_degrees, k.camera.fov_degrees);
   }
@@ -96,8 +96,8 @@ TEST(CameraPath, SmoothEyeAndTarget) {
   for (std::size_t i = 1; i + 1 < p.keyframes.size(); ++i) {
     const double t = p.keyframes[i].time;
     const Camera c = camera_at(p, t), before = camera_at(p, t - h), after = camera_at(p, t + h);
-    const glm::dvec3 eye_left = (c.eye - before.eye) / h, eye_right = (after.eye - c.eye) / h;
-    const glm::dvec3 at_left = (c.at - before.at) / h, at_right = (after.at - c.at) / h;
+    const glm::dvec3 eye_left = (c.position - before.position) / h, eye_right = (after.position - c.position) / h;
+    const glm::dvec3 at_left = (c.look_at - before.look_at) / h, at_right = (after.look_at - c.look_at) / h;
     const double speed = glm::length(eye_left) + glm::length(at_left);
     EXPECT_GT(speed, 1.0);  // the test means something: the camera moves there
     EXPECT_LT(glm::length(eye_left - eye_right), 1e-3 * speed) << "keyframe " << i;
@@ -106,7 +106,7 @@ TEST(CameraPath, SmoothEyeAndTarget) {
   // Second derivative bounded (the cubic's), so the first has no jumps inside segments.
   const double k = 1e-3;
   for (double t = 0.01; t < p.duration() - 0.01; t += 0.013) {
-    const glm::dvec3 second = (camera_at(p, t + k).eye - 2.0 * camera_at(p, t).eye + camera_at(p, t - k).eye) / (k * k);
+    const glm::dvec3 second = (camera_at(p, t + k).position - 2.0 * camera_at(p, t).position + camera_at(p, t - k).position) / (k * k);
     EXPECT_LT(glm::length(second), 1e6) << "t = " << t;
   }
 }
@@ -127,8 +127,8 @@ TEST(CameraPath, TwoKeyframesMoveLinearly) {
                                          "p.json");
   EXPECT_EQ(p.fps, 30);  // the default
   const Camera c = camera_at(p, 1);
-  EXPECT_NEAR(c.eye.x, 10, 1e-12);
-  EXPECT_NEAR(c.at.x, 10, 1e-12);
+  EXPECT_NEAR(c.position.x, 10, 1e-12);
+  EXPECT_NEAR(c.look_at.x, 10, 1e-12);
 }
 
 void expect_error(const json& j, const std::string& where, const std::string& part) {
@@ -184,7 +184,7 @@ TEST(CameraPath, WriteReadRoundTripIsExact) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "nano_camera_path_test";
   std::filesystem::create_directories(dir);
   CameraPath p = sample();
-  p.keyframes[1].camera.eye.x = 0.1 + 0.2;  // not a short decimal
+  p.keyframes[1].camera.position.x = 0.1 + 0.2;  // not a short decimal
   p.keyframes[2].time = 4.0 / 3.0;
   p.keyframes[2].camera.fov_degrees = std::nextafter(45.0, 90.0);
   const std::filesystem::path file = dir / "path.json";
@@ -194,8 +194,8 @@ TEST(CameraPath, WriteReadRoundTripIsExact) {
   ASSERT_EQ(q.keyframes.size(), p.keyframes.size());
   for (std::size_t i = 0; i < p.keyframes.size(); ++i) {
     EXPECT_EQ(q.keyframes[i].time, p.keyframes[i].time);
-    EXPECT_EQ(q.keyframes[i].camera.eye, p.keyframes[i].camera.eye);
-    EXPECT_EQ(q.keyframes[i].camera.at, p.keyframes[i].camera.at);
+    EXPECT_EQ(q.keyframes[i].camera.position, p.keyframes[i].camera.position);
+    EXPECT_EQ(q.keyframes[i].camera.look_at, p.keyframes[i].camera.look_at);
     EXPECT_EQ(q.keyframes[i].camera.up, p.keyframes[i].camera.up);
     EXPECT_EQ(q.keyframes[i].camera.fov_degrees, p.keyframes[i].camera.fov_degrees);
   }

@@ -52,13 +52,13 @@ TEST(MortonOrder, IsAPermutationThatKeepsNeighboursTogether) {
 TEST(Camera, ParsesKeysInAnyOrderAndKeepsTheRest) {
   Camera base;
   const Camera c = parse_camera("fov=30;pos=1,2,3;at=4,5,6", base);
-  EXPECT_EQ(c.eye, glm::dvec3(1, 2, 3));
-  EXPECT_EQ(c.at, glm::dvec3(4, 5, 6));
+  EXPECT_EQ(c.position, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(c.look_at, glm::dvec3(4, 5, 6));
   EXPECT_EQ(c.up, base.up);
   EXPECT_EQ(c.fov_degrees, 30);
   const Camera again = parse_camera(c.to_string());
-  EXPECT_EQ(again.eye, c.eye);
-  EXPECT_EQ(again.at, c.at);
+  EXPECT_EQ(again.position, c.position);
+  EXPECT_EQ(again.look_at, c.look_at);
   EXPECT_DOUBLE_EQ(again.fov_degrees, c.fov_degrees);
 }
 
@@ -66,8 +66,8 @@ TEST(Camera, ParsesKeysInAnyOrderAndKeepsTheRest) {
 // through the aliases too, which mean exactly the same.
 TEST(Camera, TextRoundTripsThroughTheLongKeysAndTheAliases) {
   Camera c;
-  c.eye = {0.1 + 0.2, -2.0, 3e7};
-  c.at = {1.0 / 3.0, 0.0, -7.5};
+  c.position = {0.1 + 0.2, -2.0, 3e7};
+  c.look_at = {1.0 / 3.0, 0.0, -7.5};
   c.up = {0.2, 1.0, std::nextafter(0.0, 1.0)};
   c.fov_degrees = std::nextafter(45.0, 90.0);
   const std::string text = c.to_string();
@@ -112,7 +112,7 @@ TEST(Camera, RejectsWhatCannotBeACamera) {
 TEST(Camera, PixelRaysFollowTheDocumentedConvention) {
   // fov 90°, 2×2 pixels: pixel (0, 0) is top-left, so its ray goes left (−right) and up.
   Camera c;
-  c.eye = {0, 0, 0}, c.at = {0, 0, -1}, c.up = {0, 1, 0}, c.fov_degrees = 90;
+  c.position = {0, 0, 0}, c.look_at = {0, 0, -1}, c.up = {0, 1, 0}, c.fov_degrees = 90;
   const nano::gpu::Camera cam = c.to_gpu(2, 2);
   const glm::vec3 d = nano::gpu::camera_ray_direction(cam, 0, 0);
   EXPECT_NEAR(d.x, -1 / std::sqrt(6.0), 1e-6);  // right = forward × up = (1, 0, 0); ndc = (−½, ½)

@@ -12,8 +12,8 @@ namespace {
 
 Camera spec(glm::dvec3 eye, glm::dvec3 at) {
   Camera c;
-  c.eye = eye;
-  c.at = at;
+  c.position = eye;
+  c.look_at = at;
   c.up = {0, 1, 0};
   c.fov_degrees = 40;
   return c;
@@ -25,7 +25,7 @@ TEST(CameraController, OrbitKeepsDistanceAndTarget) {
   for (int i = 0; i < 500; ++i) {
     c.orbit(7.3, (i % 50 < 25 ? 13.1 : -11.7), 480);
     ASSERT_NEAR(c.distance(), d, 1e-9 * d);
-    ASSERT_EQ(c.camera().at, glm::dvec3(10, 20, 30));
+    ASSERT_EQ(c.camera().look_at, glm::dvec3(10, 20, 30));
     ASSERT_NO_THROW(c.camera().check());
   }
 }
@@ -33,21 +33,21 @@ TEST(CameraController, OrbitKeepsDistanceAndTarget) {
 TEST(CameraController, OrbitStopsShortOfThePoles) {
   CameraController c(spec({0, 0, 500}, {0, 0, 0}), 1000);
   c.orbit(0, 10000, 480);  // dragging down moves the camera up over the target, far past 90°
-  const glm::dvec3 dir = glm::normalize(c.camera().eye - c.camera().at);
+  const glm::dvec3 dir = glm::normalize(c.camera().position - c.camera().look_at);
   EXPECT_LT(glm::dot(dir, glm::dvec3(0, 1, 0)), std::cos(glm::radians(0.5)));
   EXPECT_GT(glm::dot(dir, glm::dvec3(0, 1, 0)), std::cos(glm::radians(1.5)));
   EXPECT_NO_THROW(c.camera().check());
   c.orbit(0, -20000, 480);  // and all the way under it
-  EXPECT_LT(glm::dot(glm::normalize(c.camera().eye - c.camera().at), glm::dvec3(0, 1, 0)), -std::cos(glm::radians(1.5)));
+  EXPECT_LT(glm::dot(glm::normalize(c.camera().position - c.camera().look_at), glm::dvec3(0, 1, 0)), -std::cos(glm::radians(1.5)));
   EXPECT_NO_THROW(c.camera().check());
 }
 
 TEST(CameraController, HorizontalDragTurnsAboutUp) {
   CameraController c(spec({0, 0, 500}, {0, 0, 0}), 1000);
   c.orbit(240, 0, 480);  // half the viewport height: 90°
-  EXPECT_NEAR(std::abs(c.camera().eye.x), 500, 1e-6);
-  EXPECT_NEAR(c.camera().eye.y, 0, 1e-9);
-  EXPECT_NEAR(c.camera().eye.z, 0, 1e-6);
+  EXPECT_NEAR(std::abs(c.camera().position.x), 500, 1e-6);
+  EXPECT_NEAR(c.camera().position.y, 0, 1e-9);
+  EXPECT_NEAR(c.camera().position.z, 0, 1e-6);
 }
 
 TEST(CameraController, PanMovesEyeAndTargetByTheCursorsWorldSpan) {
@@ -55,8 +55,8 @@ TEST(CameraController, PanMovesEyeAndTargetByTheCursorsWorldSpan) {
   c.pan(480, 0, 480);  // a full viewport height to the right
   const double span = 2 * 500 * std::tan(glm::radians(20.0));
   // Dragging right moves the scene right, so the camera moves left (−x here).
-  EXPECT_NEAR(c.camera().at.x, -span, 1e-9);
-  EXPECT_NEAR(c.camera().eye.x, -span, 1e-9);
+  EXPECT_NEAR(c.camera().look_at.x, -span, 1e-9);
+  EXPECT_NEAR(c.camera().position.x, -span, 1e-9);
   EXPECT_NEAR(c.distance(), 500, 1e-9);
 }
 
@@ -91,10 +91,10 @@ TEST(CameraController, FlyMovesAlongTheViewAndKeepsDirection) {
   c.set_mode(CameraController::Mode::fly);
   const double speed = c.fly_speed();
   c.fly({0, 0, 1}, 0.5, false);  // W for half a second
-  EXPECT_NEAR(c.camera().eye.z, 100 - 0.5 * speed, 1e-9);
-  EXPECT_NEAR(c.camera().at.z, -0.5 * speed, 1e-9);
+  EXPECT_NEAR(c.camera().position.z, 100 - 0.5 * speed, 1e-9);
+  EXPECT_NEAR(c.camera().look_at.z, -0.5 * speed, 1e-9);
   c.fly({1, 0, 0}, 1, true);  // D with Shift: ×5, to the right (+x)
-  EXPECT_NEAR(c.camera().eye.x, 5 * speed, 1e-9);
+  EXPECT_NEAR(c.camera().position.x, 5 * speed, 1e-9);
   EXPECT_NEAR(c.distance(), 100, 1e-9);
 }
 
@@ -102,9 +102,9 @@ TEST(CameraController, LookTurnsTheViewAboutTheEye) {
   CameraController c(spec({0, 0, 100}, {0, 0, 0}), 1000);
   c.set_mode(CameraController::Mode::fly);
   c.look(30, -20, 480);
-  EXPECT_EQ(c.camera().eye, glm::dvec3(0, 0, 100));
+  EXPECT_EQ(c.camera().position, glm::dvec3(0, 0, 100));
   EXPECT_NEAR(c.distance(), 100, 1e-9);
-  EXPECT_GT(c.camera().at.y, 0);  // mouse up looks up
+  EXPECT_GT(c.camera().look_at.y, 0);  // mouse up looks up
   EXPECT_NO_THROW(c.camera().check());
 }
 
@@ -113,7 +113,7 @@ TEST(CameraController, OrbitAfterFlyCentresOnWhatWasInFront) {
   c.set_mode(CameraController::Mode::fly);
   c.set_focus_depth(30.0);
   c.set_mode(CameraController::Mode::orbit);
-  EXPECT_NEAR(c.camera().at.z, 70, 1e-9);
+  EXPECT_NEAR(c.camera().look_at.z, 70, 1e-9);
   EXPECT_NEAR(c.distance(), 30, 1e-9);
 }
 

@@ -14,7 +14,7 @@ namespace {
 
 Camera camera_at_eye(const glm::dvec3& eye) {
   Camera c;
-  c.eye = eye;
+  c.position = eye;
   return c;
 }
 
@@ -60,15 +60,15 @@ TEST(PathRecording, PlaybackFollowsTheWallClockAndStopsAtTheEnd) {
   s.playing = true;
   start_playback(s);
   EXPECT_FALSE(s.playing);  // the path drives the effect time now
-  EXPECT_EQ(s.camera.camera().eye, glm::dvec3(0, 0, 900));
+  EXPECT_EQ(s.camera.camera().position, glm::dvec3(0, 0, 900));
   const std::uint64_t version = s.version;
   EXPECT_TRUE(advance_playback(s, 0.5));
   EXPECT_GT(s.version, version);
   EXPECT_EQ(s.settings.effects.time, 0.5);
-  EXPECT_EQ(s.camera.camera().eye, render::camera_at(s.path.path, 0.5).eye);
+  EXPECT_EQ(s.camera.camera().position, render::camera_at(s.path.path, 0.5).position);
   EXPECT_FALSE(advance_playback(s, 5));  // past the end: the last keyframe, then stop
   EXPECT_FALSE(s.path.play_time.has_value());
-  EXPECT_EQ(s.camera.camera().eye, glm::dvec3(900, 0, 0));
+  EXPECT_EQ(s.camera.camera().position, glm::dvec3(900, 0, 0));
   EXPECT_EQ(s.settings.effects.time, 2.0);
   EXPECT_FALSE(advance_playback(s, 1));  // not playing: nothing changes
   EXPECT_EQ(s.settings.effects.time, 2.0);

@@ -51,7 +51,7 @@ TEST(ScriptRunner, ChangesStateAndRendersFrames) {
   std::ostringstream out;
   run("camera pos=0,0,500;fov=30\nclip plane 0,0,1,0\nclip box -1,-1,-1,1,1,1\neffect ao on\ntime 3\nwait 2\n", host, out);
   const auto& s = host.state_;
-  EXPECT_EQ(s.camera.camera().eye, glm::dvec3(0, 0, 500));
+  EXPECT_EQ(s.camera.camera().position, glm::dvec3(0, 0, 500));
   EXPECT_EQ(s.camera.camera().fov_degrees, 30);
   EXPECT_TRUE(s.settings.effects.flag(EffectId::clipping));
   EXPECT_EQ(s.settings.effects.clipping.planes.size(), 1u);
@@ -121,14 +121,14 @@ TEST(ScriptRunner, RecordsSavesLoadsAndShowsPathFrames) {
   auto& s = host.state_;
   ASSERT_EQ(s.path.path.keyframes.size(), 3u);
   EXPECT_EQ(s.path.path.keyframes[1].time, 2.0);
-  EXPECT_EQ(s.path.path.keyframes[1].camera.eye, glm::dvec3(600, 0, 600));
+  EXPECT_EQ(s.path.path.keyframes[1].camera.position, glm::dvec3(600, 0, 600));
   EXPECT_EQ(s.path.path.keyframes[2].camera.fov_degrees, 30);  // left out: kept from the camera
   EXPECT_EQ(host.frames, 0u);  // recording renders nothing
 
   // What render --path reads back is what was recorded, bit for bit.
   const render::CameraPath saved = render::read_camera_path(file);
   ASSERT_EQ(saved.keyframes.size(), 3u);
-  EXPECT_EQ(saved.keyframes[2].camera.eye, s.path.path.keyframes[2].camera.eye);
+  EXPECT_EQ(saved.keyframes[2].camera.position, s.path.path.keyframes[2].camera.position);
   EXPECT_EQ(saved.fps, 30);
 
   run("path clear\n", host, out);
@@ -138,14 +138,14 @@ TEST(ScriptRunner, RecordsSavesLoadsAndShowsPathFrames) {
   ASSERT_EQ(s.path.path.keyframes.size(), 3u);
   // Frame 1 is at 1/30 s: the camera and the effect time render --path --frames 1:1 uses.
   const Camera expected = render::camera_at(saved, 1.0 / 30);
-  EXPECT_EQ(s.camera.camera().eye, expected.eye);
-  EXPECT_EQ(s.camera.camera().at, expected.at);
+  EXPECT_EQ(s.camera.camera().position, expected.position);
+  EXPECT_EQ(s.camera.camera().look_at, expected.look_at);
   EXPECT_EQ(s.camera.camera().fov_degrees, expected.fov_degrees);
   EXPECT_EQ(s.settings.effects.time, 1.0 / 30);
   EXPECT_GT(s.version, before);  // the frame must be rendered again
 
   run("path frame 120\n", host, out);  // the last frame: the last keyframe exactly
-  EXPECT_EQ(s.camera.camera().eye, glm::dvec3(900, 100, 0));
+  EXPECT_EQ(s.camera.camera().position, glm::dvec3(900, 100, 0));
   EXPECT_EQ(s.settings.effects.time, 4.0);
 
   run("path play 10 14\n", host, out);
