@@ -106,7 +106,9 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TLAS) uniform accelerati
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_COPIES, std430) readonly buffer FlatCopies { FlatCopy flat_copies[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TRIANGLES, std430) readonly buffer FlatTriangles { uint flat_triangles[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) buffer Hits { PixelHit hits[]; };  // read by the image pass
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
+// The same buffer as the image pass reads it; the tracing code keeps its write-only view.
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) readonly buffer FinishedHits { PixelHit finished_hits[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COUNTERS, std430) writeonly buffer Counters { uint counters[]; };
 
@@ -719,7 +721,7 @@ vec3 srgb_from_linear(vec3 c) {
 bool outline_pixel(uvec2 px, uint index) {
   int width = int(frame.effect_record.outline_width_pixels);
   float crease = frame.effect_record.outline_crease_depth;
-  PixelHit here = hits[index];
+  PixelHit here = finished_hits[index];
   bool here_hit = here.atom != kNoHit;
   float here_depth = here_hit ? here.depth : placement_inf();
   ivec2 size = ivec2(frame.camera.size.xy);
@@ -727,13 +729,16 @@ bool outline_pixel(uvec2 px, uint index) {
     for (int dx = -width; dx <= width; ++dx) {
       ivec2 q = ivec2(px) + ivec2(dx, dy);
       if (q.x < 0 || q.y < 0 || q.x >= size.x || q.y >= size.y) continue;
-      PixelHit there = hits[uint(q.y) * uint(size.x) + uint(q.x)];
+      PixelHit there = finished_hits[uint(q.y) * uint(size.x) + uint(q.x)];
       if (there.atom == kNoHit || !(there.depth < here_depth)) continue;  // only a nearer neighbour draws here
       bool same = here_hit && there.copy_number_lo == here.copy_number_lo && there.copy_number_hi == here.copy_number_hi;
       if (!same || here_depth - there.depth > crease) return true;
     }
   return false;
 }
+
+// Any image-pass effect compiled in: without one, the pass test below is not in the code at all.
+const bool kImagePass = kOutlines;
 
 void image_pass(uvec2 px, uint index) {
   if (kOutlines && outline_pixel(px, index)) colours[index] = frame.effect_record.outline_colour;
@@ -743,7 +748,7 @@ void main() {
   Camera cam = frame.camera;
   uvec2 px = gl_GlobalInvocationID.xy + part.origin;
   if (px.x >= cam.size.x || px.y >= cam.size.y) return;
-  if (frame.pass.x != 0u) {
+  if (kImagePass && frame.pass.x != 0u) {
     image_pass(px, px.y * cam.size.x + px.x);
     return;
   }
