@@ -38,21 +38,11 @@ struct PackageView {
 #define NANO_SECTION_SPAN(name, value, record, ...) std::span<const record> name;
   NANO_SECTION_TABLE(NANO_SECTION_SPAN)
 #undef NANO_SECTION_SPAN
-  // Former names of six sections, kept only for runtime/render/flat_level.cpp and runtime/oracle/
-  // until those use the names above; new code must not use them.
-  std::span<const gpu::Tile2D> squares;
-  std::span<const gpu::Tile3D> cubes;
-  std::span<const glm::vec4> positions, normals;
-  std::span<const glm::vec2> uvs;
-  std::span<const gpu::TriangleShell> shells;
 
-  explicit PackageView(const Package& p)
-      :
-#define NANO_SECTION_INIT(name, ...) name(p.records<SectionKind::name>()),
-        NANO_SECTION_TABLE(NANO_SECTION_INIT)
+  explicit PackageView(const Package& p) {
+#define NANO_SECTION_INIT(name, ...) name = p.records<SectionKind::name>();
+    NANO_SECTION_TABLE(NANO_SECTION_INIT)
 #undef NANO_SECTION_INIT
-        squares(tiles2d), cubes(tiles3d), positions(vertex_positions), normals(vertex_normals), uvs(vertex_uvs),
-        shells(triangle_shells) {
   }
 
   // True iff the baker listed membrane copy `key` (membrane_copy_key) of triangle t (dropped, or an

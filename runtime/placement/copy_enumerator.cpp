@@ -120,7 +120,7 @@ struct CopyEnumerator::Impl : format::PackageView {
     return recipe_indices[r.first_index + wrap(a, r.dims.x) + r.dims.x * (wrap(b, r.dims.y) + r.dims.y * wrap(c, r.dims.z))];
   }
 
-  vec3 vertex(std::uint32_t mesh_first, std::uint32_t v) const { return vec3(positions[mesh_first + v]); }
+  vec3 vertex(std::uint32_t mesh_first, std::uint32_t v) const { return vec3(vertex_positions[mesh_first + v]); }
 
   CompartmentPlan plan(std::uint32_t ci) const {
     const gpu::Compartment& c = compartments[ci];
@@ -136,7 +136,7 @@ struct CopyEnumerator::Impl : format::PackageView {
       plan.s_over_S = plan.s / S;
       plan.smooth = c.scales.w;
       for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
-        const gpu::Tile2D& tile = squares[t];
+        const gpu::Tile2D& tile = tiles2d[t];
         if (tile.size.x != S || tile.size.y != S)
           fail(where, "Wang square " + str(t) + " is not " + std::to_string(S) + " Å wide like the compartment (scales.y)");
         plan.square_instances = std::max(plan.square_instances, tile.instance_count);
@@ -168,7 +168,7 @@ struct CopyEnumerator::Impl : format::PackageView {
     if (plan.core) {
       const float B = c.grid_min.w;
       for (std::uint32_t t = c.soluble_first_tile; t < c.soluble_first_tile + c.soluble_tile_count; ++t) {
-        const gpu::Tile3D& cube = cubes[t];
+        const gpu::Tile3D& cube = tiles3d[t];
         if (c.scales.z != B || cube.size.x != B || cube.size.y != B || cube.size.z != B)
           fail(where, "Wang cube " + str(t) + " and scales.z must both equal the box edge " + std::to_string(B) + " Å");
         plan.cube_instances = std::max(plan.cube_instances, cube.instance_count);
@@ -204,15 +204,15 @@ struct CopyEnumerator::Impl : format::PackageView {
     const gpu::Mesh& mesh = meshes[c.mesh];
     for (std::uint32_t v = mesh.first_vertex; v < mesh.first_vertex + mesh.vertex_count; ++v)
       for (int a = 0; a < 2; ++a) {
-        const double q = double(uvs[v][a]) * gpu::kOwnQuantScale;
-        if (!(std::abs(uvs[v][a]) < 16.0f) || q != std::floor(q))
+        const double q = double(vertex_uvs[v][a]) * gpu::kOwnQuantScale;
+        if (!(std::abs(vertex_uvs[v][a]) < 16.0f) || q != std::floor(q))
           fail("vertex_uvs[" + str(v) + "]",
-               "UV " + std::to_string(uvs[v][a]) + " of compartment " + str(ci) +
+               "UV " + std::to_string(vertex_uvs[v][a]) + " of compartment " + str(ci) +
                    "'s mesh is not a multiple of 2^-24 below 16 in magnitude (docs/placement.md rule 1)");
       }
     for (std::uint32_t t = mesh.first_triangle; t < mesh.first_triangle + mesh.triangle_count; ++t) {
       const gpu::Triangle& tri = triangles[t];
-      const vec2 t0 = uvs[mesh.first_vertex + tri.v0], t1 = uvs[mesh.first_vertex + tri.v1], t2 = uvs[mesh.first_vertex + tri.v2];
+      const vec2 t0 = vertex_uvs[mesh.first_vertex + tri.v0], t1 = vertex_uvs[mesh.first_vertex + tri.v1], t2 = vertex_uvs[mesh.first_vertex + tri.v2];
       if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) continue;
       const gpu::TriangleChart chart = make_chart(mesh, tri);
       if (!gpu::chart_valid(chart))
@@ -227,8 +227,8 @@ struct CopyEnumerator::Impl : format::PackageView {
 
   gpu::TriangleChart make_chart(const gpu::Mesh& mesh, const gpu::Triangle& tri) const {
     const std::uint32_t f = mesh.first_vertex;
-    return gpu::chart_make(vertex(f, tri.v0), vertex(f, tri.v1), vertex(f, tri.v2), uvs[f + tri.v0], uvs[f + tri.v1],
-                           uvs[f + tri.v2], vec3(normals[f + tri.v0]), vec3(normals[f + tri.v1]), vec3(normals[f + tri.v2]));
+    return gpu::chart_make(vertex(f, tri.v0), vertex(f, tri.v1), vertex(f, tri.v2), vertex_uvs[f + tri.v0], vertex_uvs[f + tri.v1],
+                           vertex_uvs[f + tri.v2], vec3(vertex_normals[f + tri.v0]), vec3(vertex_normals[f + tri.v1]), vec3(vertex_normals[f + tri.v2]));
   }
 
   InstancePlan plan_instance(std::uint32_t i) {
@@ -310,7 +310,7 @@ struct CopyEnumerator::Impl : format::PackageView {
       const double grow = plan.membrane_reach + lift + plan.tolerance;
       if (!reach.grown(grow).meets(query)) continue;
       if (reach.grown(grow).clipped_by_any(emit.local_clip)) continue;
-      const vec2 t0 = uvs[f + tri.v0], t1 = uvs[f + tri.v1], t2 = uvs[f + tri.v2];
+      const vec2 t0 = vertex_uvs[f + tri.v0], t1 = vertex_uvs[f + tri.v1], t2 = vertex_uvs[f + tri.v2];
       if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) continue;
       const vec2 uv_min = glm::min(t0, glm::min(t1, t2)), uv_max = glm::max(t0, glm::max(t1, t2));
       const ivec2 origin = gpu::replication_origin(uv_min, plan.s);
@@ -318,7 +318,7 @@ struct CopyEnumerator::Impl : format::PackageView {
       // The seam rule (shared/seam.h, docs/placement.md step 4): this triangle's yielding seam edges.
       // A package without triangle_shells (the section is optional; the validator makes it parallel
       // to triangles when present) has no seam bits.
-      const std::uint32_t seam_edges = shells.empty() ? 0u : shells[t].seam_edges;
+      const std::uint32_t seam_edges = triangle_shells.empty() ? 0u : triangle_shells[t].seam_edges;
       const vec3 p0 = vertex(f, tri.v0), p1 = vertex(f, tri.v1), p2 = vertex(f, tri.v2);
       emit.copy.id.kind = CopyKind::membrane;
       emit.copy.id.element = t;
@@ -326,7 +326,7 @@ struct CopyEnumerator::Impl : format::PackageView {
         for (int sx = 0; sx < extent.x; ++sx) {
           const ivec2 cell = gpu::replication_tile_index(origin, ivec2(sx, sy));
           const std::uint64_t slot = std::uint64_t(sx) + std::uint64_t(c.replication_width) * sy;
-          const gpu::Tile2D& tile = squares[recipe_cell(c.membrane_recipe, cell.x, cell.y, 0)];
+          const gpu::Tile2D& tile = tiles2d[recipe_cell(c.membrane_recipe, cell.x, cell.y, 0)];
           const vec2 g = gpu::replication_tile_uv(cell, plan.s);
           emit.copy.id.cell = ivec3(cell, 0);
           for (std::uint32_t m = 0; m < tile.instance_count; ++m) {
@@ -412,7 +412,7 @@ struct CopyEnumerator::Impl : format::PackageView {
           const std::uint8_t occ = occupancy[c.grid_dims.w + box];
           if (occ == gpu::NANO_BOX_OUTSIDE) continue;
           const std::uint32_t* mask = occ == gpu::NANO_BOX_BOUNDARY ? keep_mask(c, box) : nullptr;
-          const gpu::Tile3D& cube = cubes[recipe_cell(c.soluble_recipe, i, j, k)];
+          const gpu::Tile3D& cube = tiles3d[recipe_cell(c.soluble_recipe, i, j, k)];
           const vec3 box_min = gpu::core_box_min(vec3(c.grid_min), vec3(c.grid_min.w), ivec3(i, j, k));
           if (clipping && reach_of(ivec3(i, j, k), ivec3(i, j, k)).clipped_by_any(emit.local_clip)) continue;
           emit.copy.id.element = box;

@@ -111,16 +111,16 @@ struct FlatLevel::Impl : format::PackageView {
     for (std::uint32_t tl = 0; tl < m->triangle_count; ++tl) {
       const std::uint32_t tri = m->first_triangle + tl;
       const gpu::Triangle& v = triangles[tri];
-      const dvec3 a = t.translation + t.linear * dvec3(positions[m->first_vertex + v.v0]);
-      const dvec3 b = t.translation + t.linear * dvec3(positions[m->first_vertex + v.v1]);
-      const dvec3 c = t.translation + t.linear * dvec3(positions[m->first_vertex + v.v2]);
+      const dvec3 a = t.translation + t.linear * dvec3(vertex_positions[m->first_vertex + v.v0]);
+      const dvec3 b = t.translation + t.linear * dvec3(vertex_positions[m->first_vertex + v.v1]);
+      const dvec3 c = t.translation + t.linear * dvec3(vertex_positions[m->first_vertex + v.v2]);
       FlatTriangle f;
       f.centroid = (a + b + c) / 3.0;
       const dvec3 n = glm::cross(b - a, c - a);
       f.area = 0.5 * glm::length(n);
       f.normal = f.area > 0 ? n / (2.0 * f.area) : dvec3(0.0);
       f.radius = std::max({glm::length(a - f.centroid), glm::length(b - f.centroid), glm::length(c - f.centroid)});
-      f.owns = tri < shells.size() && (shells[tri].h_plus != 0 || shells[tri].h_minus != 0 || shells[tri].side_offset != 0);
+      f.owns = tri < triangle_shells.size() && (triangle_shells[tri].h_plus != 0 || triangle_shells[tri].h_minus != 0 || triangle_shells[tri].side_offset != 0);
       slot->push_back(f);
     }
     return *slot;
@@ -140,8 +140,8 @@ struct FlatLevel::Impl : format::PackageView {
     const gpu::Compartment& c = compartments[ci.compartment];
     if (c.membrane_recipe == gpu::NANO_NO_INDEX || c.membrane_tile_count == 0 || !(c.scales.y > 0)) return 0;
     double molecules = 0;
-    for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count && t < squares.size(); ++t)
-      molecules += squares[t].instance_count;
+    for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count && t < tiles2d.size(); ++t)
+      molecules += tiles2d[t].instance_count;
     const double area_scale = std::pow(std::abs(glm::determinant(format::instance_transform(ci).linear)), 2.0 / 3.0);
     return molecules / c.membrane_tile_count / (double(c.scales.y) * c.scales.y * area_scale);
   }
