@@ -118,14 +118,18 @@ EffectValues fallback_effect_values() {
   return values;
 }
 
-namespace {
-std::string shown(double x) {
+std::string shown_number(double x) {
   std::string s = std::to_string(x);
   s.erase(s.find_last_not_of('0') + 1);
   if (!s.empty() && s.back() == '.') s.pop_back();
   return s;
 }
-}  // namespace
+
+std::string parameter_range(const EffectParameter& p) {
+  const std::string unit = p.unit.empty() ? "" : " " + std::string(p.unit);
+  if (std::isinf(p.max)) return std::string(p.min_exclusive ? "> " : ">= ") + shown_number(p.min) + unit;
+  return "in " + std::string(p.min_exclusive ? "(" : "[") + shown_number(p.min) + ", " + shown_number(p.max) + "]" + unit;
+}
 
 std::string parameter_problem(const EffectParameter& p, const glm::dvec3& v) {
   switch (p.kind) {
@@ -135,11 +139,7 @@ std::string parameter_problem(const EffectParameter& p, const glm::dvec3& v) {
       if (!std::isfinite(x)) return "must be a finite number";
       if (p.kind == ParameterKind::whole_number && x != std::floor(x)) return "must be a whole number";
       const bool low = p.min_exclusive ? !(x > p.min) : !(x >= p.min);
-      if (low || !(x <= p.max)) {
-        const std::string unit = p.unit.empty() ? "" : " " + std::string(p.unit);
-        if (std::isinf(p.max)) return std::string("must be ") + (p.min_exclusive ? "> " : ">= ") + shown(p.min) + unit;
-        return "must lie in " + std::string(p.min_exclusive ? "(" : "[") + shown(p.min) + ", " + shown(p.max) + "]" + unit;
-      }
+      if (low || !(x <= p.max)) return "must be " + parameter_range(p);
       return {};
     }
     case ParameterKind::unit_vector:

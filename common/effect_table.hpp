@@ -77,6 +77,10 @@ std::string parameter_option(const EffectDeclaration& effect, const EffectParame
 using EffectValues = std::array<std::array<glm::dvec3, kMaxEffectParameters>, kEffectCount>;  // [effect][parameter]
 EffectValues fallback_effect_values();
 
+// A number's range as messages and --help print it: "> 0 Å", "in [1, 8] px".
+std::string parameter_range(const EffectParameter& parameter);
+// The shortest decimal text of a table value (5, 0.3, 1024).
+std::string shown_number(double x);
 // Why `value` is not acceptable for `parameter`, or empty when it is (unit vectors: non-zero
 // finite; the caller normalises).
 std::string parameter_problem(const EffectParameter& parameter, const glm::dvec3& value);

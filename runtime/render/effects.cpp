@@ -77,31 +77,17 @@ glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view te
 }
 
 std::string parameter_help(const EffectDeclaration& effect, const EffectParameter& p) {
-  const auto number = [](double x) {
-    std::string s = std::to_string(x);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (s.back() == '.') s.pop_back();
-    return s;
-  };
-  std::string what = std::string(effect.name) + " " + std::string(p.key);
+  const glm::dvec3& f = p.fallback;
+  std::string what = std::string(effect.name) + " " + std::string(p.key) + " (";
   switch (p.kind) {
-    case ParameterKind::number:
-    case ParameterKind::whole_number:
-      what += p.kind == ParameterKind::whole_number ? " (a whole number" : " (a number";
-      what += std::isinf(p.max) ? std::string(p.min_exclusive ? " > " : " >= ") + number(p.min)
-                                : " in " + std::string(p.min_exclusive ? "(" : "[") + number(p.min) + ", " + number(p.max) + "]";
-      what += (p.unit.empty() ? "" : " " + std::string(p.unit)) + "; default: the scene's, or " + number(p.fallback.x) + ")";
-      break;
-    case ParameterKind::unit_vector:
-      what += " (x,y,z, any length; default: the scene's, or " + number(p.fallback.x) + "," + number(p.fallback.y) + "," +
-              number(p.fallback.z) + ")";
-      break;
-    case ParameterKind::colour:
-      what += " (r,g,b in [0, 1], as the image shows it; default: the scene's, or " + number(p.fallback.x) + "," + number(p.fallback.y) + "," +
-              number(p.fallback.z) + ")";
-      break;
+    case ParameterKind::number: what += "a number " + parameter_range(p); break;
+    case ParameterKind::whole_number: what += "a whole number " + parameter_range(p); break;
+    case ParameterKind::unit_vector: what += "x,y,z, any length"; break;
+    case ParameterKind::colour: what += "r,g,b in [0, 1], as the image shows it"; break;
   }
-  return what + "; sets the value, --effect " + std::string(effect.name) + " turns it on";
+  what += "; default: the scene's, or " + shown_number(f.x);
+  if (p.kind == ParameterKind::unit_vector || p.kind == ParameterKind::colour) what += "," + shown_number(f.y) + "," + shown_number(f.z);
+  return what + "); sets the value, --effect " + std::string(effect.name) + " turns it on";
 }
 
 glm::dvec4 parse_clip_plane(std::string_view text) {
