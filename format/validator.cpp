@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -593,9 +594,13 @@ private:
   void check_effect_parameters(const Cursor& c, const gpu::SceneEffects& e, std::uint32_t flags) const {
     constexpr std::size_t kWords = sizeof(gpu::SceneEffects) / 4;
     std::array<bool, kWords> owned{};
-    for (std::size_t w = 0; w < 39; ++w) owned[w] = true;   // clip planes, clip box (box max .w is reserved)
-    for (std::size_t w = 40; w < 47; ++w) owned[w] = true;  // spin, velocity (velocity .w is reserved)
-    owned[60] = true;                                       // clip_plane_count
+    const auto own = [&](std::size_t offset, std::size_t bytes) {
+      for (std::size_t w = offset / 4; w < (offset + bytes) / 4; ++w) owned[w] = true;
+    };
+    own(offsetof(gpu::SceneEffects, clip_planes), offsetof(gpu::SceneEffects, clip_box_max) + 12);  // clip box max .w is reserved
+    own(offsetof(gpu::SceneEffects, spin), 16);
+    own(offsetof(gpu::SceneEffects, velocity), 12);  // velocity .w is reserved
+    own(offsetof(gpu::SceneEffects, clip_plane_count), 4);
     std::array<std::uint32_t, kWords> words;
     std::memcpy(words.data(), &e, sizeof e);
     for (const EffectDeclaration& effect : effect_table()) {
