@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "runtime/render/image_io.hpp"
+#include "tests/render/rendered_frame.hpp"
 
 namespace {
 int luminance(std::uint32_t rgba) { return int(rgba & 255u) + int((rgba >> 8) & 255u) + int((rgba >> 16) & 255u); }
@@ -17,12 +17,14 @@ int luminance(std::uint32_t rgba) { return int(rgba & 255u) + int((rgba >> 8) & 
 int main(int argc, char** argv) {
   if (argc != 6) return std::fprintf(stderr, "usage: check_effect_shading PLAIN.png PLAIN.ids SHADED.png SHADED.ids MIN_FRACTION\n"), 2;
   try {
-    std::uint32_t w = 0, h = 0, w2 = 0, h2 = 0, iw = 0, ih = 0, iw2 = 0, ih2 = 0;
-    const auto plain = nano::render::read_png(argv[1], w, h);
-    const auto plain_ids = nano::render::read_ids(argv[2], iw, ih);
-    const auto shaded = nano::render::read_png(argv[3], w2, h2);
-    const auto shaded_ids = nano::render::read_ids(argv[4], iw2, ih2);
-    if (w != w2 || h != h2 || iw != w || ih != h || iw2 != w || ih2 != h) return std::fprintf(stderr, "sizes differ\n"), 1;
+    using nano::render::test::read_rendered_frame;
+    const auto plain_frame = read_rendered_frame(argv[1], argv[2]);
+    const auto shaded_frame = read_rendered_frame(argv[3], argv[4]);
+    if (!plain_frame.same_size(shaded_frame)) return std::fprintf(stderr, "sizes differ\n"), 1;
+    const auto& plain = plain_frame.rgba;
+    const auto& plain_ids = plain_frame.ids;
+    const auto& shaded = shaded_frame.rgba;
+    const auto& shaded_ids = shaded_frame.ids;
     std::size_t hit = 0, darker = 0, brighter = 0, other_hit = 0;
     for (std::size_t i = 0; i < plain.size(); ++i) {
       const auto& a = plain_ids[i];

@@ -11,7 +11,7 @@
 #include <limits>
 #include <vector>
 
-#include "runtime/render/image_io.hpp"
+#include "tests/render/rendered_frame.hpp"
 
 namespace {
 
@@ -51,12 +51,15 @@ int main(int argc, char** argv) {
   if (argc != 8)
     return std::fprintf(stderr, "usage: check_outlines PLAIN.png PLAIN.ids OUTLINED.png OUTLINED.ids WIDTH CREASE RGBA_HEX\n"), 2;
   try {
-    std::uint32_t w = 0, h = 0, w2 = 0, h2 = 0, iw = 0, ih = 0, iw2 = 0, ih2 = 0;
-    const auto plain = nano::render::read_png(argv[1], w, h);
-    const auto plain_ids = nano::render::read_ids(argv[2], iw, ih);
-    const auto outlined = nano::render::read_png(argv[3], w2, h2);
-    const auto ids = nano::render::read_ids(argv[4], iw2, ih2);
-    if (w != w2 || h != h2 || iw != w || ih != h || iw2 != w || ih2 != h) return std::fprintf(stderr, "sizes differ\n"), 1;
+    using nano::render::test::read_rendered_frame;
+    const auto plain_frame = read_rendered_frame(argv[1], argv[2]);
+    const auto outlined_frame = read_rendered_frame(argv[3], argv[4]);
+    if (!plain_frame.same_size(outlined_frame)) return std::fprintf(stderr, "sizes differ\n"), 1;
+    const std::uint32_t w = plain_frame.width, h = plain_frame.height;
+    const auto& plain = plain_frame.rgba;
+    const auto& plain_ids = plain_frame.ids;
+    const auto& outlined = outlined_frame.rgba;
+    const auto& ids = outlined_frame.ids;
     const int width = std::atoi(argv[5]);
     const float crease = float(std::atof(argv[6]));
     const std::uint32_t colour = std::uint32_t(std::strtoul(argv[7], nullptr, 16));
