@@ -123,4 +123,11 @@
     "atom_count. Both absent: no level of detail (`--lod` refused); one without the other is refused")          \
   X(draco_meshes, 29, std::uint8_t, required, 6, raw, no_rule_of_its_own, (),                                    \
     "present exactly when the four mesh sections have codec draco: the Draco streams they decode from "         \
-    "(below; decoded and checked by the reader)")
+    "(below; decoded and checked by the reader)")                                                               \
+  X(core_skip, 30, std::uint8_t, optional, 7, zstd, check_core_skip, (compartments, occupancy),                   \
+    "empty-space skipping (`shaders/shared/core_skip.h`, `format/core_skip.hpp`): for every compartment with a " \
+    "core grid, in compartment order, one 4-bit skip level per cell of its grid widened by one box on each "    \
+    "side (x fastest; two cells a byte, low nibble first): 0 where a box within one step holds a copy a ray "  \
+    "can hit, else L ≥ 1: the aligned block of 2^(L−1) cells per axis around the cell has no such box. Must "   \
+    "equal what the validator derives from occupancy, cubes and keep-masks. Absent (before 2.7): the runtime " \
+    "derives it at load")

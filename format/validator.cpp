@@ -14,6 +14,7 @@
 
 #include "common/effect_table.hpp"
 #include "format/checked_math.hpp"
+#include "format/core_skip.hpp"
 
 namespace nano::format {
 namespace {
@@ -464,6 +465,44 @@ private:
                      str(instance_limit) + " instances");
         }
     }
+  }
+
+  // Empty-space skipping (format 2.7): exactly the levels format/core_skip.cpp derives from the
+  // grids' occupancy, cubes and keep-masks (checked above), so a skipped block never hides a copy.
+  void check_core_skip() {
+    if (!p_.has(SectionKind::core_skip)) return;
+    const auto comps = p_.records<SectionKind::compartments>();
+    const auto skip = p_.records<SectionKind::core_skip>();
+    const CoreGridRecords grids{comps,
+                                p_.records<SectionKind::occupancy>(),
+                                p_.records<SectionKind::tiles3d>(),
+                                p_.records<SectionKind::recipes>(),
+                                p_.records<SectionKind::recipe_indices>(),
+                                p_.records<SectionKind::boundary_boxes>(),
+                                p_.records<SectionKind::mask_words>()};
+    const CoreSkipLayout layout = core_skip_layout(comps);
+    if (skip.size() != (layout.cells + 1) / 2)
+      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::core_skip, 0),
+                         "core_skip has " + str(skip.size()) + " bytes, not the " + str((layout.cells + 1) / 2) +
+                             " that hold the " + str(layout.cells) + " cells of the widened core grids");
+    const std::vector<std::uint8_t> expected = core_skip_section(grids);
+    const auto [mine, theirs] = std::mismatch(expected.begin(), expected.end(), skip.begin());
+    if (mine == expected.end()) return;
+    const std::uint64_t byte = std::uint64_t(mine - expected.begin());
+    const std::uint64_t cell = 2 * byte + ((*mine & 0x0F) == (*theirs & 0x0F) ? 1 : 0);
+    const auto level = [&](std::uint8_t b) { return str((b >> (4 * (cell % 2))) & 0x0F); };
+    std::uint64_t ci = 0;
+    while (ci < comps.size() && (layout.first_cell[ci] == kNoCoreGrid || layout.first_cell[ci] > cell ||
+                                 cell - layout.first_cell[ci] >= core_skip_cell_count(comps[ci])))
+      ++ci;
+    if (ci == comps.size())
+      fail(cursor<SectionKind::core_skip>(byte), 0, Rule::bad_value, "the padding after the last cell is " + level(*theirs) + ", not 0");
+    const std::uint64_t local = cell - layout.first_cell[ci];
+    const glm::uvec3 n = core_skip_cells(comps[ci]);
+    fail(cursor<SectionKind::core_skip>(byte), 0, Rule::bad_value,
+         "skip level " + level(*theirs) + " of cell (" + str(local % n.x) + ", " + str(local / n.x % n.y) + ", " +
+             str(local / (std::uint64_t{n.x} * n.y)) + ") of compartment " + str(ci) + "'s widened core grid is not " +
+             level(*mine) + ", the level its boxes give");
   }
 
   // The level of detail (format 2.5): per molecule type a non-empty range of beads that together

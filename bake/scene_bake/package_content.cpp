@@ -1,5 +1,7 @@
 #include "bake/scene_bake/package_content.hpp"
 
+#include "format/core_skip.hpp"
+
 #include <algorithm>
 #include <functional>
 #include <cstring>
@@ -184,6 +186,10 @@ std::pair<std::uint32_t, std::uint32_t> PackageContent::add_keep_masks(const gri
   return {first, static_cast<std::uint32_t>(masks.boundary_boxes.size())};
 }
 
+void PackageContent::add_core_skip() {
+  core_skip = format::core_skip_section({compartments, occupancy, tiles3d, recipes, recipe_indices, boundary_boxes, mask_words});
+}
+
 std::vector<format::SectionSource> PackageContent::sections() const {
   using format::SectionKind;
   using format::section_source;
@@ -221,6 +227,7 @@ std::vector<format::SectionSource> PackageContent::sections() const {
   add(SectionKind::occupancy, std::span(occupancy));
   add(SectionKind::boundary_boxes, std::span(boundary_boxes));
   add(SectionKind::mask_words, std::span(mask_words));
+  add(SectionKind::core_skip, std::span(core_skip));
   add(SectionKind::scene, std::span(&scene, 1));
   add(SectionKind::effects, std::span(effects));
   add(SectionKind::keyframes, std::span(keyframes));

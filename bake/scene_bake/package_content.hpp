@@ -43,6 +43,7 @@ struct PackageContent {
   std::vector<std::uint8_t> occupancy;
   std::vector<gpu::BoundaryBox> boundary_boxes;
   std::vector<std::uint32_t> mask_words;
+  std::vector<std::uint8_t> core_skip;  // empty-space skipping of every core grid (format/core_skip.hpp)
   gpu::SceneSettings scene{};
   std::vector<gpu::SceneEffects> effects;           // none or one record
   std::vector<gpu::InstanceKeyframe> keyframes;     // ascending (instance, time)
@@ -67,6 +68,9 @@ struct PackageContent {
   std::uint32_t add_occupancy(const std::vector<std::uint8_t>& classes);
   // Boundary boxes with W = ceil(largest cube / 32) words each; returns (first record, count).
   std::pair<std::uint32_t, std::uint32_t> add_keep_masks(const grid::KeepMasks& masks, std::uint32_t largest_cube);
+
+  // The skip levels of every core grid, once the compartments and their grids are all added.
+  void add_core_skip();
 
   // Sections referencing the vectors above (which must outlive the returned spans).
   std::vector<format::SectionSource> sections() const;

@@ -558,6 +558,7 @@ void fill_package_content(BakedScene& baked, const PackageInputs& p, const std::
     content.compartments.push_back(compartment.record);
     baked.compartments.push_back(std::move(compartment.summary));
   }
+  content.add_core_skip();
   for (const scene::PlacedInstance& instance : placed) add_instance(baked, instance, p.compartments[instance.compartment.index]);
   const scene::SceneDescription& scene = p.in.scene;
   content.scene = scene_settings(scene, baked.instances);

@@ -14,6 +14,7 @@
 
 #include "common/error.hpp"
 #include "common/singular_value.hpp"
+#include "format/core_skip.hpp"
 #include "format/package_view.hpp"
 #include "runtime/render/flat_level.hpp"
 #include "runtime/render/morton.hpp"
@@ -122,11 +123,14 @@ struct GpuScene::Impl : format::PackageView {
   // Level records: types, squares, cubes, replication areas, then (2-level only) squares of atoms.
   std::uint32_t first_square = 0, first_cube = 0, first_area = 0, first_atom_square = 0, first_bead = 0;
   std::vector<std::pair<dvec3, dvec3>> square_reach;  // per Wang square: tile-space union of its mLAS boxes
+  format::CoreSkipLayout core_skip_layout = format::core_skip_layout(compartments);
 
   Impl(const vk::Device& d, const format::Package& package, const SceneOptions& o)
       : PackageView(package), device(d), p(package), options(o), type_radius(atom_bounding_radii()) {
     if (compartment_instances.size() >= (1u << 24))
       fail("compartment_instances", "more than 2^24 compartment instances (the µLAS custom index has 24 bits)");
+    if (core_skip_layout.cells >= (std::uint64_t{1} << 32))
+      fail("core_skip", "more than 2^32 cells in the widened core grids (the shader indexes them with 32 bits)");
     auto start = std::chrono::steady_clock::now();
     upload_sections();
     plan_compartments();
@@ -171,7 +175,7 @@ struct GpuScene::Impl : format::PackageView {
         {gpu::NANO_B_COMPARTMENTS, SectionKind::compartments}, {gpu::NANO_B_OCCUPANCY, SectionKind::occupancy},
         {gpu::NANO_B_BOUNDARY_BOXES, SectionKind::boundary_boxes}, {gpu::NANO_B_MASK_WORDS, SectionKind::mask_words},
         {gpu::NANO_B_TRIANGLE_DROPS, SectionKind::triangle_drops}, {gpu::NANO_B_DROPPED_COPIES, SectionKind::dropped_copies},
-        {gpu::NANO_B_BEADS, SectionKind::beads},
+        {gpu::NANO_B_BEADS, SectionKind::beads},            {gpu::NANO_B_CORE_SKIP, SectionKind::core_skip},
     };
     section_buffers.resize(gpu::NANO_SCENE_BINDING_COUNT);
     for (const auto& [binding, kind] : kinds) {
@@ -183,6 +187,12 @@ struct GpuScene::Impl : format::PackageView {
         section_buffers[binding] = storage(std::as_bytes(std::span(none)));
         report.memory.derived += section_buffers[binding].size();
         continue;
+      }
+      std::vector<std::uint8_t> derived;
+      if (kind == SectionKind::core_skip && bytes.empty() && core_skip_layout.cells > 0) {
+        // A package before 2.7: the same levels the baker would have written.
+        derived = format::core_skip_section({compartments, occupancy, tiles3d, recipes, recipe_indices, boundary_boxes, mask_words});
+        bytes = std::as_bytes(std::span(derived));
       }
       if (vk::Buffer imported = try_import(kind, bytes); imported.handle() != VK_NULL_HANDLE) {
         section_buffers[binding] = std::move(imported);
@@ -275,6 +285,7 @@ struct GpuScene::Impl : format::PackageView {
           rc.reach_hi = glm::vec4(vec3(hi), 0.f);
           rc.span.z = 1;
         }
+        rc.core_skip.x = std::uint32_t(core_skip_layout.first_cell[ci]);
       }
       render_compartments.push_back(rc);
     }
@@ -725,7 +736,7 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
     if (b == gpu::NANO_B_TRIANGLE_SHELLS) continue;
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   }
-  for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES, gpu::NANO_B_BEADS})
+  for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES, gpu::NANO_B_BEADS, gpu::NANO_B_CORE_SKIP})
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   vk::write_storage_buffer(d, set, gpu::NANO_B_TRIANGLE_SHELLS, s.shell_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_COMPARTMENTS, s.render_compartment_buffer);

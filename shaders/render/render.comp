@@ -12,9 +12,11 @@
 //        (molecule boxes widened so they contain the true placement, runtime/render/gpu_scene.cpp),
 //        ownership and seam rule (membrane_keeps_copy) before the true placement M2
 //        (chart_membrane_molecule), molecule-space ray, the type's nLAS, exact ray–sphere.
-//  core: 3D-DDA over the grid widened by one box; at every cell the boxes within one step (a
-//        molecule reaches at most one box beyond its own), occupancy and keep-masks, the cube's mLAS,
-//        nLAS, ray–sphere. The walk stops once a cell starts beyond the best hit.
+//  core: 3D-DDA over the grid widened by one box; a cell with no live box within one step leaves the
+//        largest empty block around it in one step (skip levels, shared/core_skip.h); at every other
+//        cell the boxes within one step (a molecule reaches at most one box beyond its own),
+//        occupancy and keep-masks, the cube's mLAS, nLAS, ray–sphere. The walk stops once a cell
+//        starts beyond the best hit.
 // t_max shrinks across all levels: the best t is tracked here and handed to outer queries with
 // rayQueryGenerateIntersectionEXT. Hit rule (as the oracle): the smallest root t ≥ 0.
 #extension GL_EXT_ray_query : require
@@ -27,6 +29,7 @@
 #include "shared/shell_prism.h"
 #include "shared/render_membrane_filter.h"
 #include "shared/grid_dda.h"
+#include "shared/core_skip.h"
 #include "shared/ray_sphere.h"
 #include "shared/copy_number.h"
 #include "shared/effects.h"
@@ -105,6 +108,7 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_BEADS, std430) readonly buffe
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TLAS) uniform accelerationStructureEXT flat_tlas;
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_COPIES, std430) readonly buffer FlatCopies { FlatCopy flat_copies[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TRIANGLES, std430) readonly buffer FlatTriangles { uint flat_triangles[]; };
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_CORE_SKIP, std430) readonly buffer CoreSkip { uint core_skip_words[]; };  // 8 cells a word
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
 // The same buffer as the image pass reads it; the tracing code keeps its write-only view.
@@ -635,9 +639,20 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
       float ta;
       float tb;
       ivec3 previous = ivec3(-1000000);
+      ivec3 cells = dims + ivec3(2);
       while (dda_next(it, cell, ta, tb)) {
         if (ta > best_t) break;  // a cell beyond the best hit ends the walk
         count_work(NANO_RC_CORE_STEPS);
+        uint skip_index = rc.core_skip.x + uint(cell.x) + uint(cells.x) * (uint(cell.y) + uint(cells.y) * uint(cell.z));
+        uint skip = core_skip_level_in_word(core_skip_words[skip_index >> 3], skip_index);
+        if (skip != 0u) {
+          // Nothing to trace within one step of any cell of the block: the walk resumes beyond it.
+          // `cell`'s own boxes are dead, so it may stand as the cell before for the de-duplication.
+          ivec3 block_lo = core_skip_block_lo(cell, skip);
+          dda_leave_block(it, cell, ta, block_lo, core_skip_block_hi(block_lo, skip, cells));
+          previous = cell;
+          continue;
+        }
         for (int dz = -1; dz <= 1; ++dz)
           for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {

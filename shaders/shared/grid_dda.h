@@ -90,6 +90,28 @@ NANO_FN void dda_init(NANO_OUT(GridDda) it, NANO_IN(vec3) grid_min, NANO_IN(vec3
   it.running = true;
 }
 
+// Moves the walk from its current cell to the neighbour across the nearest boundary (ends it when
+// that boundary lies beyond the segment or the neighbour is outside the grid); returns the t where
+// the current cell is left, clipped to [t_cur, t_end].
+NANO_FN float dda_advance(NANO_INOUT(GridDda) it) {
+  float tx = dda_next_crossing(it, 0);
+  float ty = dda_next_crossing(it, 1);
+  float tz = dda_next_crossing(it, 2);
+  int axis = 0;
+  float tnext = tx;
+  if (ty < tnext) { axis = 1; tnext = ty; }
+  if (tz < tnext) { axis = 2; tnext = tz; }
+  float t_exit = min(max(tnext, it.t_cur), it.t_end);
+  if (tnext > it.t_end) {
+    it.running = false;  // this was the last cell
+  } else {
+    it.cell[axis] += it.step[axis];
+    it.t_cur = t_exit;
+    if (it.cell[axis] < 0 || it.cell[axis] >= it.res[axis]) it.running = false;
+  }
+  return t_exit;
+}
+
 // Returns false when the walk is over. Otherwise reports the current cell and its t range
 // [t_enter, t_exit] (clipped to the segment; t_exit may equal t_enter for a cell that is only
 // touched), then advances to the neighbour across the nearest boundary.
@@ -99,22 +121,40 @@ NANO_FN bool dda_next(NANO_INOUT(GridDda) it, NANO_OUT(ivec3) cell, NANO_OUT(flo
   t_exit = it.t_cur;
   if (!it.running || it.steps_left <= 0) return false;
   it.steps_left -= 1;
-  float tx = dda_next_crossing(it, 0);
-  float ty = dda_next_crossing(it, 1);
-  float tz = dda_next_crossing(it, 2);
-  int axis = 0;
-  float tnext = tx;
-  if (ty < tnext) { axis = 1; tnext = ty; }
-  if (tz < tnext) { axis = 2; tnext = tz; }
-  t_exit = min(max(tnext, it.t_cur), it.t_end);
-  if (tnext > it.t_end) {
-    it.running = false;  // this was the last cell
-  } else {
-    it.cell[axis] += it.step[axis];
-    it.t_cur = t_exit;
-    if (it.cell[axis] < 0 || it.cell[axis] >= it.res[axis]) it.running = false;
-  }
+  t_exit = dda_advance(it);
   return true;
+}
+
+// Empty-space skipping: `cell`, which dda_next just reported as entered at t_enter, lies in the
+// block of cells [block_lo, block_hi] (inclusive) where nothing is to be found. The walk continues
+// at the first cell beyond the block that the ray enters, as if it had stepped cell by cell.
+// The ray's last cell in the block is taken where the ray leaves the block's box, clamped into the
+// block and never behind `cell` on any axis (so rounding can neither leave the block early nor walk
+// backwards: every call moves the walk forward, and a walk ends after at most Σres calls); then one
+// ordinary step from that cell leaves the block across the boundary the ray really crosses first.
+NANO_FN void dda_leave_block(NANO_INOUT(GridDda) it, NANO_IN(ivec3) cell, float t_enter, NANO_IN(ivec3) block_lo,
+                             NANO_IN(ivec3) block_hi) {
+  if (!it.running) return;  // the segment or the grid already ends in `cell`
+  float t_leave = placement_inf();
+  for (int i = 0; i < 3; ++i) {
+    if (it.step[i] == 0) continue;
+    float plane = float(it.step[i] > 0 ? block_hi[i] + 1 : block_lo[i]);
+    t_leave = min(t_leave, (plane - it.org[i]) / it.dir[i]);
+  }
+  if (!(t_leave <= it.t_end)) {  // the segment ends inside the block (or the ray never leaves it)
+    it.running = false;
+    return;
+  }
+  vec3 p = it.org + max(t_leave, t_enter) * it.dir;
+  ivec3 last = clamp(ivec3(floor(p)), block_lo, block_hi);
+  for (int i = 0; i < 3; ++i) {
+    if (it.step[i] > 0) last[i] = max(last[i], cell[i]);
+    if (it.step[i] < 0) last[i] = min(last[i], cell[i]);
+    if (it.step[i] == 0) last[i] = cell[i];
+  }
+  it.cell = last;
+  it.t_cur = max(it.t_cur, t_enter);
+  dda_advance(it);
 }
 
 NANO_END

@@ -21,6 +21,7 @@ struct RenderCompartment {
   vec4 slot_lo;    // xyz: tile-space minimum of every mLAS box of the compartment's squares (the
                    // repLAS box of slot (0, 0); slot (i, j) is moved by (i·S, j·S, 0)); w: S
   vec4 slot_hi;    // xyz: tile-space maximum; w: reserved
+  uvec4 core_skip; // x: the core grid's first cell in section "core_skip" (shared/core_skip.h); yzw: reserved
 };
 
 // Replication areas of at most this many slots are tested slot by slot against their boxes
@@ -94,7 +95,7 @@ NANO_END
 
 #ifdef __cplusplus
 #include <cstddef>
-static_assert(sizeof(nano::gpu::RenderCompartment) == 112);
+static_assert(sizeof(nano::gpu::RenderCompartment) == 128 && offsetof(nano::gpu::RenderCompartment, core_skip) == 112);
 static_assert(sizeof(nano::gpu::RenderInstance) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);
 static_assert(sizeof(nano::gpu::Camera) == 80);

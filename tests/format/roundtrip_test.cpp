@@ -209,7 +209,7 @@ TEST(SectionKinds, NamesRoundTripAndRecordSizes) {
     EXPECT_EQ(section_kind_from_name(section_kind_name(k)), k);
   }
   EXPECT_FALSE(is_known_section_kind(0));
-  EXPECT_FALSE(is_known_section_kind(30));
+  EXPECT_FALSE(is_known_section_kind(31));
   EXPECT_EQ(record_size(SectionKind::draco_meshes), 1u);
   EXPECT_EQ(record_size(SectionKind::triangle_drops), 8u);
   EXPECT_EQ(record_size(SectionKind::dropped_copies), 4u);

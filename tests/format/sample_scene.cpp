@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "format/core_skip.hpp"
 #include "format/draco_mesh_sections.hpp"
 
 namespace nano::format::test {
@@ -78,6 +79,7 @@ SampleScene make_sample_scene() {
   // 0, triangle 3 slot 8's instance 1 (W x H = 3 x 3 slots, squares of at most 2 instances).
   s.triangle_drops = {{0, 0}, {0, 2}, {2, 0}, {2, 1}};
   s.dropped_copies = {1, 4u << 16, (8u << 16) | 1u};
+  refresh_core_skip(s);
   // The level of detail: type 0's three atoms as one bead about their centroid (0, 0, 1/6),
   // reporting atom 2 (the nearest); type 1's two atoms as a bead each.
   s.beads = {{vec4(0, 0, 1.0f / 6, 2.02f), 2, 3, 0, 0}, {vec4(0, 0, 0, 1.001f), 3, 1, 0, 0}, {vec4(0.5f, 0, 0, 0.501f), 4, 1, 0, 0}};
@@ -137,11 +139,16 @@ std::vector<SectionSource> sections_of(const SampleScene& s, Compression mesh_c,
       source(K::dropped_copies, s.dropped_copies, c),
       source(K::beads, s.beads, c),
       source(K::bead_ranges, s.bead_ranges, c),
+      source(K::core_skip, s.core_skip, c),
   };
   std::vector<SectionSource> out;
   for (const SectionSource& src : all)
     if (!without || src.kind != static_cast<std::uint32_t>(*without)) out.push_back(src);
   return out;
+}
+
+void refresh_core_skip(SampleScene& s) {
+  s.core_skip = core_skip_section({s.compartments, s.occupancy, s.tiles3d, s.recipes, s.recipe_indices, s.boundary_boxes, s.mask_words});
 }
 
 MeshArrays grid_sphere(int rings, int segments, float radius) {

@@ -38,7 +38,11 @@ struct SampleScene {
   std::vector<gpu::InstanceKeyframe> keyframes;
   std::vector<gpu::Bead> beads;
   std::vector<gpu::BeadRange> bead_ranges;
+  std::vector<std::uint8_t> core_skip;  // derived by make_sample_scene; refresh_core_skip after changing the grid
 };
+
+// Derives s.core_skip again from the grid's occupancy, cubes and keep-masks (format/core_skip.hpp).
+void refresh_core_skip(SampleScene& s);
 
 SampleScene make_sample_scene();
 

@@ -161,6 +161,12 @@ const Case kCases[] = {
        s.mask_words[3] = 2;
      },
      Rule::bad_value, SectionKind::mask_words, 3 * 4},
+    {"core skip level too high: a block that hides a copy",
+     [](SampleScene& s) { s.core_skip[255] = std::uint8_t(s.core_skip[255] | 0x0F); }, Rule::bad_value, SectionKind::core_skip, 255},
+    {"core skip level too low", [](SampleScene& s) { s.core_skip[0] = 0; }, Rule::bad_value, SectionKind::core_skip, 0},
+    {"core skip one byte short", [](SampleScene& s) { s.core_skip.pop_back(); }, Rule::record_size, SectionKind::core_skip, 0},
+    {"core skip for a changed occupancy", [](SampleScene& s) { s.occupancy[5] = gpu::NANO_BOX_INSIDE; }, Rule::bad_value,
+     SectionKind::core_skip, 2},
     {"two scene records", [](SampleScene& s) { s.scene.push_back(s.scene[0]); }, Rule::record_size, SectionKind::scene, 0},
     {"field of view", [](SampleScene& s) { s.scene[0].camera_position.w = 0; }, Rule::bad_value, SectionKind::scene, 12},
     {"scene compartment index", [](SampleScene& s) { s.compartment_instances[1].compartment = 1; },
@@ -332,6 +338,8 @@ TEST(SemanticOptional, NoMembraneAndNoCoreGrid) {
   s.compartments[0].core_masks = glm::uvec4(0);
   s.triangle_drops.assign(4, {0, 0});  // a mesh without membrane drops nothing
   s.dropped_copies.clear();
+  refresh_core_skip(s);  // no core grid: no skip levels
+  EXPECT_TRUE(s.core_skip.empty());
   EXPECT_NO_THROW(validate_semantics(Package::from_bytes(build(s))));
 }
 
