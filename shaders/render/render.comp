@@ -637,10 +637,9 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
       ivec3 dims = ivec3(c.grid_dims.xyz);
       ivec3 cell;
       float ta;
-      float tb;
       ivec3 previous = ivec3(-1000000);
       ivec3 cells = dims + ivec3(2);
-      while (dda_next(it, cell, ta, tb)) {
+      while (dda_current(it, cell, ta)) {
         if (ta > best_t) break;  // a cell beyond the best hit ends the walk
         count_work(NANO_RC_CORE_STEPS);
         uint skip_index = rc.core_skip.x + uint(cell.x) + uint(cells.x) * (uint(cell.y) + uint(cells.y) * uint(cell.z));
@@ -649,22 +648,22 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
           // Nothing to trace within one step of any cell of the block: the walk resumes beyond it.
           // `cell`'s own boxes are dead, so it may stand as the cell before for the de-duplication.
           ivec3 block_lo = core_skip_block_lo(cell, skip);
-          dda_leave_block(it, cell, ta, block_lo, core_skip_block_hi(block_lo, skip, cells));
-          previous = cell;
-          continue;
+          dda_skip_block(it, block_lo, core_skip_block_hi(block_lo, skip, cells));
+        } else {
+          for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
+                if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
+                ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
+                if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
+                count_work(NANO_RC_CORE_BOXES);
+                uint box = uint(ijk.x) + uint(dims.x) * (uint(ijk.y) + uint(dims.y) * uint(ijk.z));
+                if (trace_element(inst, ci, c, rc, false, 0u, w, box, ijk, o, od)) found = true;
+              }
         }
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
-              if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
-              ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
-              if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
-              count_work(NANO_RC_CORE_BOXES);
-              uint box = uint(ijk.x) + uint(dims.x) * (uint(ijk.y) + uint(dims.y) * uint(ijk.z));
-              if (trace_element(inst, ci, c, rc, false, 0u, w, box, ijk, o, od)) found = true;
-            }
         previous = cell;
+        dda_advance(it);  // the one step of the walk, after a skip out of the block
       }
     } else {
       rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes

@@ -3,7 +3,7 @@
 // cell is walked box by box only when a box within one step of it holds a copy a ray can hit (a
 // "live" box: not OUTSIDE, its cube not empty, a BOUNDARY box's keep-mask keeping one). Every other
 // cell carries a skip level L ≥ 1: the aligned block of 2^(L−1) cells per axis that contains it has
-// no such cell, so the walk leaves the whole block in one step (grid_dda.h, dda_leave_block).
+// no such cell, so the walk leaves the whole block in one step (grid_dda.h, dda_skip_block).
 // A ray that meets nothing thus crosses O(log n) blocks instead of n cells. GLSL 460 and C++20/GLM.
 #ifndef NANO_CORE_SKIP_H
 #define NANO_CORE_SKIP_H

@@ -112,30 +112,37 @@ NANO_FN float dda_advance(NANO_INOUT(GridDda) it) {
   return t_exit;
 }
 
+// The current cell of a running walk and the t where the ray entered it; false when the walk is over.
+// Each true return counts against the safety cap: a loop of dda_current … dda_advance visits at most
+// Σres + 3 cells.
+NANO_FN bool dda_current(NANO_INOUT(GridDda) it, NANO_OUT(ivec3) cell, NANO_OUT(float) t_enter) {
+  cell = it.cell;
+  t_enter = it.t_cur;
+  if (!it.running || it.steps_left <= 0) return false;
+  it.steps_left -= 1;
+  return true;
+}
+
 // Returns false when the walk is over. Otherwise reports the current cell and its t range
 // [t_enter, t_exit] (clipped to the segment; t_exit may equal t_enter for a cell that is only
 // touched), then advances to the neighbour across the nearest boundary.
 NANO_FN bool dda_next(NANO_INOUT(GridDda) it, NANO_OUT(ivec3) cell, NANO_OUT(float) t_enter, NANO_OUT(float) t_exit) {
-  cell = it.cell;
-  t_enter = it.t_cur;
   t_exit = it.t_cur;
-  if (!it.running || it.steps_left <= 0) return false;
-  it.steps_left -= 1;
+  if (!dda_current(it, cell, t_enter)) return false;
   t_exit = dda_advance(it);
   return true;
 }
 
-// Empty-space skipping: `cell`, which dda_next just reported as entered at t_enter, lies in the
-// block of cells [block_lo, block_hi] (inclusive) where nothing is to be found. The walk continues
-// at the first cell beyond the block that the ray enters, as if it had stepped cell by cell.
-// The ray's last cell in the block is taken where the ray leaves the block's box, clamped into the
-// block and never behind `cell` on any axis (so rounding can neither leave the block early nor walk
-// backwards: every call moves the walk forward, and a walk ends after at most Σres calls); then one
-// ordinary step from that cell leaves the block across the boundary the ray really crosses first.
-NANO_FN void dda_leave_block(NANO_INOUT(GridDda) it, NANO_IN(ivec3) cell, float t_enter, NANO_IN(ivec3) block_lo,
-                             NANO_IN(ivec3) block_hi) {
-  if (!it.running) return;  // the segment or the grid already ends in `cell`
+// Empty-space skipping: the current cell (from dda_current) lies in the block of cells
+// [block_lo, block_hi] (inclusive) where nothing is to be found. Moves the walk to the ray's last
+// cell in the block, so that the next dda_advance leaves the block as if the walk had stepped cell
+// by cell; ends the walk when the segment ends inside the block. The last cell is taken where the
+// ray leaves the block's box, clamped into the block and never behind the current cell on any axis
+// (so rounding can neither leave the block early nor walk backwards: every skip moves the walk
+// forward), and the dda_advance from it crosses the boundary the ray really crosses first.
+NANO_FN void dda_skip_block(NANO_INOUT(GridDda) it, NANO_IN(ivec3) block_lo, NANO_IN(ivec3) block_hi) {
   float t_leave = placement_inf();
+  ivec3 last = it.cell;
   for (int i = 0; i < 3; ++i) {
     if (it.step[i] == 0) continue;
     float plane = float(it.step[i] > 0 ? block_hi[i] + 1 : block_lo[i]);
@@ -145,16 +152,12 @@ NANO_FN void dda_leave_block(NANO_INOUT(GridDda) it, NANO_IN(ivec3) cell, float 
     it.running = false;
     return;
   }
-  vec3 p = it.org + max(t_leave, t_enter) * it.dir;
-  ivec3 last = clamp(ivec3(floor(p)), block_lo, block_hi);
+  vec3 p = clamp(floor(it.org + max(t_leave, it.t_cur) * it.dir), vec3(block_lo), vec3(block_hi));
   for (int i = 0; i < 3; ++i) {
-    if (it.step[i] > 0) last[i] = max(last[i], cell[i]);
-    if (it.step[i] < 0) last[i] = min(last[i], cell[i]);
-    if (it.step[i] == 0) last[i] = cell[i];
+    if (it.step[i] > 0) last[i] = max(last[i], int(p[i]));
+    if (it.step[i] < 0) last[i] = min(last[i], int(p[i]));
   }
   it.cell = last;
-  it.t_cur = max(it.t_cur, t_enter);
-  dda_advance(it);
 }
 
 NANO_END

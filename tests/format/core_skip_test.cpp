@@ -1,5 +1,5 @@
 // Empty-space skipping of the core grid (format/core_skip.hpp, shaders/shared/core_skip.h and
-// dda_leave_block of shaders/shared/grid_dda.h) against brute force:
+// dda_skip_block of shaders/shared/grid_dda.h) against brute force:
 //  - the levels equal their definition, cell by cell (the largest aligned empty block, computed by
 //    scanning every block), for random live boxes in grids of odd sizes;
 //  - which boxes are live, on the sample scene's grid (a keep-mask keeping nothing is dead, as is a
@@ -133,17 +133,17 @@ WalkResult walk(const std::vector<std::uint8_t>& levels, ivec3 nc, vec3 o, vec3 
   gpu::GridDda it;
   gpu::dda_init(it, vec3(0), vec3(1), nc, o, d, 0.0f, t1);
   ivec3 cell;
-  float ta, tb;
-  while (gpu::dda_next(it, cell, ta, tb)) {
+  float ta;
+  while (gpu::dda_current(it, cell, ta)) {
     ++r.steps;
     const std::uint32_t level = levels[index_of(cell, nc)];
-    if (level == 0) {
-      r.walked.push_back(cell);
-      r.spans.push_back(tb - ta);
-    } else if (skip) {
+    if (level == 0) r.walked.push_back(cell);
+    if (level != 0 && skip) {
       const ivec3 lo = gpu::core_skip_block_lo(cell, level);
-      gpu::dda_leave_block(it, cell, ta, lo, gpu::core_skip_block_hi(lo, level, nc));
+      gpu::dda_skip_block(it, lo, gpu::core_skip_block_hi(lo, level, nc));
     }
+    const float tb = gpu::dda_advance(it);
+    if (level == 0) r.spans.push_back(tb - ta);
   }
   return r;
 }

@@ -58,13 +58,15 @@ void main() {
   GridDda it;
   dda_init(it, vec3(0), vec3(10), ivec3(4, 5, 6), o, d, 0.0f, 1e30f);
   ivec3 cell; float ta; float tb;
-  while (dda_next(it, cell, ta, tb)) {
-    acc += vec4(vec3(cell), tb - ta);
+  while (dda_next(it, cell, ta, tb)) acc += vec4(vec3(cell), tb - ta);
+  dda_init(it, vec3(0), vec3(10), ivec3(4, 5, 6), o, d, 0.0f, 1e30f);
+  while (dda_current(it, cell, ta)) {
     uint level = core_skip_level_in_word(floatBitsToUint(io.data[i].w), uint(cell.x));
     if (level != 0u) {
       ivec3 lo = core_skip_block_lo(cell, level);
-      dda_leave_block(it, cell, ta, lo, core_skip_block_hi(lo, level, ivec3(4, 5, 6)));
+      dda_skip_block(it, lo, core_skip_block_hi(lo, level, ivec3(4, 5, 6)));
     }
+    acc.w += dda_advance(it);
   }
 
   io.data[i] = acc;
