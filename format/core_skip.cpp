@@ -1,33 +1,53 @@
 #include "format/core_skip.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include "shaders/shared/core_skip.h"
 
 namespace nano::format {
 namespace {
 
-std::uint32_t wrap(std::int64_t a, std::uint32_t n) { return std::uint32_t(((a % n) + n) % n); }
-
 std::uint64_t volume(glm::uvec3 n) { return std::uint64_t{n.x} * n.y * n.z; }
+
+// dst[i] |= src[i] for n bytes, eight at a time.
+void or_row(std::uint8_t* dst, const std::uint8_t* src, std::uint64_t n) {
+  std::uint64_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    std::uint64_t a, b;
+    std::memcpy(&a, dst + i, 8);
+    std::memcpy(&b, src + i, 8);
+    a |= b;
+    std::memcpy(dst + i, &a, 8);
+  }
+  for (; i < n; ++i) dst[i] |= src[i];
+}
 
 // out[w] = OR of in[w − 2 .. w] along axis `a` (cells of `in` outside [0, n_in) count as empty): a
 // box dilated by one on each side, shifted by one into the widened grid. Other axes keep their size.
+// Written in memory order, reading whole rows, so the passes along y and z stream like the x pass.
 std::vector<std::uint8_t> dilate_axis(const std::vector<std::uint8_t>& in, glm::uvec3 n_in, int a, glm::uvec3& n_out) {
   n_out = n_in;
   n_out[a] = n_in[a] + 2;
   std::vector<std::uint8_t> out(volume(n_out), 0);
-  const std::uint64_t stride_out = a == 0 ? 1 : a == 1 ? n_out.x : std::uint64_t{n_out.x} * n_out.y;
-  glm::uvec3 p(0);
-  for (p.z = 0; p.z < n_in.z; ++p.z)
-    for (p.y = 0; p.y < n_in.y; ++p.y)
-      for (p.x = 0; p.x < n_in.x; ++p.x) {
-        const std::uint64_t i = p.x + std::uint64_t{n_in.x} * (p.y + std::uint64_t{n_in.y} * p.z);
-        if (!in[i]) continue;
-        const std::uint64_t o = p.x + std::uint64_t{n_out.x} * (p.y + std::uint64_t{n_out.y} * p.z);
-        // Box b reaches cells b, b + 1, b + 2 of the widened axis (cell w ↔ box w − 1, ± one step).
-        for (int s = 0; s < 3; ++s) out[o + s * stride_out] = 1;
+  const std::uint64_t row = n_in.x;  // x rows of the y and z passes
+  std::uint64_t o = 0;
+  for (std::uint32_t z = 0; z < n_out.z; ++z)
+    for (std::uint32_t y = 0; y < n_out.y; ++y) {
+      if (a == 0) {
+        const std::uint8_t* src = in.data() + row * (y + std::uint64_t{n_in.y} * z);
+        for (std::uint32_t w = 0; w < n_out.x; ++w, ++o)
+          out[o] = std::uint8_t((w < n_in.x ? src[w] : 0) | (w >= 1 && w - 1 < n_in.x ? src[w - 1] : 0) |
+                                (w >= 2 && w - 2 < n_in.x ? src[w - 2] : 0));
+        continue;
       }
+      const std::uint32_t w = a == 1 ? y : z;
+      for (std::uint32_t b = w < 2 ? 0 : w - 2; b <= w && b < n_in[a]; ++b) {
+        const std::uint8_t* src = in.data() + row * (a == 1 ? b + std::uint64_t{n_in.y} * z : y + std::uint64_t{n_in.y} * b);
+        or_row(out.data() + o, src, n_out.x);
+      }
+      o += n_out.x;
+    }
   return out;
 }
 
@@ -46,15 +66,16 @@ std::vector<std::uint8_t> core_live_boxes(const CoreGridRecords& r, std::uint32_
     largest = std::max(largest, r.tiles3d[t].instance_count);
   const std::uint32_t words_per_box = (largest + 31) / 32;
   std::uint64_t next_mask = c.core_masks.x;  // boundary records ascend by box, as the boxes below
-  for (std::uint32_t k = 0; k < dims.z; ++k)
-    for (std::uint32_t j = 0; j < dims.y; ++j)
-      for (std::uint32_t i = 0; i < dims.x; ++i) {
-        const std::uint64_t box = i + std::uint64_t{dims.x} * (j + std::uint64_t{dims.y} * k);
+  // Recipes wrap: the cube of box (i, j, k) is recipe cell (i mod X, j mod Y, k mod Z), followed
+  // incrementally (a division per box cost more than the rest of the walk on a red blood cell).
+  std::uint64_t box = 0;
+  for (std::uint32_t k = 0, rk = 0; k < dims.z; ++k, rk = rk + 1 == recipe.dims.z ? 0 : rk + 1)
+    for (std::uint32_t j = 0, rj = 0; j < dims.y; ++j, rj = rj + 1 == recipe.dims.y ? 0 : rj + 1) {
+      const std::uint32_t* row = r.recipe_indices.data() + recipe.first_index + std::uint64_t{recipe.dims.x} * (rj + std::uint64_t{recipe.dims.y} * rk);
+      for (std::uint32_t i = 0, ri = 0; i < dims.x; ++i, ++box, ri = ri + 1 == recipe.dims.x ? 0 : ri + 1) {
         const std::uint8_t occ = r.occupancy[c.grid_dims.w + box];
         if (occ == gpu::NANO_BOX_OUTSIDE) continue;
-        const std::uint32_t cube = r.recipe_indices[recipe.first_index + wrap(i, recipe.dims.x) +
-                                                    recipe.dims.x * (wrap(j, recipe.dims.y) + recipe.dims.y * wrap(k, recipe.dims.z))];
-        const std::uint32_t count = r.tiles3d[cube].instance_count;
+        const std::uint32_t count = r.tiles3d[row[ri]].instance_count;
         if (count == 0) continue;
         if (occ != gpu::NANO_BOX_BOUNDARY) {
           live[box] = 1;
@@ -69,6 +90,7 @@ std::vector<std::uint8_t> core_live_boxes(const CoreGridRecords& r, std::uint32_
           if (words[w] & used) live[box] = 1;
         }
       }
+    }
   return live;
 }
 
