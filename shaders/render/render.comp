@@ -431,7 +431,7 @@ bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool
   if (membrane) {
     uint tile = recipe_cell(c.membrane_recipe, ivec3(cell.xy, 0));
     if (kTwoLevel) return trace_atom_tile(inst, ci, tl, w.mt, w.chart, cell.xy, tile, slot_or_box, o, d);
-    entry = frame.levels.x + tile;
+    entry = frame.levels.x + orders[rc.core_skip.y + tl] + tile;  // the mLAS of the triangle's distortion class
     first = squares[tile].first_instance;
     g = replication_tile_uv(cell.xy, rc.membrane.x);
     chart_tile_inverse_ray(w.chart, g, s_over_S, o, d, ot, dt);

@@ -21,7 +21,9 @@ struct RenderCompartment {
   vec4 slot_lo;    // xyz: tile-space minimum of every mLAS box of the compartment's squares (the
                    // repLAS box of slot (0, 0); slot (i, j) is moved by (i·S, j·S, 0)); w: S
   vec4 slot_hi;    // xyz: tile-space maximum; w: reserved
-  uvec4 core_skip; // x: the core grid's first cell in section "core_skip" (shared/core_skip.h); yzw: reserved
+  uvec4 core_skip; // x: the core grid's first cell in section "core_skip" (shared/core_skip.h); y: first
+                   // entry in `orders` of the mesh's triangles' distortion classes (per triangle, its
+                   // class's first square level minus frame.levels.x); zw: reserved
 };
 
 // Replication areas of at most this many slots are tested slot by slot against their boxes
