@@ -129,5 +129,5 @@
     "core grid, in compartment order, one 4-bit skip level per cell of its grid widened by one box on each "    \
     "side (x fastest; two cells a byte, low nibble first): 0 where a box within one step holds a copy a ray "  \
     "can hit, else L ≥ 1: the aligned block of 2^(L−1) cells per axis around the cell has no such box. Must "   \
-    "equal what the validator derives from occupancy, cubes and keep-masks. Absent (before 2.7): the runtime " \
-    "derives it at load")
+    "equal what the validator derives from occupancy, cubes and keep-masks. Absent or empty (before 2.7): the " \
+    "runtime derives it at load")

@@ -470,7 +470,7 @@ private:
   // Empty-space skipping (format 2.7): exactly the levels format/core_skip.cpp derives from the
   // grids' occupancy, cubes and keep-masks (checked above), so a skipped block never hides a copy.
   void check_core_skip() {
-    if (!p_.has(SectionKind::core_skip)) return;
+    if (p_.record_count(SectionKind::core_skip) == 0) return;  // absent or empty: the runtime derives it
     const auto comps = p_.records<SectionKind::compartments>();
     const auto skip = p_.records<SectionKind::core_skip>();
     const CoreGridRecords grids{comps,
