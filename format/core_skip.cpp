@@ -26,7 +26,7 @@ void or_row(std::uint8_t* dst, const std::uint8_t* src, std::uint64_t n) {
 // out[w] = OR of in[w − 2 .. w] along axis `a` (cells of `in` outside [0, n_in) count as empty): a
 // box dilated by one on each side, shifted by one into the widened grid. Other axes keep their size.
 // Written in memory order, reading whole rows, so the passes along y and z stream like the x pass.
-std::vector<std::uint8_t> dilate_axis(const std::vector<std::uint8_t>& in, glm::uvec3 n_in, int a, glm::uvec3& n_out) {
+std::vector<std::uint8_t> dilate_axis(std::span<const std::uint8_t> in, glm::uvec3 n_in, int a, glm::uvec3& n_out) {
   n_out = n_in;
   n_out[a] = n_in[a] + 2;
   std::vector<std::uint8_t> out(volume(n_out), 0);
@@ -96,9 +96,8 @@ std::vector<std::uint8_t> core_live_boxes(const CoreGridRecords& r, std::uint32_
 
 std::vector<std::uint8_t> core_skip_levels(glm::uvec3 boxes, std::span<const std::uint8_t> live) {
   // Level 0: a cell is walked when a live box lies within one step of it (separable dilation).
-  glm::uvec3 n = boxes, nx, ny, nz;
-  std::vector<std::uint8_t> in(live.begin(), live.end());
-  std::vector<std::uint8_t> walked = dilate_axis(dilate_axis(dilate_axis(in, n, 0, nx), nx, 1, ny), ny, 2, nz);
+  glm::uvec3 nx, ny, nz;
+  std::vector<std::uint8_t> walked = dilate_axis(dilate_axis(dilate_axis(live, boxes, 0, nx), nx, 1, ny), ny, 2, nz);
   // The pyramid: level k + 1 marks a block of 2×2×2 level-k blocks when any of them is marked.
   std::vector<std::vector<std::uint8_t>> marked{std::move(walked)};
   std::vector<glm::uvec3> size{nz};

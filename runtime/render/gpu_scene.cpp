@@ -376,7 +376,9 @@ struct GpuScene::Impl : format::PackageView {
     double lift_lo = 0, lift_hi = 0;  // range of the smooth surface's lift along the face normal (tile z)
     dmat3 e{0.0};  // element-wise max |T − I|
   };
-  static void widen_to(Distortion& d, const Distortion& o) {
+  // Widens `into` (nothing yet: the first distortion) to hold o.
+  static void widen_to(std::optional<Distortion>& into, const Distortion& o) {
+    Distortion& d = into ? *into : into.emplace();
     d.sigma = std::max(d.sigma, o.sigma), d.delta = std::max(d.delta, o.delta), d.bulge = std::max(d.bulge, o.bulge);
     d.lift_lo = std::min(d.lift_lo, o.lift_lo), d.lift_hi = std::max(d.lift_hi, o.lift_hi);
     for (int col = 0; col < 3; ++col) d.e[col] = glm::max(d.e[col], o.e[col]);
@@ -402,18 +404,9 @@ struct GpuScene::Impl : format::PackageView {
     for (const vec3& n : {n0, n1, n2})
       d.delta = std::max(d.delta, glm::length(glm::normalize(dvec3(n)) - dvec3(chart.face_normal)));
     d.bulge = double(gpu::chart_smooth_bulge(chart, c.scales.w));
-    // The lift's normal part, −α Σ_i l_i ((p − p_i)·m_i)(m_i·N) = Σ_ij l_i l_j c_ij with
-    // c_ij = −α ((P_j − P_i)·m_i)(m_i·N) (p − p_i = Σ_j l_j (P_j − P_i)), weights l_i l_j ≥ 0 summing to
-    // 1: it lies between the least and largest c_ij (c_ii = 0). On a convex stretch of surface every
-    // c_ij ≥ 0, so the box grows on one side only.
-    const dvec3 corner[3] = {dvec3(chart.p0), dvec3(chart.p1), dvec3(chart.p2)};
-    const dvec3 unit_normal[3] = {glm::normalize(dvec3(n0)), glm::normalize(dvec3(n1)), glm::normalize(dvec3(n2))};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        const double cij = -double(c.scales.w) * glm::dot(corner[j] - corner[i], unit_normal[i]) *
-                           glm::dot(unit_normal[i], dvec3(chart.face_normal));
-        d.lift_lo = std::min(d.lift_lo, cij), d.lift_hi = std::max(d.lift_hi, cij);
-      }
+    float lift_lo, lift_hi;  // a convex stretch of surface lifts only outward: the box grows on one side
+    gpu::chart_smooth_lift_range(chart, c.scales.w, lift_lo, lift_hi);
+    d.lift_lo = lift_lo, d.lift_hi = lift_hi;
     for (int i = 0; i <= kSteps; ++i)
       for (int j = 0; i + j <= kSteps; ++j) {
         const glm::vec2 uv = t0 + (t1 - t0) * (float(i) / kSteps) + (t2 - t0) * (float(j) / kSteps);
@@ -463,8 +456,7 @@ struct GpuScene::Impl : format::PackageView {
       while (double(r) >= kClassShare[cls] * double(ranked.size()) && cls + 1 < kDistortionClasses) ++cls;
       const std::uint32_t k = ranked[r].second;
       out.of_triangle[k] = std::uint8_t(cls);
-      if (!out.bound[cls]) out.bound[cls] = Distortion{};
-      widen_to(*out.bound[cls], *per[k]);
+      widen_to(out.bound[cls], *per[k]);
     }
     return out;
   }
@@ -542,9 +534,7 @@ struct GpuScene::Impl : format::PackageView {
       for (const std::uint8_t k : classes.of_triangle) orders.push_back(square_level(k, 0) - first_square);
       for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t)
         for (std::uint32_t k = 0; k < kDistortionClasses; ++k) {
-          if (!classes.bound[k]) continue;
-          if (!square_distortion[t][k]) square_distortion[t][k] = Distortion{};
-          widen_to(*square_distortion[t][k], *classes.bound[k]);
+          if (classes.bound[k]) widen_to(square_distortion[t][k], *classes.bound[k]);
         }
     }
     square_reach.assign(tiles2d.size(), {dvec3(INFINITY), dvec3(-INFINITY)});

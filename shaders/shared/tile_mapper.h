@@ -111,6 +111,26 @@ NANO_FN float chart_smooth_bulge(NANO_IN(TriangleChart) c, float alpha) {
   return alpha * b;
 }
 
+// Range [lo, hi] (lo ≤ 0 ≤ hi) of the lift's part along the face normal, (X_smooth − X_flat)·N, over
+// the triangle. It is −α Σ_i l_i ((p − P_i)·m_i)(m_i·N) = Σ_ij l_i l_j c_ij with
+// c_ij = −α ((P_j − P_i)·m_i)(m_i·N) (as p − P_i = Σ_j l_j (P_j − P_i)); the weights l_i l_j ≥ 0 sum to 1,
+// so it lies between the least and largest c_ij (c_ii = 0). On a convex stretch of surface every
+// c_ij ≥ 0: the lift only rises.
+NANO_FN void chart_smooth_lift_range(NANO_IN(TriangleChart) c, float alpha, NANO_OUT(float) lo, NANO_OUT(float) hi) {
+  vec3 p[3];
+  vec3 m[3];
+  p[0] = c.p0; p[1] = c.p1; p[2] = c.p2;
+  m[0] = normalize(c.n0); m[1] = normalize(c.n1); m[2] = normalize(c.n2);
+  lo = 0.0f;
+  hi = 0.0f;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      float cij = -alpha * dot(p[j] - p[i], m[i]) * dot(m[i], c.face_normal);
+      lo = min(lo, cij);
+      hi = max(hi, cij);
+    }
+}
+
 // Interpolated vertex normal at uv, normalised (barycentric weights may be negative outside).
 NANO_FN vec3 chart_normal(NANO_IN(TriangleChart) c, NANO_IN(vec2) uv) {
   vec3 l = chart_barycentric(c, uv);

@@ -166,14 +166,25 @@ TEST(TileMapper, SmoothSurfaceIsPhongTessellationContinuousAcrossEdges) {
     for (int k = 0; k < 3; ++k)
       EXPECT_LT(glm::length(D(g::chart_smooth_position(ch, c.t[k], alpha)) - o.P[k]), 1e-4 * o.diameter());
     const double bulge = g::chart_smooth_bulge(ch, alpha);
+    float lift_lo, lift_hi;
+    g::chart_smooth_lift_range(ch, alpha, lift_lo, lift_hi);
+    EXPECT_LE(lift_lo, 0.0f);
+    EXPECT_GE(lift_hi, 0.0f);
+    EXPECT_LE(std::max(-lift_lo, lift_hi), bulge * (1 + 1e-4) + 1e-3);
     for (int k = 0; k < 5; ++k) {
       glm::vec2 uv(float(rng.uniform(-0.05, 1.05)), float(rng.uniform(-0.05, 1.05)));
       dvec3 lb = o.bary(D(uv));
       double lmax = std::max({1.0, std::abs(lb.x), std::abs(lb.y), std::abs(lb.z)});
       worst = std::max(worst, glm::length(D(g::chart_smooth_position(ch, uv, alpha)) - o.X_smooth(D(uv), alpha)) /
                                   (o.diameter() * lmax * lmax));
-      if (lb.x >= 0 && lb.y >= 0 && lb.z >= 0)
-        EXPECT_LE(glm::length(D(g::chart_smooth_position(ch, uv, alpha)) - o.X(D(uv))), bulge * (1 + 1e-4) + 1e-3);
+      if (lb.x >= 0 && lb.y >= 0 && lb.z >= 0) {
+        const dvec3 lift = D(g::chart_smooth_position(ch, uv, alpha)) - o.X(D(uv));
+        EXPECT_LE(glm::length(lift), bulge * (1 + 1e-4) + 1e-3);
+        // The oracle's lift along its face normal lies within the range.
+        const double along = glm::dot(o.X_smooth(D(uv), alpha) - o.X(D(uv)), o.face());
+        EXPECT_GE(along, lift_lo - 1e-4 * (bulge + 1.0) - 1e-3);
+        EXPECT_LE(along, lift_hi + 1e-4 * (bulge + 1.0) + 1e-3);
+      }
     }
     // The same edge P0–P1 in a second triangle with another third corner, UVs and its own order.
     Case other = c;
