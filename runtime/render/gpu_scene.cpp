@@ -33,6 +33,7 @@ namespace {
 
 using format::SectionKind;
 using glm::dmat3;
+using glm::dvec2;
 using glm::dvec3;
 using glm::vec3;
 
@@ -256,6 +257,7 @@ struct GpuScene::Impl : format::PackageView {
         const float s = S / c.scales.x;
         rc.membrane.x = s;
         rc.membrane.y = s / S;
+        rc.membrane.z = 0.5f * S;  // the tile point its lift plane is taken at (chart_smooth_lift_plane)
         std::uint32_t largest = 0;
         for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t)
           largest = std::max(largest, tiles2d[t].instance_count);
@@ -366,28 +368,55 @@ struct GpuScene::Impl : format::PackageView {
   // compartment. In tile space (M1⁻¹) an atom offset p of a copy becomes T·p with T = L·F, L the
   // inverse linear part of M1 and F the copy's frame; its centre (x, y, z) moves by
   // z·L(n − N) + L(X_smooth − X_flat). So a copy whose M1-placed atoms fill the box c ± h (about its
-  // origin) lies in c ± (h + E·(|c| + h) + that offset's bound, per axis in build_tile_levels), with
+  // origin) lies in c ± (h + E·(|c| + h) + that offset's bound, per axis in square_boxes), with
   // E the element-wise largest |T − I|, σ L's largest singular value, δ = max |n_i − N| over
   // corners (n(uv_m) of an owned copy is a positive combination of them) and b the smooth surface's
   // largest lift off its facet (chart_smooth_bulge). E is sampled over each triangle (a barycentric
   // grid, where owned copies sit) and widened by a fifth plus 0.02 for what lies between samples.
+  // Along N the lift reaches tens of Å on coarse facets; the shader shears each slot's ray onto the
+  // tile's lift plane (chart_lift_shear_ray), so a sheared triangle's boxes hold only what the plane
+  // misses: the curvature term, exact per copy, and the plane's slope across the copy's own width.
   struct Distortion {
     double sigma = 0, delta = 0, bulge = 0;
     double lift_lo = 0, lift_hi = 0;  // range of the smooth surface's lift along the face normal (tile z)
     dmat3 e{0.0};  // element-wise max |T − I|
+    // Sheared triangles: ranges of chart_smooth_lift_curvature and the largest |slope| of their
+    // planes (lo > hi: none in this bound). Unsheared ones: their lift range (lo > hi: none).
+    dvec3 curvature_lo{INFINITY}, curvature_hi{-INFINITY};
+    dvec2 slope{0.0};
+    double unsheared_lo = INFINITY, unsheared_hi = -INFINITY;
+    double plane_error = 0;  // the float plane's rounding (Å), shader and host alike
   };
   // Widens `into` (nothing yet: the first distortion) to hold o.
   static void widen_to(std::optional<Distortion>& into, const Distortion& o) {
-    Distortion& d = into ? *into : into.emplace();
+    Distortion& d = into ? *into : into.emplace(o);
     d.sigma = std::max(d.sigma, o.sigma), d.delta = std::max(d.delta, o.delta), d.bulge = std::max(d.bulge, o.bulge);
     d.lift_lo = std::min(d.lift_lo, o.lift_lo), d.lift_hi = std::max(d.lift_hi, o.lift_hi);
     for (int col = 0; col < 3; ++col) d.e[col] = glm::max(d.e[col], o.e[col]);
+    d.curvature_lo = glm::min(d.curvature_lo, o.curvature_lo), d.curvature_hi = glm::max(d.curvature_hi, o.curvature_hi);
+    d.slope = glm::max(d.slope, o.slope);
+    d.unsheared_lo = std::min(d.unsheared_lo, o.unsheared_lo), d.unsheared_hi = std::max(d.unsheared_hi, o.unsheared_hi);
+    d.plane_error = std::max(d.plane_error, o.plane_error);
+  }
+
+  // Range of the lift left over by the plane for a copy at Δ from the tile's centre (tile Å) under
+  // curvatures in [lo, hi]: Δx²·h.x + 2·Δx·Δy·h.y + Δy²·h.z, each term linear in its h.
+  static std::pair<double, double> curvature_range(const dvec3& lo, const dvec3& hi, const dvec2& delta) {
+    const dvec3 w(delta.x * delta.x, 2 * delta.x * delta.y, delta.y * delta.y);
+    double out_lo = 0, out_hi = 0;
+    for (int k = 0; k < 3; ++k) {
+      out_lo += std::min(w[k] * lo[k], w[k] * hi[k]);
+      out_hi += std::max(w[k] * lo[k], w[k] * hi[k]);
+    }
+    return {out_lo, out_hi};
   }
 
   // One triangle's distortion (already widened for what lies between samples), or nothing for a
   // triangle that owns no copy.
-  std::optional<Distortion> triangle_distortion(const gpu::Compartment& c, float s_over_S, std::uint32_t t) const {
+  std::optional<Distortion> triangle_distortion(const gpu::Compartment& c, const gpu::RenderCompartment& rc,
+                                                std::uint32_t t) const {
     const gpu::Mesh& mesh = meshes[c.mesh];
+    const float s_over_S = rc.membrane.y;
     constexpr int kSteps = 4;
     Distortion d;
     const gpu::Triangle& tri = triangles[t];
@@ -420,6 +449,36 @@ struct GpuScene::Impl : format::PackageView {
       }
     for (int col = 0; col < 3; ++col)
       for (int row = 0; row < 3; ++row) d.e[col][row] = d.e[col][row] * 1.2 + 0.02;
+    // The lift plane: its slope is affine in UV, so its largest |slope| over the tiles the shader
+    // takes planes of (centres within the triangle's UV box widened by a tile) is at a corner of that
+    // box; so is the largest |barycentric|, which sets the float plane's rounding.
+    const glm::mat3 form = gpu::chart_smooth_lift_form(chart, c.scales.w);
+    const double tile = rc.membrane.x;
+    const dvec2 uv_lo = dvec2(glm::min(t0, glm::min(t1, t2))) - tile, uv_hi = dvec2(glm::max(t0, glm::max(t1, t2))) + tile;
+    double l_max = 1, form_sum = 0;
+    for (int col = 0; col < 3; ++col) form_sum += std::abs(form[col].x) + std::abs(form[col].y) + std::abs(form[col].z);
+    dvec2 slope(0.0);
+    for (const dvec2 corner : {uv_lo, dvec2(uv_hi.x, uv_lo.y), dvec2(uv_lo.x, uv_hi.y), uv_hi}) {
+      const glm::vec3 plane = gpu::chart_smooth_lift_plane(chart, form, glm::vec2(corner), s_over_S, glm::vec2(0.f));
+      slope = glm::max(slope, glm::abs(dvec2(plane.y, plane.z)));
+      const dvec3 bary(gpu::chart_barycentric(chart, glm::vec2(corner)));
+      l_max = std::max({l_max, std::abs(bary.x), std::abs(bary.y), std::abs(bary.z)});
+    }
+    slope = slope * (1 + 1e-3) + 1e-6;
+    const dvec3 curvature(gpu::chart_smooth_lift_curvature(chart, form, s_over_S));
+    const double half = rc.membrane.z;
+    // Sheared, a copy's box grows in z by its curvature term (at most |h|₁·half² over the tile) and the
+    // slope across its width (a lipid's ~15 Å each way); unsheared, by the whole lift range.
+    const double sheared_growth = 2 * (std::abs(curvature.x) + 2 * std::abs(curvature.y) + std::abs(curvature.z)) * half * half +
+                                  2 * 15.0 * (slope.x + slope.y);
+    if (sheared_growth < d.lift_hi - d.lift_lo) {
+      const dvec3 margin = glm::abs(curvature) * 1e-4 + 1e-9;
+      d.curvature_lo = curvature - margin, d.curvature_hi = curvature + margin;
+      d.slope = slope;
+      d.plane_error = 1e-5 * (form_sum * l_max * l_max + (slope.x + slope.y) * half * 4);
+    } else {
+      d.unsheared_lo = d.lift_lo, d.unsheared_hi = d.lift_hi;
+    }
     return d;
   }
 
@@ -434,21 +493,24 @@ struct GpuScene::Impl : format::PackageView {
   static constexpr double kClassShare[kDistortionClasses] = {0.75, 1.0};
   struct DistortionClasses {
     std::vector<std::uint8_t> of_triangle;  // per triangle of the mesh
+    std::vector<bool> unsheared;            // per triangle: its slots' rays are not sheared
     std::array<std::optional<Distortion>, kDistortionClasses> bound;
   };
-  DistortionClasses distortion_classes(const gpu::Compartment& c, float s_over_S) const {
+  DistortionClasses distortion_classes(const gpu::Compartment& c, const gpu::RenderCompartment& rc) const {
     const gpu::Mesh& mesh = meshes[c.mesh];
     DistortionClasses out;
     out.of_triangle.assign(mesh.triangle_count, 0);
-    std::vector<std::pair<double, std::uint32_t>> ranked;  // (widening of a typical lipid, local triangle)
+    out.unsheared.assign(mesh.triangle_count, false);
+    std::vector<std::pair<double, std::uint32_t>> ranked;  // (size of a typical lipid's box, local triangle)
     std::vector<std::optional<Distortion>> per(mesh.triangle_count);
     for (std::uint32_t k = 0; k < mesh.triangle_count; ++k) {
-      per[k] = triangle_distortion(c, s_over_S, mesh.first_triangle + k);
+      per[k] = triangle_distortion(c, rc, mesh.first_triangle + k);
       if (!per[k]) continue;
-      const Distortion& d = *per[k];
-      double e = 0;
-      for (int col = 0; col < 3; ++col) e = std::max({e, d.e[col].x, d.e[col].y, d.e[col].z});
-      ranked.push_back({d.sigma * d.delta * (20.0 + d.bulge) + 30.0 * e + 0.25 * d.bulge, k});
+      out.unsheared[k] = per[k]->unsheared_lo <= per[k]->unsheared_hi;
+      // A lipid standing 20 Å off the surface at a tile corner (the curvature term's worst place).
+      const CopyBoxes typical = copy_boxes(dvec3(0, 0, 20), dvec3(0.0), dvec3(8, 8, 12), 15, *per[k], rc.membrane.z);
+      const dvec3 size = typical.hi - typical.lo;
+      ranked.push_back({size.x + size.y + size.z, k});
     }
     std::sort(ranked.begin(), ranked.end());
     std::uint32_t cls = 0;
@@ -476,41 +538,64 @@ struct GpuScene::Impl : format::PackageView {
     return {lo, hi};
   }
 
-  // Square t's molecule boxes in tile space for distortion d: each copy's M1-placed atoms widened by
-  // how far d lets the true placement stray. Grows square_reach[t] to hold them.
-  std::vector<VkAabbPositionsKHR> square_boxes(std::uint32_t t, const Distortion& d) {
-    std::vector<VkAabbPositionsKHR> boxes;
+  // Where a copy at tile-space position `pos` whose M1-placed atoms fill c ± h about it (bounding
+  // radius r) can lie, under distortion d: `lo`/`hi` in its slot's sheared tile space (its mLAS box),
+  // `reach_lo`/`reach_hi` in the unsheared one (the repLAS and slot boxes, which the origin tile's
+  // ray meets). `half` is the tile point the lift planes are taken at (RenderCompartment.membrane.z).
+  struct CopyBoxes {
+    dvec3 lo, hi, reach_lo, reach_hi;
+  };
+  static CopyBoxes copy_boxes(const dvec3& pos, const dvec3& c, const dvec3& h, double r, const Distortion& d, double half) {
     // δ grows by 1e-3 for the rounding of the normalised interpolation; the pad covers the float
     // tile-space ray (≈ 1e-6 of the distance to the tile) of any camera within 10^5 Å.
     const double sigma = d.sigma * (1 + 1e-4), delta = d.delta + 1e-3, pad = 0.1;
+    // Where the true centre lies off M1's: z·(n − N) + (X_smooth − X_flat). L keeps a world
+    // vector's component along N as tile z and maps its tangential part, at most σ-stretched,
+    // to tile x, y. Along N: |z|·(1 − cos θ) = |z|·|n − N|²/2 ≤ |z|·δ²/2, and the lift ≤ b;
+    // tangentially: |z|·sin θ ≤ |z|·δ, and the lift, a combination of corner normals each
+    // within δ of N, ≤ b·δ.
+    // Along N the parts have known signs: z·(n·N − 1) lies between 0 and −z·δ²/2, and the lift
+    // between d.lift_lo and d.lift_hi (floats: widened by 1e-4 of the bulge and 1e-3 Å).
+    const double bulge = d.bulge * (1 + 1e-4), slack = 1e-4 * bulge + 1e-3;
+    const double off_xy = sigma * delta * (std::abs(pos.z) + bulge);
+    const double turn_z = pos.z * delta * delta / 2;
+    // Two bounds of the same copy, both containing it: its own atoms' box widened by the chart's turn
+    // and stretch, and the sphere of its bounding radius (stretched by up to σ in tile x, y, not in
+    // z). Their intersection holds it too; which is tighter depends on the chart (a strongly
+    // stretched or mirrored one turns the box far more than it stretches the sphere).
+    const dvec3 e = h + d.e * (glm::abs(c) + h) + pad;
+    const dvec3 radius = dvec3(sigma * r, sigma * r, r) + pad;
+    const dvec3 atoms_lo = glm::max(pos + c - e, pos - radius), atoms_hi = glm::min(pos + c + e, pos + radius);
+    CopyBoxes out;
+    out.reach_lo = atoms_lo - dvec3(off_xy, off_xy, std::max(turn_z, 0.0) - d.lift_lo + slack);
+    out.reach_hi = atoms_hi + dvec3(off_xy, off_xy, std::max(-turn_z, 0.0) + d.lift_hi + slack);
+    // Sheared onto the tile's lift plane, z' = z − plane(x, y): the centre keeps the curvature term
+    // lift(uv_m) − plane(pos) (unsheared triangles: the whole lift); an atom at (x, y) off the centre
+    // also meets the plane's slope times that offset.
+    double lift_lo = INFINITY, lift_hi = -INFINITY;
+    if (d.curvature_lo.x <= d.curvature_hi.x) {
+      const auto [q_lo, q_hi] = curvature_range(d.curvature_lo, d.curvature_hi, dvec2(pos) - half);
+      const dvec2 across = glm::max(glm::abs(dvec2(out.reach_lo) - dvec2(pos)), glm::abs(dvec2(out.reach_hi) - dvec2(pos)));
+      const double tilt = glm::dot(d.slope, across) + d.plane_error;
+      lift_lo = q_lo - tilt, lift_hi = q_hi + tilt;
+    }
+    if (d.unsheared_lo <= d.unsheared_hi) lift_lo = std::min(lift_lo, d.unsheared_lo), lift_hi = std::max(lift_hi, d.unsheared_hi);
+    out.lo = dvec3(dvec2(out.reach_lo), atoms_lo.z - std::max(turn_z, 0.0) + lift_lo - slack);
+    out.hi = dvec3(dvec2(out.reach_hi), atoms_hi.z + std::max(-turn_z, 0.0) + lift_hi + slack);
+    return out;
+  }
+
+  // Square t's molecule boxes in the sheared tile space of distortion d (copy_boxes). Grows
+  // square_reach[t] to hold the copies in unsheared tile space.
+  std::vector<VkAabbPositionsKHR> square_boxes(std::uint32_t t, const Distortion& d, double half) {
+    std::vector<VkAabbPositionsKHR> boxes;
     for (std::uint32_t m = tiles2d[t].first_instance; m < tiles2d[t].first_instance + tiles2d[t].instance_count; ++m) {
-      const dvec3 pos(instances[m].position);
       const auto [atoms_lo, atoms_hi] = placed_extent(instances[m]);
-      const dvec3 c = (atoms_lo + atoms_hi) * 0.5, h = (atoms_hi - atoms_lo) * 0.5;
-      // Where the true centre lies off M1's: z·(n − N) + (X_smooth − X_flat). L keeps a world
-      // vector's component along N as tile z and maps its tangential part, at most σ-stretched,
-      // to tile x, y. Along N: |z|·(1 − cos θ) = |z|·|n − N|²/2 ≤ |z|·δ²/2, and the lift ≤ b;
-      // tangentially: |z|·sin θ ≤ |z|·δ, and the lift, a combination of corner normals each
-      // within δ of N, ≤ b·δ.
-      // Along N the parts have known signs: z·(n·N − 1) lies between 0 and −z·δ²/2, and the lift
-      // between d.lift_lo and d.lift_hi (floats: widened by 1e-4 of the bulge and 1e-3 Å).
-      const double bulge = d.bulge * (1 + 1e-4), slack = 1e-4 * bulge + 1e-3;
-      const double off_xy = sigma * delta * (std::abs(pos.z) + bulge);
-      const double turn_z = pos.z * delta * delta / 2;
-      const dvec3 off_lo(off_xy, off_xy, std::max(turn_z, 0.0) - d.lift_lo + slack);
-      const dvec3 off_hi(off_xy, off_xy, std::max(-turn_z, 0.0) + d.lift_hi + slack);
-      // Two bounds of the same copy, both containing it: its own atoms' box widened by the
-      // chart's turn and stretch, and the sphere of its bounding radius (stretched by up to σ in
-      // tile x, y, not in z). Their intersection holds it too; which is tighter depends on the
-      // chart (a strongly stretched or mirrored one turns the box far more than it stretches the
-      // sphere).
-      const double r = type_radius[instances[m].molecule_type];
-      const dvec3 e = h + d.e * (glm::abs(c) + h) + pad;
-      const dvec3 radius = dvec3(sigma * r, sigma * r, r) + pad;
-      const dvec3 lo = glm::max(pos + c - e, pos - radius) - off_lo, hi = glm::min(pos + c + e, pos + radius) + off_hi;
-      boxes.push_back(box_of(lo, hi));
-      square_reach[t].first = glm::min(square_reach[t].first, lo);
-      square_reach[t].second = glm::max(square_reach[t].second, hi);
+      const CopyBoxes b = copy_boxes(dvec3(instances[m].position), (atoms_lo + atoms_hi) * 0.5, (atoms_hi - atoms_lo) * 0.5,
+                                     type_radius[instances[m].molecule_type], d, half);
+      boxes.push_back(box_of(b.lo, b.hi));
+      square_reach[t].first = glm::min(square_reach[t].first, b.reach_lo);
+      square_reach[t].second = glm::max(square_reach[t].second, b.reach_hi);
     }
     return boxes;
   }
@@ -525,23 +610,29 @@ struct GpuScene::Impl : format::PackageView {
   // compartment that uses the square; per Wang cube, bounding spheres' boxes in cube space.
   void build_tile_levels() {
     std::vector<std::array<std::optional<Distortion>, kDistortionClasses>> square_distortion(tiles2d.size());
+    std::vector<double> square_half(tiles2d.size(), 0.0);  // the tile point of its lift planes
     for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
       const gpu::Compartment& c = compartments[ci];
       if (c.membrane_recipe == gpu::NANO_NO_INDEX) continue;
-      const DistortionClasses classes = distortion_classes(c, render_compartments[ci].membrane.y);
+      const DistortionClasses classes = distortion_classes(c, render_compartments[ci]);
       // Per triangle, where its class's squares start, relative to class 0's (frame.levels.x).
       render_compartments[ci].core_skip.y = std::uint32_t(orders.size());
-      for (const std::uint8_t k : classes.of_triangle) orders.push_back(square_level(k, 0) - first_square);
-      for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t)
+      for (std::size_t k = 0; k < classes.of_triangle.size(); ++k)
+        orders.push_back((square_level(classes.of_triangle[k], 0) - first_square) |
+                         (classes.unsheared[k] ? gpu::NANO_LIFT_UNSHEARED : 0u));
+      for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
+        // A square belongs to one membrane's tile set, so every compartment using it has its tile size.
+        square_half[t] = render_compartments[ci].membrane.z;
         for (std::uint32_t k = 0; k < kDistortionClasses; ++k) {
           if (classes.bound[k]) widen_to(square_distortion[t][k], *classes.bound[k]);
         }
+      }
     }
     square_reach.assign(tiles2d.size(), {dvec3(INFINITY), dvec3(-INFINITY)});
     for (std::uint32_t t = 0; t < tiles2d.size(); ++t)
       for (std::uint32_t k = 0; k < kDistortionClasses; ++k)
         if (square_distortion[t][k] && tiles2d[t].instance_count > 0)  // else no compartment renders it
-          add_tile_level(square_level(k, t), square_boxes(t, *square_distortion[t][k]));
+          add_tile_level(square_level(k, t), square_boxes(t, *square_distortion[t][k], square_half[t]));
     build_replication_areas();
     if (options.two_level_membranes) build_atom_squares();
     for (std::uint32_t t = 0; t < tiles3d.size(); ++t) {

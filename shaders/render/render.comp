@@ -335,6 +335,8 @@ struct ShellWalk {
   uint mode;     // kWalkSlotBoxes, kWalkRepLas or kWalkAllSlots
   vec3 ot;       // the ray in the origin tile's space (slot boxes, repLAS)
   vec3 dt;
+  uint squares;  // the triangle's distortion class: its first square mLAS, relative to frame.levels.x
+  mat3 lift;     // the smooth surface's lift form (chart_smooth_lift_form); zero: slots are not sheared
 };
 
 // The prism of triangle `tl` (local index in the mesh) of compartment `ci`: false when the ray misses
@@ -395,6 +397,9 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
   w.mt.drop_first = td.first;
   w.mt.drop_count = td.count;
   w.chart = chart_make(p0, p1, p2, w.mt.t0, w.mt.t1, w.mt.t2, n0, n1, n2);
+  uint cls = orders[rc.core_skip.y + tl];
+  w.squares = cls & ~NANO_LIFT_UNSHEARED;
+  w.lift = chart_smooth_lift_form(w.chart, (cls & NANO_LIFT_UNSHEARED) != 0u ? 0.0 : c.scales.w);
   float s = rc.membrane.x;
   vec2 uv_min = min(w.mt.t0, min(w.mt.t1, w.mt.t2));
   vec2 uv_max = max(w.mt.t0, max(w.mt.t1, w.mt.t2));
@@ -431,10 +436,13 @@ bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool
   if (membrane) {
     uint tile = recipe_cell(c.membrane_recipe, ivec3(cell.xy, 0));
     if (kTwoLevel) return trace_atom_tile(inst, ci, tl, w.mt, w.chart, cell.xy, tile, slot_or_box, o, d);
-    entry = frame.levels.x + orders[rc.core_skip.y + tl] + tile;  // the mLAS of the triangle's distortion class
+    entry = frame.levels.x + w.squares + tile;  // the mLAS of the triangle's distortion class
     first = squares[tile].first_instance;
     g = replication_tile_uv(cell.xy, rc.membrane.x);
     chart_tile_inverse_ray(w.chart, g, s_over_S, o, d, ot, dt);
+    // Its mLAS boxes stand on the tile's lift plane, not on the facet (gpu_scene.cpp, square_boxes).
+    vec2 centre = vec2(0.5 * rc.slot_lo.w);
+    chart_lift_shear_ray(chart_smooth_lift_plane(w.chart, w.lift, g, s_over_S, centre), centre, ot, dt);
     q_lo = w.t_lo;
     q_hi = min(best_t, w.t_hi);
   } else {

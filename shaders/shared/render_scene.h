@@ -23,8 +23,13 @@ struct RenderCompartment {
   vec4 slot_hi;    // xyz: tile-space maximum; w: reserved
   uvec4 core_skip; // x: the core grid's first cell in section "core_skip" (shared/core_skip.h); y: first
                    // entry in `orders` of the mesh's triangles' distortion classes (per triangle, its
-                   // class's first square level minus frame.levels.x); zw: reserved
+                   // class's first square level minus frame.levels.x, | NANO_LIFT_UNSHEARED); zw: reserved
 };
+
+// Set in a triangle's distortion-class word: its slots' rays are not sheared onto the tile's lift
+// plane (chart_lift_shear_ray), whose extrapolation over a tile would widen its boxes more than the
+// whole lift does (a sliver, or a facet smaller than a tile).
+NANO_CONST uint NANO_LIFT_UNSHEARED = 0x80000000u;
 
 // Replication areas of at most this many slots are tested slot by slot against their boxes
 // (RenderCompartment.slot_lo/hi), cheaper than starting a repLAS query for one or two hits.

@@ -215,6 +215,63 @@ TEST(TileMapper, SmoothSurfaceIsPhongTessellationContinuousAcrossEdges) {
   EXPECT_EQ(D(g::chart_smooth_position(sphere, centre, 0.f)), D(g::chart_position(sphere, centre)));
 }
 
+// The per-tile lift plane: at any point of a tile, the oracle's lift along the face normal minus the
+// plane is exactly the curvature term (the shader's boxes hold only that); shearing a tile-space ray
+// moves each of its points down by the plane's height there and keeps t.
+TEST(TileMapper, LiftPlaneLeavesExactlyTheCurvatureTerm) {
+  Rng rng(53);
+  double worst = 0, worst_ray = 0, largest_plane_share = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Case c = random_case(rng, glm::vec3(0), i % 2 == 1);
+    Oracle o(c);
+    const g::TriangleChart ch = make(c);
+    const float alpha = float(rng.uniform(0.0, 1.0));
+    const glm::mat3 form = g::chart_smooth_lift_form(ch, alpha);
+    const float S = float(rng.uniform(20.0, 200.0));
+    const float s_over_S = float(rng.uniform(0.05, 0.4)) / S;
+    const glm::vec2 g0(float(rng.uniform(-0.2, 1.0)), float(rng.uniform(-0.2, 1.0)));
+    const glm::vec2 centre(0.5f * S);
+    const glm::vec3 plane = g::chart_smooth_lift_plane(ch, form, g0, s_over_S, centre);
+    const glm::vec3 h = g::chart_smooth_lift_curvature(ch, form, s_over_S);
+    const double bulge = g::chart_smooth_bulge(ch, alpha) + 1.0;
+    for (int k = 0; k < 8; ++k) {
+      const dvec2 delta(rng.uniform(-0.5, 0.5) * S, rng.uniform(-0.5, 0.5) * S);
+      const dvec2 uv = D(g0) + double(s_over_S) * (D(centre) + delta);
+      const dvec3 l = o.bary(uv);
+      const double lmax = std::max({1.0, std::abs(l.x), std::abs(l.y), std::abs(l.z)});
+      const double along = glm::dot(o.X_smooth(uv, alpha) - o.X(uv), o.face());
+      const double on_plane = plane.x + plane.y * delta.x + plane.z * delta.y;
+      const double curvature = delta.x * delta.x * h.x + 2 * delta.x * delta.y * h.y + delta.y * delta.y * h.z;
+      worst = std::max(worst, std::abs(along - on_plane - curvature) / (bulge * lmax * lmax));
+      largest_plane_share = std::max(largest_plane_share, std::abs(on_plane) / (std::abs(along) + 1e-9));
+    }
+    glm::vec3 ot = rng.in_box(-300, 300), dt = rng.in_box(-1, 1), o2 = ot, d2 = dt;
+    g::chart_lift_shear_ray(plane, centre, o2, d2);
+    for (const double t : {0.0, 1.7, 250.0}) {
+      const dvec3 p = D(ot) + t * D(dt), p2 = D(o2) + t * D(d2);
+      const double height = plane.x + plane.y * (p.x - centre.x) + plane.z * (p.y - centre.y);
+      const double scale = glm::length(p) * (1 + std::abs(plane.y) + std::abs(plane.z)) + std::abs(plane.x) + bulge;
+      worst_ray = std::max(worst_ray, glm::length(p2 - dvec3(p.x, p.y, p.z - height)) / scale);
+    }
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_LT(worst_ray, 1e-5);
+  EXPECT_GT(largest_plane_share, 0.5);  // the plane carries the lift (a zero plane would pass the rest)
+  // On a triangle of a sphere of radius 100 seen through tiles a tenth of its size, the curvature term
+  // is a small part of the whole lift (what the boxes no longer hold).
+  const glm::vec3 a = glm::normalize(glm::vec3(1, 0.1f, 0.2f)), b = glm::normalize(glm::vec3(0.9f, 0.5f, 0.1f)),
+                  cc = glm::normalize(glm::vec3(0.95f, 0.2f, 0.55f));
+  const g::TriangleChart sphere = g::chart_make(100.f * a, 100.f * b, 100.f * cc, glm::vec2(0), glm::vec2(1, 0),
+                                                glm::vec2(0, 1), a, b, cc);
+  float lift_lo, lift_hi;
+  g::chart_smooth_lift_range(sphere, 0.5f, lift_lo, lift_hi);
+  const float S = 10.f, s_over_S = 0.1f / S;
+  const glm::vec3 h = g::chart_smooth_lift_curvature(sphere, g::chart_smooth_lift_form(sphere, 0.5f), s_over_S);
+  const double term = (std::abs(h.x) + 2 * std::abs(h.y) + std::abs(h.z)) * (S / 2) * (S / 2);
+  EXPECT_GT(lift_hi - lift_lo, 1.0);
+  EXPECT_LT(term, 0.03 * (lift_hi - lift_lo));
+}
+
 TEST(TileMapper, MembraneMoleculeTransformAndRayMatchOracle) {
   Rng rng(33);
   double worst_p = 0, worst_r = 0, worst_ray = 0;
