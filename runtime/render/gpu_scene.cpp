@@ -380,10 +380,11 @@ struct GpuScene::Impl : format::PackageView {
     double sigma = 0, delta = 0, bulge = 0;
     double lift_lo = 0, lift_hi = 0;  // range of the smooth surface's lift along the face normal (tile z)
     dmat3 e{0.0};  // element-wise max |T − I|
-    // Sheared triangles: ranges of chart_smooth_lift_curvature and the largest |slope| of their
-    // planes (lo > hi: none in this bound). Unsheared ones: their lift range (lo > hi: none).
-    dvec3 curvature_lo{INFINITY}, curvature_hi{-INFINITY};
-    dvec2 slope{0.0};
+    // Sheared triangles: ranges of chart_smooth_lift_curvature (column r: tile component r; lo > hi:
+    // none in this bound) and the largest |∂plane/∂x|, |∂plane/∂y| per component. Unsheared ones:
+    // their lift range along the normal (lo > hi: none).
+    dmat3 curvature_lo{INFINITY}, curvature_hi{-INFINITY};
+    dvec3 slope_x{0.0}, slope_y{0.0};
     double unsheared_lo = INFINITY, unsheared_hi = -INFINITY;
     double plane_error = 0;  // the float plane's rounding (Å), shader and host alike
   };
@@ -393,8 +394,9 @@ struct GpuScene::Impl : format::PackageView {
     d.sigma = std::max(d.sigma, o.sigma), d.delta = std::max(d.delta, o.delta), d.bulge = std::max(d.bulge, o.bulge);
     d.lift_lo = std::min(d.lift_lo, o.lift_lo), d.lift_hi = std::max(d.lift_hi, o.lift_hi);
     for (int col = 0; col < 3; ++col) d.e[col] = glm::max(d.e[col], o.e[col]);
-    d.curvature_lo = glm::min(d.curvature_lo, o.curvature_lo), d.curvature_hi = glm::max(d.curvature_hi, o.curvature_hi);
-    d.slope = glm::max(d.slope, o.slope);
+    for (int r = 0; r < 3; ++r)
+      d.curvature_lo[r] = glm::min(d.curvature_lo[r], o.curvature_lo[r]), d.curvature_hi[r] = glm::max(d.curvature_hi[r], o.curvature_hi[r]);
+    d.slope_x = glm::max(d.slope_x, o.slope_x), d.slope_y = glm::max(d.slope_y, o.slope_y);
     d.unsheared_lo = std::min(d.unsheared_lo, o.unsheared_lo), d.unsheared_hi = std::max(d.unsheared_hi, o.unsheared_hi);
     d.plane_error = std::max(d.plane_error, o.plane_error);
   }
@@ -449,33 +451,40 @@ struct GpuScene::Impl : format::PackageView {
       }
     for (int col = 0; col < 3; ++col)
       for (int row = 0; row < 3; ++row) d.e[col][row] = d.e[col][row] * 1.2 + 0.02;
-    // The lift plane: its slope is affine in UV, so its largest |slope| over the tiles the shader
+    // The lift plane: its slopes are affine in UV, so their largest |value| over the tiles the shader
     // takes planes of (centres within the triangle's UV box widened by a tile) is at a corner of that
     // box; so is the largest |barycentric|, which sets the float plane's rounding.
-    const glm::mat3 form = gpu::chart_smooth_lift_form(chart, c.scales.w);
+    const glm::mat3 k = gpu::chart_smooth_lift_coefficients(chart, c.scales.w);
+    const glm::mat3 directions = gpu::chart_lift_directions(chart, s_over_S);
     const double tile = rc.membrane.x;
     const dvec2 uv_lo = dvec2(glm::min(t0, glm::min(t1, t2))) - tile, uv_hi = dvec2(glm::max(t0, glm::max(t1, t2))) + tile;
-    double l_max = 1, form_sum = 0;
-    for (int col = 0; col < 3; ++col) form_sum += std::abs(form[col].x) + std::abs(form[col].y) + std::abs(form[col].z);
-    dvec2 slope(0.0);
+    double l_max = 1, lift_scale = 0;
+    for (int col = 0; col < 3; ++col)
+      for (int row = 0; row < 3; ++row) lift_scale = std::max(lift_scale, std::abs(double(k[col][row])));
+    dvec3 slope_x(0.0), slope_y(0.0);
     for (const dvec2 corner : {uv_lo, dvec2(uv_hi.x, uv_lo.y), dvec2(uv_lo.x, uv_hi.y), uv_hi}) {
-      const glm::vec3 plane = gpu::chart_smooth_lift_plane(chart, form, glm::vec2(corner), s_over_S, glm::vec2(0.f));
-      slope = glm::max(slope, glm::abs(dvec2(plane.y, plane.z)));
+      const gpu::LiftPlane plane = gpu::chart_smooth_lift_plane(chart, k, directions, glm::vec2(corner), s_over_S, glm::vec2(0.f));
+      slope_x = glm::max(slope_x, glm::abs(dvec3(plane.dx))), slope_y = glm::max(slope_y, glm::abs(dvec3(plane.dy)));
       const dvec3 bary(gpu::chart_barycentric(chart, glm::vec2(corner)));
       l_max = std::max({l_max, std::abs(bary.x), std::abs(bary.y), std::abs(bary.z)});
     }
-    slope = slope * (1 + 1e-3) + 1e-6;
-    const dvec3 curvature(gpu::chart_smooth_lift_curvature(chart, form, s_over_S));
+    slope_x = slope_x * (1 + 1e-3) + 1e-6, slope_y = slope_y * (1 + 1e-3) + 1e-6;
+    const dmat3 curvature(gpu::chart_smooth_lift_curvature(chart, k, directions, s_over_S));
     const double half = rc.membrane.z;
-    // Sheared, a copy's box grows in z by its curvature term (at most |h|₁·half² over the tile) and the
-    // slope across its width (a lipid's ~15 Å each way); unsheared, by the whole lift range.
-    const double sheared_growth = 2 * (std::abs(curvature.x) + 2 * std::abs(curvature.y) + std::abs(curvature.z)) * half * half +
-                                  2 * 15.0 * (slope.x + slope.y);
-    if (sheared_growth < d.lift_hi - d.lift_lo) {
-      const dvec3 margin = glm::abs(curvature) * 1e-4 + 1e-9;
-      d.curvature_lo = curvature - margin, d.curvature_hi = curvature + margin;
-      d.slope = slope;
-      d.plane_error = 1e-5 * (form_sum * l_max * l_max + (slope.x + slope.y) * half * 4);
+    // Sheared, a copy's box grows by its curvature term (at most |h|₁·half² over the tile) and the
+    // slope across its width (a lipid's ~15 Å each way); unsheared, by the whole lift: its range
+    // along the normal and σ·δ·bulge across.
+    double sheared_growth = 0;
+    for (int r = 0; r < 3; ++r)
+      sheared_growth += 2 * (std::abs(curvature[r].x) + 2 * std::abs(curvature[r].y) + std::abs(curvature[r].z)) * half * half +
+                        2 * 15.0 * (slope_x[r] + slope_y[r]);
+    if (sheared_growth < d.lift_hi - d.lift_lo + 4 * d.sigma * d.delta * d.bulge) {
+      for (int r = 0; r < 3; ++r) {
+        const dvec3 margin = glm::abs(curvature[r]) * 1e-4 + 1e-9;
+        d.curvature_lo[r] = curvature[r] - margin, d.curvature_hi[r] = curvature[r] + margin;
+      }
+      d.slope_x = slope_x, d.slope_y = slope_y;
+      d.plane_error = 1e-5 * (lift_scale * d.sigma * 3 * l_max * l_max + std::max({slope_x.x + slope_y.x, slope_x.y + slope_y.y, slope_x.z + slope_y.z}) * half * 4);
     } else {
       d.unsheared_lo = d.lift_lo, d.unsheared_hi = d.lift_hi;
     }
@@ -557,7 +566,7 @@ struct GpuScene::Impl : format::PackageView {
     // Along N the parts have known signs: z·(n·N − 1) lies between 0 and −z·δ²/2, and the lift
     // between d.lift_lo and d.lift_hi (floats: widened by 1e-4 of the bulge and 1e-3 Å).
     const double bulge = d.bulge * (1 + 1e-4), slack = 1e-4 * bulge + 1e-3;
-    const double off_xy = sigma * delta * (std::abs(pos.z) + bulge);
+    const double turn_xy = sigma * delta * std::abs(pos.z), lift_xy = sigma * delta * bulge;
     const double turn_z = pos.z * delta * delta / 2;
     // Two bounds of the same copy, both containing it: its own atoms' box widened by the chart's turn
     // and stretch, and the sphere of its bounding radius (stretched by up to σ in tile x, y, not in
@@ -565,23 +574,31 @@ struct GpuScene::Impl : format::PackageView {
     // stretched or mirrored one turns the box far more than it stretches the sphere).
     const dvec3 e = h + d.e * (glm::abs(c) + h) + pad;
     const dvec3 radius = dvec3(sigma * r, sigma * r, r) + pad;
-    const dvec3 atoms_lo = glm::max(pos + c - e, pos - radius), atoms_hi = glm::min(pos + c + e, pos + radius);
+    // The copy without the lift: its atoms, turned by the normal's tilt.
+    const dvec3 atoms_lo = glm::max(pos + c - e, pos - radius) - dvec3(turn_xy, turn_xy, std::max(turn_z, 0.0) + slack);
+    const dvec3 atoms_hi = glm::min(pos + c + e, pos + radius) + dvec3(turn_xy, turn_xy, std::max(-turn_z, 0.0) + slack);
     CopyBoxes out;
-    out.reach_lo = atoms_lo - dvec3(off_xy, off_xy, std::max(turn_z, 0.0) - d.lift_lo + slack);
-    out.reach_hi = atoms_hi + dvec3(off_xy, off_xy, std::max(-turn_z, 0.0) + d.lift_hi + slack);
-    // Sheared onto the tile's lift plane, z' = z − plane(x, y): the centre keeps the curvature term
-    // lift(uv_m) − plane(pos) (unsheared triangles: the whole lift); an atom at (x, y) off the centre
-    // also meets the plane's slope times that offset.
-    double lift_lo = INFINITY, lift_hi = -INFINITY;
-    if (d.curvature_lo.x <= d.curvature_hi.x) {
-      const auto [q_lo, q_hi] = curvature_range(d.curvature_lo, d.curvature_hi, dvec2(pos) - half);
-      const dvec2 across = glm::max(glm::abs(dvec2(out.reach_lo) - dvec2(pos)), glm::abs(dvec2(out.reach_hi) - dvec2(pos)));
-      const double tilt = glm::dot(d.slope, across) + d.plane_error;
+    out.reach_lo = atoms_lo - dvec3(lift_xy, lift_xy, -d.lift_lo);
+    out.reach_hi = atoms_hi + dvec3(lift_xy, lift_xy, d.lift_hi);
+    // Moved onto the tile's lift plane, p' = p − plane(p.x, p.y): the centre keeps the curvature term
+    // lift(uv_m) − plane(pos) (unsheared triangles: the whole lift), and a point at (x, y) off the
+    // centre also meets the plane's slopes times that offset.
+    dvec3 lift_lo(INFINITY), lift_hi(-INFINITY);
+    if (d.curvature_lo[0].x <= d.curvature_hi[0].x) {
+      const dvec2 delta_c = dvec2(pos) - half;
+      dvec3 q_lo, q_hi;
+      for (int k = 0; k < 3; ++k) std::tie(q_lo[k], q_hi[k]) = curvature_range(d.curvature_lo[k], d.curvature_hi[k], delta_c);
+      const dvec2 across = glm::max(glm::abs(dvec2(atoms_lo) - dvec2(pos)), glm::abs(dvec2(atoms_hi) - dvec2(pos))) +
+                           glm::max(glm::abs(dvec2(q_lo)), glm::abs(dvec2(q_hi)));
+      const dvec3 tilt = d.slope_x * across.x + d.slope_y * across.y + d.plane_error;
       lift_lo = q_lo - tilt, lift_hi = q_hi + tilt;
     }
-    if (d.unsheared_lo <= d.unsheared_hi) lift_lo = std::min(lift_lo, d.unsheared_lo), lift_hi = std::max(lift_hi, d.unsheared_hi);
-    out.lo = dvec3(dvec2(out.reach_lo), atoms_lo.z - std::max(turn_z, 0.0) + lift_lo - slack);
-    out.hi = dvec3(dvec2(out.reach_hi), atoms_hi.z + std::max(-turn_z, 0.0) + lift_hi + slack);
+    if (d.unsheared_lo <= d.unsheared_hi) {
+      lift_lo = glm::min(lift_lo, dvec3(-lift_xy, -lift_xy, d.unsheared_lo));
+      lift_hi = glm::max(lift_hi, dvec3(lift_xy, lift_xy, d.unsheared_hi));
+    }
+    out.lo = atoms_lo + lift_lo;
+    out.hi = atoms_hi + lift_hi;
     return out;
   }
 

@@ -336,7 +336,8 @@ struct ShellWalk {
   vec3 ot;       // the ray in the origin tile's space (slot boxes, repLAS)
   vec3 dt;
   uint squares;  // the triangle's distortion class: its first square mLAS, relative to frame.levels.x
-  mat3 lift;     // the smooth surface's lift form (chart_smooth_lift_form); zero: slots are not sheared
+  mat3 lift;             // the smooth surface's lift (chart_smooth_lift_coefficients); zero: not sheared
+  mat3 lift_directions;  // chart_lift_directions
 };
 
 // The prism of triangle `tl` (local index in the mesh) of compartment `ci`: false when the ray misses
@@ -399,7 +400,8 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
   w.chart = chart_make(p0, p1, p2, w.mt.t0, w.mt.t1, w.mt.t2, n0, n1, n2);
   uint cls = orders[rc.core_skip.y + tl];
   w.squares = cls & ~NANO_LIFT_UNSHEARED;
-  w.lift = chart_smooth_lift_form(w.chart, (cls & NANO_LIFT_UNSHEARED) != 0u ? 0.0 : c.scales.w);
+  w.lift = chart_smooth_lift_coefficients(w.chart, (cls & NANO_LIFT_UNSHEARED) != 0u ? 0.0 : c.scales.w);
+  w.lift_directions = chart_lift_directions(w.chart, rc.membrane.y);
   float s = rc.membrane.x;
   vec2 uv_min = min(w.mt.t0, min(w.mt.t1, w.mt.t2));
   vec2 uv_max = max(w.mt.t0, max(w.mt.t1, w.mt.t2));
@@ -441,8 +443,8 @@ bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool
     g = replication_tile_uv(cell.xy, rc.membrane.x);
     chart_tile_inverse_ray(w.chart, g, s_over_S, o, d, ot, dt);
     // Its mLAS boxes stand on the tile's lift plane, not on the facet (gpu_scene.cpp, square_boxes).
-    vec2 centre = vec2(0.5 * rc.slot_lo.w);
-    chart_lift_shear_ray(chart_smooth_lift_plane(w.chart, w.lift, g, s_over_S, centre), centre, ot, dt);
+    vec2 centre = vec2(rc.membrane.z);
+    chart_lift_shear_ray(chart_smooth_lift_plane(w.chart, w.lift, w.lift_directions, g, s_over_S, centre), centre, ot, dt);
     q_lo = w.t_lo;
     q_hi = min(best_t, w.t_hi);
   } else {

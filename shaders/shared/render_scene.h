@@ -10,7 +10,7 @@ NANO_BEGIN
 
 // Per compartment (parallel to section "compartments").
 struct RenderCompartment {
-  vec4 membrane;   // x: tile UV size s; y: s / S; zw: reserved
+  vec4 membrane;   // x: tile UV size s; y: s / S; z: S/2, the tile point (z, z) of its lift plane; w: reserved
   vec4 reach_lo;   // xyz: cube-space minimum of every cube molecule's bounding sphere (≥ −box edge); w: reserved
   vec4 reach_hi;   // xyz: cube-space maximum (≤ 2·box edge); w: reserved
   uvec4 counts;    // x: I₂ (largest square instance count); y: I₃ (cubes); z: prism primitives in the

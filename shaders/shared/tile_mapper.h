@@ -111,11 +111,10 @@ NANO_FN float chart_smooth_bulge(NANO_IN(TriangleChart) c, float alpha) {
   return alpha * b;
 }
 
-// The lift's part along the face normal, (X_smooth − X_flat)·N, is a quadratic form of the
-// barycentrics: −α Σ_i l_i ((p − P_i)·m_i)(m_i·N) = Σ_ij l_i l_j c_ij with
-// c_ij = −α ((P_j − P_i)·m_i)(m_i·N) (as p − P_i = Σ_j l_j (P_j − P_i)), m_i the unit corner normals.
-// Returns the c_ij as columns: result[j][i] = c_ij (c_ii = 0). Exact anywhere in the plane, inside
-// the triangle or not.
+// The lift X_smooth − X_flat = −α Σ_i l_i ((p − P_i)·m_i) m_i is a quadratic in the barycentrics:
+// Σ_i m_i·l_i·Σ_j k_ij l_j with k_ij = −α (P_j − P_i)·m_i (as p − P_i = Σ_j l_j (P_j − P_i)), m_i the
+// unit corner normals. Returns the k_ij as columns: result[j][i] = k_ij (k_ii = 0). Exact anywhere
+// in the plane, inside the triangle or not.
 NANO_FN mat3 chart_smooth_lift_coefficients(NANO_IN(TriangleChart) c, float alpha) {
   vec3 p[3];
   vec3 m[3];
@@ -123,55 +122,24 @@ NANO_FN mat3 chart_smooth_lift_coefficients(NANO_IN(TriangleChart) c, float alph
   m[0] = normalize(c.n0); m[1] = normalize(c.n1); m[2] = normalize(c.n2);
   mat3 k = mat3(0.0f);
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) k[j][i] = -alpha * dot(p[j] - p[i], m[i]) * dot(m[i], c.face_normal);
+    for (int j = 0; j < 3; ++j) k[j][i] = -alpha * dot(p[j] - p[i], m[i]);
   return k;
 }
 
-// Range [lo, hi] (lo ≤ 0 ≤ hi) of the lift along the face normal over the triangle: the weights
-// l_i l_j ≥ 0 of chart_smooth_lift_coefficients sum to 1, so it lies between the least and largest
-// c_ij. On a convex stretch of surface every c_ij ≥ 0: the lift only rises.
+// Range [lo, hi] (lo ≤ 0 ≤ hi) of the lift's part along the face normal over the triangle:
+// Σ_ij l_i l_j c_ij with c_ij = k_ij (m_i·N); the weights l_i l_j ≥ 0 sum to 1, so it lies between
+// the least and largest c_ij (c_ii = 0). On a convex stretch of surface every c_ij ≥ 0: the lift only rises.
 NANO_FN void chart_smooth_lift_range(NANO_IN(TriangleChart) c, float alpha, NANO_OUT(float) lo, NANO_OUT(float) hi) {
   mat3 k = chart_smooth_lift_coefficients(c, alpha);
+  vec3 along = vec3(dot(normalize(c.n0), c.face_normal), dot(normalize(c.n1), c.face_normal),
+                    dot(normalize(c.n2), c.face_normal));
   lo = 0.0f;
   hi = 0.0f;
   for (int j = 0; j < 3; ++j) {
-    lo = min(lo, min(k[j].x, min(k[j].y, k[j].z)));
-    hi = max(hi, max(k[j].x, max(k[j].y, k[j].z)));
+    vec3 cj = k[j] * along;  // c_ij for i = 0, 1, 2
+    lo = min(lo, min(cj.x, min(cj.y, cj.z)));
+    hi = max(hi, max(cj.x, max(cj.y, cj.z)));
   }
-}
-
-// The lift along the face normal as a symmetric form: lift = lᵀ·F·l, F = (C + Cᵀ)/2.
-NANO_FN mat3 chart_smooth_lift_form(NANO_IN(TriangleChart) c, float alpha) {
-  mat3 k = chart_smooth_lift_coefficients(c, alpha);
-  return (k + transpose(k)) * 0.5f;
-}
-
-// The tile plane of the lift (per-tile lift plane, docs/placement.md): in the tile at UV g, the
-// lift's value and tile-space gradient (∂/∂x, ∂/∂y, per Å) at tile point `centre`. On a coarse
-// facet the lift reaches tens of Å but over one tile it is nearly this plane: what is left,
-// lift − plane, is exactly the quadratic chart_smooth_lift_curvature gives.
-NANO_FN vec3 chart_smooth_lift_plane(NANO_IN(TriangleChart) c, NANO_IN(mat3) form, NANO_IN(vec2) g, float s_over_S,
-                                     NANO_IN(vec2) centre) {
-  vec3 l = chart_barycentric(c, g + s_over_S * centre);
-  vec3 fl = form * l;
-  // ∂l/∂uv: l1 by einv_row0, l2 by einv_row1, l0 = 1 − l1 − l2 by minus their sum.
-  vec2 grad_uv = 2.0f * (fl.y * c.einv_row0 + fl.z * c.einv_row1 - fl.x * (c.einv_row0 + c.einv_row1));
-  return vec3(dot(l, fl), grad_uv * s_over_S);
-}
-
-// The lift's curvature in tile space: lift(centre + Δ) − plane(Δ) = Δ.x²·h.x + 2·Δ.x·Δ.y·h.y + Δ.y²·h.z
-// (Δ in tile Å), the same for every tile of the triangle.
-NANO_FN vec3 chart_smooth_lift_curvature(NANO_IN(TriangleChart) c, NANO_IN(mat3) form, float s_over_S) {
-  vec3 ku = vec3(-(c.einv_row0.x + c.einv_row1.x), c.einv_row0.x, c.einv_row1.x) * s_over_S;
-  vec3 kv = vec3(-(c.einv_row0.y + c.einv_row1.y), c.einv_row0.y, c.einv_row1.y) * s_over_S;
-  return vec3(dot(ku, form * ku), dot(ku, form * kv), dot(kv, form * kv));
-}
-
-// Shears a tile-space ray so that its z counts height above the tile's lift plane:
-// z' = z − (plane.x + plane.yz·((x, y) − centre)). Linear, so the ray stays a ray with the same t.
-NANO_FN void chart_lift_shear_ray(NANO_IN(vec3) plane, NANO_IN(vec2) centre, NANO_INOUT(vec3) o, NANO_INOUT(vec3) d) {
-  o.z -= plane.x + dot(vec2(plane.y, plane.z), vec2(o.x, o.y) - centre);
-  d.z -= dot(vec2(plane.y, plane.z), vec2(d.x, d.y));
 }
 
 // Interpolated vertex normal at uv, normalised (barycentric weights may be negative outside).
@@ -222,6 +190,68 @@ NANO_FN void chart_tile_inverse_ray(NANO_IN(TriangleChart) c, NANO_IN(vec2) g, f
   mat3 li = chart_tile_frame_inverse_linear(c, s_over_S);
   o_tile = li * (o - chart_position(c, g));
   d_tile = li * d;
+}
+
+// ∂l/∂x and ∂l/∂y of the barycentrics per tile Å (uv = g + (s/S)(x, y)).
+NANO_FN vec3 chart_barycentric_dx(NANO_IN(TriangleChart) c, float s_over_S) {
+  return vec3(-(c.einv_row0.x + c.einv_row1.x), c.einv_row0.x, c.einv_row1.x) * s_over_S;
+}
+NANO_FN vec3 chart_barycentric_dy(NANO_IN(TriangleChart) c, float s_over_S) {
+  return vec3(-(c.einv_row0.y + c.einv_row1.y), c.einv_row0.y, c.einv_row1.y) * s_over_S;
+}
+
+// The corner normals' images in tile space, M1⁻¹·m_i (columns), that the lift is a combination of.
+NANO_FN mat3 chart_lift_directions(NANO_IN(TriangleChart) c, float s_over_S) {
+  return chart_tile_frame_inverse_linear(c, s_over_S) * mat3(normalize(c.n0), normalize(c.n1), normalize(c.n2));
+}
+
+// The tile plane of the lift (docs/rendering.md, molecule boxes that hug the membrane): in the tile
+// at UV g, the lift in tile space and its derivatives along tile x and y at tile point `centre`. On a
+// coarse facet the lift reaches tens of Å but over one tile it is nearly this plane: what is left,
+// lift − plane, is exactly the quadratic chart_smooth_lift_curvature gives.
+struct LiftPlane {
+  vec3 value;
+  vec3 dx;
+  vec3 dy;
+};
+NANO_FN LiftPlane chart_smooth_lift_plane(NANO_IN(TriangleChart) c, NANO_IN(mat3) k, NANO_IN(mat3) directions,
+                                          NANO_IN(vec2) g, float s_over_S, NANO_IN(vec2) centre) {
+  vec3 l = chart_barycentric(c, g + s_over_S * centre);
+  vec3 kl = k * l;  // (Σ_j k_ij l_j)_i
+  vec3 lx = chart_barycentric_dx(c, s_over_S);
+  vec3 ly = chart_barycentric_dy(c, s_over_S);
+  LiftPlane plane;
+  plane.value = directions * (l * kl);
+  plane.dx = directions * (lx * kl + l * (k * lx));
+  plane.dy = directions * (ly * kl + l * (k * ly));
+  return plane;
+}
+
+// The lift's curvature in tile space: lift(centre + Δ) − plane(Δ) has component r equal to
+// Δ.x²·h[r].x + 2·Δ.x·Δ.y·h[r].y + Δ.y²·h[r].z (Δ in tile Å), the same for every tile of the triangle.
+NANO_FN mat3 chart_smooth_lift_curvature(NANO_IN(TriangleChart) c, NANO_IN(mat3) k, NANO_IN(mat3) directions,
+                                         float s_over_S) {
+  vec3 lx = chart_barycentric_dx(c, s_over_S);
+  vec3 ly = chart_barycentric_dy(c, s_over_S);
+  // Second order of Σ_i D_ri l_i (k l)_i along δl: Σ_i D_ri δl_i (k δl)_i, a form in δl.
+  vec3 kx = k * lx;
+  vec3 ky = k * ly;
+  mat3 h;
+  for (int r = 0; r < 3; ++r) {
+    vec3 d = vec3(directions[0][r], directions[1][r], directions[2][r]);  // row r
+    h[r] = vec3(dot(d, lx * kx), 0.5f * (dot(d, lx * ky) + dot(d, ly * kx)), dot(d, ly * ky));
+  }
+  return h;
+}
+
+// Moves a tile-space ray so that its points count from the tile's lift plane:
+// p' = p − (value + dx·(p.x − centre.x) + dy·(p.y − centre.y)). Affine in p, so the ray stays a ray
+// with the same t.
+NANO_FN void chart_lift_shear_ray(NANO_IN(LiftPlane) plane, NANO_IN(vec2) centre, NANO_INOUT(vec3) o, NANO_INOUT(vec3) d) {
+  vec3 o0 = o;
+  vec3 d0 = d;
+  o = o0 - plane.value - plane.dx * (o0.x - centre.x) - plane.dy * (o0.y - centre.y);
+  d = d0 - plane.dx * d0.x - plane.dy * d0.y;
 }
 
 // UV position of a membrane molecule at tile-space (x, y, ·) in the tile at UV g: g + (s/S)(x, y).
