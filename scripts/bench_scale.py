@@ -3,8 +3,9 @@
 9 µm slab, with twice its area per cell (blood.json's own density is close to where random
 sequential placement of the cells' bounding spheres jams: 94 of 100 cells fit), the slab growing in
 x and y as N^(1/2), for each N: bake time, package size, device memory,
-load time and frame time at a fixed screen coverage (an orbit about cell 0 at a fixed distance, so
-one cell fills the same part of the image whatever N). Writes OUT/scale.json, OUT/scale.md and
+load time and frame time (an orbit about cell 0 at a fixed distance, so cell 0 fills the same part of
+the image whatever N; from about 100 cells others fill the background around it, so the table also
+gives the share of pixels hit and the frame time per pixel hit, the cost at a fixed screen coverage). Writes OUT/scale.json, OUT/scale.md and
 OUT/scale.svg (through `nanoview plot`).
 usage: bench_scale.py BUILD_DIR OUT_DIR [--cells 1,4,20,100,1000] [--size 128x128] [--frames 8]"""
 import argparse, json, os, subprocess, sys, time
@@ -75,7 +76,7 @@ for cells in [int(c) for c in a.cells.split(",")]:
            "represented_atoms": rep["represented_atoms"], "bake_seconds": bake_seconds,
            "package_bytes": os.path.getsize(pkg), "device_memory_bytes": b["device_memory_bytes"],
            "device_memory": b["device_memory"], "load_seconds": b["load_seconds"],
-           "frame_seconds": b["frame_seconds"], "device": b["device"]}
+           "frame_seconds": b["frame_seconds"], "hit_pixel_fraction": b["hit_pixel_fraction"], "device": b["device"]}
     rows.append(row)
     print(f"{cells:5d} cells: bake {bake_seconds:.1f} s, package {row['package_bytes'] / 1e6:.2f} MB, device "
           f"{row['device_memory_bytes'] / 1e6:.2f} MB, load {row['load_seconds']:.2f} s, frame median "
@@ -86,14 +87,22 @@ with open(os.path.join(a.out, "scale.json"), "w") as f:
     json.dump({"size": a.size, "frames": a.frames, "rows": rows}, f, indent=1)
 first = rows[0]
 md = [f"Scale study on {first['device']}, frames {a.size}, orbit of {a.frames} frames about cell 0 at 15 µm "
-      "(fixed screen coverage); ratios to the smallest scene in brackets.", "",
-      "| cells | virions | represented atoms | bake | package | device memory | load | frame (median) |",
-      "|---|---|---|---|---|---|---|---|"]
+      "(cell 0 covers the same pixels; from about 100 cells others fill the background: the pixels hit column); "
+      "ratios to the smallest scene in brackets.", "",
+      "| cells | virions | represented atoms | bake | package | device memory | load | frame (median) | pixels hit | frame per pixel hit |",
+      "|---|---|---|---|---|---|---|---|---|---|"]
+
+
+def per_hit(r):
+    return r["frame_seconds"]["median"] / r["hit_pixel_fraction"]
+
+
 for r in rows:
     md.append(f"| {r['cells']} | {r['virions']} | {r['represented_atoms']:.3g} | {r['bake_seconds']:.1f} s | "
               f"{r['package_bytes'] / 1e6:.2f} MB | {r['device_memory_bytes'] / 1e6:.2f} MB "
               f"({r['device_memory_bytes'] / first['device_memory_bytes']:.2f}×) | {r['load_seconds']:.2f} s | "
-              f"{r['frame_seconds']['median']:.3f} s ({r['frame_seconds']['median'] / first['frame_seconds']['median']:.2f}×) |")
+              f"{r['frame_seconds']['median']:.3f} s ({r['frame_seconds']['median'] / first['frame_seconds']['median']:.2f}×) | "
+              f"{100 * r['hit_pixel_fraction']:.1f} % | {per_hit(r) / per_hit(first):.2f}× |")
 with open(os.path.join(a.out, "scale.md"), "w") as f:
     f.write("\n".join(md) + "\n")
 series = []
@@ -102,6 +111,8 @@ for key, label in [("device_memory_bytes", "device memory"), ("package_bytes", "
     series.append({"name": label, "lines": True, "points": [[r["cells"], r[key] / first[key]] for r in rows]})
 series.append({"name": "frame time (median)", "lines": True,
                "points": [[r["cells"], r["frame_seconds"]["median"] / first["frame_seconds"]["median"]] for r in rows]})
+series.append({"name": "frame time per pixel hit", "lines": True,
+               "points": [[r["cells"], per_hit(r) / per_hit(first)] for r in rows]})
 spec = {"title": "Cost against scene size (blood scene, 5 virions per cell)", "x_label": "red blood cells",
         "y_label": "ratio to 1 cell", "log_x": True, "log_y": True, "series": series}
 spec_path = os.path.join(work, "scale-plot.json")

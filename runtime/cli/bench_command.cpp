@@ -86,18 +86,25 @@ std::vector<Camera> frame_cameras(const Options& o, const Camera& start, unsigne
 }
 
 // Molecule copies on screen and the atoms they are made of (what the frame represents).
-std::pair<std::uint64_t, std::uint64_t> on_screen(const format::Package& package, const std::vector<gpu::PixelHit>& hits) {
+struct OnScreen {
+  std::uint64_t copies = 0;
+  std::uint64_t atoms = 0;      // of those copies' molecule types
+  std::uint64_t hit_pixels = 0;  // pixels that show an atom (the frame's screen coverage)
+};
+
+OnScreen on_screen(const format::Package& package, const std::vector<gpu::PixelHit>& hits) {
   const auto molecules = package.records<format::SectionKind::molecules>();
   std::set<std::uint64_t> copies;
-  std::uint64_t atoms = 0;
+  std::uint64_t atoms = 0, hit_pixels = 0;
   for (const gpu::PixelHit& h : hits) {
     if (h.atom == gpu::kNoHit) continue;
+    ++hit_pixels;
     const std::uint64_t number = std::uint64_t(h.copy_number_lo) | (std::uint64_t(h.copy_number_hi) << 32);
     if (!copies.insert(number).second) continue;
     for (const gpu::MoleculeType& m : molecules)
       if (h.atom >= m.first_atom && h.atom - m.first_atom < m.atom_count) atoms += m.atom_count;
   }
-  return {copies.size(), atoms};
+  return {copies.size(), atoms, hit_pixels};
 }
 
 nlohmann::ordered_json memory_json(const render::MemoryReport& m) {
@@ -119,12 +126,12 @@ void run_frames(const Options& o, session::RenderSession& session, nlohmann::ord
                                                             viewer::reduced_extent(h, viewer::kFirstFrameScale)));
   renderer.render(cameras.front().to_gpu(w, h));  // warm-up: first touch of the full-size buffers
   std::vector<double> seconds;
-  std::uint64_t molecules = 0, atoms = 0;
+  std::uint64_t molecules = 0, atoms = 0, hit_pixels = 0;
   for (const Camera& c : cameras) {
     const render::Frame f = renderer.render(c.to_gpu(w, h));
     seconds.push_back(f.seconds);
-    const auto [m, a] = on_screen(session.package, f.hits);
-    molecules += m, atoms += a;
+    const OnScreen seen = on_screen(session.package, f.hits);
+    molecules += seen.copies, atoms += seen.atoms, hit_pixels += seen.hit_pixels;
   }
   const bench::FrameStats stats = bench::frame_stats(seconds);
   const render::LoadReport& load = session.scene->report();
@@ -153,6 +160,7 @@ void run_frames(const Options& o, session::RenderSession& session, nlohmann::ord
   out["rays_per_second"] = double(rays) / stats.median;
   out["molecules_on_screen"] = double(molecules) / double(cameras.size());
   out["atoms_of_molecules_on_screen"] = double(atoms) / double(cameras.size());
+  out["hit_pixel_fraction"] = double(hit_pixels) / (double(cameras.size()) * w * h);
   out["device_memory_bytes"] = load.memory.total();
   out["device_memory"] = memory_json(load.memory);
   out["flat_level"] = {{"copies", load.flattened_copies}, {"triangles", load.flattened_triangles},

@@ -45,6 +45,9 @@ if mode == "frames":
     if total != d.get("device_memory_bytes"):
         problems.append(f"device_memory categories sum to {total}, not device_memory_bytes")
     need(d, "molecules_on_screen", "top", positive=True)
+    coverage = need(d, "hit_pixel_fraction", "top", positive=True)
+    if isinstance(coverage, (int, float)) and coverage > 1:
+        problems.append(f"hit_pixel_fraction {coverage} is more than every pixel")
     flat = need(d, "flat_level", "top", dict) or {}
     for k in ("copies", "triangles", "last_build_seconds"):
         need(flat, k, "flat_level")
