@@ -75,6 +75,13 @@ Case random_case(Rng& rng, glm::vec3 offset, bool mirrored) {
   }
 }
 
+// A triangle of a sphere of radius 100 with its exact normals, UVs the unit right triangle.
+g::TriangleChart sphere_triangle() {
+  const glm::vec3 a = glm::normalize(glm::vec3(1, 0.1f, 0.2f)), b = glm::normalize(glm::vec3(0.9f, 0.5f, 0.1f)),
+                  c = glm::normalize(glm::vec3(0.95f, 0.2f, 0.55f));
+  return g::chart_make(100.f * a, 100.f * b, 100.f * c, glm::vec2(0), glm::vec2(1, 0), glm::vec2(0, 1), a, b, c);
+}
+
 g::TriangleChart make(const Case& c) {
   return g::chart_make(c.P[0], c.P[1], c.P[2], c.t[0], c.t[1], c.t[2], c.n[0], c.n[1], c.n[2]);
 }
@@ -200,11 +207,7 @@ TEST(TileMapper, SmoothSurfaceIsPhongTessellationContinuousAcrossEdges) {
               1e-4 * o.diameter());
   }
   EXPECT_LT(worst, 2e-5);
-  // A triangle of a sphere of radius 100 with its exact normals.
-  const glm::vec3 a = glm::normalize(glm::vec3(1, 0.1f, 0.2f)), b = glm::normalize(glm::vec3(0.9f, 0.5f, 0.1f)),
-                  cc = glm::normalize(glm::vec3(0.95f, 0.2f, 0.55f));
-  const g::TriangleChart sphere = g::chart_make(100.f * a, 100.f * b, 100.f * cc, glm::vec2(0), glm::vec2(1, 0),
-                                                glm::vec2(0, 1), a, b, cc);
+  const g::TriangleChart sphere = sphere_triangle();
   const glm::vec2 centre(1.f / 3.f, 1.f / 3.f);
   const double flat_gap = 100.0 - glm::length(D(g::chart_position(sphere, centre)));
   // Half of Phong's lift puts the centre back on the sphere to second order (Phong's usual 3/4
@@ -266,10 +269,7 @@ TEST(TileMapper, LiftPlaneLeavesExactlyTheCurvatureTerm) {
   EXPECT_GT(largest_plane_share, 0.5);  // the plane carries the lift (a zero plane would pass the rest)
   // On a triangle of a sphere of radius 100 seen through tiles a tenth of its size, the curvature term
   // is a small part of the whole lift (what the boxes no longer hold).
-  const glm::vec3 a = glm::normalize(glm::vec3(1, 0.1f, 0.2f)), b = glm::normalize(glm::vec3(0.9f, 0.5f, 0.1f)),
-                  cc = glm::normalize(glm::vec3(0.95f, 0.2f, 0.55f));
-  const g::TriangleChart sphere = g::chart_make(100.f * a, 100.f * b, 100.f * cc, glm::vec2(0), glm::vec2(1, 0),
-                                                glm::vec2(0, 1), a, b, cc);
+  const g::TriangleChart sphere = sphere_triangle();
   float lift_lo, lift_hi;
   g::chart_smooth_lift_range(sphere, 0.5f, lift_lo, lift_hi);
   const float S = 10.f, s_over_S = 0.1f / S;
