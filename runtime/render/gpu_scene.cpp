@@ -384,7 +384,10 @@ struct GpuScene::Impl : format::PackageView {
     // Sheared triangles: ranges of chart_smooth_lift_curvature (column r: tile component r; lo > hi:
     // none in this bound) and the largest |∂plane/∂x|, |∂plane/∂y| per component. Unsheared ones:
     // their lift range along the normal (lo > hi: none).
-    dmat3 curvature_lo{INFINITY}, curvature_hi{-INFINITY};
+    dmat3 curvature_lo{dvec3(INFINITY), dvec3(INFINITY), dvec3(INFINITY)};
+    dmat3 curvature_hi{dvec3(-INFINITY), dvec3(-INFINITY), dvec3(-INFINITY)};
+    bool has_sheared() const { return curvature_lo[0].x <= curvature_hi[0].x; }
+    bool has_unsheared() const { return unsheared_lo <= unsheared_hi; }
     dvec3 slope_x{0.0}, slope_y{0.0};
     double unsheared_lo = INFINITY, unsheared_hi = -INFINITY;
     double plane_error = 0;  // the float plane's rounding (Å), shader and host alike
@@ -516,7 +519,7 @@ struct GpuScene::Impl : format::PackageView {
     for (std::uint32_t k = 0; k < mesh.triangle_count; ++k) {
       per[k] = triangle_distortion(c, rc, mesh.first_triangle + k);
       if (!per[k]) continue;
-      out.unsheared[k] = per[k]->unsheared_lo <= per[k]->unsheared_hi;
+      out.unsheared[k] = per[k]->has_unsheared();
       // A lipid standing 20 Å off the surface at a tile corner (the curvature term's worst place).
       const CopyBoxes typical = copy_boxes(dvec3(0, 0, 20), dvec3(0.0), dvec3(8, 8, 12), 15, *per[k], rc.membrane.z);
       const dvec3 size = typical.hi - typical.lo;
@@ -585,7 +588,7 @@ struct GpuScene::Impl : format::PackageView {
     // lift(uv_m) − plane(pos) (unsheared triangles: the whole lift), and a point at (x, y) off the
     // centre also meets the plane's slopes times that offset.
     dvec3 lift_lo(INFINITY), lift_hi(-INFINITY);
-    if (d.curvature_lo[0].x <= d.curvature_hi[0].x) {
+    if (d.has_sheared()) {
       const dvec2 delta_c = dvec2(pos) - half;
       dvec3 q_lo, q_hi;
       for (int k = 0; k < 3; ++k) std::tie(q_lo[k], q_hi[k]) = curvature_range(d.curvature_lo[k], d.curvature_hi[k], delta_c);
@@ -594,7 +597,7 @@ struct GpuScene::Impl : format::PackageView {
       const dvec3 tilt = d.slope_x * across.x + d.slope_y * across.y + d.plane_error;
       lift_lo = q_lo - tilt, lift_hi = q_hi + tilt;
     }
-    if (d.unsheared_lo <= d.unsheared_hi) {
+    if (d.has_unsheared()) {
       lift_lo = glm::min(lift_lo, dvec3(-lift_xy, -lift_xy, d.unsheared_lo));
       lift_hi = glm::max(lift_hi, dvec3(lift_xy, lift_xy, d.unsheared_hi));
     }
