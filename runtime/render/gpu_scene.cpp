@@ -967,6 +967,14 @@ std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }
 std::uint32_t GpuScene::first_atom_square_level() const { return impl_->first_atom_square; }
 std::uint32_t GpuScene::first_bead_level() const { return impl_->first_bead; }
 bool GpuScene::has_beads() const { return !impl_->bead_ranges.empty(); }
+bool GpuScene::has_large_replication_areas() const {
+  const Impl& s = *impl_;
+  for (std::uint32_t ci = 0; ci < s.compartments.size(); ++ci)
+    if (s.render_compartments[ci].span.w != gpu::NANO_NO_INDEX &&
+        std::uint64_t{s.compartments[ci].replication_width} * s.compartments[ci].replication_height > gpu::NANO_DIRECT_SLOTS)
+      return true;
+  return false;
+}
 std::uint32_t GpuScene::molecule_type_count() const { return std::uint32_t(impl_->molecules.size()); }
 const LoadReport& GpuScene::report() const { return impl_->report; }
 

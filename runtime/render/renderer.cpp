@@ -27,6 +27,7 @@ namespace {
 // What selects a pipeline: the shader build and its specialization constants.
 struct Variant {
   bool exact_prism, replication_las, two_level, no_effect_code, eye_from_host, world_space_ulas, counters, lod, flat;
+  bool large_areas;  // of the scene, not of the settings: GpuScene::has_large_replication_areas
   std::array<bool, kEffectCount> effects;  // compiled in, per row of the effect table
   bool code(EffectId id) const { return effects[static_cast<std::size_t>(id)]; }
   bool image_pass() const {
@@ -36,7 +37,7 @@ struct Variant {
   }
   auto key() const {
     return std::tuple(exact_prism, replication_las, two_level, no_effect_code, effects, eye_from_host, world_space_ulas, counters,
-                      lod, flat);
+                      lod, flat, large_areas);
   }
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
@@ -51,7 +52,7 @@ bool compiled_in(const EffectSettings& e, const EffectDeclaration& effect) {
   return true;
 }
 
-Variant variant_of(const RenderSettings& s) {
+Variant variant_of(const RenderSettings& s, bool large_areas) {
   std::array<bool, kEffectCount> effects{};
   if (!s.without_effect_code)
     for (const EffectDeclaration& effect : effect_table()) effects[static_cast<std::size_t>(effect.id)] = compiled_in(s.effects, effect);
@@ -59,7 +60,7 @@ Variant variant_of(const RenderSettings& s) {
   return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
           s.precision == Precision::two_float_eye, s.precision == Precision::world, !s.without_effect_code && s.counters,
           !s.without_effect_code && s.lod_pixels > 0,
-          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world, effects};
+          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world, large_areas, effects};
 }
 
 std::string name_of(const Variant& v) {
@@ -76,6 +77,7 @@ std::string name_of(const Variant& v) {
   add(v.eye_from_host, "eye_from_host");
   add(v.world_space_ulas, "world_space_ulas");
   add(v.flat, "flat");
+  add(!v.large_areas, "small_areas");
   for (const EffectDeclaration& effect : effect_table()) add(v.code(effect.id), std::string(effect.name).c_str());
   add(v.counters, "counters");
   add(v.lod, "lod");
@@ -112,6 +114,7 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   desc.specialization.set_bool(gpu::NANO_SPEC_EYE_FROM_HOST, v.eye_from_host);
   desc.specialization.set_bool(gpu::NANO_SPEC_WORLD_SPACE_ULAS, v.world_space_ulas);
   desc.specialization.set_bool(gpu::NANO_SPEC_FLAT, v.flat);
+  desc.specialization.set_bool(gpu::NANO_SPEC_LARGE_REPLICATION_AREAS, v.large_areas);
   if (!v.no_effect_code) {
     for (const EffectDeclaration& effect : effect_table())
       if (effect.spec_constant >= 0) desc.specialization.set_bool(effect.spec_constant, v.code(effect.id));
@@ -203,13 +206,15 @@ struct Renderer::Impl {
     set_settings(r);
   }
 
+  Variant variant(const RenderSettings& r) const { return variant_of(r, scene.has_large_replication_areas()); }
+
   void set_settings(const RenderSettings& r) {
     check(r);
     if (r.lod_pixels > 0 && !scene.has_beads())
       throw std::invalid_argument(scene.package().name() +
                                   ": no beads (baked before format 2.5), so no level of detail: bake it again, or --lod off");
     settings = r;
-    const Variant v = variant_of(r);
+    const Variant v = variant(r);
     if (const auto b = building.find(v); b != building.end()) {
       std::future<std::unique_ptr<Pipeline>> pending = std::move(b->second.pipeline);
       building.erase(b);
@@ -220,7 +225,7 @@ struct Renderer::Impl {
 
   void prepare(const RenderSettings& r) {
     check(r);
-    const Variant v = variant_of(r);
+    const Variant v = variant(r);
     if (pipelines.count(v) || building.count(v)) return;
     const vk::Device& d = device;
     building.emplace(v, PendingBuild{std::async(std::launch::async,
@@ -233,7 +238,7 @@ struct Renderer::Impl {
   }
 
   bool ready(const RenderSettings& r) {
-    const Variant v = variant_of(r);
+    const Variant v = variant(r);
     if (pipelines.count(v)) return true;
     const auto b = building.find(v);
     if (b == building.end() || b->second.pipeline.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
@@ -262,7 +267,7 @@ struct Renderer::Impl {
     frame.effects.y = e.ao_rays();
     frame.effects.z = e.sample_index;
     frame.effects.w = scene.first_bead_level();
-    frame.flat_eye = variant_of(settings).flat ? scene.flat_eye(ulas_origin(camera)) : glm::vec4(0.f);
+    frame.flat_eye = variant(settings).flat ? scene.flat_eye(ulas_origin(camera)) : glm::vec4(0.f);
     frame.lod = glm::vec4(2.0f * camera.forward.w / float(camera.size.y), float(settings.lod_pixels), gpu::NANO_TYPICAL_ATOM_DIAMETER, 0.f);
     const glm::vec3 jitter = jitter_frame_parameters(e);
     frame.effect_parameters = glm::vec4(e.ao_radius(), jitter.x, jitter.y, jitter.z);
@@ -271,7 +276,7 @@ struct Renderer::Impl {
   }
 
   std::uint64_t flatten_budget() const {
-    if (!variant_of(settings).flat) return 0;
+    if (!variant(settings).flat) return 0;
     if (settings.flatten_bytes != kFlattenAuto) return settings.flatten_bytes;
     const MemoryReport& m = scene.report().memory;
     return (m.total() - m.flat) / 2;
@@ -295,7 +300,7 @@ struct Renderer::Impl {
     pending.reset();
     const auto start = std::chrono::steady_clock::now();
     const glm::dvec3 eye = ulas_origin(camera);
-    scene.set_flatten(flatten_budget(), camera, variant_of(settings).code(EffectId::clipping), settings.flatten_new_copies);
+    scene.set_flatten(flatten_budget(), camera, variant(settings).code(EffectId::clipping), settings.flatten_new_copies);
     if (settings.effects.flag(EffectId::animation)) {
       const std::vector<format::InstanceTransform> moved = animated_instance_transforms(scene.package(), settings.effects.time);
       scene.set_eye(eye, moved);
@@ -304,7 +309,7 @@ struct Renderer::Impl {
     }
     const gpu::RenderFrame frame = frame_record(camera);
     frame_buffer.write(std::as_bytes(std::span(&frame, 1)));
-    const Variant v = variant_of(settings);
+    const Variant v = variant(settings);
     Pipeline& p = *pipelines.at(v);
     scene.write_descriptors(p.set);
     vk::write_storage_buffer(device.handle(), p.set, gpu::NANO_B_FRAME, frame_buffer);
@@ -314,7 +319,7 @@ struct Renderer::Impl {
 
   Renderer::Part trace_part(std::uint64_t pixels) {
     if (!pending) throw std::logic_error("Renderer::trace_part: no frame begun");
-    if (variant_of(settings).key() != pending->variant.key())
+    if (variant(settings).key() != pending->variant.key())
       throw std::logic_error("Renderer::trace_part: the settings changed since begin()");
     Pending& f = *pending;
     if (f.next_row >= f.height) throw std::logic_error("Renderer::trace_part: the frame is complete; finish() it");
@@ -393,22 +398,23 @@ void Renderer::set_settings(const RenderSettings& settings) { impl_->set_setting
 void Renderer::prepare(const RenderSettings& settings) { impl_->prepare(settings); }
 bool Renderer::ready(const RenderSettings& settings) { return impl_->ready(settings); }
 double Renderer::preparing_seconds(const RenderSettings& settings) const {
-  const auto b = impl_->building.find(variant_of(settings));
+  const auto b = impl_->building.find(impl_->variant(settings));
   return b == impl_->building.end() ? 0.0 : seconds_since(b->second.started);
 }
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
 
 Renderer::PipelineBuild Renderer::pipeline_build() const {
-  const Variant v = variant_of(impl_->settings);
+  const Variant v = impl_->variant(impl_->settings);
   const Pipeline& p = *impl_->pipelines.at(v);
   const vk::SpirvCode code = shader_code(v);
   return {name_of(v), code.word_count * sizeof(std::uint32_t), count_ray_query_loops(code), p.create_seconds, p.first_dispatch_seconds};
 }
 
-std::string Renderer::variant_name(const RenderSettings& settings) { return name_of(variant_of(settings)); }
+// The settings' part of the name: the scene's part (small_areas) shows in pipeline_build().
+std::string Renderer::variant_name(const RenderSettings& settings) { return name_of(variant_of(settings, true)); }
 
 std::uint64_t Renderer::rays_per_frame(const RenderSettings& settings, std::uint64_t pixels) {
-  const Variant v = variant_of(settings);
+  const Variant v = variant_of(settings, true);
   return pixels * (1 + (v.code(EffectId::shadows) ? 1 : 0) + (v.code(EffectId::ambient_occlusion) ? settings.effects.ao_rays() : 0));
 }
 

@@ -45,6 +45,11 @@ layout(local_size_x = NANO_WORKGROUP_SIZE, local_size_y = NANO_WORKGROUP_SIZE) i
 layout(constant_id = NANO_SPEC_EXACT_PRISM) const bool kExactPrism = true;
 // 1: the replication area is one query over a repLAS of its tile boxes; 0: every slot is queried.
 layout(constant_id = NANO_SPEC_REPLICATION_LAS) const bool kReplicationLas = true;
+// 0: no replication area of the package has more than NANO_DIRECT_SLOTS slots, so every area is
+// walked by its slots' boxes and no repLAS is ever queried: its traversal is not compiled (a sixth
+// of the default pipeline's traversals; the bundled virion's areas are 2×2).
+layout(constant_id = NANO_SPEC_LARGE_REPLICATION_AREAS) const bool kLargeAreas = true;
+const bool kRepLasWalk = kReplicationLas && kLargeAreas;
 // 1: the paper's two-level membrane: every atom of a Wang square in one BLAS, placed in tile space by
 // the affine M1 (an approximation of the true placement that verify measures); 0: mLAS → nLAS.
 layout(constant_id = NANO_SPEC_TWO_LEVEL) const bool kTwoLevel = false;
@@ -408,7 +413,7 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
   w.origin = replication_origin(uv_min, s);
   w.extent = min(replication_extent(uv_min, uv_max, s), ivec2(c.replication_width, c.replication_height));
   bool rep = kReplicationLas && rc.span.w != NANO_NO_INDEX;
-  w.mode = !rep ? kWalkAllSlots : uint(w.extent.x * w.extent.y) <= NANO_DIRECT_SLOTS ? kWalkSlotBoxes : kWalkRepLas;
+  w.mode = !rep ? kWalkAllSlots : !kLargeAreas || uint(w.extent.x * w.extent.y) <= NANO_DIRECT_SLOTS ? kWalkSlotBoxes : kWalkRepLas;
   // Every tile of the triangle shares M1's linear part: slot (i, j)'s box is the origin tile's moved
   // by (i·S, j·S, 0) in the origin tile's space.
   chart_tile_inverse_ray(w.chart, replication_tile_uv(w.origin, s), rc.membrane.y, o, d, w.ot, w.dt);
@@ -677,7 +682,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
       }
     } else {
       rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
-      if (kReplicationLas && w.mode == kWalkRepLas) {
+      if (kRepLasWalk && w.mode == kWalkRepLas) {
         RenderLevel a = levels[rc.span.w];
         count_work(NANO_RC_REPLAS_QUERIES);
         rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
@@ -687,7 +692,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
         // The next slot of the area.
         ivec2 element = ivec2(0);
         bool next = false;
-        if (kReplicationLas && w.mode == kWalkRepLas) {
+        if (kRepLasWalk && w.mode == kWalkRepLas) {
           while (!next && rayQueryProceedEXT(area)) {
             uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
             RenderLevel a = levels[rc.span.w];
@@ -717,7 +722,7 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
         uint slot = uint(element.x) + c.replication_width * uint(element.y);
         if (!trace_element(inst, ci, c, rc, true, tl, w, slot, ivec3(replication_tile_index(w.origin, element), 0), o, od)) continue;
         found = true;
-        if (kReplicationLas && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
+        if (kRepLasWalk && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
       }
     }
     if (found) {

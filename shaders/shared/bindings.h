@@ -67,6 +67,8 @@ NANO_CONST int NANO_SPEC_COUNTERS = 9;
 NANO_CONST int NANO_SPEC_LOD = 10;
 NANO_CONST int NANO_SPEC_FLAT = 11;  // the flat level is traced (runtime/render/flat_level.hpp)
 NANO_CONST int NANO_SPEC_OUTLINES = 12;
+// Some replication area has more than NANO_DIRECT_SLOTS slots (GpuScene::has_large_replication_areas).
+NANO_CONST int NANO_SPEC_LARGE_REPLICATION_AREAS = 13;
 
 // shaders/explicit_instancing/instanced.comp, set 0 (explicit instancing: runtime/explicit_instancing/).
 NANO_CONST uint NANO_IB_TLAS = 0u;  // one instance per copy; every other binding is a storage buffer

@@ -23,6 +23,8 @@
 #include "runtime/render/renderer.hpp"
 #include "runtime/vk/device.hpp"
 #include "shared/ray_counters.h"
+#include "tests/oracle/hand_scene.hpp"
+#include "tests/oracle/test_package.hpp"
 #include "runtime/vk/instance.hpp"
 
 namespace nano::explicit_instancing {
@@ -101,6 +103,38 @@ TEST_F(Instanced, VirionAgreesWithVirtualRenderer) {
     expect_agreement(explicit_renderer, virtual_renderer, cameras[i], "view " + std::to_string(i));
   // The package's view shows molecules, so agreement is not just background against background.
   EXPECT_GT(hit_pixels(explicit_renderer.render(cameras[0]).hits), 64u * 64u / 10);
+}
+
+// A package whose replication areas all fit NANO_DIRECT_SLOTS (the virion's are 2×2) gets the
+// pipeline without the repLAS traversal; one with a larger area (the hand scene's 6×6) gets it and
+// walks its large triangles through it — and both draw what explicit instancing draws.
+TEST_F(Instanced, ReplicationAreaSizeSelectsTheRepLasTraversal) {
+  Session& s = session();
+  EXPECT_FALSE(s.virtual_scene->has_large_replication_areas());
+  render::Renderer virion_renderer(s.device, *s.virtual_scene);
+  EXPECT_NE(virion_renderer.pipeline_build().variant.find("small_areas"), std::string::npos) << virion_renderer.pipeline_build().variant;
+
+  // The hand scene's prisms widened to its molecules' reach (1 Å sides, 2.7 Å molecules): the renderer
+  // looks for a triangle's copies only inside its prism, as the baker's shells guarantee (a copy
+  // centred on a shared edge lost its far half, in 4 of 4096 pixels, with the narrow sides).
+  format::test::SampleScene scene = explicit_test::hand_scene();
+  for (gpu::TriangleShell& shell : scene.triangle_shells) shell.side_offset = 4.0f;
+  const explicit_test::TestPackage hand(scene);
+  render::GpuScene hand_scene(s.device, hand.package);
+  EXPECT_TRUE(hand_scene.has_large_replication_areas());
+  render::Renderer hand_renderer(s.device, hand_scene, render::RenderSettings{.counters = true});
+  EXPECT_EQ(hand_renderer.pipeline_build().variant.find("small_areas"), std::string::npos) << hand_renderer.pipeline_build().variant;
+  InstancedScene explicit_scene(s.device, hand.package);
+  InstancedRenderer explicit_renderer(s.device, explicit_scene);
+  // Straight down onto the flat membranes, and grazing them.
+  for (const char* view : {"position=64,64,140;look_at=64,64,0;up=0,1,0;fov=60", "position=-60,70,9;look_at=64,64,0;up=0,0,1;fov=50"}) {
+    const gpu::Camera camera = render::parse_camera(view).to_gpu(64, 64);
+    expect_agreement(explicit_renderer, hand_renderer, camera, view);
+    const render::Frame counted = hand_renderer.render(camera);
+    std::uint64_t replas_queries = 0;
+    for (std::size_t p = 0; p < counted.hits.size(); ++p) replas_queries += counted.counters[p * gpu::NANO_RAY_COUNTER_COUNT + gpu::NANO_RC_REPLAS_QUERIES];
+    EXPECT_GT(replas_queries, 0u) << view << ": no prism walked its slots through the repLAS";
+  }
 }
 
 // The TLAS rebuilt relative to each eye (as GpuScene::set_eye) renders the same pixels.
