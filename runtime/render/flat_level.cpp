@@ -181,6 +181,16 @@ struct FlatLevel::Impl : format::PackageView {
       r.molecule_type = c.molecule_type;
       slot.push_back({c.origin, glm::mat3(c.linear), float(c.radius), r});
     });
+    // Along a Morton curve within the triangle once, so a rebuild only orders the triangles.
+    std::vector<VkAabbPositionsKHR> bounds;
+    for (const Placed& c : slot) {
+      const dvec3 a = c.origin - slot.front().origin - double(c.radius), b = c.origin - slot.front().origin + double(c.radius);
+      bounds.push_back({float(a.x), float(a.y), float(a.z), float(b.x), float(b.y), float(b.z)});
+    }
+    std::vector<Placed> sorted;
+    sorted.reserve(slot.size());
+    for (const std::uint32_t k : morton_order(bounds)) sorted.push_back(slot[k]);
+    slot = std::move(sorted);
     cached_copies += slot.size();
     return slot;
   }
@@ -278,49 +288,59 @@ struct FlatLevel::Impl : format::PackageView {
   }
 
   // The level over the chosen triangles' copies relative to the eye, Morton-sorted (the TLAS build
-  // splits in input order). Relative to the eye as the µLAS is: the hardware forms each copy's
-  // object-space ray origin from a float transform whose translation is the copy's distance from
-  // the eye, so a copy 10 Å away is placed to ~10⁻⁶ Å (an anchor 10⁴ Å away cost 10⁻³ Å: a pixel
-  // in 10⁵ of blood's closest view grazed another atom than the oracle).
+  // splits in input order): the triangles along a Morton curve of their centroids, each one's copies
+  // in the order copies_of gave them. Relative to the eye as the µLAS is: the hardware forms each
+  // copy's object-space ray origin from a float transform whose translation is the copy's distance
+  // from the eye, so a copy 10 Å away is placed to ~10⁻⁶ Å (an anchor 10⁴ Å away cost 10⁻³ Å: a
+  // pixel in 10⁵ of blood's closest view grazed another atom than the oracle). Run at every new eye
+  // of an orbit, so it is lean: one submission (the copy records' upload rides with the build) and
+  // the instance records written where the build reads them.
   void rebuild(const dvec3& eye) {
     tlas = {};
     copy_buffer = {};
     copy_count = 0;
     chosen_triangles = 0;
     std::fill(bits.begin(), bits.end(), 0u);
-    std::vector<const Placed*> placed;
+    std::vector<VkAabbPositionsKHR> triangle_bounds;
+    std::uint64_t count = 0;
     for (const std::uint32_t b : chosen) {
       bits[b >> 5] |= 1u << (b & 31u);
       ++chosen_triangles;
-      for (const Placed& c : cache.at(b)) placed.push_back(&c);
+      const auto [instance, local] = locate(b);
+      const FlatTriangle& f = triangles_of(instance)[local];
+      const dvec3 lo = f.centroid - eye - f.radius, hi = f.centroid - eye + f.radius;
+      triangle_bounds.push_back({float(lo.x), float(lo.y), float(lo.z), float(hi.x), float(hi.y), float(hi.z)});
+      count += cache.at(b).size();
     }
-    if (placed.empty()) return;
+    if (count == 0) return;
     anchor = eye;
-    std::vector<VkAabbPositionsKHR> bounds;
-    bounds.reserve(placed.size());
-    for (const Placed* c : placed) {
-      const dvec3 a = c->origin - anchor - double(c->radius), b = c->origin - anchor + double(c->radius);
-      bounds.push_back({float(a.x), float(a.y), float(a.z), float(b.x), float(b.y), float(b.z)});
-    }
-    const std::vector<std::uint32_t> order = morton_order(bounds);
     std::vector<VkAccelerationStructureInstanceKHR> instances;
     std::vector<gpu::FlatCopy> records;
-    instances.reserve(placed.size());
-    records.reserve(placed.size());
-    for (std::uint32_t k : order) {
-      const Placed& c = *placed[k];
-      glm::dmat4 m(glm::dmat3(c.linear));
-      m[3] = glm::dvec4(c.origin - anchor, 1.0);
-      instances.push_back(vk::make_instance(*molecule_blas(c.record.molecule_type), m, std::uint32_t(records.size())));
-      records.push_back(c.record);
-    }
-    {
-      const vk::Buffer input = vk::Buffer::with_data(device, std::as_bytes(std::span(instances)), vk::kBuildInputUsage,
-                                                     vk::MemoryUse::DeviceLocal);
-      tlas = vk::build_top_level(device, input.address(), std::uint32_t(instances.size()));
-    }  // the instance records are build input only: freed once the TLAS exists
-    copy_buffer = vk::Buffer::with_data(device, std::as_bytes(std::span(records)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                        vk::MemoryUse::DeviceLocal);
+    instances.reserve(count);
+    records.reserve(count);
+    for (const std::uint32_t t : morton_order(triangle_bounds))
+      for (const Placed& c : cache.at(chosen[t])) {
+        VkAccelerationStructureInstanceKHR instance{};
+        const glm::vec3 offset(c.origin - anchor);
+        for (int row = 0; row < 3; ++row) {
+          for (int column = 0; column < 3; ++column) instance.transform.matrix[row][column] = c.linear[column][row];
+          instance.transform.matrix[row][3] = offset[row];
+        }
+        instance.instanceCustomIndex = std::uint32_t(records.size());
+        instance.mask = 0xFF;
+        instance.accelerationStructureReference = molecule_blas(c.record.molecule_type)->address();
+        instances.push_back(instance);
+        records.push_back(c.record);
+      }
+    // Build input and staging in host-visible memory, freed once the build has read them.
+    const vk::Buffer input = vk::Buffer::with_data(device, std::as_bytes(std::span(instances)), vk::kBuildInputUsage,
+                                                   vk::MemoryUse::HostVisible);
+    const vk::Buffer staging = vk::Buffer::with_data(device, std::as_bytes(std::span(records)),
+                                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::HostVisible);
+    copy_buffer = vk::Buffer(device, staging.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             vk::MemoryUse::DeviceLocal);
+    tlas = vk::build_top_level(device, input.address(), std::uint32_t(instances.size()),
+                               [&](VkCommandBuffer commands) { vk::Buffer::record_copy(commands, staging, copy_buffer); });
     copy_count = records.size();
   }
 };

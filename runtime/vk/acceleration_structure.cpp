@@ -32,7 +32,8 @@ VkAccelerationStructureBuildSizesInfoKHR build_sizes(const Device& device, const
 }
 
 AccelerationStructure build(const Device& device, VkAccelerationStructureTypeKHR type,
-                            const VkAccelerationStructureGeometryKHR& geometry, std::uint32_t primitive_count) {
+                            const VkAccelerationStructureGeometryKHR& geometry, std::uint32_t primitive_count,
+                            const std::function<void(VkCommandBuffer)>& also = {}) {
   const auto& khr = device.acceleration_structure_functions();
   VkAccelerationStructureBuildGeometryInfoKHR build_info = build_info_of(type, geometry);
   const VkAccelerationStructureBuildSizesInfoKHR sizes = build_sizes(device, build_info, primitive_count);
@@ -66,6 +67,7 @@ AccelerationStructure build(const Device& device, VkAccelerationStructureTypeKHR
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                          VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
                          &barrier, 0, nullptr, 0, nullptr);
+    if (also) also(commands);
   });
 
   VkAccelerationStructureDeviceAddressInfoKHR address_info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR};
@@ -100,8 +102,13 @@ VkAccelerationStructureGeometryKHR instance_geometry(VkDeviceAddress instances) 
 }  // namespace
 
 AccelerationStructure build_top_level(const Device& device, VkDeviceAddress instances, std::uint32_t count) {
+  return build_top_level(device, instances, count, {});
+}
+
+AccelerationStructure build_top_level(const Device& device, VkDeviceAddress instances, std::uint32_t count,
+                                      const std::function<void(VkCommandBuffer)>& also) {
   if (count == 0 || instances == 0) throw std::invalid_argument("build_top_level: needs a device address and at least one instance");
-  return build(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, instance_geometry(instances), count);
+  return build(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, instance_geometry(instances), count, also);
 }
 
 VkDeviceSize top_level_size(const Device& device, std::uint32_t count) {

@@ -2,6 +2,7 @@
 // Bottom-level structures over AABBs (spheres, prisms, boxes are tested in the shader) and
 // top-level structures over instances, built on the device (lavapipe has no host builds).
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <utility>
 
@@ -61,6 +62,10 @@ struct AabbGeometry {
 AccelerationStructure build_bottom_level(const Device& device, const AabbGeometry& geometry);
 AccelerationStructure build_top_level(const Device& device, VkDeviceAddress instances, std::uint32_t count);
 AccelerationStructure build_top_level(const Device& device, std::span<const VkAccelerationStructureInstanceKHR> instances);
+// As above; `also` records more commands into the same submission after the build (one wait for
+// both: the flat level uploads its copy records beside its rebuild).
+AccelerationStructure build_top_level(const Device& device, VkDeviceAddress instances, std::uint32_t count,
+                                      const std::function<void(VkCommandBuffer)>& also);
 // The storage a top-level structure over `count` instances needs on this device (no build).
 VkDeviceSize top_level_size(const Device& device, std::uint32_t count);
 

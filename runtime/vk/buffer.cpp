@@ -131,17 +131,21 @@ Buffer Buffer::with_data(const Device& device, std::span<const std::byte> bytes,
 Buffer Buffer::device_copy(const Device& device, const Buffer& source, VkBufferUsageFlags usage) {
   const VkDeviceSize size = source.view_range_ == VK_WHOLE_SIZE ? source.size_ - source.view_offset_ : source.view_range_;
   Buffer buffer(device, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::DeviceLocal);
-  device.submit_once([&](VkCommandBuffer commands) {
-    VkBufferCopy region{source.view_offset_, 0, size};
-    vkCmdCopyBuffer(commands, source.handle(), buffer.handle(), 1, &region);
-    // Later submissions read the data in any stage (build input, shader, copy).
-    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT;
-    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0,
-                         nullptr, 0, nullptr);
-  });
+  device.submit_once([&](VkCommandBuffer commands) { record_copy(commands, source, buffer); });
   return buffer;
+}
+
+void Buffer::record_copy(VkCommandBuffer commands, const Buffer& source, const Buffer& destination) {
+  const VkDeviceSize size = source.view_range_ == VK_WHOLE_SIZE ? source.size_ - source.view_offset_ : source.view_range_;
+  if (size > destination.size_) throw std::invalid_argument("Buffer::record_copy: the destination is smaller than the source");
+  VkBufferCopy region{source.view_offset_, 0, size};
+  vkCmdCopyBuffer(commands, source.handle(), destination.handle(), 1, &region);
+  // Later commands and submissions read the data in any stage (build input, shader, copy).
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
 }
 
 void Buffer::check_host_range(std::size_t count, VkDeviceSize offset) const {

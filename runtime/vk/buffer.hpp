@@ -39,6 +39,9 @@ public:
   // A device-local copy of `source`'s view (made on the device; for an imported buffer the copy
   // reads the host pages directly, with no staging buffer in between).
   static Buffer device_copy(const Device& device, const Buffer& source, VkBufferUsageFlags usage);
+  // Records the copy of `source`'s bound part into `destination` (at least as large) and a barrier
+  // after which any later command may read it.
+  static void record_copy(VkCommandBuffer commands, const Buffer& source, const Buffer& destination);
 
   VkBuffer handle() const { return buffer_.get(); }
   // The part of the buffer descriptors bind (everything, except for imported buffers).
