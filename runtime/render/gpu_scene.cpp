@@ -18,6 +18,7 @@
 #include "format/core_skip.hpp"
 #include "format/package_view.hpp"
 #include "runtime/render/flat_level.hpp"
+#include "runtime/render/kept_boxes.hpp"
 #include "runtime/render/morton.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
 #include "runtime/vk/error.hpp"
@@ -152,6 +153,7 @@ struct GpuScene::Impl : format::PackageView {
     report.nlas_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
     build_tile_levels();
+    build_kept_boxes();
     report.mlas_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
     build_compartment_blases();
@@ -668,6 +670,12 @@ struct GpuScene::Impl : format::PackageView {
     }
   }
 
+  void build_kept_boxes() {
+    const std::vector<gpu::KeptBox> kept = kept_boxes(*this, type_radius);
+    section_buffers[gpu::NANO_B_KEPT_BOXES] = storage(std::as_bytes(std::span(kept)));
+    report.memory.derived += section_buffers[gpu::NANO_B_KEPT_BOXES].size();
+  }
+
   // repLAS per compartment: its W×H replication slots as boxes in the space of the area's origin tile
   // (slot (i, j) holds the union of the set's molecule boxes moved by (i·S, j·S)); orders hold the
   // slot index i + W·j. Every tile of a triangle shares M1's linear part, so one query finds the slots.
@@ -936,7 +944,8 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
     if (b == gpu::NANO_B_TRIANGLE_SHELLS) continue;
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   }
-  for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES, gpu::NANO_B_BEADS, gpu::NANO_B_CORE_SKIP})
+  for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES, gpu::NANO_B_BEADS, gpu::NANO_B_CORE_SKIP,
+                         gpu::NANO_B_KEPT_BOXES})
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
   vk::write_storage_buffer(d, set, gpu::NANO_B_TRIANGLE_SHELLS, s.shell_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_COMPARTMENTS, s.render_compartment_buffer);

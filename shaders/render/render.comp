@@ -114,6 +114,7 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TLAS) uniform accelerati
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_COPIES, std430) readonly buffer FlatCopies { FlatCopy flat_copies[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TRIANGLES, std430) readonly buffer FlatTriangles { uint flat_triangles[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_CORE_SKIP, std430) readonly buffer CoreSkip { uint core_skip_words[]; };  // 8 cells a word
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_KEPT_BOXES, std430) readonly buffer KeptBoxes { KeptBox kept_boxes[]; };  // parallel to boundary_boxes
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
 // The same buffer as the image pass reads it; the tracing code keeps its write-only view.
@@ -305,16 +306,17 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
 
 uint occupancy_of(uint byte_index) { return (occupancy_words[byte_index >> 2] >> (8u * (byte_index & 3u))) & 0xFFu; }
 
-// First keep-mask word of BOUNDARY box `box` (binary search over the compartment's sorted records), or
-// NANO_NO_INDEX when the package lists none (the validator makes that impossible).
-uint keep_mask_first_word(Compartment c, uint box) {
+// The record of BOUNDARY box `box` in boundary_boxes and kept_boxes (binary search over the
+// compartment's sorted records), or NANO_NO_INDEX when the package lists none (the validator makes
+// that impossible).
+uint boundary_record(Compartment c, uint box) {
   uint lo = c.core_masks.x;
   uint hi = c.core_masks.x + c.core_masks.y;
   while (lo < hi) {
     uint mid = (lo + hi) >> 1;
     if (boundary_boxes[mid].box < box) lo = mid + 1u; else hi = mid;
   }
-  if (lo < c.core_masks.x + c.core_masks.y && boundary_boxes[lo].box == box) return boundary_boxes[lo].first_word;
+  if (lo < c.core_masks.x + c.core_masks.y && lo < uint(kept_boxes.length()) && boundary_boxes[lo].box == box) return lo;
   return NANO_NO_INDEX;
 }
 
@@ -461,8 +463,11 @@ bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool
     if (!aabb_intersect(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
     if (kClipping && clip_removes_box(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz)) return false;
     if (occ == NANO_BOX_BOUNDARY) {
-      mask = keep_mask_first_word(c, slot_or_box);
-      if (mask == NANO_NO_INDEX) return false;
+      uint record = boundary_record(c, slot_or_box);
+      if (record == NANO_NO_INDEX) return false;
+      KeptBox kept = kept_boxes[record];
+      if (kept.lo.w == 0.0 || !aabb_intersect(box_min + kept.lo.xyz, box_min + kept.hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
+      mask = boundary_boxes[record].first_word;
     }
     uint cube = recipe_cell(c.soluble_recipe, cell);
     entry = frame.levels.y + cube;

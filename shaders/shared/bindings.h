@@ -46,12 +46,13 @@ NANO_CONST uint NANO_B_FLAT_TLAS = 25u;    // the flat level (render_scene.h Fla
 NANO_CONST uint NANO_B_FLAT_COPIES = 26u;
 NANO_CONST uint NANO_B_FLAT_TRIANGLES = 27u;  // one bit per triangle of every compartment instance: flattened
 NANO_CONST uint NANO_B_CORE_SKIP = 28u;  // the core grids' skip levels (shared/core_skip.h), 8 cells a word
-NANO_CONST uint NANO_SCENE_BINDING_COUNT = 29u;
-NANO_CONST uint NANO_B_FRAME = 29u;
-NANO_CONST uint NANO_B_HITS = 30u;
-NANO_CONST uint NANO_B_COLOURS = 31u;
-NANO_CONST uint NANO_B_COUNTERS = 32u;  // per pixel work counters (shared/ray_counters.h); a one-word buffer when off
-NANO_CONST uint NANO_RENDER_BINDING_COUNT = 33u;
+NANO_CONST uint NANO_B_KEPT_BOXES = 29u;  // per BOUNDARY box record: what its keep-mask keeps (render_scene.h KeptBox)
+NANO_CONST uint NANO_SCENE_BINDING_COUNT = 30u;
+NANO_CONST uint NANO_B_FRAME = 30u;
+NANO_CONST uint NANO_B_HITS = 31u;
+NANO_CONST uint NANO_B_COLOURS = 32u;
+NANO_CONST uint NANO_B_COUNTERS = 33u;  // per pixel work counters (shared/ray_counters.h); a one-word buffer when off
+NANO_CONST uint NANO_RENDER_BINDING_COUNT = 34u;
 
 // render.comp's specialization constants (runtime/render/renderer.cpp sets them per variant).
 NANO_CONST int NANO_SPEC_EXACT_PRISM = 0;
@@ -87,7 +88,7 @@ NANO_CONST uint NANO_INSTANCED_BINDING_COUNT = 9u;
 NANO_CONST int NANO_SPEC_INSTANCED_COUNTERS = 0;
 
 NANO_STATIC_ASSERT(NANO_DESCRIPTOR_SET == 0u, "a pipeline's first and only set is set 0");
-NANO_STATIC_ASSERT(NANO_B_CORE_SKIP + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
+NANO_STATIC_ASSERT(NANO_B_KEPT_BOXES + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
 NANO_STATIC_ASSERT(NANO_B_COUNTERS + 1u == NANO_RENDER_BINDING_COUNT, "frame bindings follow the scene's");
 NANO_STATIC_ASSERT(NANO_IB_ORDERS + 1u == NANO_INSTANCED_SCENE_BINDING_COUNT, "instanced scene bindings are 0 .. count - 1");
 NANO_STATIC_ASSERT(NANO_IB_COUNTERS + 1u == NANO_INSTANCED_BINDING_COUNT, "instanced frame bindings follow the scene's");

@@ -98,10 +98,21 @@ struct FlatCopy {
   uint reserved;
 };
 
+// What a core-grid BOUNDARY box keeps, parallel to section boundary_boxes (runtime-derived:
+// GpuScene): the union of its kept molecules' mLAS boxes, in the box's own frame (core_box_min at the
+// origin); lo.w = 1 when the keep-mask keeps any molecule of its cube, 0 when none. Near a membrane
+// the kept molecules fill one side of the box: a ray that leaves the box's reach before meeting
+// them (often at the membrane's hit) skips its mLAS query.
+struct KeptBox {
+  vec4 lo;
+  vec4 hi;
+};
+
 NANO_END
 
 #ifdef __cplusplus
 #include <cstddef>
+static_assert(sizeof(nano::gpu::KeptBox) == 32);
 static_assert(sizeof(nano::gpu::RenderCompartment) == 128 && offsetof(nano::gpu::RenderCompartment, core_skip) == 112);
 static_assert(sizeof(nano::gpu::RenderInstance) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);

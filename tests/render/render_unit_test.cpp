@@ -14,7 +14,10 @@
 #include "common/error.hpp"
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/image_io.hpp"
+#include "runtime/render/kept_boxes.hpp"
 #include "runtime/render/morton.hpp"
+#include "tests/oracle/hand_scene.hpp"
+#include "tests/oracle/test_package.hpp"
 
 namespace {
 
@@ -171,6 +174,58 @@ TEST(ImageFiles, PfmStoresRowsBottomUpLittleEndian) {
   EXPECT_EQ(v[2], 1.0f);
   EXPECT_TRUE(std::isinf(v[3]));
   std::filesystem::remove(path);
+}
+
+// Against the hand scene's plane geometry (tests/oracle/hand_scene.hpp): every atom of a copy a
+// BOUNDARY box keeps lies in that box's kept box, a box whose mask keeps nothing has none, and a box
+// that drops a molecule has a kept box smaller than its cube's whole reach.
+TEST(KeptBoxes, HoldEveryKeptAtomAndNothingForAnEmptyMask) {
+  const std::vector<nano::explicit_test::Placement> alone{{2, {0, 0, 1}, 0, {0, 0, 0}}};  // the core, untransformed
+  const nano::format::test::SampleScene scene = nano::explicit_test::hand_scene(alone);
+  const nano::explicit_test::TestPackage pkg(scene);
+  const nano::format::PackageView view(pkg.package);
+  const std::vector<double> radii = view.atom_bounding_radii();
+  const std::vector<nano::gpu::KeptBox> kept = kept_boxes(view, radii);
+  ASSERT_EQ(kept.size(), view.boundary_boxes.size());
+  ASSERT_GT(kept.size(), 0u);
+  const nano::gpu::Compartment& c = view.compartments[2];
+  const auto record_of = [&](std::uint32_t box) {
+    for (std::uint32_t r = c.core_masks.x; r < c.core_masks.x + c.core_masks.y; ++r)
+      if (view.boundary_boxes[r].box == box) return int(r);
+    return -1;
+  };
+  std::set<int> holding;
+  for (const auto& [key, atom] : nano::explicit_test::expected_atoms(scene, alone)) {
+    if (key.kind != 1) continue;
+    const std::uint32_t box = std::uint32_t(key.cell.x + c.grid_dims.x * (key.cell.y + c.grid_dims.y * key.cell.z));
+    const int r = record_of(box);
+    if (r < 0) continue;  // an INSIDE box: every molecule kept, no record
+    holding.insert(r);
+    const glm::dvec3 box_min = glm::dvec3(c.grid_min) + double(c.grid_min.w) * glm::dvec3(key.cell);
+    ASSERT_EQ(kept[r].lo.w, 1.f) << "box " << box;
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_LE(box_min[a] + kept[r].lo[a], atom.position[a] - atom.radius) << "box " << box << " axis " << a;
+      EXPECT_GE(box_min[a] + kept[r].hi[a], atom.position[a] + atom.radius) << "box " << box << " axis " << a;
+    }
+  }
+  bool smaller = false;
+  for (std::uint32_t r = c.core_masks.x; r < c.core_masks.x + c.core_masks.y; ++r) {
+    if (!holding.count(int(r))) {
+      EXPECT_EQ(kept[r].lo.w, 0.f) << "record " << r << " keeps no atom but has a kept box";
+      continue;
+    }
+    // The cube's whole reach: every molecule of the box's cube, kept or not, widened as the mLAS's.
+    const nano::gpu::BoundaryBox& b = view.boundary_boxes[r];
+    const nano::gpu::Tile3D& cube = view.tiles3d[b.box % c.grid_dims.x % 2 == 0 ? 1 : 2];  // the hand recipe [1, 2] along x
+    glm::dvec3 whole_lo(INFINITY), whole_hi(-INFINITY);
+    for (std::uint32_t m = 0; m < cube.instance_count; ++m) {
+      const nano::gpu::MoleculeInstance& inst = view.instances[cube.first_instance + m];
+      const double e = radii[inst.molecule_type] + 0.01;
+      whole_lo = glm::min(whole_lo, glm::dvec3(inst.position) - e), whole_hi = glm::max(whole_hi, glm::dvec3(inst.position) + e);
+    }
+    for (int a = 0; a < 3; ++a) smaller = smaller || kept[r].lo[a] > whole_lo[a] + 1.0 || kept[r].hi[a] < whole_hi[a] - 1.0;
+  }
+  EXPECT_TRUE(smaller) << "no kept box is smaller than its cube's reach: the masks would prune nothing";
 }
 
 }  // namespace
