@@ -279,6 +279,7 @@ void run_compile(const Options& o, session::RenderSession& session, nlohmann::or
     j["pipeline"] = name;
     if (const auto same = built.find(name); same != built.end()) {
       j["same_pipeline_as"] = out["variants"][same->second]["selected_by"];
+      j["pipeline"] = out["variants"][same->second]["pipeline"];
       std::printf("%-28s %s\n", row.what.c_str(), ("same pipeline as \"" + std::string(j["same_pipeline_as"]) + "\"").c_str());
       out["variants"].push_back(j);
       continue;
@@ -287,13 +288,14 @@ void run_compile(const Options& o, session::RenderSession& session, nlohmann::or
       render::Renderer renderer(session.device, *session.scene, row.settings);
       (void)renderer.render(tile);
       const render::Renderer::PipelineBuild b = renderer.pipeline_build();
+      j["pipeline"] = b.variant;  // with the scene's part (small_areas)
       j["spirv_bytes"] = b.spirv_bytes;
       j["ray_query_loops"] = b.ray_query_loops;
       j["create_seconds"] = b.create_seconds;
       j["first_dispatch_seconds"] = b.first_dispatch_seconds;
       j["total_seconds"] = b.create_seconds + b.first_dispatch_seconds;
       std::printf("%-28s %9.1f %6u %9.3f %9.3f %9.3f  %s\n", row.what.c_str(), b.spirv_bytes / 1e3, b.ray_query_loops,
-                  b.create_seconds, b.first_dispatch_seconds, b.create_seconds + b.first_dispatch_seconds, name.c_str());
+                  b.create_seconds, b.first_dispatch_seconds, b.create_seconds + b.first_dispatch_seconds, b.variant.c_str());
       built.emplace(name, out["variants"].size());
     } catch (const std::invalid_argument& e) {  // a knob this package cannot take (no beads, no atom squares)
       j["unavailable"] = e.what();
