@@ -671,7 +671,7 @@ struct GpuScene::Impl : format::PackageView {
   }
 
   void build_kept_boxes() {
-    const std::vector<gpu::KeptBox> kept = kept_boxes(*this, type_radius);
+    const std::vector<std::uint32_t> kept = kept_boxes(*this, type_radius);
     section_buffers[gpu::NANO_B_KEPT_BOXES] = storage(std::as_bytes(std::span(kept)));
     report.memory.derived += section_buffers[gpu::NANO_B_KEPT_BOXES].size();
   }

@@ -1,16 +1,32 @@
 #include "runtime/render/kept_boxes.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <glm/common.hpp>
 
+#include "shared/render_scene.h"
+
 namespace nano::render {
 
-std::vector<gpu::KeptBox> kept_boxes(const format::PackageView& v, std::span<const double> type_radius) {
-  std::vector<gpu::KeptBox> kept(v.boundary_boxes.size(), gpu::KeptBox{});
-  const auto down = [](double x) { return std::nextafter(float(x), -std::numeric_limits<float>::infinity()); };
-  const auto up = [](double x) { return std::nextafter(float(x), std::numeric_limits<float>::infinity()); };
+std::uint32_t kept_box_pack(const glm::dvec3& lo, const glm::dvec3& hi, float B) {
+  // Steps on the very float grid the shader decodes (kept_box_unpack), moved outward until the
+  // decoded corner holds the true one.
+  const auto decoded = [B](std::uint32_t q) { return -B + float(q) * (3.0f * B / gpu::kKeptSteps); };
+  std::uint32_t word = gpu::NANO_KEPT_ANY;
+  for (int a = 0; a < 3; ++a) {
+    const double unit = 3.0 * double(B) / gpu::kKeptSteps;
+    auto q_lo = std::uint32_t(std::clamp(std::floor((lo[a] + B) / unit), 0.0, 31.0));
+    while (q_lo > 0 && double(decoded(q_lo)) > lo[a]) --q_lo;
+    auto q_hi = std::uint32_t(std::clamp(std::ceil((hi[a] + B) / unit), 0.0, 31.0));
+    while (q_hi < 31 && double(decoded(q_hi)) < hi[a]) ++q_hi;
+    word |= q_lo << (5 * a) | q_hi << (15 + 5 * a);
+  }
+  return word;
+}
+
+std::vector<std::uint32_t> kept_boxes(const format::PackageView& v, std::span<const double> type_radius) {
+  std::vector<std::uint32_t> kept(v.boundary_boxes.size(), 0u);
   for (const gpu::Compartment& c : v.compartments) {
     if (c.soluble_recipe == gpu::NANO_NO_INDEX) continue;
     const gpu::Recipe& recipe = v.recipes[c.soluble_recipe];
@@ -29,8 +45,7 @@ std::vector<gpu::KeptBox> kept_boxes(const format::PackageView& v, std::span<con
         lo = glm::min(lo, glm::dvec3(inst.position) - e);
         hi = glm::max(hi, glm::dvec3(inst.position) + e);
       }
-      if (!(lo.x <= hi.x)) continue;  // keeps nothing
-      kept[r] = {glm::vec4(down(lo.x), down(lo.y), down(lo.z), 1.f), glm::vec4(up(hi.x), up(hi.y), up(hi.z), 0.f)};
+      if (lo.x <= hi.x) kept[r] = kept_box_pack(lo, hi, c.grid_min.w);
     }
   }
   return kept;

@@ -114,7 +114,7 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TLAS) uniform accelerati
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_COPIES, std430) readonly buffer FlatCopies { FlatCopy flat_copies[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FLAT_TRIANGLES, std430) readonly buffer FlatTriangles { uint flat_triangles[]; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_CORE_SKIP, std430) readonly buffer CoreSkip { uint core_skip_words[]; };  // 8 cells a word
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_KEPT_BOXES, std430) readonly buffer KeptBoxes { KeptBox kept_boxes[]; };  // parallel to boundary_boxes
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_KEPT_BOXES, std430) readonly buffer KeptBoxes { uint kept_boxes[]; };  // parallel to boundary_boxes
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffer Frame { RenderFrame frame; };
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
 // The same buffer as the image pass reads it; the tracing code keeps its write-only view.
@@ -465,8 +465,11 @@ bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool
     if (occ == NANO_BOX_BOUNDARY) {
       uint record = boundary_record(c, slot_or_box);
       if (record == NANO_NO_INDEX) return false;
-      KeptBox kept = kept_boxes[record];
-      if (kept.lo.w == 0.0 || !aabb_intersect(box_min + kept.lo.xyz, box_min + kept.hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
+      vec3 kept_lo;
+      vec3 kept_hi;
+      if (!kept_box_unpack(kept_boxes[record], c.grid_min.w, kept_lo, kept_hi) ||
+          !aabb_intersect(box_min + kept_lo, box_min + kept_hi, o, d, 0.0, best_t, tn, tf))
+        return false;
       mask = boundary_boxes[record].first_word;
     }
     uint cube = recipe_cell(c.soluble_recipe, cell);

@@ -98,21 +98,29 @@ struct FlatCopy {
   uint reserved;
 };
 
-// What a core-grid BOUNDARY box keeps, parallel to section boundary_boxes (runtime-derived:
-// GpuScene): the union of its kept molecules' mLAS boxes, in the box's own frame (core_box_min at the
-// origin); lo.w = 1 when the keep-mask keeps any molecule of its cube, 0 when none. Near a membrane
-// the kept molecules fill one side of the box: a ray that leaves the box's reach before meeting
-// them (often at the membrane's hit) skips its mLAS query.
-struct KeptBox {
-  vec4 lo;
-  vec4 hi;
-};
+// What a core-grid BOUNDARY box keeps, one word per record of section boundary_boxes
+// (runtime-derived: runtime/render/kept_boxes.cpp): a box holding the boxes of the molecules its
+// keep-mask keeps, in the box's own frame (core_box_min at the origin), on a grid of 31 steps over
+// [−B, 2B] (B the box edge; molecules reach at most one box beyond their own) — 5 bits a corner
+// coordinate, lo x, y, z then hi x, y, z from bit 0 — and bit 30 set when the mask keeps anything.
+// Near a membrane the kept molecules fill one side of the box: a ray that meets the box's reach only
+// before them (often at the membrane's hit) skips its mLAS query. 4 bytes a record: the red blood
+// cell has ~490,000 of them.
+NANO_CONST uint NANO_KEPT_ANY = 0x40000000u;
+NANO_CONST float kKeptSteps = 31.0f;
+
+// The kept box of word `k` for boxes of edge B; false when the mask keeps nothing.
+NANO_FN bool kept_box_unpack(uint k, float B, NANO_OUT(vec3) lo, NANO_OUT(vec3) hi) {
+  float unit = 3.0f * B / kKeptSteps;
+  lo = vec3(-B) + vec3(uvec3(k, k >> 5u, k >> 10u) & uvec3(31u)) * unit;
+  hi = vec3(-B) + vec3(uvec3(k >> 15u, k >> 20u, k >> 25u) & uvec3(31u)) * unit;
+  return (k & NANO_KEPT_ANY) != 0u;
+}
 
 NANO_END
 
 #ifdef __cplusplus
 #include <cstddef>
-static_assert(sizeof(nano::gpu::KeptBox) == 32);
 static_assert(sizeof(nano::gpu::RenderCompartment) == 128 && offsetof(nano::gpu::RenderCompartment, core_skip) == 112);
 static_assert(sizeof(nano::gpu::RenderInstance) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);

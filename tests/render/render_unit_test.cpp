@@ -15,6 +15,7 @@
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/image_io.hpp"
 #include "runtime/render/kept_boxes.hpp"
+#include "shared/render_scene.h"
 #include "runtime/render/morton.hpp"
 #include "tests/oracle/hand_scene.hpp"
 #include "tests/oracle/test_package.hpp"
@@ -176,6 +177,31 @@ TEST(ImageFiles, PfmStoresRowsBottomUpLittleEndian) {
   std::filesystem::remove(path);
 }
 
+// A packed kept box holds the box it was made from, one grid step (3B/31) at most larger on each side,
+// decoded in float as the shader does, for box edges from 1 Å to 10⁴ Å and corners on grid points.
+TEST(KeptBoxes, PackingHoldsTheBoxWithinOneStep) {
+  std::mt19937 rng(30);
+  for (const float B : {1.0f, 20.0f, 191.3f, 1e4f}) {
+    const double step = 3.0 * B / 31.0;
+    std::uniform_real_distribution<double> at(-B, 2.0 * B);
+    for (int n = 0; n < 2000; ++n) {
+      glm::dvec3 lo(at(rng), at(rng), at(rng)), hi(at(rng), at(rng), at(rng));
+      if (n % 5 == 0) lo.x = -B + step * (n % 31), hi.x = -B + step * (n % 31 + 1);  // exactly on grid points
+      const glm::dvec3 a = glm::min(lo, hi), b = glm::max(lo, hi);
+      glm::vec3 plo, phi;
+      ASSERT_TRUE(nano::gpu::kept_box_unpack(kept_box_pack(a, b, B), B, plo, phi));
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_LE(double(plo[k]), a[k]) << B << " " << n;
+        ASSERT_GE(double(phi[k]), b[k]) << B << " " << n;
+        ASSERT_GT(double(plo[k]), a[k] - step * 1.0001) << B << " " << n;
+        ASSERT_LT(double(phi[k]), b[k] + step * 1.0001) << B << " " << n;
+      }
+    }
+  }
+  glm::vec3 lo, hi;
+  EXPECT_FALSE(nano::gpu::kept_box_unpack(0u, 20.0f, lo, hi));  // keeps nothing
+}
+
 // Against the hand scene's plane geometry (tests/oracle/hand_scene.hpp): every atom of a copy a
 // BOUNDARY box keeps lies in that box's kept box, a box whose mask keeps nothing has none, and a box
 // that drops a molecule has a kept box smaller than its cube's whole reach.
@@ -185,7 +211,7 @@ TEST(KeptBoxes, HoldEveryKeptAtomAndNothingForAnEmptyMask) {
   const nano::explicit_test::TestPackage pkg(scene);
   const nano::format::PackageView view(pkg.package);
   const std::vector<double> radii = view.atom_bounding_radii();
-  const std::vector<nano::gpu::KeptBox> kept = kept_boxes(view, radii);
+  const std::vector<std::uint32_t> kept = kept_boxes(view, radii);
   ASSERT_EQ(kept.size(), view.boundary_boxes.size());
   ASSERT_GT(kept.size(), 0u);
   const nano::gpu::Compartment& c = view.compartments[2];
@@ -202,16 +228,17 @@ TEST(KeptBoxes, HoldEveryKeptAtomAndNothingForAnEmptyMask) {
     if (r < 0) continue;  // an INSIDE box: every molecule kept, no record
     holding.insert(r);
     const glm::dvec3 box_min = glm::dvec3(c.grid_min) + double(c.grid_min.w) * glm::dvec3(key.cell);
-    ASSERT_EQ(kept[r].lo.w, 1.f) << "box " << box;
+    glm::vec3 lo, hi;
+    ASSERT_TRUE(nano::gpu::kept_box_unpack(kept[r], c.grid_min.w, lo, hi)) << "box " << box;
     for (int a = 0; a < 3; ++a) {
-      EXPECT_LE(box_min[a] + kept[r].lo[a], atom.position[a] - atom.radius) << "box " << box << " axis " << a;
-      EXPECT_GE(box_min[a] + kept[r].hi[a], atom.position[a] + atom.radius) << "box " << box << " axis " << a;
+      EXPECT_LE(box_min[a] + lo[a], atom.position[a] - atom.radius) << "box " << box << " axis " << a;
+      EXPECT_GE(box_min[a] + hi[a], atom.position[a] + atom.radius) << "box " << box << " axis " << a;
     }
   }
   bool smaller = false;
   for (std::uint32_t r = c.core_masks.x; r < c.core_masks.x + c.core_masks.y; ++r) {
     if (!holding.count(int(r))) {
-      EXPECT_EQ(kept[r].lo.w, 0.f) << "record " << r << " keeps no atom but has a kept box";
+      EXPECT_EQ(kept[r], 0u) << "record " << r << " keeps no atom but has a kept box";
       continue;
     }
     // The cube's whole reach: every molecule of the box's cube, kept or not, widened as the mLAS's.
@@ -223,7 +250,9 @@ TEST(KeptBoxes, HoldEveryKeptAtomAndNothingForAnEmptyMask) {
       const double e = radii[inst.molecule_type] + 0.01;
       whole_lo = glm::min(whole_lo, glm::dvec3(inst.position) - e), whole_hi = glm::max(whole_hi, glm::dvec3(inst.position) + e);
     }
-    for (int a = 0; a < 3; ++a) smaller = smaller || kept[r].lo[a] > whole_lo[a] + 1.0 || kept[r].hi[a] < whole_hi[a] - 1.0;
+    glm::vec3 lo, hi;
+    nano::gpu::kept_box_unpack(kept[r], c.grid_min.w, lo, hi);
+    for (int a = 0; a < 3; ++a) smaller = smaller || lo[a] > whole_lo[a] + 1.0 || hi[a] < whole_hi[a] - 1.0;
   }
   EXPECT_TRUE(smaller) << "no kept box is smaller than its cube's reach: the masks would prune nothing";
 }
