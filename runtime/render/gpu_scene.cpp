@@ -117,6 +117,7 @@ struct GpuScene::Impl : format::PackageView {
   std::vector<std::pair<dvec3, dvec3>> compartment_bounds;         // the union of each one's boxes
   vk::AccelerationStructure ulas;
   bool has_ulas = false;
+  bool large_replication_areas = false;  // some compartment's repLAS has more than NANO_DIRECT_SLOTS slots
   std::uint64_t flatten_budget = 0;
   gpu::Camera flatten_camera{};
   bool flatten_both_sides = false;
@@ -699,6 +700,7 @@ struct GpuScene::Impl : format::PackageView {
         }
       levels[first_area + ci] = build_level(boxes, slots, first_area + ci, report.memory.mlas);
       render_compartments[ci].span.w = first_area + ci;
+      large_replication_areas = large_replication_areas || slots.size() > gpu::NANO_DIRECT_SLOTS;
       const VkAabbPositionsKHR slot = box_of(lo, hi);
       render_compartments[ci].slot_lo = glm::vec4(slot.minX, slot.minY, slot.minZ, float(S));
       render_compartments[ci].slot_hi = glm::vec4(slot.maxX, slot.maxY, slot.maxZ, 0.f);
@@ -976,14 +978,7 @@ std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }
 std::uint32_t GpuScene::first_atom_square_level() const { return impl_->first_atom_square; }
 std::uint32_t GpuScene::first_bead_level() const { return impl_->first_bead; }
 bool GpuScene::has_beads() const { return !impl_->bead_ranges.empty(); }
-bool GpuScene::has_large_replication_areas() const {
-  const Impl& s = *impl_;
-  for (std::uint32_t ci = 0; ci < s.compartments.size(); ++ci)
-    if (s.render_compartments[ci].span.w != gpu::NANO_NO_INDEX &&
-        std::uint64_t{s.compartments[ci].replication_width} * s.compartments[ci].replication_height > gpu::NANO_DIRECT_SLOTS)
-      return true;
-  return false;
-}
+bool GpuScene::has_large_replication_areas() const { return impl_->large_replication_areas; }
 std::uint32_t GpuScene::molecule_type_count() const { return std::uint32_t(impl_->molecules.size()); }
 const LoadReport& GpuScene::report() const { return impl_->report; }
 
