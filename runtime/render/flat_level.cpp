@@ -26,6 +26,12 @@ using glm::vec3;
 // The instance custom index (24 bits) names the copy record.
 constexpr std::uint64_t kCopyLimit = std::uint64_t{1} << 24;
 
+// The float box of the ball of `radius` about `centre`, relative to `origin` (Morton keys only).
+VkAabbPositionsKHR ball_box(const dvec3& centre, double radius, const dvec3& origin) {
+  const dvec3 lo = centre - origin - radius, hi = centre - origin + radius;
+  return {float(lo.x), float(lo.y), float(lo.z), float(hi.x), float(hi.y), float(hi.z)};
+}
+
 // One copy as placement::CopyEnumerator placed it.
 struct Placed {
   dvec3 origin;      // world position of the molecule origin
@@ -183,10 +189,7 @@ struct FlatLevel::Impl : format::PackageView {
     });
     // Along a Morton curve within the triangle once, so a rebuild only orders the triangles.
     std::vector<VkAabbPositionsKHR> bounds;
-    for (const Placed& c : slot) {
-      const dvec3 a = c.origin - slot.front().origin - double(c.radius), b = c.origin - slot.front().origin + double(c.radius);
-      bounds.push_back({float(a.x), float(a.y), float(a.z), float(b.x), float(b.y), float(b.z)});
-    }
+    for (const Placed& c : slot) bounds.push_back(ball_box(c.origin, c.radius, slot.front().origin));
     std::vector<Placed> sorted;
     sorted.reserve(slot.size());
     for (const std::uint32_t k : morton_order(bounds)) sorted.push_back(slot[k]);
@@ -308,8 +311,7 @@ struct FlatLevel::Impl : format::PackageView {
       ++chosen_triangles;
       const auto [instance, local] = locate(b);
       const FlatTriangle& f = triangles_of(instance)[local];
-      const dvec3 lo = f.centroid - eye - f.radius, hi = f.centroid - eye + f.radius;
-      triangle_bounds.push_back({float(lo.x), float(lo.y), float(lo.z), float(hi.x), float(hi.y), float(hi.z)});
+      triangle_bounds.push_back(ball_box(f.centroid, f.radius, eye));
       count += cache.at(b).size();
     }
     if (count == 0) return;
@@ -320,16 +322,9 @@ struct FlatLevel::Impl : format::PackageView {
     records.reserve(count);
     for (const std::uint32_t t : morton_order(triangle_bounds))
       for (const Placed& c : cache.at(chosen[t])) {
-        VkAccelerationStructureInstanceKHR instance{};
-        const glm::vec3 offset(c.origin - anchor);
-        for (int row = 0; row < 3; ++row) {
-          for (int column = 0; column < 3; ++column) instance.transform.matrix[row][column] = c.linear[column][row];
-          instance.transform.matrix[row][3] = offset[row];
-        }
-        instance.instanceCustomIndex = std::uint32_t(records.size());
-        instance.mask = 0xFF;
-        instance.accelerationStructureReference = molecule_blas(c.record.molecule_type)->address();
-        instances.push_back(instance);
+        glm::dmat4 m(glm::dmat3(c.linear));
+        m[3] = glm::dvec4(c.origin - anchor, 1.0);
+        instances.push_back(vk::make_instance(*molecule_blas(c.record.molecule_type), m, std::uint32_t(records.size())));
         records.push_back(c.record);
       }
     // Build input and staging in host-visible memory, freed once the build has read them.
