@@ -45,6 +45,19 @@ struct PackageView {
 #undef NANO_SECTION_INIT
   }
 
+  // The tile of recipe `recipe` at cell (a, b, c): recipes wrap in every direction, both ways.
+  // Entries are absolute tile indices: the validator requires them inside the compartment's tile
+  // set [first, first + count), so adding membrane_first_tile / soluble_first_tile again (as
+  // docs/placement.md's formulas read) would leave the set whenever first > 0.
+  std::uint32_t recipe_cell(std::uint32_t recipe, std::int64_t a, std::int64_t b, std::int64_t c) const {
+    const auto wrap = [](std::int64_t x, std::uint32_t n) {
+      const std::int64_t r = x % static_cast<std::int64_t>(n);
+      return static_cast<std::uint32_t>(r < 0 ? r + n : r);
+    };
+    const gpu::Recipe& r = recipes[recipe];
+    return recipe_indices[r.first_index + wrap(a, r.dims.x) + r.dims.x * (wrap(b, r.dims.y) + r.dims.y * wrap(c, r.dims.z))];
+  }
+
   // True iff the baker listed membrane copy `key` (membrane_copy_key) of triangle t (dropped, or an
   // alternate shown: membrane_copy_listed_shows): a binary search over the triangle's ascending keys,
   // as the shader does.

@@ -29,12 +29,6 @@ using glm::vec3;
 
 std::string str(std::uint64_t v) { return std::to_string(v); }
 
-// Non-negative remainder: recipes wrap in both directions.
-std::uint32_t wrap(std::int64_t a, std::uint32_t n) {
-  const std::int64_t r = a % static_cast<std::int64_t>(n);
-  return static_cast<std::uint32_t>(r < 0 ? r + n : r);
-}
-
 // Å by which culling keeps copies near a clip plane that the caller judges atom by atom: verify
 // moves the planes by 0.01 Å to tell rounding ties from errors, and must see those atoms.
 constexpr double kClipCullSlack = 0.1;
@@ -111,14 +105,6 @@ struct CopyEnumerator::Impl : format::PackageView {
   }
 
   [[noreturn]] void fail(const std::string& where, const std::string& rule) const { throw InputError(p.name(), where, rule); }
-
-  // Recipe entries are absolute tile indices: the validator requires them inside the compartment's
-  // tile set [first, first + count), so adding membrane_first_tile / soluble_first_tile again (as
-  // docs/placement.md's formulas read) would leave the set whenever first > 0.
-  std::uint32_t recipe_cell(std::uint32_t recipe, std::int64_t a, std::int64_t b, std::int64_t c) const {
-    const gpu::Recipe& r = recipes[recipe];
-    return recipe_indices[r.first_index + wrap(a, r.dims.x) + r.dims.x * (wrap(b, r.dims.y) + r.dims.y * wrap(c, r.dims.z))];
-  }
 
   vec3 vertex(std::uint32_t mesh_first, std::uint32_t v) const { return vec3(vertex_positions[mesh_first + v]); }
 

@@ -29,13 +29,10 @@ std::vector<std::uint32_t> kept_boxes(const format::PackageView& v, std::span<co
   std::vector<std::uint32_t> kept(v.boundary_boxes.size(), 0u);
   for (const gpu::Compartment& c : v.compartments) {
     if (c.soluble_recipe == gpu::NANO_NO_INDEX) continue;
-    const gpu::Recipe& recipe = v.recipes[c.soluble_recipe];
     for (std::uint64_t r = c.core_masks.x; r < std::uint64_t{c.core_masks.x} + c.core_masks.y; ++r) {
       const std::uint32_t box = v.boundary_boxes[r].box;
       const std::uint32_t i = box % c.grid_dims.x, j = box / c.grid_dims.x % c.grid_dims.y, k = box / c.grid_dims.x / c.grid_dims.y;
-      // Recipes wrap along every axis (render.comp's recipe_cell).
-      const std::uint32_t cell = i % recipe.dims.x + recipe.dims.x * (j % recipe.dims.y + recipe.dims.y * (k % recipe.dims.z));
-      const gpu::Tile3D& cube = v.tiles3d[v.recipe_indices[recipe.first_index + cell]];
+      const gpu::Tile3D& cube = v.tiles3d[v.recipe_cell(c.soluble_recipe, i, j, k)];
       const std::uint32_t* words = v.mask_words.data() + v.boundary_boxes[r].first_word;
       glm::dvec3 lo(INFINITY), hi(-INFINITY);
       for (std::uint32_t m = 0; m < cube.instance_count; ++m) {

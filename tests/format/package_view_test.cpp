@@ -25,6 +25,18 @@ TEST(PackageView, SpansAreTheSectionsAsWritten) {
   EXPECT_EQ(v.atoms.back().centre_radius, s.atoms.back().centre_radius);
 }
 
+// The sample's 2×2 membrane recipe is the checkerboard [[0, 1], [1, 0]] of tiles: any cell, negative
+// ones too, reads the entry at its coordinates modulo 2, whatever its z.
+TEST(PackageView, RecipeCellsWrapInEveryDirection) {
+  const Package p = Package::from_bytes(build(make_sample_scene(), Compression::none));
+  const PackageView v(p);
+  const std::uint32_t checkerboard[2][2] = {{0, 1}, {1, 0}};  // [b mod 2][a mod 2]
+  for (std::int64_t a = -5; a <= 5; ++a)
+    for (std::int64_t b = -5; b <= 5; ++b)
+      EXPECT_EQ(v.recipe_cell(0, a, b, a + b), checkerboard[(b % 2 + 2) % 2][(a % 2 + 2) % 2]) << a << "," << b;
+  EXPECT_EQ(v.recipe_cell(1, 7, -3, -1), 0u);  // the 1×1×2 soluble recipe lists tile 0 twice
+}
+
 // The sample drops slot 0 instance 1 and slot 4 instance 0 of triangle 1, slot 8 instance 1 of
 // triangle 3: exactly those keys, on exactly those triangles.
 TEST(PackageView, DroppedMembraneCopiesAreFoundPerTriangle) {
