@@ -5,11 +5,20 @@
 // and to keep the face list as written: check-mesh then sees every defect (non-manifold edges,
 // degenerate triangles) at the face index of the file, where a half-edge builder would quietly
 // repair it. Draco goes through libdraco (draco_codec.hpp).
+#include <cstddef>
 #include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
 
 #include "bake/mesh/proxy_mesh.hpp"
 
 namespace nano::mesh {
+
+enum class MeshFormat { obj, off, ply, stl, draco };
+
+// The format a file name's extension names (.obj, .off, .ply, .stl, .drc, in any case), or nullopt.
+std::optional<MeshFormat> mesh_format_of(const std::filesystem::path& path);
 
 // Faces are triangulated in file order, so triangle i of an all-triangle file is face i (0-based).
 // A quad is cut along its shorter diagonal (a tie: the 0–2 one); a larger polygon becomes a fan
@@ -23,5 +32,9 @@ namespace nano::mesh {
 // non-finite coordinates, or a file with no faces. A mesh without UVs loads (has_uvs() is false) so
 // that check-mesh can report it as a problem.
 ProxyMesh read_proxy_mesh(const std::filesystem::path& path);
+
+// The same from the file's bytes in memory, in the format given (what read_proxy_mesh does once it
+// has read the file): every rule above, each error naming `file` (which is only a label here).
+ProxyMesh parse_proxy_mesh(std::span<const std::byte> bytes, MeshFormat format, const std::string& file);
 
 }  // namespace nano::mesh

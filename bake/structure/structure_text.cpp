@@ -88,12 +88,14 @@ void reject_binary(const std::string& text, const std::string& name) {
 
 }  // namespace
 
-std::string read_structure_text(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::string bytes = read_raw_bytes(path);
+std::string structure_text_from_bytes(std::string bytes, const std::string& name) {
   if (is_gzip(bytes)) bytes = inflate_gzip(bytes, name);
   reject_binary(bytes, name);
   return bytes;
+}
+
+std::string read_structure_text(const std::filesystem::path& path) {
+  return structure_text_from_bytes(read_raw_bytes(path), path.string());
 }
 
 }  // namespace nano::structure

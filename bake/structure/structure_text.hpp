@@ -10,4 +10,8 @@ namespace nano::structure {
 // Throws InputError for a missing/unreadable file, corrupt or truncated gzip, or binary content.
 std::string read_structure_text(const std::filesystem::path& path);
 
+// The same from the file's bytes in memory (what read_structure_text does once it has read them):
+// inflated when they start with the gzip magic, then checked to be text. `name` only labels errors.
+std::string structure_text_from_bytes(std::string bytes, const std::string& name);
+
 }  // namespace nano::structure

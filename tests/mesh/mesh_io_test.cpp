@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
+#include <span>
+#include <utility>
 #include <set>
 #include <numbers>
 
@@ -181,6 +184,52 @@ TEST(MeshReader, DracoRoundTripWithinQuantisation) {
     for (const Triangle& t : decoded.triangles) got.insert(canonical({to_original[t[0]], to_original[t[1]], to_original[t[2]]}));
     EXPECT_EQ(got, expected);
     EXPECT_LT(bytes.size(), std::filesystem::file_size(obj_file) / 4);
+  }
+}
+
+TEST(MeshReader, FormatFromTheExtension) {
+  EXPECT_EQ(mesh_format_of("a/b.obj"), MeshFormat::obj);
+  EXPECT_EQ(mesh_format_of("B.OFF"), MeshFormat::off);
+  EXPECT_EQ(mesh_format_of("c.Ply"), MeshFormat::ply);
+  EXPECT_EQ(mesh_format_of("d.stl"), MeshFormat::stl);
+  EXPECT_EQ(mesh_format_of("e.drc"), MeshFormat::draco);
+  EXPECT_EQ(mesh_format_of("f.dae"), std::nullopt);
+  EXPECT_EQ(mesh_format_of("obj"), std::nullopt);
+  EXPECT_EQ(mesh_format_of("g.obj.gz"), std::nullopt);
+}
+
+// parse_proxy_mesh is what read_proxy_mesh does with the file's bytes: the same mesh from memory as
+// from the file, and the same errors, naming the label it is given.
+TEST(MeshReader, ParsesBytesInMemoryAsItReadsTheFile) {
+  TempDir dir;
+  const ProxyMesh octahedron = read_proxy_mesh(dir.write("octa.obj", testing::octahedron));
+  const std::vector<std::byte> drc = encode_draco_mesh(octahedron);
+  const std::pair<std::string, std::string> files[] = {
+      {"octa.obj", testing::octahedron},
+      {"quad.off", "OFF\n4 1 0\n0 0 0\n2 0 0\n3 1 0\n0 1 0\n4 0 1 2 3\n"},
+      {"tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"tri.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n"},
+      {"octa.drc", std::string(reinterpret_cast<const char*>(drc.data()), drc.size())}};
+  for (const auto& [name, bytes] : files) {
+    SCOPED_TRACE(name);
+    const ProxyMesh from_file = read_proxy_mesh(dir.write(name, bytes));
+    const ProxyMesh from_memory =
+        parse_proxy_mesh(std::as_bytes(std::span(bytes.data(), bytes.size())), *mesh_format_of(name), "memory");
+    EXPECT_EQ(from_memory.positions, from_file.positions);
+    EXPECT_EQ(from_memory.triangles, from_file.triangles);
+    EXPECT_EQ(from_memory.uvs, from_file.uvs);
+    EXPECT_EQ(from_memory.uv_triangles, from_file.uv_triangles);
+    EXPECT_EQ(from_memory.normals, from_file.normals);
+    EXPECT_EQ(from_memory.normal_triangles, from_file.normal_triangles);
+  }
+  const std::string bad = "v 0 0 0\nf 1 2 3\n";
+  try {
+    parse_proxy_mesh(std::as_bytes(std::span(bad.data(), bad.size())), MeshFormat::obj, "label.obj");
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "label.obj");
+    EXPECT_EQ(e.where(), "line 2, face 0");
   }
 }
 

@@ -51,6 +51,19 @@ TEST(StructureText, RejectsMissingBinaryAndCorruptFiles) {
   expect_input_error([&] { read_structure_text(corrupt.path()); }, {"corrupt.pdb.gz", "gzip"});
 }
 
+// What read_structure_text does once it has the bytes, from memory: the name only labels errors.
+TEST(StructureText, TurnsBytesInMemoryIntoText) {
+  EXPECT_EQ(structure_text_from_bytes(kSmallPdb, "plain.pdb"), kSmallPdb);
+  EXPECT_EQ(structure_text_from_bytes(gzip(kSmallPdb), "any name"), kSmallPdb);
+  const std::size_t half = kSmallPdb.size() / 2;
+  EXPECT_EQ(structure_text_from_bytes(gzip(kSmallPdb.substr(0, half)) + gzip(kSmallPdb.substr(half)), "two members"), kSmallPdb);
+  EXPECT_EQ(structure_text_from_bytes("", "empty.pdb"), "");
+  expect_input_error([] { structure_text_from_bytes(std::string("ATOM\0", 5), "label.pdb"); }, {"label.pdb:line 1:", "binary data"});
+  const std::string packed = gzip(kSmallPdb);
+  expect_input_error([&] { structure_text_from_bytes(packed.substr(0, 20), "cut.gz"); }, {"cut.gz:", "truncated gzip"});
+  expect_input_error([&] { structure_text_from_bytes(gzip(std::string("\x01\x02", 2)), "inside.gz"); }, {"inside.gz:", "binary data"});
+}
+
 TEST(StructureReader, DetectsTheFormatByNameThenContent) {
   EXPECT_EQ(detect_structure_format("a.cif", ""), StructureFormat::Mmcif);
   EXPECT_EQ(detect_structure_format("a.CIF.gz", ""), StructureFormat::Mmcif);
