@@ -43,7 +43,9 @@ bool is_atom_site_tag(std::string_view tag) {
 // Maps each known _atom_site item to its position in a row (-1 when the file lacks it).
 class AtomSiteLayout {
 public:
+  // Items of other categories in the same loop (not valid mmCIF, but not worth refusing) are not ours.
   void add(std::string_view tag, int position) {
+    if (!is_atom_site_tag(tag)) return;
     const std::string item = lowercase(tag.substr(kAtomSitePrefix.size()));
     for (int c = 0; c < kColumnCount; ++c)
       if (kColumnNames[c] == item && index_[c] < 0) index_[c] = position;

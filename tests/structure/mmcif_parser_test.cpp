@@ -136,6 +136,17 @@ TEST(MmcifParser, RejectsNonNumericValues) {
   expect_input_error([&] { parse_mmcif(unknown_coordinate, "m.cif"); }, {"m.cif:line 3:", "Cartn_x", "'?'"});
 }
 
+// Found by mmcif_fuzzer: an _atom_site loop holding a tag of another category shorter than
+// "_atom_site." threw std::out_of_range (and a longer one ending like an item, _zzzzzzzzzzCartn_z,
+// was taken for it). Such items are not _atom_site's, and are read past.
+TEST(MmcifParser, ReadsPastItemsOfOtherCategoriesInTheAtomSiteLoop) {
+  const std::string text = "data_A\nloop_\n_atom_site.label_atom_id\n_\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n"
+                           "_x.cartn_z\n_zzzzzzzzzzCartn_z\n_atom_site.Cartn_z\nC 9 1 2 8 7 3\n";
+  const ParsedStructure parsed = parse_mmcif(text, "m.cif");
+  ASSERT_EQ(parsed.atoms.size(), 1u);
+  EXPECT_EQ(parsed.atoms[0].position, glm::dvec3(1, 2, 3));
+}
+
 TEST(MmcifParser, RejectsFilesWithoutAtoms) {
   expect_input_error([] { parse_mmcif("data_E\n_entry.id E\n", "e.cif"); }, {"e.cif:data_E:", "no _atom_site"});
   expect_input_error([] { parse_mmcif("", "e.cif"); }, {"e.cif:", "no data_ block"});
