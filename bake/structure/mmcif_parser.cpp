@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <vector>
 
 #include "bake/structure/cif_tokenizer.hpp"
@@ -171,9 +172,10 @@ private:
     std::string_view text = token.text;
     // Drop a standard uncertainty such as "12.345(3)".
     if (const auto paren = text.find('('); paren != std::string_view::npos && text.back() == ')') text = text.substr(0, paren);
-    if (token.kind == CifTokenKind::Value)
-      if (auto value = parse_real(text)) return *value;
-    fail(token.line, "_atom_site." + std::string(item) + " has a non-numeric value '" + std::string(token.text) + "'");
+    const auto value = token.kind == CifTokenKind::Value ? parse_real(text) : std::nullopt;
+    if (value && std::isfinite(*value)) return *value;
+    fail(token.line, "_atom_site." + std::string(item) + " has a " + (value ? "non-finite" : "non-numeric") + " value '" +
+                         std::string(token.text) + "'");
   }
 
   int model_index(const std::vector<CifToken>& row, int index) {

@@ -1,5 +1,6 @@
 #include "bake/structure/pdb_parser.hpp"
 
+#include <cmath>
 #include <cstring>
 
 #include "bake/structure/element.hpp"
@@ -61,10 +62,11 @@ private:
 
   double coordinate(std::string_view line, std::size_t first, const char* axis, std::size_t line_number) const {
     const std::string_view field = columns(line, first, first + 7);
-    if (auto value = parse_real(field)) return *value;
-    fail(line_number, std::string(record_name(line)) + " record has a non-numeric " + axis + " coordinate '" +
-                          std::string(trim_blanks(field)) + "' (columns " + std::to_string(first) + "-" +
-                          std::to_string(first + 7) + ")");
+    const auto value = parse_real(field);
+    if (value && std::isfinite(*value)) return *value;
+    fail(line_number, std::string(record_name(line)) + " record has a " + (value ? "non-finite " : "non-numeric ") + axis +
+                          " coordinate '" + std::string(trim_blanks(field)) + "' (columns " + std::to_string(first) +
+                          "-" + std::to_string(first + 7) + ")");
   }
 
   static std::string_view record_name(std::string_view line) { return line[0] == 'A' ? "ATOM" : "HETATM"; }
@@ -103,9 +105,9 @@ private:
     const std::string_view occupancy_field = columns(line, 55, 60);
     if (!trim_blanks(occupancy_field).empty()) {
       auto occupancy = parse_real(occupancy_field);
-      if (!occupancy)
-        fail(line_number, std::string(record_name(line)) + " record has a non-numeric occupancy '" +
-                              std::string(trim_blanks(occupancy_field)) + "' (columns 55-60)");
+      if (!occupancy || !std::isfinite(*occupancy))
+        fail(line_number, std::string(record_name(line)) + " record has a " + (occupancy ? "non-finite" : "non-numeric") +
+                              " occupancy '" + std::string(trim_blanks(occupancy_field)) + "' (columns 55-60)");
       atom.occupancy = *occupancy;
     }
     const std::string element_column = normalize_element_symbol(columns(line, 77, 78));

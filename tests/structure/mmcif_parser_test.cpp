@@ -136,6 +136,17 @@ TEST(MmcifParser, RejectsNonNumericValues) {
   expect_input_error([&] { parse_mmcif(unknown_coordinate, "m.cif"); }, {"m.cif:line 3:", "Cartn_x", "'?'"});
 }
 
+// Found by mmcif_fuzzer: "nan" and "inf" parse as numbers, and were taken as coordinates.
+TEST(MmcifParser, RejectsNonFiniteValues) {
+  const std::string header = "data_A\nloop_\n_atom_site.label_atom_id\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n"
+                             "_atom_site.Cartn_z\n_atom_site.occupancy\n";
+  expect_input_error([&] { parse_mmcif(header + "C 0 0 0 1\nO nan 1 1 1\n", "m.cif"); },
+                     {"m.cif:line 9:", "Cartn_x has a non-finite value 'nan'"});
+  expect_input_error([&] { parse_mmcif(header + "C 0 0 -inf(2) 1\n", "m.cif"); },
+                     {"m.cif:line 8:", "Cartn_z has a non-finite value '-inf(2)'"});
+  expect_input_error([&] { parse_mmcif(header + "C 0 0 0 INF\n", "m.cif"); }, {"m.cif:line 8:", "occupancy has a non-finite value"});
+}
+
 // Found by mmcif_fuzzer: an _atom_site loop holding a tag of another category shorter than
 // "_atom_site." threw std::out_of_range (and a longer one ending like an item, _zzzzzzzzzzCartn_z,
 // was taken for it). Such items are not _atom_site's, and are read past.

@@ -107,6 +107,19 @@ TEST(PdbParser, RejectsANonNumericCoordinateNamingFileLineAndColumns) {
   }
 }
 
+// Found by pdb_fuzzer: "nan" and "inf" parse as numbers, and were taken as coordinates.
+TEST(PdbParser, RejectsNonFiniteCoordinatesAndOccupancy) {
+  std::string line = pdb_line({});
+  line.replace(38, 8, "     nan");
+  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "non-finite y coordinate 'nan' (columns 39-46)"});
+  line = pdb_line({});
+  line.replace(46, 8, "    -inf");
+  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "non-finite z coordinate '-inf'"});
+  line = pdb_line({});
+  line.replace(54, 6, "   inf");
+  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "non-finite occupancy 'inf' (columns 55-60)"});
+}
+
 TEST(PdbParser, RejectsTruncatedRecords) {
   const std::string line = pdb_line({}).substr(0, 45) + "\n";
   expect_input_error([&] { parse_pdb(pdb_line({}) + line, "x.pdb"); }, {"x.pdb:line 2:", "truncated", "31-54"});
