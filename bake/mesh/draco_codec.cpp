@@ -1,12 +1,14 @@
 #include "bake/mesh/draco_codec.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <stdexcept>
 
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
+#include <draco/core/draco_types.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
 #include "bake/mesh/vertex_normals.hpp"
@@ -21,18 +23,51 @@ template <int N> std::array<float, N> as_floats(const glm::vec<N, double>& v) {
   return out;
 }
 
-// Per-corner values of a Draco attribute, deduplicated into (values, per-triangle indices).
+// What read_corners found of an attribute.
+struct CornerRead {
+  enum Status { read, absent, corrupt, non_finite } status = read;
+  std::size_t face = 0;  // the first face with a value that is corrupt or not finite
+};
+
+// The attribute's value at corner c of face f as N floats. libdraco leaves it to the caller to check
+// that the value is there: a point index past the mesh's points or the attribute's mapping, or a
+// value past its buffer, would be read from whatever memory follows (a hostile file can say so).
 template <int N>
-bool read_corners(const draco::Mesh& m, draco::GeometryAttribute::Type type, std::vector<glm::vec<N, double>>& values,
-                  std::vector<Triangle>& corners) {
+CornerRead::Status value_at(const draco::Mesh& m, const draco::PointAttribute& attribute, draco::FaceIndex f, int c,
+                            std::array<float, N>& value) {
+  const draco::PointIndex point = m.face(f)[c];
+  if (point.value() >= m.num_points()) return CornerRead::corrupt;
+  if (!attribute.is_mapping_identity() && point.value() >= attribute.indices_map_size()) return CornerRead::corrupt;
+  const draco::AttributeValueIndex index = attribute.mapped_index(point);
+  const draco::DataBuffer* buffer = attribute.buffer();
+  if (index.value() >= attribute.size() || !buffer || attribute.byte_offset() < 0 || attribute.byte_stride() < 0)
+    return CornerRead::corrupt;
+  const std::int64_t end = attribute.byte_offset() + attribute.byte_stride() * std::int64_t(index.value()) +
+                           std::int64_t(attribute.num_components()) * draco::DataTypeLength(attribute.data_type());
+  if (end > std::int64_t(buffer->data_size())) return CornerRead::corrupt;
+  if (!attribute.ConvertValue<float>(index, N, value.data())) return CornerRead::absent;
+  for (const float x : value)
+    if (!std::isfinite(x)) return CornerRead::non_finite;
+  return CornerRead::read;
+}
+
+// Per-corner values of a Draco attribute, deduplicated into (values, per-triangle indices). Stops at
+// the first value that is corrupt or not finite (before it reaches the map, whose order NaN breaks).
+template <int N>
+CornerRead read_corners(const draco::Mesh& m, draco::GeometryAttribute::Type type, std::vector<glm::vec<N, double>>& values,
+                        std::vector<Triangle>& corners) {
   const draco::PointAttribute* attribute = m.GetNamedAttribute(type);
-  if (!attribute || attribute->num_components() < N) return false;
+  if (!attribute || attribute->num_components() < N) return {CornerRead::absent};
+  // Numbers only: a file may declare an attribute of bools, whose bytes libdraco would load as bool
+  // whatever they hold (undefined unless 0 or 1).
+  if (attribute->data_type() < draco::DT_INT8 || attribute->data_type() > draco::DT_FLOAT64) return {CornerRead::absent};
   std::map<std::array<float, N>, std::uint32_t> index;
   for (draco::FaceIndex f(0); f < m.num_faces(); ++f) {
     Triangle t{};
     for (int c = 0; c < 3; ++c) {
       std::array<float, N> v{};
-      if (!attribute->ConvertValue<float>(attribute->mapped_index(m.face(f)[c]), N, v.data())) return false;
+      if (const CornerRead::Status status = value_at<N>(m, *attribute, f, c, v); status != CornerRead::read)
+        return {status, f.value()};
       const auto [it, added] = index.try_emplace(v, std::uint32_t(values.size()));
       if (added) {
         glm::vec<N, double> d;
@@ -43,7 +78,13 @@ bool read_corners(const draco::Mesh& m, draco::GeometryAttribute::Type type, std
     }
     corners.push_back(t);
   }
-  return true;
+  return {};
+}
+
+void refuse_corrupt(const CornerRead& read, const char* what, const std::string& file) {
+  if (read.status == CornerRead::corrupt)
+    throw InputError(file, "face " + std::to_string(read.face),
+                     std::string("refers to a ") + what + " the Draco buffer does not hold (corrupt file)");
 }
 
 }  // namespace
@@ -95,15 +136,19 @@ ProxyMesh decode_draco_mesh(std::span<const std::byte> bytes, const std::string&
   const draco::Mesh& m = *decoded.value();
   if (m.num_faces() == 0) throw InputError(file, "", "mesh has no faces");
   ProxyMesh mesh;
-  if (!read_corners<3>(m, draco::GeometryAttribute::POSITION, mesh.positions, mesh.triangles))
-    throw InputError(file, "", "the Draco mesh has no readable positions");
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    const glm::dvec3& p = mesh.positions[v];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw InputError(file, "vertex " + std::to_string(v), "coordinate is not a finite number");
-  }
-  if (!read_corners<2>(m, draco::GeometryAttribute::TEX_COORD, mesh.uvs, mesh.uv_triangles)) mesh.uvs.clear(), mesh.uv_triangles.clear();
-  bool normals = read_corners<3>(m, draco::GeometryAttribute::NORMAL, mesh.normals, mesh.normal_triangles);
+  const CornerRead positions = read_corners<3>(m, draco::GeometryAttribute::POSITION, mesh.positions, mesh.triangles);
+  if (positions.status == CornerRead::absent) throw InputError(file, "", "the Draco mesh has no readable positions");
+  refuse_corrupt(positions, "position", file);
+  if (positions.status == CornerRead::non_finite)
+    throw InputError(file, "face " + std::to_string(positions.face), "coordinate is not a finite number");
+  const CornerRead uvs = read_corners<2>(m, draco::GeometryAttribute::TEX_COORD, mesh.uvs, mesh.uv_triangles);
+  refuse_corrupt(uvs, "texture coordinate", file);
+  if (uvs.status == CornerRead::non_finite)
+    throw InputError(file, "face " + std::to_string(uvs.face), "texture coordinate is not a finite number");
+  if (uvs.status != CornerRead::read) mesh.uvs.clear(), mesh.uv_triangles.clear();
+  const CornerRead file_normals = read_corners<3>(m, draco::GeometryAttribute::NORMAL, mesh.normals, mesh.normal_triangles);
+  refuse_corrupt(file_normals, "normal", file);
+  bool normals = file_normals.status == CornerRead::read;  // not finite: computed instead, as when absent
   for (glm::dvec3& n : mesh.normals) {
     const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
     if (!(length > 0) || !std::isfinite(length)) normals = false;

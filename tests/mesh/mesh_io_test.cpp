@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <span>
 #include <utility>
@@ -231,6 +232,59 @@ TEST(MeshReader, ParsesBytesInMemoryAsItReadsTheFile) {
     EXPECT_EQ(e.file(), "label.obj");
     EXPECT_EQ(e.where(), "line 2, face 0");
   }
+}
+
+// Found by draco_fuzzer: a Draco file with unquantised texture coordinates can hold NaN or
+// infinity, which were taken as UVs (positions were checked, texture coordinates were not).
+TEST(MeshReader, DracoValuesThatAreNotFiniteAreRefused) {
+  TempDir dir;
+  ProxyMesh mesh = read_proxy_mesh(dir.write("octa.obj", testing::octahedron));
+  const auto write_drc = [&](const std::string& name, const ProxyMesh& m) {
+    const std::vector<std::byte> bytes = encode_draco_mesh(m, {.position_bits = 0, .uv_bits = 0, .normal_bits = 0});  // 0: unquantised
+    return dir.write(name, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  };
+  const auto expect_refused = [](const std::filesystem::path& file, const std::string& rule) {
+    try {
+      read_proxy_mesh(file);
+      ADD_FAILURE() << "no InputError for " << file;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), file.string());
+      EXPECT_EQ(e.where().rfind("face ", 0), 0u) << e.what();  // Draco orders the faces its own way
+      EXPECT_EQ(e.rule(), rule);
+    }
+  };
+  ProxyMesh bad_uv = mesh;
+  bad_uv.uvs[3].y = std::numeric_limits<double>::quiet_NaN();
+  expect_refused(write_drc("uv.drc", bad_uv), "texture coordinate is not a finite number");
+  ProxyMesh bad_position = mesh;
+  bad_position.positions[5].x = std::numeric_limits<double>::infinity();
+  expect_refused(write_drc("position.drc", bad_position), "coordinate is not a finite number");
+  // Normals that are not finite are not used: computed instead, as for a file without normals.
+  ProxyMesh bad_normal = mesh;
+  bad_normal.normals[0].z = std::numeric_limits<double>::quiet_NaN();
+  const ProxyMesh read = read_proxy_mesh(write_drc("normal.drc", bad_normal));
+  for (const glm::dvec3& n : read.normals) EXPECT_NEAR(glm::length(n), 1.0, 1e-12);
+}
+
+// Found by draco_fuzzer: libdraco decodes these files into meshes it leaves to the caller to check.
+// The first one's faces refer to values its position attribute does not hold; reading them read
+// through a null buffer (undefined behaviour; past the end of a buffer for other indices).
+TEST(MeshReader, CorruptDracoAttributesAreRefused) {
+  TempDir dir;
+  const unsigned char corrupt[] = {
+      0x44, 0x52, 0x41, 0x43, 0x4f, 0x02, 0x02, 0x01, 0x00, 0x00, 0x00, 0x04, 0x00, 0x04, 0x04, 0x01, 0x32,
+      0x00, 0x02, 0x03, 0x00, 0x03, 0x01, 0x02, 0x01, 0x03, 0x01, 0x01, 0x00, 0x01, 0x03, 0x00, 0x00, 0x00,
+      0x00, 0x04, 0x00, 0xff, 0xff, 0xff, 0xe1, 0xd2, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80, 0x3f};
+  const auto file = dir.write("corrupt.drc", std::string(reinterpret_cast<const char*>(corrupt), sizeof corrupt));
+  expect_input_error(file, "face 0", "corrupt file");
+  // Positions declared as bools, whose bytes libdraco would load as bool whatever they hold
+  // (undefined behaviour unless 0 or 1): not positions at all.
+  const unsigned char bools[] = {
+      0x44, 0x52, 0x41, 0x43, 0x4f, 0x02, 0x02, 0x01, 0x00, 0x00, 0x00, 0x04, 0x01, 0x04, 0x00, 0x09, 0x02, 0x00,
+      0x02, 0x03, 0x00, 0x03, 0x01, 0x02, 0x01, 0x13, 0x01, 0x01, 0x00, 0x0b, 0x09, 0x00, 0x00, 0x00, 0x00, 0x26,
+      0x00, 0x00, 0x00, 0x2d, 0x28, 0x2d, 0x2d, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x00, 0x2d, 0x44, 0x2d};
+  expect_input_error(dir.write("bools.drc", std::string(reinterpret_cast<const char*>(bools), sizeof bools)), "",
+                     "no readable positions");
 }
 
 TEST(ObjWriter, FormatsPerCornerIndices) {
