@@ -4,9 +4,11 @@
 // from "face" the vertex_indices (or vertex_index) list and MeshLab's per-corner "texcoord" list.
 // Every other property and element is read past by its declared types, so colours, confidences or
 // an edge list cannot throw the reading out of step.
+#include <cmath>
 #include <optional>
 
 #include "bake/mesh/mesh_parse.hpp"
+#include "bake/mesh/number_text.hpp"
 #include "bake/mesh/polygon_soup.hpp"
 #include "common/error.hpp"
 
@@ -289,8 +291,12 @@ private:
                                             std::to_string(indices_.size()) + " corners");
     for (std::size_t k = 0; k < indices_.size(); ++k) {
       const double index = indices_[k];
-      if (index != static_cast<double>(static_cast<std::int64_t>(index)))
-        fail(entry_place(element, entry), "vertex index " + std::to_string(index) + " is not a whole number");
+      // Checked before the cast, which is undefined for NaN and for values no int64 holds (a float
+      // or double index list, or an ASCII index of 2^63 or more, can say anything).
+      if (!std::isfinite(index) || index != std::trunc(index))
+        fail(entry_place(element, entry), "vertex index " + number_text("%.17g", index) + " is not a whole number");
+      if (!(std::abs(index) < 0x1p63))
+        fail(entry_place(element, entry), "vertex index " + number_text("%.17g", index) + " references a vertex that does not exist");
       PolygonSoup::Corner corner{.position = static_cast<std::int64_t>(index)};
       if (vertex_normals_) corner.normal = corner.position;
       if (!texcoords_.empty()) {

@@ -385,6 +385,26 @@ TEST(PlyReader, HostileFilesAreRefusedByName) {
                      "line 7", "no vertex_indices list");
 }
 
+// A vertex index list of floats or doubles, or an ASCII index of 2^63 or more, was cast to int64 as
+// it came: undefined for NaN and for values no int64 holds (seen reading the reader for the
+// fuzzers; ply_fuzzer's UBSan reports it on these files).
+TEST(PlyReader, IndicesThatAreNotWholeOrTooLargeAreRefused) {
+  TempDir dir;
+  const auto ply = [](std::string_view index_type, std::string_view face) {
+    return "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+           "element face 1\nproperty list uchar " + std::string(index_type) + " vertex_indices\nend_header\n"
+           "0 0 0\n1 0 0\n0 1 0\n" + std::string(face) + "\n";
+  };
+  expect_input_error(dir.write("nan.ply", ply("float", "3 nan 0 1")), "line 13, face 0", "vertex index nan is not a whole number");
+  expect_input_error(dir.write("half.ply", ply("double", "3 0.5 0 1")), "line 13, face 0", "vertex index 0.5 is not a whole number");
+  expect_input_error(dir.write("huge.ply", ply("double", "3 1e300 0 1")), "line 13, face 0",
+                     "vertex index 1.0000000000000001e+300 references a vertex that does not exist");
+  expect_input_error(dir.write("int64.ply", ply("int", "3 0 9223372036854775807 1")), "line 13, face 0",
+                     "vertex index 9.2233720368547758e+18 references a vertex that does not exist");
+  const ProxyMesh mesh = read_proxy_mesh(dir.write("whole.ply", ply("double", "3 0 1.0 2e0")));
+  EXPECT_EQ(mesh.triangles.size(), 1u);
+}
+
 // ---- STL ----
 
 TEST(StlReader, AsciiWithNamesCapitalsAndTwoSolids) {
