@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include <draco/compression/decode.h>
@@ -150,9 +151,8 @@ ProxyMesh decode_draco_mesh(std::span<const std::byte> bytes, const std::string&
   refuse_corrupt(file_normals, "normal", file);
   bool normals = file_normals.status == CornerRead::read;  // not finite: computed instead, as when absent
   for (glm::dvec3& n : mesh.normals) {
-    const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-    if (!(length > 0) || !std::isfinite(length)) normals = false;
-    else n /= length;
+    if (const std::optional<glm::dvec3> unit = unit_direction(n)) n = *unit;
+    else normals = false;
   }
   if (!normals) {
     mesh.normals.clear(), mesh.normal_triangles.clear();

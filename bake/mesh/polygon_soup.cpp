@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -102,9 +103,8 @@ public:
     }
     bool normals_usable = every_corner_has_normal_;
     for (glm::dvec3& normal : normals_.values) {
-      const double length = std::sqrt(normal.x * normal.x + normal.y * normal.y + normal.z * normal.z);
-      if (!(length > 0.0) || !std::isfinite(length)) normals_usable = false;
-      else normal /= length;
+      if (const std::optional<glm::dvec3> unit = unit_direction(normal)) normal = *unit;
+      else normals_usable = false;
     }
     if (normals_usable) {
       mesh_.normals = std::move(normals_.values);

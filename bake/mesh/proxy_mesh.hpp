@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -35,6 +36,17 @@ struct ProxyMesh {
   glm::dvec2 corner_uv(std::size_t t, int c) const { return uvs[uv_triangles[t][c]]; }
   glm::dvec3 corner_normal(std::size_t t, int c) const { return normals[normal_triangles[t][c]]; }
 };
+
+// v at unit length, or nullopt when v is zero or not finite. As v / |v| when that is exact to the
+// last bits; a vector so short or so long that its squares underflow or overflow is scaled by its
+// largest component first (|v| of (1e-170, 0, 0) would be 0, of (3e-162, 0, 0) off by 5 %).
+inline std::optional<glm::dvec3> unit_direction(const glm::dvec3& v) {
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return std::nullopt;
+  const double largest = std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z)));
+  if (!(largest > 0.0)) return std::nullopt;
+  const glm::dvec3 w = largest > 1e-150 && largest < 1e150 ? v : v / largest;
+  return w / std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
+}
 
 // The largest side of the mesh's axis-aligned bounding box: what a scene's "diameter" sets.
 inline double largest_side(const ProxyMesh& m) {

@@ -34,10 +34,9 @@ void compute_angle_weighted_normals(ProxyMesh& mesh) {
     }
   }
   mesh.normals.resize(sums.size());
-  for (std::size_t i = 0; i < sums.size(); ++i) {
-    const double length = glm::length(sums[i]);
-    mesh.normals[i] = length > 0.0 ? sums[i] / length : glm::dvec3(0.0, 0.0, 1.0);
-  }
+  // unit_direction: a vertex whose angles are all tiny (a far outlier's) has a sum whose squares underflow.
+  for (std::size_t i = 0; i < sums.size(); ++i)
+    mesh.normals[i] = unit_direction(sums[i]).value_or(glm::dvec3(0.0, 0.0, 1.0));
   mesh.normal_triangles = mesh.triangles;
 }
 

@@ -338,5 +338,31 @@ TEST(VertexNormals, AngleWeightedNormalOfCubeCornerIsTheDiagonal) {
   EXPECT_EQ(mesh.normal_triangles, mesh.triangles);
 }
 
+TEST(ProxyMesh, UnitDirectionWithoutUnderflowOrOverflow) {
+  // As v / |v| to the last bit where the squares are exact...
+  for (const glm::dvec3 v : {glm::dvec3(3, 4, 0), glm::dvec3(-0.1, 2.5e-7, 1e3), glm::dvec3(1e-140, -3e-141, 0)})
+    EXPECT_EQ(unit_direction(v), v / glm::length(v));
+  // ...and unit length where they would underflow or overflow.
+  for (const glm::dvec3 v : {glm::dvec3(1e-170, 0, 0), glm::dvec3(3e-162, -4e-162, 0), glm::dvec3(1e300, 1e300, -1e300),
+                             glm::dvec3(4.9e-324, 0, 0)}) {
+    const std::optional<glm::dvec3> unit = unit_direction(v);
+    ASSERT_TRUE(unit);
+    EXPECT_NEAR(glm::length(*unit), 1.0, 1e-15);
+    EXPECT_NEAR(glm::length(*unit - glm::normalize(v / std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}))), 0.0, 1e-15);
+  }
+  EXPECT_EQ(unit_direction(glm::dvec3(0.0)), std::nullopt);
+  EXPECT_EQ(unit_direction(glm::dvec3(1, std::numeric_limits<double>::quiet_NaN(), 0)), std::nullopt);
+  EXPECT_EQ(unit_direction(glm::dvec3(std::numeric_limits<double>::infinity(), 0, 0)), std::nullopt);
+}
+
+// Found by draco_fuzzer: a vertex far from the others (the angle at it 3e-162 rad here) has an
+// angle-weighted sum whose squares underflow; its "normal" came out 4.6 % short of unit length.
+TEST(VertexNormals, UnitEvenWhereTheAnglesAtAVertexAreTiny) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write("needle.obj", "v 1e100 0 0\nv 0 0 0\nv 0 3e-62 0\nf 1 2 3\n"));
+  ASSERT_EQ(mesh.normals.size(), 3u);
+  for (const glm::dvec3& n : mesh.normals) EXPECT_EQ(n, glm::dvec3(0, 0, -1));
+}
+
 }  // namespace
 }  // namespace nano::mesh
