@@ -61,8 +61,10 @@ std::string inflate_gzip(const std::string& compressed, const std::string& name)
     }
     if (status != Z_OK && status != Z_BUF_ERROR) {
       const std::string why = stream.msg ? stream.msg : "invalid data";
+      // Counted in the file, not in the member (total_in starts again at each member).
+      const std::size_t at = compressed.size() - stream.avail_in;
       inflateEnd(&stream);
-      throw InputError(name, "byte " + std::to_string(stream.total_in), "corrupt gzip stream: " + why);
+      throw InputError(name, "byte " + std::to_string(at), "corrupt gzip stream: " + why);
     }
   }
   inflateEnd(&stream);

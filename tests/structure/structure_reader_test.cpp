@@ -62,6 +62,10 @@ TEST(StructureText, TurnsBytesInMemoryIntoText) {
   const std::string packed = gzip(kSmallPdb);
   expect_input_error([&] { structure_text_from_bytes(packed.substr(0, 20), "cut.gz"); }, {"cut.gz:", "truncated gzip"});
   expect_input_error([&] { structure_text_from_bytes(gzip(std::string("\x01\x02", 2)), "inside.gz"); }, {"inside.gz:", "binary data"});
+  // Bytes after the last member that do not start another: where they are in the file (this said
+  // "byte 2", counting in the member that followed).
+  expect_input_error([&] { structure_text_from_bytes(packed + "trailing", "tail.gz"); },
+                     {"tail.gz:byte " + std::to_string(packed.size() + 2) + ":", "corrupt gzip stream"});
 }
 
 TEST(StructureReader, DetectsTheFormatByNameThenContent) {
