@@ -1,15 +1,22 @@
 #include "bake/mesh/draco_codec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <memory>
+#include <new>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
+#include <draco/compression/config/compression_shared.h>
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
+#include <draco/core/decoder_buffer.h>
 #include <draco/core/draco_types.h>
+#include <draco/core/varint_decoding.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
 #include "bake/mesh/vertex_normals.hpp"
@@ -82,6 +89,97 @@ CornerRead read_corners(const draco::Mesh& m, draco::GeometryAttribute::Type typ
   return {};
 }
 
+// ---- what a Draco file declares before libdraco allocates for it ----
+//
+// libdraco sizes its tables by the counts a file declares, before reading anything they count: a
+// 60-byte file declaring a billion faces makes it allocate some 30 GB (zero-filled, so really
+// used), and a metadata entry declaring 4 GB of value gets a 4 GB buffer. The header, the metadata
+// and the connectivity counts are therefore read here first, as libdraco 1.5 reads them
+// (docs/spec in the Draco repository), and a file declaring more than the limits below, or
+// metadata that runs past its end, is refused before libdraco sees it.
+
+// As many faces as any proxy mesh has (the baker takes at most 4 million triangles:
+// scene_feasibility.hpp, mesh_check.hpp), three points a face at most; libdraco allocates some 32
+// bytes per declared face and some 40 per declared point.
+constexpr std::uint64_t kMaxDracoFaces = std::uint64_t{1} << 22;
+constexpr std::uint64_t kMaxDracoPoints = 3 * kMaxDracoFaces;
+constexpr int kMaxMetadataDepth = 32;
+
+// Reads as libdraco reads (its own buffer and varint decoder: a varint of more than 32 bits wraps
+// there, and must wrap here too, or the counts here would not be libdraco's).
+class DracoHeaderReader {
+public:
+  explicit DracoHeaderReader(std::span<const std::byte> bytes) {
+    buffer_.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  }
+  bool u8(std::uint32_t& out) {
+    std::uint8_t v = 0;
+    return buffer_.Decode(&v) ? (out = v, true) : false;
+  }
+  bool u16(std::uint32_t& out) {
+    std::uint16_t v = 0;
+    return buffer_.Decode(&v) ? (out = v, true) : false;
+  }
+  bool u32(std::uint32_t& out) { return buffer_.Decode(&out); }
+  bool varint(std::uint32_t& out) { return draco::DecodeVarint(&out, &buffer_); }
+  bool skip(std::uint64_t n) {
+    if (n > left()) return false;
+    buffer_.Advance(std::int64_t(n));
+    return true;
+  }
+  std::uint64_t left() const { return std::uint64_t(buffer_.remaining_size()); }
+
+private:
+  draco::DecoderBuffer buffer_;
+};
+
+// One metadata element (entries, then named sub-elements), each count within the bytes left.
+bool skip_metadata(DracoHeaderReader& in, int depth) {
+  std::uint32_t entries = 0, subs = 0, length = 0;
+  if (depth > kMaxMetadataDepth || !in.varint(entries) || entries > in.left()) return false;
+  for (std::uint32_t e = 0; e < entries; ++e)
+    if (!in.u8(length) || !in.skip(length) || !in.varint(length) || length == 0 || !in.skip(length)) return false;
+  if (!in.varint(subs) || subs > in.left()) return false;
+  for (std::uint32_t k = 0; k < subs; ++k)
+    if (!in.u8(length) || !in.skip(length) || !skip_metadata(in, depth + 1)) return false;
+  return true;
+}
+
+// Refuses a Draco mesh that declares more faces or points than kMaxDraco*, or whose metadata does
+// not fit in it. A file that ends or has a version or method libdraco does not know is left to
+// libdraco, which refuses it.
+void check_draco_declarations(std::span<const std::byte> bytes, const std::string& file) {
+  DracoHeaderReader in(bytes);
+  std::uint32_t major = 0, minor = 0, type = 0, method = 0, flags = 0;
+  if (!in.skip(5) || !in.u8(major) || !in.u8(minor) || !in.u8(type) || !in.u8(method) || !in.u16(flags)) return;
+  if (type != draco::TRIANGULAR_MESH || major < 1 || major > 2 || (major == 2 && minor > 2)) return;
+  const std::uint32_t version = major << 8 | minor;
+  if (version >= 0x0103 && (flags & METADATA_FLAG_MASK)) {
+    std::uint32_t attribute_metadata = 0, id = 0;
+    bool fits = in.varint(attribute_metadata) && attribute_metadata <= in.left();
+    for (std::uint32_t a = 0; fits && a < attribute_metadata; ++a) fits = in.varint(id) && skip_metadata(in, 0);
+    if (!fits || !skip_metadata(in, 0)) throw InputError(file, "", "the Draco metadata runs past the end of the file (corrupt file)");
+  }
+  // Counts are 32-bit words before bitstream 2.0 (2.2 for sequential meshes), varints since.
+  const auto count = [&](std::uint32_t& out, std::uint32_t varint_since) { return version >= varint_since ? in.varint(out) : in.u32(out); };
+  std::uint32_t faces = 0, points = 0;
+  if (method == draco::MESH_SEQUENTIAL_ENCODING) {
+    if (!count(faces, 0x0202) || !count(points, 0x0202)) return;
+  } else if (method == draco::MESH_EDGEBREAKER_ENCODING) {
+    std::uint32_t traversal = 0, new_vertices = 0, attribute_data = 0, symbols = 0, split_symbols = 0;
+    if (!in.u8(traversal) || (version < 0x0202 && !count(new_vertices, 0x0200)) || !count(points, 0x0200) ||
+        !count(faces, 0x0200) || !in.u8(attribute_data) || !count(symbols, 0x0200) || !count(split_symbols, 0x0200))
+      return;
+    points = std::uint32_t(std::min<std::uint64_t>(std::uint64_t{points} + split_symbols, 0xffffffffu));
+  } else {
+    return;
+  }
+  if (faces > kMaxDracoFaces || points > kMaxDracoPoints)
+    throw InputError(file, "", "the Draco file declares " + std::to_string(faces) + " faces and " + std::to_string(points) +
+                                   " points, more than this reader decodes (" + std::to_string(kMaxDracoFaces) + " and " +
+                                   std::to_string(kMaxDracoPoints) + "; libdraco would allocate for them all first)");
+}
+
 void refuse_corrupt(const CornerRead& read, const char* what, const std::string& file) {
   if (read.status == CornerRead::corrupt)
     throw InputError(file, "face " + std::to_string(read.face),
@@ -131,10 +229,19 @@ ProxyMesh decode_draco_mesh(std::span<const std::byte> bytes, const std::string&
   const auto geometry = draco::Decoder::GetEncodedGeometryType(&buffer);
   if (!geometry.ok()) throw InputError(file, "", "not a Draco file: " + geometry.status().error_msg_string());
   if (geometry.value() != draco::TRIANGULAR_MESH) throw InputError(file, "", "a Draco point cloud, not a triangle mesh");
-  draco::Decoder decoder;
-  auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-  if (!decoded.ok()) throw InputError(file, "", "Draco cannot decode it: " + decoded.status().error_msg_string());
-  const draco::Mesh& m = *decoded.value();
+  check_draco_declarations(bytes, file);
+  std::unique_ptr<draco::Mesh> decoded;
+  try {
+    draco::Decoder decoder;
+    auto result = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!result.ok()) throw InputError(file, "", "Draco cannot decode it: " + result.status().error_msg_string());
+    decoded = std::move(result).value();
+  } catch (const std::bad_alloc&) {  // what the limits above leave: libdraco's sizes are its own
+    throw InputError(file, "", "Draco cannot decode it: it asks for more memory than there is");
+  } catch (const std::length_error&) {
+    throw InputError(file, "", "Draco cannot decode it: it asks for more memory than there is");
+  }
+  const draco::Mesh& m = *decoded;
   if (m.num_faces() == 0) throw InputError(file, "", "mesh has no faces");
   ProxyMesh mesh;
   const CornerRead positions = read_corners<3>(m, draco::GeometryAttribute::POSITION, mesh.positions, mesh.triangles);

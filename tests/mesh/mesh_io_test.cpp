@@ -287,6 +287,36 @@ TEST(MeshReader, CorruptDracoAttributesAreRefused) {
                      "no readable positions");
 }
 
+// Found by draco_fuzzer: libdraco sizes its tables by the counts a file declares before it reads
+// what they count. This 36-byte file (bitstream 1.5, edgebreaker) declares 19,398,656 faces, for
+// which libdraco 1.5.5 took 460 MB before failing; the counts are now read first and refused.
+TEST(MeshReader, DracoFilesDeclaringMoreThanTheReaderDecodesAreRefused) {
+  TempDir dir;
+  const unsigned char declared[] = {0x44, 0x52, 0x41, 0x43, 0x4f, 0x01, 0x05, 0x01, 0x01, 0x00, 0x00, 0x00,
+                                    0x03, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x28, 0x01,
+                                    0x02, 0x00, 0x06, 0xfd, 0x00, 0x00, 0x00, 0x00, 0x00, 0x0f, 0x80, 0x3f};
+  expect_input_error(dir.write("declared.drc", std::string(reinterpret_cast<const char*>(declared), sizeof declared)), "",
+                     "declares 19398656 faces and 0 points, more than this reader decodes");
+  // The same in bitstream 2.2 (varints): a billion faces.
+  const char billion[] = "DRACO\x02\x02\x01\x01\x00\x00\x00\x03\x80\x94\xeb\xdc\x03\x00\x00\x00";
+  expect_input_error(dir.write("billion.drc", std::string(billion, sizeof billion - 1)), "", "declares 1000000000 faces");
+  // Varints of more than 32 bits, which libdraco wraps: read as it reads them (685,539,327 faces:
+  // a 2.7 GB vector reserved, found by draco_fuzzer after the first limits, which read them otherwise).
+  const unsigned char wrapping[] = {
+      0x44, 0x52, 0x41, 0x43, 0x4f, 0x02, 0x02, 0x01, 0x01, 0x00, 0x00, 0x00, 0xfa, 0xf7, 0xfd, 0xf7, 0x70, 0xff,
+      0xff, 0xf1, 0xc6, 0x02, 0x09, 0xff, 0xff, 0xf1, 0xc6, 0x02, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xfa,
+      0xf7, 0xfd, 0xf7, 0x2f, 0xff, 0xff, 0xf1, 0xc6, 0x02, 0x09, 0xff, 0xff, 0xf1, 0xc6, 0x02, 0x01, 0x00, 0x0f};
+  expect_input_error(dir.write("wrapping.drc", std::string(reinterpret_cast<const char*>(wrapping), sizeof wrapping)), "",
+                     "declares 685539327 faces");
+  // Metadata whose one entry declares a 4 GB value in a 20-byte file.
+  const char metadata[] = "DRACO\x02\x02\x01\x01\x00\x80\x00\x01\x01" "a\xff\xff\xff\xff\x0f";
+  expect_input_error(dir.write("metadata.drc", std::string(metadata, sizeof metadata - 1)), "", "metadata runs past the end");
+  // A file libdraco's encoder wrote still reads.
+  const ProxyMesh octahedron = read_proxy_mesh(dir.write("octa.obj", testing::octahedron));
+  const std::vector<std::byte> drc = encode_draco_mesh(octahedron);
+  EXPECT_EQ(parse_proxy_mesh(drc, MeshFormat::draco, "octa.drc").triangles.size(), 8u);
+}
+
 TEST(ObjWriter, FormatsPerCornerIndices) {
   TempDir dir;
   const ProxyMesh mesh = read_proxy_mesh(dir.write("octa.obj", testing::octahedron));
