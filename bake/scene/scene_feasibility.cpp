@@ -41,6 +41,21 @@ std::string short_number(double v) {
   return mantissa + "e" + (negative ? "-" : "") + exponent;
 }
 
+// A bound printed to three significant digits on its own side: "at least" rounded up and "at most"
+// rounded down, so that the value the message names passes the check it failed.
+double three_digits(double v, bool up) {
+  if (!(v > 0.0) || !std::isfinite(v)) return v;
+  const double step = std::pow(10.0, std::floor(std::log10(v)) - 2.0);
+  const double units = v / step;
+  return (up ? std::ceil(units * (1.0 - 1e-12)) : std::floor(units * (1.0 + 1e-12))) * step;
+}
+std::string at_least(double v) { return short_number(three_digits(v, true)); }
+std::string at_most(double v) { return short_number(three_digits(v, false)); }
+// The same for a bound of either sign: rounded up (`up`) or down.
+std::string signed_bound(double v, bool up) {
+  return v < 0.0 ? "-" + short_number(three_digits(-v, !up)) : short_number(three_digits(v, up));
+}
+
 [[noreturn]] void refuse(const SceneDescription& scene, const std::string& key, const std::string& rule) {
   throw InputError(scene.source.string(), key, rule);
 }
@@ -58,6 +73,16 @@ std::string surface_amount_text(const MembraneDescription& m, const SurfaceAbund
 std::string volume_amount_text(const VolumeAbundance& a, double copies_per_a3) {
   return a.unit == VolumeAbundance::Unit::millimolar ? short_number(copies_per_a3 / kCopiesPerA3PerMillimolar) + " mM"
                                                      : short_number(copies_per_a3 * kA3PerUm3) + " per µm³";
+}
+
+// The least amount that places a copy, in the scene's own unit, rounded up.
+std::string least_surface_amount(const MembraneDescription& m, const SurfaceAbundance& a, double copies_per_a2) {
+  return a.unit == SurfaceAbundance::Unit::per_um2 ? at_least(copies_per_a2 * kA2PerUm2) + " per µm²"
+                                                   : at_least(copies_per_a2 * m.tile_size * m.tile_size) + " per tile";
+}
+std::string least_volume_amount(const VolumeAbundance& a, double copies_per_a3) {
+  return a.unit == VolumeAbundance::Unit::millimolar ? at_least(copies_per_a3 / kCopiesPerA3PerMillimolar) + " mM"
+                                                     : at_least(copies_per_a3 * kA3PerUm3) + " per µm³";
 }
 
 void check_edge(const SceneDescription& scene, const std::string& key, double edge, const char* what) {
@@ -120,7 +145,22 @@ void check_membrane_places_some(const SceneDescription& scene, const MembraneDes
                    " tiles of " + short_number(m.tile_size) + " Å hold " + short_number(set_area / kA2PerUm2) +
                    " µm² of membrane, so at least " + surface_amount_text(m, m.proteins[i].abundance, 1.0 / set_area) +
                    " (or 0 for none)");
+      // A count of 0 drops every copy the tiles place, on every compartment.
+      if (m.proteins[i].abundance.value > 0.0 && m.proteins[i].per_compartment && *m.proteins[i].per_compartment == 0) {
+        const std::string amount = amount_key(m, i);
+        const std::string unit = amount.substr(amount.rfind('.') + 1);
+        refuse(scene, membrane_key(m) + ".proteins[" + std::to_string(i) + "].per_compartment",
+               "0 keeps no copy of '" + m.proteins[i].molecule.name + "' on any compartment, though its " + unit +
+                   " asks for " + short_number(m.proteins[i].abundance.value) + "; at least 1 (or " + unit +
+                   " 0 for none)");
+      }
     }
+    // A lipid fill stands one lipid per area_per_lipid in each leaflet.
+    if (m.lipids && set_area / m.lipids->area_per_lipid < 1.0)
+      refuse(scene, membrane_key(m) + ".lipids.area_per_lipid",
+             short_number(m.lipids->area_per_lipid) + " Å² places no lipid: the " + std::to_string(m.tiles) + " tiles of " +
+                 short_number(m.tile_size) + " Å hold " + short_number(set_area) +
+                 " Å² of each leaflet, so at most " + at_most(set_area) + " Å² per lipid (a real bilayer: 55-75 Å²)");
 }
 
 void check_soluble_places_some(const SceneDescription& scene, const SolubleDescription& s) {
@@ -282,6 +322,57 @@ void check_molecule_amounts(const SceneDescription& scene, std::span<const Molec
   for (const SolubleDescription& s : scene.solubles) check_soluble_amounts(scene, s, molecules);
 }
 
+namespace {
+
+const MoleculeMeasure& measure_of(std::span<const MoleculeMeasure> molecules, const NameRef& molecule, const char* check) {
+  if (molecule.index >= molecules.size())
+    throw std::invalid_argument(std::string(check) + ": one measure per molecule is needed");
+  return molecules[molecule.index];
+}
+
+// "from -56.4 to 54.1 Å" (more digits where three would print both ends alike)
+std::string range_text(double lo, double hi) {
+  if (short_number(lo) != short_number(hi)) return "from " + short_number(lo) + " to " + short_number(hi) + " Å";
+  char text[80];
+  std::snprintf(text, sizeof text, "from %.9g to %.9g Å", lo, hi);
+  return text;
+}
+
+// A membrane copy is laid along the surface's normal with its centre at its depth (a lipid fill's
+// at ± its leaflet offset, turned over in the inner leaflet): standing clear of the bilayer's slab,
+// its copies hang where no ray meets them beside the compartment they belong to.
+void check_bilayer_reach(const SceneDescription& scene, const CompartmentDescription& c, const MembraneDescription& m,
+                         double thickness, std::span<const MoleculeMeasure> molecules) {
+  const double half = 0.5 * thickness;
+  const std::string slab = "the " + short_number(thickness) + " Å thick bilayer of compartment '" + c.name + "' (" +
+                           range_text(-half, half) + " about its mid-surface)";
+  for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+    const MembraneProtein& protein = m.proteins[i];
+    if (!(protein.abundance.value > 0.0)) continue;
+    const MoleculeMeasure& p = measure_of(molecules, protein.molecule, "check_compartment_amounts");
+    const double lo = protein.depth - p.reach_below, hi = protein.depth + p.reach_above;
+    if (hi >= -half && lo <= half) continue;
+    refuse(scene, membrane_key(m) + ".proteins[" + std::to_string(i) + "].depth",
+           short_number(protein.depth) + " Å leaves '" + protein.molecule.name +
+               "' detached from its membrane: standing along its up axis at that depth its atoms span " +
+               range_text(lo, hi) + " from the mid-surface, clear of " + slab +
+               ", so its copies would hang where no picture of the compartment shows them; a depth from " +
+               signed_bound(-half - p.reach_above, true) + " to " + signed_bound(half + p.reach_below, false) + " Å");
+  }
+  if (!m.lipids) return;
+  const MoleculeMeasure& l = measure_of(molecules, m.lipids->molecule, "check_compartment_amounts");
+  const double offset = m.lipids->leaflet_offset;
+  if (offset - l.reach_below > half)
+    refuse(scene, membrane_key(m) + ".lipids.leaflet_offset",
+           short_number(offset) + " Å leaves lipid '" + m.lipids->molecule.name +
+               "' detached from its membrane: each leaflet's lipids then span " +
+               range_text(offset - l.reach_below, offset + l.reach_above) +
+               " from the mid-surface (the inner one mirrored), clear of " + slab + "; at most " +
+               at_most(half + l.reach_below) + " Å");
+}
+
+}  // namespace
+
 void check_compartment_amounts(const SceneDescription& scene, std::size_t compartment, const CompartmentMeasure& mesh,
                                std::span<const MoleculeMeasure> molecules) {
   const CompartmentDescription& c = scene.compartments.at(compartment);
@@ -302,6 +393,7 @@ void check_compartment_amounts(const SceneDescription& scene, std::size_t compar
     refuse(scene, size_key(c), rule);
   }
   const MembraneDescription& m = scene.membranes.at(c.membrane->index);
+  check_bilayer_reach(scene, c, m, mesh.bilayer_thickness, molecules);
   double covered = 0.0;  // Å² of the busier leaflet taken by per-compartment copies so far
   for (std::size_t i = 0; i < m.proteins.size(); ++i) {
     const MembraneProtein& protein = m.proteins[i];
@@ -319,6 +411,106 @@ void check_compartment_amounts(const SceneDescription& scene, std::size_t compar
                  short_number(footprint / kA2PerNm2) + " nm²; at most " + short_number(most));
     }
     covered += need;
+  }
+}
+
+namespace {
+
+// A soluble copy is kept only where its centre is inside the mesh and its bounding sphere stays the
+// clearance (and the membrane shell's inner reach) away from the surface: no point inside lies
+// deeper than mesh.deepest, so the largest listed molecule bounds the room.
+void check_soluble_room(const SceneDescription& scene, const CompartmentDescription& c, const SolubleDescription& s,
+                        const CompartmentMeasure& mesh, std::span<const MoleculeMeasure> molecules) {
+  const SolubleMolecule* largest = nullptr;
+  double radius = 0.0;
+  for (const SolubleMolecule& molecule : s.molecules) {
+    if (!(molecule.abundance.value > 0.0)) continue;
+    const double r = measure_of(molecules, molecule.molecule, "check_compartment_room").bounding_radius;
+    if (!largest || r > radius) {
+      largest = &molecule;
+      radius = r;
+    }
+  }
+  if (!largest || !(mesh.deepest > 0.0)) return;
+  const std::string depth = "no point inside the mesh of compartment '" + c.name + "' is farther than " +
+                            short_number(mesh.deepest) + " Å from its surface";
+  const std::string shell = c.membrane ? " (and its membrane shell's inner reach)" : "";
+  if (radius > mesh.deepest) {
+    const double value = size_value(c);
+    std::string rule = depth + ", and soluble '" + largest->molecule.name + "' reaches " + short_number(radius) +
+                       " Å from its centre: no copy fits inside";
+    if (value > 0.0) {
+      const double grow = (radius + s.clearance) / mesh.deepest;
+      rule += "; at least " + at_least(value * (c.mesh.volume && !c.mesh.diameter ? grow * grow * grow : grow)) + size_unit(c);
+    }
+    refuse(scene, size_key(c), rule);
+  }
+  if (radius + s.clearance > mesh.deepest)
+    refuse(scene, soluble_key(s) + ".clearance",
+           short_number(s.clearance) + " Å leaves no room for solubles: " + depth + ", and a copy of '" +
+               largest->molecule.name + "' is kept only where its " + short_number(radius) +
+               " Å bounding sphere stays the clearance" + shell + " away from it; at most " +
+               at_most(mesh.deepest - radius) + " Å");
+}
+
+}  // namespace
+
+void check_compartment_room(const SceneDescription& scene, std::size_t compartment, const CompartmentMeasure& mesh,
+                            std::span<const MoleculeMeasure> molecules) {
+  const CompartmentDescription& c = scene.compartments.at(compartment);
+  if (c.membrane) {
+    // The tiles place their density over the whole surface: a compartment smaller than one copy's
+    // share of membrane most likely holds none.
+    const MembraneDescription& m = scene.membranes.at(c.membrane->index);
+    const std::string surface = " on compartment '" + c.name + "': its " + short_number(mesh.area / kA2PerUm2) +
+                                " µm² of membrane hold ";
+    for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+      const SurfaceAbundance& amount = m.proteins[i].abundance;
+      const double expected = copies_per_a2(m, amount) * mesh.area;
+      if (amount.value > 0.0 && expected < 1.0)
+        refuse(scene, amount_key(m, i),
+               short_number(amount.value) + " places no copy" + surface + short_number(expected) + " of '" +
+                   m.proteins[i].molecule.name + "' at that density, so at least " +
+                   least_surface_amount(m, amount, 1.0 / mesh.area) +
+                   " (or 0 for none)");
+    }
+    if (m.lipids && mesh.area / m.lipids->area_per_lipid < 1.0)
+      refuse(scene, membrane_key(m) + ".lipids.area_per_lipid",
+             short_number(m.lipids->area_per_lipid) + " Å² places no lipid" + surface + short_number(mesh.area) +
+                 " Å² of each leaflet; at most " + at_most(mesh.area) + " Å² per lipid (a real bilayer: 55-75 Å²)");
+  }
+  if (!c.soluble) return;
+  const SolubleDescription& s = scene.solubles.at(c.soluble->index);
+  check_soluble_room(scene, c, s, mesh, molecules);
+  for (std::size_t i = 0; i < s.molecules.size(); ++i) {
+    const VolumeAbundance& amount = s.molecules[i].abundance;
+    const double expected = copies_per_a3(amount) * mesh.volume;
+    if (amount.value > 0.0 && expected < 1.0)
+      refuse(scene, amount_key(s, i),
+             short_number(amount.value) + " places no copy in compartment '" + c.name + "': its " +
+                 short_number(mesh.volume / kA3PerUm3) + " µm³ hold " + short_number(expected) + " of '" +
+                 s.molecules[i].molecule.name + "' at that concentration, so at least " +
+                 least_volume_amount(amount, 1.0 / mesh.volume) + " (or 0 for none)");
+  }
+}
+
+void check_lipid_mix_amounts(const SceneDescription& scene, std::size_t membrane, const PatchPlaces& places) {
+  const MembraneDescription& m = scene.membranes.at(membrane);
+  for (std::size_t j = 0; j < m.lipid_mix.size(); ++j) {
+    const LipidPatchDescription& species = m.lipid_mix[j];
+    for (const bool outer : {true, false}) {
+      const double fraction = outer ? species.outer : species.inner;
+      const double n = outer ? places.outer : places.inner;
+      if (!(fraction > 0.0) || fraction * n >= 0.5) continue;  // lround(fraction x places) > 0
+      const char* leaflet = outer ? "outer" : "inner";
+      std::string rule = short_number(fraction) + " places no lipid of '" + species.name + "': ";
+      if (n < 1.0)
+        rule += std::string("the patch has no lipid in the ") + leaflet + " leaflet; 0";
+      else
+        rule += "a tile of the patch has at most " + short_number(n) + " places in the " + leaflet +
+                " leaflet, and that share of them rounds to none; at least " + at_least(0.5 / n) + " (or 0 for none)";
+      refuse(scene, membrane_key(m) + ".lipid_mix[" + std::to_string(j) + "]." + leaflet, rule);
+    }
   }
 }
 

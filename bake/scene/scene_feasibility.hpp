@@ -3,9 +3,11 @@
 // packed: a membrane protein's density against its footprint in the leaflet, lipids against their
 // own cross-section, a soluble's concentration against its volume (and all solubles together
 // against the cube), per-compartment counts against the surface, molecules against their tile,
-// meshes against the precision of the coordinates the runtime traces in. Each refusal is an
-// InputError naming the scene file, the key path, the value and the largest (or smallest) value
-// that can work. Pure arithmetic on the description and on measures the baker takes of the
+// meshes against the precision of the coordinates the runtime traces in; and nothing emptied or
+// detached (#39): no amount that rounds to no copy (in a tile set or on one compartment), no depth
+// that leaves a protein clear of its bilayer, no clearance that leaves a soluble no room. Each
+// refusal is an InputError naming the scene file, the key path, the value and the largest (or
+// smallest) value that can work. Pure arithmetic on the description and on measures the baker takes of the
 // molecules and meshes, so the scene fuzzer exercises it without reading a file.
 #include <cstddef>
 #include <span>
@@ -24,6 +26,9 @@ struct MoleculeMeasure {
   double outer_footprint = 0.0, inner_footprint = 0.0;
   double height = 0.0;  // extent along its up axis: copies side by side fill a slab this thick
   double volume = 0.0;  // union of its atoms' spheres
+  // Along its up axis from its centre, how far its atoms reach below and above it (both >= 0, and
+  // reach_below + reach_above = height): a copy standing at depth d spans [d - below, d + above].
+  double reach_below = 0.0, reach_above = 0.0;
 };
 
 // A compartment's mesh after units, scale, "diameter" or "volume" (Å, Å², Å³).
@@ -33,6 +38,9 @@ struct CompartmentMeasure {
   double extent = 0.0;  // largest distance of a vertex from the compartment's origin
   std::size_t triangles = 0;
   double bilayer_thickness = 0.0;  // of the membrane it wears (0: none)
+  // No point inside the mesh lies farther than this from its surface (an upper bound; 0: not
+  // measured): a soluble copy is kept only as far as its bounding radius plus its clearance.
+  double deepest = 0.0;
 };
 
 // The largest concentration at which solubles still fit: volume fraction of their atoms.
@@ -67,9 +75,28 @@ void check_scene_amounts(const SceneDescription& scene);
 void check_molecule_amounts(const SceneDescription& scene, std::span<const MoleculeMeasure> molecules);
 
 // Checks of one compartment's mesh: extent against float precision, per-compartment counts
-// against its area.
+// against its area, each membrane protein's depth (and a lipid fill's leaflet offset) against the
+// bilayer it must reach.
 void check_compartment_amounts(const SceneDescription& scene, std::size_t compartment, const CompartmentMeasure& mesh,
                                std::span<const MoleculeMeasure> molecules);
+
+// Checks of one compartment's mesh as baked (after any remeshing), before the heavy stages: every
+// molecule its membrane and soluble list with a non-zero amount can have a copy there. At least
+// one copy expected on its surface (density x area) or inside it (concentration x volume), and,
+// when mesh.deepest is measured, room for a soluble's copy: it is kept only where its bounding
+// sphere stays the soluble's clearance away from the surface.
+void check_compartment_room(const SceneDescription& scene, std::size_t compartment, const CompartmentMeasure& mesh,
+                            std::span<const MoleculeMeasure> molecules);
+
+// A membrane's lipid patch as its tiles lay it: at most this many places per tile in each leaflet
+// (the patch's lipids of that leaflet times its repeats along each tile edge).
+struct PatchPlaces {
+  double outer = 0.0, inner = 0.0;
+};
+
+// Each lipid_mix species takes round(fraction x places) of each leaflet's places per tile: a
+// non-zero fraction that rounds to none is refused with the least fraction that takes a place.
+void check_lipid_mix_amounts(const SceneDescription& scene, std::size_t membrane, const PatchPlaces& places);
 
 // Random placements against their boxes (one bounding radius per compartment, Å): run before
 // expand_random_instances, whose work grows with the count.

@@ -73,6 +73,8 @@ std::vector<scene::MoleculeMeasure> measure_molecules(const scene::SceneDescript
       above = std::max(above, along + a.radius);
     }
     m.height = above - below;
+    m.reach_below = -below;
+    m.reach_above = above;
     m.volume = union_volume(molecule.atoms);
     if (in_membrane[i]) {
       // Standing as the membrane packer stands it: up along the normal, centre at its depth.

@@ -38,27 +38,33 @@ SceneDescription scene_with(const std::function<void(Json&)>& modify = {}) {
   return parse_scene_description(doc, "scene.json");
 }
 
-// Made-up but plausible measures, in the order of base_scene's molecules.
+// Made-up but plausible measures, in the order of base_scene's molecules. The spike reaches 120 Å
+// below its centre along its up axis (its stalk) and 80 Å above.
 std::vector<MoleculeMeasure> measures() {
   MoleculeMeasure spike{.bounding_radius = 90, .lateral_radius = 70, .outer_footprint = 1000, .inner_footprint = 800,
-                        .height = 200, .volume = 4e5};
+                        .height = 200, .volume = 4e5, .reach_below = 120, .reach_above = 80};
   MoleculeMeasure mprot{.bounding_radius = 30, .lateral_radius = 25, .outer_footprint = 1400, .inner_footprint = 1200,
-                        .height = 60, .volume = 5e4};
-  MoleculeMeasure popc{.bounding_radius = 15, .lateral_radius = 6, .height = 25, .volume = 600};
-  MoleculeMeasure hb{.bounding_radius = 37, .lateral_radius = 30, .height = 70, .volume = 5e4};
-  MoleculeMeasure small{.bounding_radius = 10, .lateral_radius = 10, .height = 20, .volume = 2000};
+                        .height = 60, .volume = 5e4, .reach_below = 30, .reach_above = 30};
+  MoleculeMeasure popc{.bounding_radius = 15, .lateral_radius = 6, .height = 25, .volume = 600, .reach_below = 12.5,
+                       .reach_above = 12.5};
+  MoleculeMeasure hb{.bounding_radius = 37, .lateral_radius = 30, .height = 70, .volume = 5e4, .reach_below = 35,
+                     .reach_above = 35};
+  MoleculeMeasure small{.bounding_radius = 10, .lateral_radius = 10, .height = 20, .volume = 2000, .reach_below = 10,
+                        .reach_above = 10};
   return {spike, mprot, popc, hb, small};
 }
 
+// A sphere's measures; no point inside it is farther than its radius from its surface.
 CompartmentMeasure sphere_measure(double radius) {
   return {.area = 4 * kPi * radius * radius, .volume = 4.0 / 3.0 * kPi * radius * radius * radius, .extent = radius,
-          .triangles = 1000, .bilayer_thickness = 40};
+          .triangles = 1000, .bilayer_thickness = 40, .deepest = radius};
 }
 
 void check_all(const SceneDescription& s, const std::vector<MoleculeMeasure>& m = measures()) {
   check_scene_amounts(s);
   check_molecule_amounts(s, m);
   check_compartment_amounts(s, 0, sphere_measure(500), m);
+  check_compartment_room(s, 0, sphere_measure(500), m);
   check_placement_amounts(s, std::vector<double>{560.0});
 }
 
@@ -194,6 +200,159 @@ TEST(SceneFeasibility, RandomPlacementsAgainstTheirBox) {
   const auto at = [](int n) { return scene_with([&](Json& d) { d["instances"][0]["count"] = n; }); };
   EXPECT_NO_THROW(check_placement_amounts(at(1000), std::vector<double>{560.0}));
   EXPECT_INPUT_ERROR(check_placement_amounts(at(1100), std::vector<double>{560.0}), "instances[0].count", "at most 1005 (or a larger box)");
+}
+
+// ---- nothing emptied, nothing detached (#39) ----------------------------------------------------
+
+TEST(SceneFeasibility, ADepthThatDetachesAProteinFromItsBilayerNamesTheDepthsThatReachIt) {
+  // The spike spans [d - 120, d + 80] along the normal; the 40 Å bilayer is [-20, 20]: it reaches
+  // it for d in [-20 - 80, 20 + 120] = [-100, 140].
+  const auto at = [](double depth) {
+    return scene_with([&](Json& d) { d["membranes"]["envelope"]["proteins"][0]["depth"] = depth; });
+  };
+  for (double depth : {-100.0, 0.0, 115.0, 140.0})
+    EXPECT_NO_THROW(check_compartment_amounts(at(depth), 0, sphere_measure(500), measures())) << depth;
+  for (double depth : {-100.01, 140.01, 1e6, -1e6})
+    EXPECT_INPUT_ERROR(check_compartment_amounts(at(depth), 0, sphere_measure(500), measures()),
+                       "membranes.envelope.proteins[0].depth", "a depth from -100 to 140 Å");
+  EXPECT_INPUT_ERROR(check_compartment_amounts(at(1e6), 0, sphere_measure(500), measures()),
+                     "membranes.envelope.proteins[0].depth",
+                     "1000000 Å leaves 'spike' detached from its membrane: standing along its up axis at that depth its "
+                     "atoms span from 999880 to 1000080 Å from the mid-surface, clear of the 40 Å thick bilayer of "
+                     "compartment 'virion' (from -20 to 20 Å about its mid-surface)");
+  // The range follows the bilayer's thickness.
+  CompartmentMeasure thick = sphere_measure(500);
+  thick.bilayer_thickness = 60;
+  EXPECT_NO_THROW(check_compartment_amounts(at(150), 0, thick, measures()));
+  EXPECT_INPUT_ERROR(check_compartment_amounts(at(150.01), 0, thick, measures()), "membranes.envelope.proteins[0].depth",
+                     "a depth from -110 to 150 Å");
+  // A protein asked for with no copy may stand anywhere: nothing of it is placed.
+  const auto none = scene_with([](Json& d) {
+    d["membranes"]["envelope"]["proteins"][0]["depth"] = 1e6;
+    d["membranes"]["envelope"]["proteins"][0]["density_per_um2"] = 0;
+  });
+  EXPECT_NO_THROW(check_compartment_amounts(none, 0, sphere_measure(500), measures()));
+}
+
+TEST(SceneFeasibility, ALeafletOffsetThatDetachesTheLipidFillNamesTheLargestThatReaches) {
+  // popc reaches 12.5 Å below its centre: an outer-leaflet lipid at offset o spans [o - 12.5, o + 12.5]
+  // and meets the [-20, 20] bilayer up to o = 32.5.
+  const auto at = [](double offset) {
+    return scene_with([&](Json& d) { d["membranes"]["envelope"]["lipids"]["leaflet_offset"] = offset; });
+  };
+  EXPECT_NO_THROW(check_compartment_amounts(at(32.5), 0, sphere_measure(500), measures()));
+  EXPECT_INPUT_ERROR(check_compartment_amounts(at(32.51), 0, sphere_measure(500), measures()),
+                     "membranes.envelope.lipids.leaflet_offset", "at most 32.5 Å");
+  EXPECT_INPUT_ERROR(check_compartment_amounts(at(1e6), 0, sphere_measure(500), measures()),
+                     "membranes.envelope.lipids.leaflet_offset", "detached from its membrane");
+}
+
+TEST(SceneFeasibility, APerCompartmentCountOfZeroKeepsNoCopyAndIsRefused) {
+  const auto s = scene_with([](Json& d) { d["membranes"]["envelope"]["proteins"][1]["per_compartment"] = 0; });
+  EXPECT_INPUT_ERROR(check_molecule_amounts(s, measures()), "membranes.envelope.proteins[1].per_compartment",
+                     "0 keeps no copy of 'mprot' on any compartment, though its density_per_um2 asks for 12000; at least 1");
+  EXPECT_NO_THROW(check_molecule_amounts(scene_with([](Json& d) {
+                                           d["membranes"]["envelope"]["proteins"][1]["per_compartment"] = 0;
+                                           d["membranes"]["envelope"]["proteins"][1]["density_per_um2"] = 0;
+                                         }),
+                                         measures()));
+  EXPECT_NO_THROW(check_molecule_amounts(
+      scene_with([](Json& d) { d["membranes"]["envelope"]["proteins"][1]["per_compartment"] = 1; }), measures()));
+}
+
+TEST(SceneFeasibility, ALipidFillSoSparseThatTheTileSetHoldsNoLipidIsRefused) {
+  // 16 tiles of 200 Å hold 6.4e5 Å² of each leaflet: one lipid at most per 6.4e5 Å².
+  const auto at = [](double area) {
+    return scene_with([&](Json& d) { d["membranes"]["envelope"]["lipids"]["area_per_lipid"] = area; });
+  };
+  EXPECT_NO_THROW(check_molecule_amounts(at(6.4e5), measures()));
+  EXPECT_INPUT_ERROR(check_molecule_amounts(at(6.41e5), measures()), "membranes.envelope.lipids.area_per_lipid",
+                     "places no lipid: the 16 tiles of 200 Å hold 640000 Å² of each leaflet, so at most 640000 Å² per lipid");
+}
+
+TEST(SceneFeasibility, AClearanceThatLeavesNoRoomInsideNamesTheLargestThatDoes) {
+  // No point of a 500 Å sphere is deeper than 500 Å; hb, the largest soluble listed, reaches 37 Å
+  // from its centre: a clearance of at most 463 Å leaves it room.
+  const auto at = [](double clearance) {
+    return scene_with([&](Json& d) { d["solubles"]["lumen"]["clearance"] = clearance; });
+  };
+  EXPECT_NO_THROW(check_compartment_room(at(463), 0, sphere_measure(500), measures()));
+  EXPECT_INPUT_ERROR(check_compartment_room(at(463.01), 0, sphere_measure(500), measures()), "solubles.lumen.clearance",
+                     "at most 463 Å");
+  EXPECT_INPUT_ERROR(check_compartment_room(at(1e5), 0, sphere_measure(500), measures()), "solubles.lumen.clearance",
+                     "100000 Å leaves no room for solubles: no point inside the mesh of compartment 'virion' is farther "
+                     "than 500 Å from its surface, and a copy of 'hb' is kept only where its 37 Å bounding sphere stays "
+                     "the clearance (and its membrane shell's inner reach) away from it; at most 463 Å");
+  // Without hb the smaller molecule bounds it: 500 - 10.
+  const auto without_hb = scene_with([](Json& d) {
+    d["solubles"]["lumen"]["clearance"] = 480;
+    d["solubles"]["lumen"]["molecules"][0]["concentration_mM"] = 0;
+  });
+  EXPECT_NO_THROW(check_compartment_room(without_hb, 0, sphere_measure(500), measures()));
+  // An unmeasured depth (0) checks no room.
+  CompartmentMeasure unmeasured = sphere_measure(500);
+  unmeasured.deepest = 0;
+  EXPECT_NO_THROW(check_compartment_room(at(1e5), 0, unmeasured, measures()));
+}
+
+TEST(SceneFeasibility, ACompartmentShallowerThanItsLargestSolubleNamesTheSizeThatHoldsIt) {
+  // Deepest point 30 Å from the surface, hb reaches 37 Å: the 500 Å radius must grow by 37 / 30.
+  CompartmentMeasure shallow = sphere_measure(500);
+  shallow.deepest = 30;
+  EXPECT_INPUT_ERROR(check_compartment_room(scene_with(), 0, shallow, measures()), "compartments.virion.mesh.radius",
+                     "soluble 'hb' reaches 37 Å from its centre: no copy fits inside; at least 617 Å");
+  shallow.deepest = 37;
+  EXPECT_NO_THROW(check_compartment_room(scene_with(), 0, shallow, measures()));
+}
+
+TEST(SceneFeasibility, AnAmountThatPlacesNoCopyOnOneCompartmentIsRefused) {
+  // A 100 Å sphere: 1.2566e5 Å² of membrane and 4.1888e6 Å³ inside, smaller than the tile and cube sets.
+  const CompartmentMeasure small = sphere_measure(100);
+  const auto spike_at = [](double density) {
+    return scene_with([&](Json& d) { d["membranes"]["envelope"]["proteins"][0]["density_per_um2"] = density; });
+  };
+  // One spike needs 1e8 / 1.2566e5 = 795.8 per µm².
+  EXPECT_NO_THROW(check_compartment_room(spike_at(796), 0, small, measures()));
+  EXPECT_INPUT_ERROR(check_compartment_room(spike_at(795), 0, small, measures()),
+                     "membranes.envelope.proteins[0].density_per_um2",
+                     "795 places no copy on compartment 'virion': its 0.00126 µm² of membrane hold 0.999 of 'spike' at "
+                     "that density, so at least 796 per µm²");
+  // One hb needs 1 / (4.1888e6 Å³ x 6.0221e-7 per Å³ per mM) = 0.3964 mM.
+  const auto hb_at = [](double mM) {
+    return scene_with([&](Json& d) { d["solubles"]["lumen"]["molecules"][0]["concentration_mM"] = mM; });
+  };
+  EXPECT_NO_THROW(check_compartment_room(hb_at(0.3965), 0, small, measures()));
+  EXPECT_INPUT_ERROR(check_compartment_room(hb_at(0.3963), 0, small, measures()),
+                     "solubles.lumen.molecules[0].concentration_mM", "so at least 0.397 mM");
+  // One lipid of the fill per leaflet needs an area per lipid of at most the 1.2566e5 Å².
+  const auto lipid_at = [](double area) {
+    return scene_with([&](Json& d) { d["membranes"]["envelope"]["lipids"]["area_per_lipid"] = area; });
+  };
+  EXPECT_NO_THROW(check_compartment_room(lipid_at(1.25e5), 0, small, measures()));
+  EXPECT_INPUT_ERROR(check_compartment_room(lipid_at(1.26e5), 0, small, measures()),
+                     "membranes.envelope.lipids.area_per_lipid", "at most 125000 Å² per lipid");
+}
+
+TEST(SceneFeasibility, ALipidMixShareThatRoundsToNoPlaceIsRefused) {
+  const auto at = [](double outer, double inner) {
+    return scene_with([&](Json& d) {
+      auto& m = d["membranes"]["envelope"];
+      m.erase("lipids");
+      m["lipid_patch"] = Json{{"file", "popc.pdb"}, {"name", "POPC"}};
+      m["lipid_mix"] = Json::array({Json{{"file", "pope.pdb"}, {"name", "POPE"}, {"outer", outer}, {"inner", inner}}});
+    });
+  };
+  // 288 places per tile in each leaflet (32 lipids x 3 x 3 repeats): a share takes one from 0.5 / 288.
+  const PatchPlaces places{.outer = 288, .inner = 288};
+  EXPECT_NO_THROW(check_lipid_mix_amounts(at(0.00174, 0.32), 0, places));
+  EXPECT_NO_THROW(check_lipid_mix_amounts(at(0, 0.32), 0, places));
+  EXPECT_INPUT_ERROR(check_lipid_mix_amounts(at(0.0017, 0.32), 0, places), "membranes.envelope.lipid_mix[0].outer",
+                     "0.0017 places no lipid of 'POPE': a tile of the patch has at most 288 places in the outer leaflet, "
+                     "and that share of them rounds to none; at least 0.00174");
+  EXPECT_INPUT_ERROR(check_lipid_mix_amounts(at(0.32, 1e-9), 0, places), "membranes.envelope.lipid_mix[0].inner",
+                     "at least 0.00174");
+  EXPECT_INPUT_ERROR(check_lipid_mix_amounts(at(0.32, 0.3), 0, PatchPlaces{.outer = 288, .inner = 0}),
+                     "membranes.envelope.lipid_mix[0].inner", "the patch has no lipid in the inner leaflet");
 }
 
 TEST(SceneFeasibility, AmountKeysAreInTheUnitTheSceneWrote) {
