@@ -10,6 +10,7 @@
 #include "bake/mesh/uv_distortion.hpp"
 #include "bake/mesh/vertex_normals.hpp"
 #include "bake/scene/random_placement.hpp"
+#include "bake/scene_bake/bake_invariants.hpp"
 #include "bake/scene_bake/compartment_mesh.hpp"
 #include "bake/scene_bake/core_bake.hpp"
 #include "bake/scene_bake/membrane_bake.hpp"
@@ -582,6 +583,8 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   for (std::size_t c = 0; c < compartments.size(); ++c)
     compartments[c].mesh = clock.run("meshes", [&] { return load_mesh(in, molecules, c); });
   const MeshMeasures measured = measure_meshes(compartments);
+  check_nothing_emptied(scene, molecules.measures, molecules.patches, measured.measures,
+                        [&](std::size_t c) -> const mesh::ProxyMesh& { return compartments[c].mesh.mesh; });
   check_placements(scene, measured);
 
   baked.estimate = estimate(in, molecules, compartments, measured);
@@ -609,6 +612,7 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   const std::vector<scene::PlacedInstance> placed =
       clock.run("instances", [&] { return place_instances(scene, compartments, measured); });
   clock.run("package content", [&] { fill_package_content(baked, {in, molecules, sets, compartments}, placed); });
+  check_every_molecule_placed(scene, baked);  // before anything is written (bake_invariants.hpp)
   return baked;
 }
 
