@@ -1,24 +1,30 @@
 #!/usr/bin/env bash
 # Configures and builds the clang/libFuzzer build (NANO_FUZZ_ONLY) in BUILD_DIR, and fuzzes for a
-# bounded time, starting from the checked-in seeds:
-#   package  the package reader + validator   (seeds tests/fuzz/corpus/, 35 s by default)
-#   scene    the scene reader + feasibility   (seeds tests/fuzz/scene_corpus/, 25 s by default)
-# New corpus entries and crash artifacts go to BUILD_DIR (scratch), never into the repository.
-# usage: run_fuzz.sh SOURCE_DIR BUILD_DIR [build|package|scene|all]   (default all: build, then both)
-# NANO_FUZZ_SECONDS overrides the time of each session.
+# bounded time, starting from the checked-in seeds (docs/tests.md, "Fuzzing"):
+#   package  the package reader + validator       (seeds tests/fuzz/corpus/, 35 s by default)
+#   scene    the scene reader + feasibility       (seeds tests/fuzz/scene_corpus/, 25 s)
+#   obj off ply stl draco
+#            one mesh reader each (parse_proxy_mesh; seeds tests/fuzz/mesh_corpus/FORMAT/, 10 s)
+#   pdb mmcif
+#            parse_pdb / parse_mmcif and molecule_from_text (seeds tests/fuzz/structure_corpus/, 10 s)
+#   gzip     structure_text_from_bytes (gzip, binary rejection), then molecule_from_text (10 s)
+# New corpus entries and crash artifacts go to BUILD_DIR (scratch: BUILD_DIR/{corpus,findings} for
+# the package reader, BUILD_DIR/NAME-{corpus,findings} for the others), never into the repository.
+# usage: run_fuzz.sh SOURCE_DIR BUILD_DIR [build|SESSION...|all]   (default all: build, then every session)
+# NANO_FUZZ_SECONDS overrides the time of each session; arguments after `--` go to libFuzzer.
 set -euo pipefail
 src=$1
 build=$2
-what=${3:-all}
+shift 2
+sessions=(package scene obj off ply stl draco pdb mmcif gzip)
 
 build_fuzzers() {
   CC=clang-14 CXX=clang++-14 cmake -S "$src" -B "$build" -G Ninja -DNANO_FUZZ_ONLY=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-  cmake --build "$build" --target package_fuzzer scene_fuzzer -j2
+  cmake --build "$build" --target "${sessions[@]/%/_fuzzer}" -j2
 }
 
-# fuzz NAME SECONDS MAX_LEN SEEDS [libFuzzer options...]; scratch in BUILD_DIR/{corpus,findings}
-# for the package reader (as before the scene fuzzer came), BUILD_DIR/scene-{corpus,findings}.
+# fuzz NAME SECONDS MAX_LEN SEEDS [libFuzzer options...]
 fuzz() {
   local name=$1 seconds=${NANO_FUZZ_SECONDS:-$2} max_len=$3 seeds=$4
   shift 4
@@ -27,17 +33,41 @@ fuzz() {
   mkdir -p "$work" "$findings"
   # libFuzzer adds new inputs to the first corpus directory; the checked-in seeds are only read.
   "$build/tests/fuzz/${name}_fuzzer" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
-    -max_len="$max_len" -artifact_prefix="$findings/" -print_final_stats=1 "$@" "$work" "$seeds"
+    -max_len="$max_len" -artifact_prefix="$findings/" -print_final_stats=1 "$@" "${extra[@]}" "$work" "$seeds"
 }
 
-case $what in
-  build) build_fuzzers ;;
-  package) fuzz package 35 16384 "$src/tests/fuzz/corpus" ;;
-  scene) fuzz scene 25 65536 "$src/tests/fuzz/scene_corpus" -dict="$src/tests/fuzz/scene.dict" ;;
-  all)
-    build_fuzzers
-    fuzz package 35 16384 "$src/tests/fuzz/corpus"
-    fuzz scene 25 65536 "$src/tests/fuzz/scene_corpus" -dict="$src/tests/fuzz/scene.dict"
-    ;;
-  *) echo "run_fuzz.sh: unknown session '$what' (build, package, scene or all)" >&2; exit 2 ;;
-esac
+session() {
+  local fuzz_dir=$src/tests/fuzz
+  case $1 in
+    package) fuzz package 35 16384 "$fuzz_dir/corpus" ;;
+    scene) fuzz scene 25 65536 "$fuzz_dir/scene_corpus" -dict="$fuzz_dir/scene.dict" ;;
+    obj | off | ply | stl) fuzz "$1" 10 16384 "$fuzz_dir/mesh_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
+    draco) fuzz draco 10 16384 "$fuzz_dir/mesh_corpus/draco" ;;
+    pdb | mmcif) fuzz "$1" 10 32768 "$fuzz_dir/structure_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
+    gzip) fuzz gzip 10 32768 "$fuzz_dir/structure_corpus/gzip" ;;
+    *) echo "run_fuzz.sh: unknown session '$1' (build, ${sessions[*]} or all)" >&2; exit 2 ;;
+  esac
+}
+
+what=()
+extra=()
+while [ $# -gt 0 ]; do
+  if [ "$1" = -- ]; then
+    shift
+    extra=("$@")
+    break
+  fi
+  what+=("$1")
+  shift
+done
+[ ${#what[@]} -gt 0 ] || what=(all)
+for w in "${what[@]}"; do
+  case $w in
+    build) build_fuzzers ;;
+    all)
+      build_fuzzers
+      for s in "${sessions[@]}"; do session "$s"; done
+      ;;
+    *) session "$w" ;;
+  esac
+done
