@@ -21,6 +21,8 @@ namespace nano::mesh {
 // speeds the turn up by that factor). Radians per Å; 1/R on a fine sphere of radius R. A copy at
 // height h above the surface sees lateral offsets scaled by at most 1 ± h·rate.
 double normal_turn_rate(const ProxyMesh& mesh);
+// The same over triangle t alone; 0 when the triangle gives no bound (degenerate, opposite normals).
+double triangle_turn_rate(const ProxyMesh& mesh, std::size_t t);
 
 // tan of the largest angle between a corner normal and its triangle's face normal, over triangles
 // with a usable shape (an interpolated normal lies within that angle of the face normal). Copies
@@ -33,11 +35,15 @@ double largest_normal_tilt(const ProxyMesh& mesh);
 // between the interpolated normal and that surface's own normal, sampled on a barycentric grid of
 // every triangle with a usable shape (corners, edges and inside). smooth = 0 gives the flat tilt.
 double largest_smooth_normal_tilt(const ProxyMesh& mesh, double smooth);
+// The same over triangle t alone (0 for a degenerate triangle).
+double triangle_smooth_normal_tilt(const ProxyMesh& mesh, std::size_t t, double smooth);
 
 // How far a flat triangle strays from the smooth surface its corner normals describe, largest over
 // triangles: ρ²·rate/2 with ρ the largest corner distance from the centroid and rate the
 // triangle's normal turn rate (a sphere's facet sags ρ²/(2R) below it). Two copies' rises from the
 // tilt differ by at most about this much however far apart they are (Å).
 double largest_facet_sag(const ProxyMesh& mesh);
+// The same for triangle t alone.
+double triangle_facet_sag(const ProxyMesh& mesh, std::size_t t);
 
 }  // namespace nano::mesh
