@@ -140,9 +140,10 @@ double estimate_membrane(const EstimateInputs& in, std::size_t membrane, const E
   for (const auto& [name, share] : l.share) named_entry(out.copies, name) += share * lipid_copies;
   copies += lipid_copies;
   // The shells check every copy of a small membrane, only those along the UV seams of a large one.
-  const bool everywhere = membrane_copies_for_pruning(measure.area, m, in.patches[membrane]) <=
-                          static_cast<double>(shell::PruningSettings{}.whole_surface_budget);
-  return everywhere ? copies : std::min(copies, mesh.seam_length * kSeamBand * copies / measure.area);
+  // The checked triangles (all of a membrane checked everywhere) and a band along the seams elsewhere.
+  const double checked = copies * mesh.checked_share;
+  if (mesh.checked_share >= 1.0) return checked;
+  return checked + std::min(copies - checked, mesh.seam_length * kSeamBand * copies / measure.area);
 }
 
 // Adds the core grid's copies to `out` and its boxes to `work`; the solubles start `inset` inside the mesh.

@@ -39,7 +39,8 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"dropped", dropped},
           {"dropped_where_no_prism_fits", unfit},
           {"alternates_shown", alternates},
-          {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams"},
+          {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams and on checked triangles"},
+          {"pruning_checked_triangles", m.checked_triangles},
           {"pruning_checked_copies", m.checked_copies},
           {"pruning_atom_tests", m.atom_tests}};
 }
@@ -201,9 +202,11 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
         std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), n / m.area_um2);
         out << line;
       }
+      const std::string checked = m.pruned_everywhere ? std::string("everywhere")
+                                                       : "along UV seams and on " + std::to_string(m.checked_triangles) + " of " +
+                                                             std::to_string(m.triangles) + " triangles";
       std::snprintf(line, sizeof line, "; %.3g copies dropped (clashing, checked %s, or beyond a count), %.3g alternates shown in their place\n",
-                    static_cast<double>(total(m.dropped)),
-                    m.pruned_everywhere ? "everywhere" : "along UV seams", static_cast<double>(total(m.alternates)));
+                    static_cast<double>(total(m.dropped)), checked.c_str(), static_cast<double>(total(m.alternates)));
       out << line;
       for (const auto& [name, n] : m.unfit) {
         std::snprintf(line, sizeof line, "    %.3g %s left out where the surface folds too tightly for it (placed elsewhere if counted per compartment)\n",

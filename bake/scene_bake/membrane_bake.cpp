@@ -51,14 +51,14 @@ InputError unshellable(const shell::MembraneMapping& mapping, const shell::Shell
 
 // Tile space per Å of surface, as a float (rounded down) so that s = S / k is reproducible by the
 // shader's float division; some float s have no float k at all.
-// Tiles packed for what the meshes do to them (a cell's) must never be compressed: molecules are
-// rigid, so where the map shrinks tile space (cube-sphere corners, σ_min ≈ 0.76 of the mean) copies
-// packed collision-free would overlap; scaling by the smallest singular value only spreads them,
-// which costs density wherever σ is larger (a sphere: 1/1.26 on average). Tiles packed rigid are
-// checked copy by copy on the real surface anyway: they take the mean scale, so that the surface
-// holds the patch's density on average; what compression pushes together is pruned.
-double tile_scale(const mesh::ProxyMesh& mesh, const BakedWangSet& tiles) {
-  const double target = tiles.packed_rigid ? mesh::uv_scale(mesh) : mesh::smallest_stretch(mesh);
+// Tiles packed for what the meshes do to them (a cell's) must never be compressed where nothing
+// checks them: molecules are rigid, so where the map shrinks tile space (cube-sphere corners, σ_min
+// ≈ 0.76 of the mean) copies packed collision-free would overlap; the plan scales them by the
+// smallest singular value of the triangles it does not check, which only spreads them. Tiles packed
+// rigid are checked copy by copy on the real surface anyway: the plan gives them the mean scale, so
+// that the surface holds the patch's density on average; what compression pushes together is pruned.
+double tile_scale(const SurfaceChecks& checks) {
+  const double target = checks.plan.tile_scale;
   if (!(target > 0)) throw InputError("", "membrane", "the mesh has no triangle with a usable UV chart");
   float k_float = static_cast<float>(target);
   if (double(k_float) > target) k_float = std::nextafter(k_float, 0.f);
@@ -67,6 +67,7 @@ double tile_scale(const mesh::ProxyMesh& mesh, const BakedWangSet& tiles) {
 
 // What the shells and the pruning of one membrane read.
 struct MembraneSurface {
+  const SurfaceChecks& checks;
   const shell::MembraneMapping& mapping;
   const mesh::ProxyMesh& mesh;
   const std::vector<tiles::MoleculeType>& types;  // the set's
@@ -88,25 +89,25 @@ shell::ShellResult compute_shells(const MembraneSurface& m) {
 // copies dropped then take no lipid with them (the patch was laid through them), and the pruning
 // removes the lipids that the kept ones displace.
 shell::PrunedMembrane drops_before_pruning(const MembraneSurface& m, shell::ShellResult& shells,
-                                           const PerCompartment& per_compartment, const shell::PruningSettings& pruning) {
+                                           const PerCompartment& per_compartment, shell::PruningSettings& pruning) {
   shell::PrunedMembrane limited;
   limited.dropped = std::move(shells.dropped);
   limited.dropped_by_type.assign(shells.dropped_by_type.begin(), shells.dropped_by_type.end());
   if (per_compartment.empty()) return limited;
-  if (!m.tiles.packed_rigid && shells.stats.owned_molecules > pruning.whole_surface_budget)
-    throw InputError("", "membrane", m.library[per_compartment.front().first].name +
-                                         ": a per-compartment count needs a membrane checked everywhere (at most " +
-                                         std::to_string(pruning.whole_surface_budget) + " copies)");
+  std::vector<std::uint32_t> kept_on;
   for (const auto& [molecule, count] : per_compartment)
     for (std::uint32_t i = 0; i < m.tiles.molecule_of_type.size(); ++i)
-      if (m.tiles.molecule_of_type[i] == molecule) shell::limit_copies(m.mapping, limited, i, count);
+      if (m.tiles.molecule_of_type[i] == molecule) shell::limit_copies(m.mapping, limited, i, count, &kept_on);
+  if (!pruning.whole_surface)
+    for (const std::uint32_t t : kept_on) pruning.checked_triangles[t] = 1;
   return limited;
 }
 
 shell::PrunedMembrane prune(const MembraneSurface& m, shell::ShellResult& shells, const PerCompartment& per_compartment) {
   shell::PruningSettings pruning;
   pruning.flat_clearance = m.tiles.flat_clearance;
-  pruning.whole_surface = m.tiles.packed_rigid;
+  pruning.whole_surface = m.checks.whole_surface;
+  if (!pruning.whole_surface) pruning.checked_triangles = m.checks.plan.checked;
   pruning.owned_copies = shells.stats.owned_molecules;  // the same mapping, the same ownership
   pruning.always_tested = m.tiles.laid_through;
   const shell::PrunedMembrane limited = drops_before_pruning(m, shells, per_compartment, pruning);
@@ -151,10 +152,11 @@ void store_shells(const shell::MembraneMapping& mapping, const shell::ShellResul
 
 }  // namespace
 
-BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
-                            std::uint64_t seed, int threads, const PerCompartment& per_compartment) {
+BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const SurfaceChecks& checks,
+                            const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads,
+                            const PerCompartment& per_compartment) {
   BakedMembrane baked;
-  const double k = tile_scale(mesh, tiles);
+  const double k = tile_scale(checks);
   baked.tile_size = tiles.set.edge;
   baked.recipe = membrane_recipe(tiles.set, tiles.set.edge / k, seed);
   std::vector<tiles::MoleculeType> types;
@@ -169,7 +171,7 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   const std::vector<glm::vec2>& snapped = mapping.snapped_uvs();
   for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = glm::dvec2(snapped[i]);
 
-  const MembraneSurface surface{mapping, mesh, types, tiles, library, threads};
+  const MembraneSurface surface{checks, mapping, mesh, types, tiles, library, threads};
   shell::ShellResult shells = compute_shells(surface);
   baked.pruning = prune(surface, shells, per_compartment);
   baked.dropped = std::move(baked.pruning.dropped);

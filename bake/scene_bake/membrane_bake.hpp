@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bake/mesh/proxy_mesh.hpp"
+#include "bake/scene_bake/membrane_surface.hpp"
 #include "bake/scene_bake/molecule_library.hpp"
 #include "bake/scene_bake/wang_bake.hpp"
 #include "bake/shell/membrane_pruning.hpp"
@@ -41,10 +42,18 @@ float stored_uv_scale(float tile_size, float tile_uv_size);
 // (library molecule, copies) the compartment keeps of a protein at most (scene `per_compartment`).
 using PerCompartment = std::vector<std::pair<std::uint32_t, std::uint64_t>>;
 
-// Snaps the mesh's UVs in place (the ownership contract) and computes everything above.
-// `per_compartment` needs a membrane pruned everywhere (InputError otherwise).
-BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const std::vector<BakedMolecule>& library,
-                            std::uint64_t seed, int threads, const PerCompartment& per_compartment = {});
+// Which copies of the membrane on this mesh are checked where they stand (membrane_surface.hpp).
+struct SurfaceChecks {
+  const MeshSurfacePlan& plan;  // the tile scale, and the triangles checked copy by copy
+  bool whole_surface = true;    // every copy (tiles packed rigid)
+};
+
+// Snaps the mesh's UVs in place (the ownership contract) and computes everything above. On a
+// membrane not checked everywhere, the triangles holding what `per_compartment` keeps are checked
+// too (those proteins stand in the lipid patch, laid through them).
+BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const SurfaceChecks& checks,
+                            const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads,
+                            const PerCompartment& per_compartment = {});
 
 // Shells of a compartment without a membrane: flat prisms of zero height, so the core renderer
 // still has the mesh's front/back intervals and no membrane copy is ever looked for.

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "bake/mesh/mesh_edges.hpp"
 #include "bake/tiles/collision_shape.hpp"
 #include "common/error.hpp"
 #include "common/parallel_for.hpp"
@@ -140,27 +141,83 @@ std::uint64_t count_owned_copies(const MembraneMapping& mapping, const PruningSe
 
 // Which triangles, and within them which copies, to check. Two copies on the two sides of a seam
 // that clash have surface points X, X' with |X − X'| < r + r' + |z| + |z'|, and the seam passes
-// between them: each lies within its own r + |z| plus the widest r' + |z'| of the seam.
+// between them: each lies within its own r + |z| plus the widest r' + |z'| of the seam. The border
+// of the triangles checked whole is such a line too: a copy outside them that could clash with one
+// inside lies within that reach of it.
 struct CheckedRegion {
   bool whole_surface = false;
-  std::vector<Segment> seams;
+  std::vector<char> whole_triangle;  // per triangle: every copy checked
+  std::vector<Segment> seams;        // the UV seams and the border of the triangles checked whole
   std::vector<std::vector<std::uint32_t>> near_seams;  // per triangle: the seams its copies may clash across
   double reach_other = 0.0;
 };
 
-CheckedRegion checked_region(const MembraneMapping& mapping, const TypeShapes& t, bool whole_surface, int threads) {
+// The edges between a triangle checked whole and one that is not (position indices decide adjacency).
+void add_border_segments(const mesh::ProxyMesh& mesh, const std::vector<char>& whole, std::vector<Segment>& out) {
+  for (const mesh::MeshEdge& e : mesh::collect_edges(mesh)) {
+    bool in = false, outside = e.uses.size() < 2;
+    for (const mesh::EdgeUse& use : e.uses) (whole[use.face] ? in : outside) = true;
+    if (in && outside) out.push_back({mesh.positions[e.a], mesh.positions[e.b]});
+  }
+}
+
+// Segments in a hash grid of cubes at least as wide as the largest distance asked about, so that a
+// query looks at the 27 cells around a point only.
+class SegmentGrid {
+public:
+  SegmentGrid(const std::vector<Segment>& segments, double cell) : cell_(std::max(cell, 1.0)) {
+    for (std::uint32_t s = 0; s < segments.size(); ++s) {
+      const glm::ivec3 lo = cell_of(glm::min(segments[s].a, segments[s].b)), hi = cell_of(glm::max(segments[s].a, segments[s].b));
+      for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+          for (int x = lo.x; x <= hi.x; ++x) cells_[cell_key({x, y, z})].push_back(s);
+    }
+  }
+  // Segments within `distance` (at most the cell size) of `p`, each once, ascending.
+  std::vector<std::uint32_t> near(const std::vector<Segment>& segments, const dvec3& p, double distance) const {
+    std::vector<std::uint32_t> found;
+    const glm::ivec3 c = cell_of(p);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = cells_.find(cell_key(c + glm::ivec3(dx, dy, dz)));
+          if (it == cells_.end()) continue;
+          for (const std::uint32_t s : it->second)
+            if (point_segment_distance(p, segments[s]) < distance) found.push_back(s);
+        }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    return found;
+  }
+
+private:
+  glm::ivec3 cell_of(const dvec3& p) const { return glm::ivec3(glm::floor(p / cell_)); }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+CheckedRegion checked_region(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh, const TypeShapes& t,
+                             bool whole_surface, const std::vector<char>& checked_triangles, int threads) {
   const std::size_t triangles = mapping.triangle_count();
-  CheckedRegion region{whole_surface, whole_surface ? std::vector<Segment>{} : seam_segments(mapping),
-                       std::vector<std::vector<std::uint32_t>>(triangles), t.widest + t.highest + 2.0};
+  CheckedRegion region{whole_surface, {}, {}, std::vector<std::vector<std::uint32_t>>(triangles), t.widest + t.highest + 2.0};
   if (whole_surface) return region;
-  parallel_for(triangles, threads, [&](std::size_t tri) {
+  region.whole_triangle = checked_triangles;
+  region.whole_triangle.resize(triangles, 0);
+  region.seams = seam_segments(mapping);
+  add_border_segments(mesh, region.whole_triangle, region.seams);
+  std::vector<double> extent(triangles, 0.0);
+  std::vector<dvec3> centre(triangles);
+  double widest = 0.0;
+  for (std::size_t tri = 0; tri < triangles; ++tri) {
     const TriangleMapping& tm = mapping.triangle(tri);
-    const dvec3 centre = (dvec3(tm.position[0]) + dvec3(tm.position[1]) + dvec3(tm.position[2])) / 3.0;
-    double extent = 0.0;
-    for (const glm::vec3& p : tm.position) extent = std::max(extent, glm::length(dvec3(p) - centre));
-    for (std::uint32_t s = 0; s < region.seams.size(); ++s)
-      if (point_segment_distance(centre, region.seams[s]) < extent + t.widest + t.highest + region.reach_other)
-        region.near_seams[tri].push_back(s);
+    centre[tri] = (dvec3(tm.position[0]) + dvec3(tm.position[1]) + dvec3(tm.position[2])) / 3.0;
+    for (const glm::vec3& p : tm.position) extent[tri] = std::max(extent[tri], glm::length(dvec3(p) - centre[tri]));
+    widest = std::max(widest, extent[tri]);
+  }
+  const double reach = t.widest + t.highest + region.reach_other;
+  const SegmentGrid grid(region.seams, widest + reach);
+  parallel_for(triangles, threads, [&](std::size_t tri) {
+    if (!region.whole_triangle[tri]) region.near_seams[tri] = grid.near(region.seams, centre[tri], extent[tri] + reach);
   });
   return region;
 }
@@ -201,7 +258,8 @@ std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const mesh::
   const std::vector<std::uint32_t> island = uv_islands(mesh);
   std::vector<std::vector<Placed>> per_triangle(triangles);
   parallel_for(triangles, threads, [&](std::size_t tri) {
-    if (!region.whole_surface && region.near_seams[tri].empty()) return;
+    const bool whole = region.whole_surface || region.whole_triangle[tri];
+    if (!whole && region.near_seams[tri].empty()) return;
     const TriangleMapping& tm = mapping.triangle(tri);
     const std::vector<std::uint32_t>& near_seams = region.near_seams[tri];
     // Placed only once kept: most copies of a triangle near a seam stand too far from it.
@@ -212,7 +270,7 @@ std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const mesh::
           if (!settings.dropped_before.empty() &&
               std::binary_search(settings.dropped_before[tri].begin(), settings.dropped_before[tri].end(), key))
             return;
-          if (!region.whole_surface) {
+          if (!whole) {
             const tiles::Instance& in = mapping.set().tiles[m.tile].instances[m.instance];
             const dvec3 surface(gpu::chart_position(tm.chart, m.uv));
             const double reach = t.radius[m.type] + std::abs(double(in.position.z)) + region.reach_other;
@@ -401,7 +459,9 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   const TypeShapes shapes = type_shapes(types, mapping.set());
   out.owned_copies = count_owned_copies(mapping, settings, threads);
   out.whole_surface = settings.whole_surface || out.owned_copies <= settings.whole_surface_budget;
-  const CheckedRegion region = checked_region(mapping, shapes, out.whole_surface, threads);
+  const CheckedRegion region = checked_region(mapping, mesh, shapes, out.whole_surface, settings.checked_triangles, threads);
+  out.checked_triangles = out.whole_surface ? triangles
+                                            : std::uint64_t(std::count(region.whole_triangle.begin(), region.whole_triangle.end(), 1));
   check_key_room(mapping);
   const std::vector<Placed> copies = copies_to_check(mapping, mesh, shapes, region, settings, threads);
   out.checked_copies = copies.size();
@@ -418,7 +478,8 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   return out;
 }
 
-std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& pruned, std::uint32_t type, std::uint64_t count) {
+std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& pruned, std::uint32_t type, std::uint64_t count,
+                           std::vector<std::uint32_t>* kept_on) {
   struct Copy {
     std::uint32_t triangle, key;
     dvec3 centre;
@@ -436,7 +497,11 @@ std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& prune
         },
         SeamRule::ignore);
   }
-  if (copies.size() <= count) return copies.size();
+  if (copies.size() <= count) {
+    if (kept_on)
+      for (const Copy& c : copies) kept_on->push_back(c.triangle);
+    return copies.size();
+  }
   std::vector<double> nearest(copies.size(), INFINITY);
   std::vector<char> kept(copies.size(), 0);
   std::size_t next = 0;
@@ -453,6 +518,8 @@ std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& prune
     }
     next = farthest;
   }
+  for (std::size_t i = 0; i < copies.size(); ++i)
+    if (kept[i] && kept_on) kept_on->push_back(copies[i].triangle);
   for (std::size_t i = 0; i < copies.size(); ++i)
     if (!kept[i]) {
       std::vector<std::uint32_t>& keys = pruned.dropped[copies[i].triangle];

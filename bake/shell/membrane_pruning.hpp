@@ -34,6 +34,10 @@ struct PruningSettings {
   // Set by a caller whose tiles were packed rigid (they survive nothing a chart does): check
   // everywhere whatever the count.
   bool whole_surface = false;
+  // Per triangle (empty: none): every copy the triangle owns is checked, as are its neighbours'
+  // within reach of it — the mesh distorts the tiles there beyond what the set was packed for, or a
+  // copy stands there that the tiling does not vouch for (a per-compartment protein).
+  std::vector<char> checked_triangles;
   // The copies the triangles own, when the caller has counted them already (the shell offsets
   // enumerate every one): spares a pass over 10^8 copies of a cell. Absent: counted here.
   std::optional<std::uint64_t> owned_copies;
@@ -53,6 +57,7 @@ struct PrunedMembrane {
   std::vector<std::uint64_t> alternates_by_type;    // alternates shown, indexed likewise
   std::uint64_t owned_copies = 0;                   // every copy the triangles own, dropped or not
   bool whole_surface = false;                       // all owned copies checked, not only near seams
+  std::uint64_t checked_triangles = 0;              // triangles whose copies were all checked (whole_surface: all)
   std::uint64_t checked_copies = 0;                 // copies placed and tested against their neighbours
   std::uint64_t candidate_pairs = 0;                // pairs whose bounding spheres meet
   std::uint64_t atom_tests = 0;                     // of those, pairs the flat tiling could not vouch for
@@ -73,6 +78,8 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
 // next copy is the one farthest from those already kept), and adds the others to `pruned.dropped`.
 // Returns how many it keeps. Run before prune_membrane (PruningSettings::dropped_before) on tiles
 // whose lipids were laid through the type, so that a dropped copy leaves bilayer, not a hole.
-std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& pruned, std::uint32_t type, std::uint64_t count);
+// `kept_on`, when given, receives the triangles holding the kept copies.
+std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& pruned, std::uint32_t type, std::uint64_t count,
+                           std::vector<std::uint32_t>* kept_on = nullptr);
 
 }  // namespace nano::shell

@@ -184,6 +184,63 @@ TEST(MembranePruning, FlatTilingSparesAtomTests) {
   EXPECT_EQ(spared.dropped, all_tested.dropped);
 }
 
+// Triangles checked whole (PruningSettings::checked_triangles) on a membrane otherwise checked along
+// its seams only: with every triangle marked, exactly what checking the whole surface drops.
+TEST(MembranePruning, AllTrianglesCheckedIsTheWholeSurface) {
+  auto sc = dense(sphere_scene());
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  const PrunedMembrane whole = nano::shell::prune_membrane(map, sc->mesh, sc->types, {}, 2);
+  PruningSettings marked;
+  marked.whole_surface_budget = 0;
+  marked.checked_triangles.assign(sc->mesh.triangles.size(), 1);
+  const PrunedMembrane all = nano::shell::prune_membrane(map, sc->mesh, sc->types, marked, 2);
+  ASSERT_TRUE(whole.whole_surface);
+  EXPECT_FALSE(all.whole_surface);
+  EXPECT_EQ(all.checked_triangles, sc->mesh.triangles.size());
+  EXPECT_EQ(all.checked_copies, whole.checked_copies);
+  EXPECT_EQ(all.dropped, whole.dropped);
+}
+
+// Marked triangles (the northern cap of the sphere), on a chart that squeezes the tiles everywhere:
+// no kept copy on them clashes with any kept copy, on them or beside them (brute force); elsewhere,
+// away from the seams, clashes are left, so the marking is what made the cap clash-free.
+TEST(MembranePruning, CheckedTrianglesAndTheirNeighboursAreClashFree) {
+  auto sc = dense(sphere_scene());
+  sc->k *= 1.6;  // tiles squeezed to 5/8 of their size on the surface: copies clash everywhere
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  PruningSettings settings;
+  settings.whole_surface_budget = 0;
+  settings.checked_triangles.assign(sc->mesh.triangles.size(), 0);
+  std::size_t marked = 0;
+  for (std::size_t t = 0; t < sc->mesh.triangles.size(); ++t) {
+    const dvec3 c = (sc->mesh.corner_position(t, 0) + sc->mesh.corner_position(t, 1) + sc->mesh.corner_position(t, 2)) / 3.0;
+    if (c.z > 0.5 * 500.0) settings.checked_triangles[t] = 1, ++marked;
+  }
+  ASSERT_GT(marked, 10u);
+  const PrunedMembrane p = nano::shell::prune_membrane(map, sc->mesh, sc->types, settings, 2);
+  EXPECT_EQ(p.checked_triangles, marked);
+  const std::vector<Copy> all = owned_copies(map);
+  std::vector<Copy> kept;
+  for (const Copy& c : all)
+    if (!dropped(p, c)) kept.push_back(c);
+  std::size_t on_cap = 0, elsewhere = 0;
+  for (const auto& [i, j] : clashes(kept, sc->types, 0.6))
+    (settings.checked_triangles[kept[i].triangle] || settings.checked_triangles[kept[j].triangle] ? on_cap : elsewhere)++;
+  EXPECT_EQ(on_cap, 0u) << "kept copies clash on or beside the checked triangles";
+  EXPECT_GT(elsewhere, 0u) << "the rest of the sphere was not checked, or the test proves nothing";
+  // Without the marks, the cap keeps clashing copies too: the marks are what cleared it.
+  PruningSettings unmarked = settings;
+  unmarked.checked_triangles.clear();
+  const PrunedMembrane q = nano::shell::prune_membrane(map, sc->mesh, sc->types, unmarked, 2);
+  std::vector<Copy> kept_unmarked;
+  for (const Copy& c : all)
+    if (!dropped(q, c)) kept_unmarked.push_back(c);
+  std::size_t cap_unmarked = 0;
+  for (const auto& [i, j] : clashes(kept_unmarked, sc->types, 0.6))
+    cap_unmarked += settings.checked_triangles[kept_unmarked[i].triangle] && settings.checked_triangles[kept_unmarked[j].triangle];
+  EXPECT_GT(cap_unmarked, 0u);
+}
+
 // limit_copies keeps exactly N of a type, a subset of what pruning kept, spread out: farthest-point
 // sampling keeps every other copy nearer to a kept one than any two kept copies are to each other.
 TEST(MembranePruning, LimitCopiesKeepsASpreadSubset) {
