@@ -23,7 +23,7 @@ KNOWN = {
     # The nanobake command functions are declared in bake/commands.hpp (nano::bake) and defined
     # beside the code they drive.
     "bake/structure/inspect_command.cpp": "defines a command declared in bake/commands.hpp",
-    "bake/mesh/check_mesh_command.cpp": "defines a command declared in bake/commands.hpp",
+    "bake/scene_bake/check_mesh_command.cpp": "defines a command declared in bake/commands.hpp",
     "bake/mesh/make_mesh_command.cpp": "defines a command declared in bake/commands.hpp",
     "bake/scene_bake/bake_command.cpp": "defines a command declared in bake/commands.hpp",
 }

@@ -81,8 +81,17 @@ std::vector<double> distances_along_normals(const ProxyMesh& mesh, bool inward) 
     const Kernel::Vector_3 n = triangles[t].supporting_plane().orthogonal_vector();
     const Point3 centre = CGAL::centroid(triangles[t]);
     const Kernel::Ray_3 ray(centre, inward ? -n : n);
-    const auto self = triangles.begin() + std::ptrdiff_t(t);
-    const auto hit = tree.first_intersection(ray, [&](std::vector<Triangle3>::const_iterator id) { return id == self; });
+    // Its neighbours (sharing a corner) are not the other side: a ray from a long thin triangle's
+    // centroid can graze the next one at once, a fold the creases measure, not a wall.
+    const Triangle& own = mesh.triangles[t];
+    const auto neighbour = [&](std::vector<Triangle3>::const_iterator id) {
+      const Triangle& other = mesh.triangles[std::size_t(id - triangles.begin())];
+      for (const std::uint32_t a : own)
+        for (const std::uint32_t b : other)
+          if (a == b) return true;
+      return false;
+    };
+    const auto hit = tree.first_intersection(ray, neighbour);
     distances[t] = INFINITY;
     if (!hit) continue;
     if (const Point3* p = boost::get<Point3>(&hit->first)) distances[t] = std::sqrt(CGAL::squared_distance(centre, *p));

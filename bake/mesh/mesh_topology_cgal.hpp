@@ -30,7 +30,7 @@ struct SolidProperties {
 SolidProperties analyse_solid(const ProxyMesh& mesh, bool check_intersections);
 
 // Per triangle, the distance from its centroid along its face normal — inward (−n) or outward (+n) —
-// to the first other triangle the ray meets: the local thickness of a closed outward mesh inside it,
+// to the first triangle not sharing a corner with it that the ray meets: the local thickness of a closed outward mesh inside it,
 // or the width of the gap outside it. INFINITY when the ray leaves the mesh; 0 for a degenerate face.
 std::vector<double> distances_along_normals(const ProxyMesh& mesh, bool inward);
 

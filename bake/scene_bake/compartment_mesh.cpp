@@ -73,10 +73,33 @@ double enclosed_volume(const mesh::ProxyMesh& m) {
 }
 
 
-// Prepares the mesh for its membrane (bake/mesh/membrane_fit.hpp): remeshed when needed, refused
-// with every place a bilayer cannot follow named, and the size at which it would.
-void fit_for_membrane(CompartmentMesh& result, const scene::CompartmentDescription& compartment, double thickness) {
+// The repair stage: what "repair" mends, said in the report.
+void repair(CompartmentMesh& result, const scene::CompartmentDescription& compartment) {
+  try {
+    result.repair = mesh::repair_mesh(result.mesh);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
+  }
+}
+
+// The size stage: "diameter" or "volume" after the units and the compartment's scale.
+void size(CompartmentMesh& result, const scene::CompartmentDescription& compartment) {
   const scene::MeshSource& source = compartment.mesh;
+  double factor = 1.0;
+  if (source.diameter) {
+    factor = *source.diameter / mesh::largest_side(result.mesh);
+  } else if (source.volume) {
+    const double volume = enclosed_volume(result.mesh);
+    if (!(volume > 0))
+      throw InputError(result.origin, "", "\"volume\" needs a closed, outward mesh; this one encloses " + std::to_string(volume) +
+                                              " Å³ (compartment '" + compartment.name + "')");
+    factor = std::cbrt(*source.volume / volume);
+  }
+  scale_mesh(result.mesh, factor);
+  result.scale *= factor;
+}
+
+mesh::RemeshPolicy remesh_policy(const scene::MeshSource& source) {
   mesh::RemeshPolicy policy;
   policy.mode = source.remesh == scene::MeshSource::Remesh::off     ? mesh::RemeshPolicy::Mode::off
                 : source.remesh == scene::MeshSource::Remesh::edge ? mesh::RemeshPolicy::Mode::edge
@@ -84,9 +107,15 @@ void fit_for_membrane(CompartmentMesh& result, const scene::CompartmentDescripti
   // The mesh's own UVs, kept as the scene asks, are not remeshed away.
   if (source.uv == scene::MeshSource::Uv::keep) policy.mode = mesh::RemeshPolicy::Mode::off;
   policy.edge = source.remesh_edge;
+  return policy;
+}
+
+// The prepare and judge stages (bake/mesh/membrane_fit.hpp): remeshed when needed, refused with every
+// place a bilayer cannot follow named, and the size at which it would (or the defect to mend).
+void fit_for_membrane(CompartmentMesh& result, const scene::CompartmentDescription& compartment, double thickness) {
   mesh::MembraneFit fit;
   try {
-    fit = mesh::fit_membrane(result.mesh, result.report, thickness, policy);
+    fit = mesh::fit_membrane(result.mesh, result.report, thickness, remesh_policy(compartment.mesh));
   } catch (const std::invalid_argument& e) {
     std::vector<mesh::MeshProblem> shape_problems;
     for (const mesh::MeshProblem& p : result.report.problems)
@@ -96,45 +125,17 @@ void fit_for_membrane(CompartmentMesh& result, const scene::CompartmentDescripti
   }
   result.remesh = fit.remesh;
   result.thinnest_wall = fit.thinnest_wall;
+  result.narrowest_gap = fit.narrowest_gap;
   result.bilayer_thickness = thickness;
   if (!fit.fits())
     throw InputError(result.origin, "compartment '" + compartment.name + "' membrane",
-                     mesh::describe_tight_features(fit, thickness, source.diameter));
+                     mesh::describe_tight_features(fit, thickness, compartment.mesh.diameter, result.scale));
 }
 
-}  // namespace
-
-CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment,
-                                      std::optional<double> bilayer_thickness,
-                                      const std::function<void(const mesh::ProxyMesh&)>& check_size) {
+// The chart stage: the baker's UVs where the mesh has none usable (or the scene asks), then the
+// mesh checked as the shells will use it.
+void chart(CompartmentMesh& result, const scene::CompartmentDescription& compartment) {
   const scene::MeshSource& source = compartment.mesh;
-  CompartmentMesh result = read_or_generate(source);
-  result.scale = source.unit * compartment.scale;
-  scale_mesh(result.mesh, result.scale);
-  // Repair before a target size: a volume needs the holes closed.
-  if (source.repair) {
-    try {
-      result.repair = mesh::repair_mesh(result.mesh);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
-    }
-  }
-  if (source.diameter) {
-    const double factor = *source.diameter / mesh::largest_side(result.mesh);
-    scale_mesh(result.mesh, factor);
-    result.scale *= factor;
-  } else if (source.volume) {
-    const double volume = enclosed_volume(result.mesh);
-    if (!(volume > 0))
-      throw InputError(result.origin, "", "\"volume\" needs a closed, outward mesh; this one encloses " + std::to_string(volume) +
-                                              " Å³ (compartment '" + compartment.name + "')");
-    const double factor = std::cbrt(*source.volume / volume);
-    scale_mesh(result.mesh, factor);
-    result.scale *= factor;
-  }
-  if (check_size) check_size(result.mesh);
-  result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
-  if (bilayer_thickness) fit_for_membrane(result, compartment, *bilayer_thickness);
   bool uv_trouble = false;
   std::vector<mesh::MeshProblem> shape_problems;
   for (const mesh::MeshProblem& p : result.report.problems) {
@@ -146,7 +147,7 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
   if (!generate) {
     if (!result.report.usable()) refuse(result, compartment.name, result.report.problems);
     result.uv_origin = "from the mesh";
-    return result;
+    return;
   }
   // Charts need a sound surface: report its own problems first, not their consequences for UVs.
   if (!shape_problems.empty()) refuse(result, compartment.name, shape_problems);
@@ -161,6 +162,24 @@ CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compa
   }
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
   if (!result.report.usable()) refuse(result, compartment.name, result.report.problems);
+}
+
+}  // namespace
+
+CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment,
+                                      std::optional<double> bilayer_thickness,
+                                      const std::function<void(const mesh::ProxyMesh&)>& check_size, MeshStage until) {
+  CompartmentMesh result = read_or_generate(compartment.mesh);
+  result.scale = compartment.mesh.unit * compartment.scale;
+  scale_mesh(result.mesh, result.scale);
+  // Repair before a target size: a volume needs the holes closed.
+  if (compartment.mesh.repair) repair(result, compartment);
+  size(result, compartment);
+  if (check_size) check_size(result.mesh);
+  result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
+  if (bilayer_thickness) fit_for_membrane(result, compartment, *bilayer_thickness);
+  if (until == MeshStage::judged) return result;
+  chart(result, compartment);
   return result;
 }
 

@@ -1,6 +1,9 @@
 #pragma once
-// A compartment's proxy mesh in compartment space: read or generated as the scene says, scaled,
-// and checked — an unusable mesh stops the bake with every problem listed, naming the file.
+// A compartment's proxy mesh in compartment space, through stages each run once on the output of the
+// one before: read (or generated) → repaired (when the scene asks) → sized → prepared for its
+// membrane and judged (mesh/membrane_fit.hpp: remeshed when it needs it) → charted (UVs made when it
+// has none usable) → checked. An unusable mesh stops the bake with every problem listed, naming the
+// file. `nanobake check-mesh` runs the same stages and stops after the judgement.
 #include <functional>
 #include <optional>
 #include <string>
@@ -26,10 +29,14 @@ struct CompartmentMesh {
   std::optional<mesh::RemeshReport> remesh;  // when the baker remeshed it for its membrane
   double bilayer_thickness = 0.0;           // Å, of the membrane that lines it (0: none)
   double thinnest_wall = 0.0;               // Å, where a membrane lines it (mesh::MembraneFit)
+  double narrowest_gap = 0.0;               // Å, likewise
   std::string uv_origin;    // "from the mesh" or why the baker made them
   bool on_storage_grids = false;  // put_on_storage_grids succeeded: Draco can store it exactly
   std::string storage;      // what put_on_storage_grids did, or why it left the mesh exact
 };
+
+// The last stage load_compartment_mesh runs: the judgement (check-mesh), or the charts (the bake).
+enum class MeshStage { judged, charted };
 
 // Reads or generates the mesh, scales it (units, then the compartment's scale or the mesh's target
 // diameter or volume), remeshes it for a membrane `bilayer_thickness` Å thick when its creases or
@@ -40,7 +47,8 @@ struct CompartmentMesh {
 // excepted): the baker's feasibility checks refuse a mesh too large for float coordinates there.
 CompartmentMesh load_compartment_mesh(const scene::CompartmentDescription& compartment,
                                       std::optional<double> bilayer_thickness = std::nullopt,
-                                      const std::function<void(const mesh::ProxyMesh&)>& check_size = {});
+                                      const std::function<void(const mesh::ProxyMesh&)>& check_size = {},
+                                      MeshStage until = MeshStage::charted);
 
 // Area, enclosed volume and reach from the origin of a mesh, for the feasibility checks.
 scene::CompartmentMeasure measure_compartment(const mesh::ProxyMesh& mesh);

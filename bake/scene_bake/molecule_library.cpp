@@ -1,8 +1,12 @@
 #include "bake/scene_bake/molecule_library.hpp"
 
+#include "bake/mesh/membrane_fit.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+
+#include <glm/geometric.hpp>
 
 #include "bake/structure/field_parsing.hpp"
 #include "bake/structure/structure_reader.hpp"
@@ -142,6 +146,23 @@ double bilayer_thickness(const BakedLipidPatch& patch, const std::vector<BakedMo
   extend(patch);
   for (const BakedLipidPatch& species : patch.mix) extend(species);
   return hi > lo ? hi - lo : 0.0;
+}
+
+double membrane_bilayer_thickness(const scene::MembraneDescription& membrane, const std::optional<BakedLipidPatch>& patch,
+                                  const std::vector<BakedMolecule>& library) {
+  if (patch) return bilayer_thickness(*patch, library);
+  if (!membrane.lipids) return mesh::kDefaultBilayerThickness;
+  // The outer copy stands up at +offset, the inner one mirrored at −offset.
+  const BakedMolecule& lipid = library.at(membrane.lipids->molecule.index);
+  double lo = INFINITY, hi = -INFINITY;
+  for (const structure::Atom& a : lipid.atoms) {
+    const double along = glm::dot(a.position, lipid.up);
+    lo = std::min(lo, along - a.radius);
+    hi = std::max(hi, along + a.radius);
+  }
+  const double offset = membrane.lipids->leaflet_offset;
+  const double top = std::max(offset + hi, -(offset + lo));
+  return hi > lo ? 2.0 * top : 0.0;
 }
 
 }  // namespace nano::scene_bake

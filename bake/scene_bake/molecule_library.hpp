@@ -2,6 +2,7 @@
 // The scene's molecule types, read from their structure files and put into molecule space:
 // origin at the centroid, so a rotation about the origin turns a molecule in place and the
 // bounding radius about the origin is the tight one the tile packer and the shell sizes need.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,5 +57,12 @@ BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description,
 // The bilayer's thickness (Å): from its lowest to its highest atom surface across the patch and its
 // mixed species, as laid (z from the mid-plane).
 double bilayer_thickness(const BakedLipidPatch& patch, const std::vector<BakedMolecule>& library);
+
+// The bilayer a membrane lines its meshes with (Å), which their shape is judged against: its lipid
+// patch's, its lipid fill's (the lipid standing on both sides of the mid-plane at its offset), or,
+// with neither, a POPC bilayer's (mesh::kDefaultBilayerThickness): proteins alone still stand in a
+// membrane that thick.
+double membrane_bilayer_thickness(const scene::MembraneDescription& membrane, const std::optional<BakedLipidPatch>& patch,
+                                  const std::vector<BakedMolecule>& library);
 
 }  // namespace nano::scene_bake

@@ -14,6 +14,7 @@
 #include "bake/scene_bake/compartment_mesh.hpp"
 #include "bake/scene_bake/core_bake.hpp"
 #include "bake/scene_bake/membrane_bake.hpp"
+#include "bake/scene_bake/membrane_surface.hpp"
 #include "bake/scene_bake/molecule_measures.hpp"
 #include "bake/scene_bake/named_totals.hpp"
 #include "bake/scene_bake/provenance.hpp"
@@ -25,9 +26,6 @@
 
 namespace nano::scene_bake {
 namespace {
-
-// A membrane of proteins alone still lines its surface about as thick as a lipid bilayer (Å).
-constexpr double kBilayerThicknessWithoutPatch = 40.0;
 
 // Every random choice of the bake derives from the scene seed and a tag naming what it seeds.
 enum class SeedTag : std::uint64_t { membrane_tiles = 1, soluble_cubes, membrane_recipe, soluble_recipe };
@@ -68,6 +66,8 @@ private:
 
 struct CompartmentBake {
   CompartmentMesh mesh;
+  MeshSurfacePlan surface;  // how its membrane's tiles meet it (membrane_surface.hpp)
+  bool surface_whole = true;  // its membrane is checked copy by copy everywhere
   std::optional<BakedMembrane> membrane;
   std::optional<BakedCore> core;
   double shell_margin = 0.0;  // how far copies reach outside the mesh (Å)
@@ -116,6 +116,8 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
       s.inner_protein_um2 += copies * tiles::leaflet_footprint(types[in.type], in, tiles::inner_leaflet(kLeafletHalfThickness));
     }
   s.pruned_everywhere = m.pruning.whole_surface;
+  s.checked_triangles = m.pruning.checked_triangles;
+  s.triangles = mesh.triangles.size();
   s.checked_copies = m.pruning.checked_copies;
   s.atom_tests = m.pruning.atom_tests;
   return s;
@@ -267,10 +269,9 @@ Molecules load_molecules(const scene::SceneDescription& scene) {
 
 CompartmentMesh load_mesh(const BakeInputs& in, const Molecules& molecules, std::size_t c) {
   std::optional<double> thickness;
-  if (const auto& membrane = in.scene.compartments[c].membrane) {
-    const auto& patch = molecules.patches[membrane->index];
-    thickness = patch ? bilayer_thickness(*patch, molecules.library) : kBilayerThicknessWithoutPatch;
-  }
+  if (const auto& membrane = in.scene.compartments[c].membrane)
+    thickness = membrane_bilayer_thickness(in.scene.membranes[membrane->index], molecules.patches[membrane->index],
+                                           molecules.library);
   CompartmentMesh loaded = load_compartment_mesh(in.scene.compartments[c], thickness, [&](const mesh::ProxyMesh& m) {
     scene::CompartmentMeasure measure = measure_compartment(m);
     measure.bilayer_thickness = thickness.value_or(0.0);
@@ -311,32 +312,38 @@ BakeEstimate estimate(const BakeInputs& in, const Molecules& molecules, const st
                       const MeshMeasures& measured) {
   std::vector<EstimatedMesh> meshes;
   for (std::size_t c = 0; c < compartments.size(); ++c)
-    meshes.push_back({measured.measures[c], compartments[c].mesh.report.seam_length});
+    meshes.push_back({measured.measures[c], compartments[c].mesh.report.seam_length,
+                      compartments[c].surface.area > 0.0 ? compartments[c].surface.checked_area / compartments[c].surface.area : 1.0});
   return estimate_bake(in.scene, molecules.library, molecules.patches, meshes, in.threads);
 }
 
-// A membrane's tiles must survive the most anisotropic chart, the most curved surface and the most
-// tilted normals among the meshes that wear it (5% on the curvature for what the corner-normal
-// estimate misses). Small membranes (a virion's) are pruned on their real surface everywhere
-// (membrane_pruning.hpp), so their tiles are packed rigid, as dense as the patch; a large one (a
-// cell's 10^8 lipids) is pruned only along its seams and its tiles must survive what its charts do
-// elsewhere.
-std::vector<tiles::SurfaceDistortion> membrane_surfaces(const scene::SceneDescription& scene, const Molecules& molecules,
-                                                        const std::vector<CompartmentBake>& compartments,
-                                                        const MeshMeasures& measured) {
+// Each membrane planned over the meshes that wear it (membrane_surface.hpp): small membranes (a
+// virion's) are packed rigid, as dense as the patch, and checked copy by copy on their real surface
+// everywhere; a large one (a cell's 10^8 lipids) is packed to survive what its charts do and checked
+// along its seams and where its meshes distort more than tiles can be packed for. Each compartment
+// keeps its mesh's part of the plan; the packing bounds are returned per membrane.
+std::vector<tiles::SurfaceDistortion> plan_membranes(const BakeInputs& in, const Molecules& molecules,
+                                                     std::vector<CompartmentBake>& compartments) {
+  const scene::SceneDescription& scene = in.scene;
   std::vector<tiles::SurfaceDistortion> surfaces(scene.membranes.size());
-  for (std::size_t c = 0; c < scene.compartments.size(); ++c)
-    if (const auto& membrane = scene.compartments[c].membrane) {
-      const mesh::ProxyMesh& m = compartments[c].mesh.mesh;
-      if (membrane_copies_for_pruning(measured.measures[c].area, scene.membranes[membrane->index],
-                                      molecules.patches[membrane->index]) <= shell::PruningSettings{}.whole_surface_budget)
-        continue;
-      tiles::SurfaceDistortion& s = surfaces[membrane->index];
-      s.lateral_stretch = std::max(s.lateral_stretch, static_cast<float>(mesh::chart_anisotropy(m) - 1.0));
-      s.curvature = std::max(s.curvature, static_cast<float>(1.05 * mesh::normal_turn_rate(m)));
-      s.tilt = std::max(s.tilt, static_cast<float>(mesh::largest_smooth_normal_tilt(m, kMembraneSurfaceSmoothness)));
-      s.max_rise = std::max(s.max_rise, static_cast<float>(mesh::largest_facet_sag(m)));
+  for (std::size_t m = 0; m < scene.membranes.size(); ++m) {
+    std::vector<std::size_t> wearing;
+    std::vector<const mesh::ProxyMesh*> meshes;
+    for (std::size_t c = 0; c < scene.compartments.size(); ++c)
+      if (const auto& membrane = scene.compartments[c].membrane; membrane && membrane->index == m) {
+        wearing.push_back(c);
+        meshes.push_back(&compartments[c].mesh.mesh);
+      }
+    if (wearing.empty()) continue;
+    MembraneSurfacePlan plan =
+        plan_membrane_surface(meshes, membrane_copies_for_pruning(1.0, scene.membranes[m], molecules.patches[m]),
+                              kMembraneSurfaceSmoothness, double(shell::PruningSettings{}.whole_surface_budget), in.threads);
+    surfaces[m] = plan.pack_for;
+    for (std::size_t k = 0; k < wearing.size(); ++k) {
+      compartments[wearing[k]].surface = std::move(plan.meshes[k]);
+      compartments[wearing[k]].surface_whole = plan.whole_surface;
     }
+  }
   return surfaces;
 }
 
@@ -381,7 +388,7 @@ BakedMembrane bake_shell(const BakeInputs& in, const Molecules& molecules, const
   for (const scene::MembraneProtein& p : in.scene.membranes[membrane].proteins)
     if (p.per_compartment) per_compartment.emplace_back(static_cast<std::uint32_t>(p.molecule.index), *p.per_compartment);
   try {
-    return bake_membrane(bake.mesh.mesh, sets.membrane[membrane], molecules.library,
+    return bake_membrane(bake.mesh.mesh, sets.membrane[membrane], {bake.surface, bake.surface_whole}, molecules.library,
                          derive_seed(in.seed, SeedTag::membrane_recipe, c), in.threads, per_compartment);
   } catch (const InputError& e) {
     // What the membrane cannot do on this mesh is the mesh's file's business, not an anonymous input's.
@@ -587,13 +594,13 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
                         [&](std::size_t c) -> const mesh::ProxyMesh& { return compartments[c].mesh.mesh; });
   check_placements(scene, measured);
 
+  const std::vector<tiles::SurfaceDistortion> surfaces = plan_membranes(in, molecules, compartments);
   baked.estimate = estimate(in, molecules, compartments, measured);
   baked.cpu_seconds_at_estimate = process_cpu_seconds();
   if (options.max_memory && baked.estimate.peak_bytes > *options.max_memory)
     throw InputError(scene.source.string(), "", over_memory_budget(baked.estimate, *options.max_memory));
   if (options.estimate_only) return baked;
 
-  const std::vector<tiles::SurfaceDistortion> surfaces = membrane_surfaces(scene, molecules, compartments, measured);
   const TileSets sets = clock.run("tile sets", [&] { return bake_tile_sets(in, molecules, surfaces); });
   summarise_tile_sets(baked, scene, sets, surfaces);
 
@@ -617,6 +624,23 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
 }
 
 }  // namespace
+
+std::optional<double> compartment_bilayer_thickness(const scene::SceneDescription& scene, std::size_t c) {
+  const auto& membrane = scene.compartments.at(c).membrane;
+  if (!membrane) return std::nullopt;
+  const scene::MembraneDescription& m = scene.membranes[membrane->index];
+  std::vector<BakedMolecule> library;
+  std::optional<BakedLipidPatch> patch;
+  if (m.lipid_patch) {
+    patch = load_lipid_patch(*m.lipid_patch, 0, library);
+    for (const scene::LipidPatchDescription& species : m.lipid_mix) patch->mix.push_back(load_lipid_patch(species, 0, library));
+  } else if (m.lipids) {
+    // The fill's molecule at its library index, as membrane_bilayer_thickness reads it.
+    library.resize(m.lipids->molecule.index + 1);
+    library[m.lipids->molecule.index] = load_baked_molecule(scene.molecules[m.lipids->molecule.index], m.lipids->molecule.index);
+  }
+  return membrane_bilayer_thickness(m, patch, library);
+}
 
 double MembraneSummary::fraction_of_real_bilayer_beside_proteins() const {
   const double room = std::max(0.0, 2.0 * area_um2 - outer_protein_um2 - inner_protein_um2);  // both leaflets

@@ -34,6 +34,10 @@ struct BakeOptions {
   bool estimate_only = false;  // stop after the estimate (--dry-run): BakedScene holds only it
 };
 
+// The bilayer the bake lines compartment `c` of `scene` with (molecule_library.hpp:
+// membrane_bilayer_thickness), nullopt when it has no membrane; reads the membrane's lipids only.
+std::optional<double> compartment_bilayer_thickness(const scene::SceneDescription& scene, std::size_t c);
+
 // A real bilayer's lipids per µm² of membrane: two leaflets of one lipid per ~0.66 nm²
 // (phosphatidylcholine; BIOLOGY.md section 1.4 cross-checks 0.5 nm² with cholesterol mixed in).
 inline constexpr double kRealBilayerLipidsPerUm2 = 2.0 / 0.66e-6;
@@ -45,8 +49,9 @@ struct MembraneSummary {
   std::vector<std::pair<std::string, std::uint64_t>> dropped;          // molecule -> copies dropped (clashing, or beyond a count)
   std::vector<std::pair<std::string, std::uint64_t>> alternates;       // molecule -> alternates shown where a copy was dropped
   std::vector<std::pair<std::string, std::uint64_t>> unfit;            // molecule -> proteins left out where no prism held them
-  bool pruned_everywhere = false;                                      // else along UV seams only
+  bool pruned_everywhere = false;                                      // else along UV seams and on checked triangles
   std::uint64_t checked_copies = 0, atom_tests = 0;
+  std::uint64_t checked_triangles = 0, triangles = 0;  // triangles whose copies were all checked, of all
   std::uint64_t outer_lipids = 0, inner_lipids = 0;  // by leaflet (the outer one faces the mesh normals)
   // Leaflet area the kept proteins take (tiles::leaflet_footprint within kLeafletHalfThickness of
   // the mid-plane), µm²: a real bilayer holds its lipids in the rest.

@@ -53,14 +53,14 @@ elseif(CASE STREQUAL "make_and_check_rbc_json")
   endif()
 
 elseif(CASE STREQUAL "check_membrane_fit")
-  # A unit cube: at 150 Å its 90° creases stand on walls too thin to round for a 40 Å bilayer
-  # (5 bilayers of wall needed: 200 Å); at 400 Å it fits, remeshed, and --write-prepared writes that mesh.
+  # A unit cube: at 150 Å rounding its 90° creases for a 40 Å bilayer would take half its area; the
+  # size it names is checked; at 400 Å it fits, remeshed, and --write-prepared writes that mesh.
   file(WRITE "${WORK}/cube.obj" "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
              "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
   run(1 check-mesh "${WORK}/cube.obj" --diameter 150 --bilayer 40 --write-prepared "${WORK}/small.obj")
-  expect_match("${out}" "cube.obj: 12 triangles where a bilayer 40.0 Å thick cannot follow the surface")
-  expect_match("${out}" "a 90° crease on a wall 150.0 Å thick")
-  expect_match("${out}" "would take the bilayer at \"diameter\": 200 Å or more")
+  expect_match("${out}" "cube.obj:compartment 'check-mesh' membrane: 1 place where a bilayer 40.0 Å thick cannot follow the surface")
+  expect_match("${out}" "the whole mesh: rounding its creases for the bilayer takes")
+  expect_match("${out}" "would take the bilayer at \"diameter\": [0-9]+ Å or more \\(checked: at that size it fits\\)")
   expect_empty_dir_but("${WORK}" "cube.obj")
   run(0 check-mesh "${WORK}/cube.obj" --diameter 400 --bilayer 40 --write-prepared "${WORK}/prepared.obj")
   expect_match("${out}" "remeshed \\(neighbouring faces turn by up to 90.0°")
