@@ -30,6 +30,7 @@ RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thic
     options.edge = std::max(0.5 * bilayer_thickness, edge_for_count);
   }
   options.max_distance = std::max(bilayer_thickness, options.edge) + 0.25 * options.edge;
+  options.max_edge = edge ? options.edge : kCoarsestEdgeFactor * options.edge;  // the scene's edge is kept everywhere
   options.crease_radius = std::max(kCreaseRadiusBilayers * bilayer_thickness, options.edge);
   return options;
 }
@@ -70,7 +71,10 @@ nlohmann::json to_json(const RemeshReport& r) {
   return {{"reason", r.reason},
           {"triangles_in", r.triangles_in},
           {"triangles_out", r.triangles_out},
+          {"triangles_at_uniform_edge", r.triangles_uniform},
           {"edge_A", r.edge},
+          {"finest_edge_A", r.finest_edge},
+          {"coarsest_edge_A", r.coarsest_edge},
           {"distance_bound_A", r.distance_bound},
           {"max_distance_A", r.max_distance},
           {"largest_crease_in_degrees", r.largest_crease_in},
@@ -85,7 +89,9 @@ nlohmann::json to_json(const RemeshReport& r) {
 
 std::string describe(const RemeshReport& r) {
   std::string s = "remeshed (" + r.reason + "): " + std::to_string(r.triangles_in) + " -> " +
-                  std::to_string(r.triangles_out) + " triangles" + number_text(", edge %.1f Å", r.edge);
+                  std::to_string(r.triangles_out) + " triangles" + number_text(", edges %.1f", r.finest_edge) +
+                  number_text("-%.1f Å", r.coarsest_edge) + number_text(" (%.1f Å at creases", r.edge) +
+                  " would give " + std::to_string(r.triangles_uniform) + " everywhere)";
   s += number_text("; creases %.1f°", r.largest_crease_in) + number_text(" -> %.1f°", r.largest_crease_out);
   s += number_text("; within %.1f Å", r.max_distance) + number_text(" of the input (bound %.1f Å)", r.distance_bound);
   s += number_text("; normals turned by up to %.1f°", r.largest_normal_deviation);

@@ -3,9 +3,9 @@
 // along the surface's normals, so a crease sharper than the bilayer can follow, or triangles coarse
 // against the surface's curvature, leave molecules no prism that contains them. The baker remeshes
 // such a mesh itself — isotropic remeshing (CGAL Polygon Mesh Processing) to an edge derived from the
-// membrane, then non-shrinking (Taubin) smoothing that rounds creases while every vertex is held
-// within a stated distance of the user's surface — and reports what it changed. No CGAL type crosses
-// this header.
+// membrane, smoothing that rounds creases while every vertex is held within a stated distance of the
+// user's surface, finer triangles where a crease is still sharp, coarser ones where the surface is
+// flat enough — and reports what it changed. No CGAL type crosses this header.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -19,15 +19,20 @@ namespace nano::mesh {
 
 // Creases the shells take without remeshing: neighbouring faces' normals at most this far apart.
 inline constexpr double kRemeshCreaseDegrees = 20.0;
-// The remeshed surface never has more triangles than this (the edge grows instead).
-inline constexpr std::size_t kRemeshMaxTriangles = 400000;
+// The first, uniform remeshing pass makes at most this many triangles (the edge grows instead;
+// creases get finer ones after it, flat parts coarser).
+inline constexpr std::size_t kRemeshMaxTriangles = 150000;
 // Creases are rounded over this many bilayer thicknesses.
 inline constexpr double kCreaseRadiusBilayers = 1.5;
+
+// Where the surface is flat, triangles grow up to this many times the edge.
+inline constexpr double kCoarsestEdgeFactor = 16.0;
 
 struct RemeshOptions {
   double edge = 0.0;          // target edge length, Å (> 0)
   double max_distance = 0.0;  // Å: the remeshed surface (vertices, edge midpoints, centroids) stays this close to the input (> 0)
   double crease_radius = 0.0; // Å: creases are rounded over about this radius (0: not smoothed)
+  double max_edge = 0.0;      // Å: flat enough regions are coarsened up to this edge (<= edge: uniform)
 };
 
 // The options the baker derives for a membrane `bilayer_thickness` Å thick on `mesh`: creases rounded
@@ -52,7 +57,10 @@ std::optional<std::string> remesh_reason(const ProxyMesh& mesh);
 struct RemeshReport {
   std::string reason;                      // why the baker remeshed (the scene's edge, or a crease)
   std::size_t triangles_in = 0, triangles_out = 0;
+  std::size_t triangles_uniform = 0;       // after the first, uniform pass at `edge` (what a uniform edge would give)
   double edge = 0.0;                       // target edge, Å
+  double finest_edge = 0.0;                // Å: around creases still sharp after rounding (edge / 2 or / 4)
+  double coarsest_edge = 0.0;              // Å: where the surface is flattest
   double distance_bound = 0.0;             // Å
   double largest_crease_in = 0.0;          // degrees between neighbouring faces
   double largest_crease_out = 0.0;
@@ -66,9 +74,11 @@ struct RemeshReport {
 // Remeshes `mesh` (closed, manifold, outward) in place: isotropic remeshing to options.edge, then
 // umbrella (Laplacian) smoothing of the vertices within crease_radius of an edge sharper than
 // kRemeshCreaseDegrees — 2·(crease_radius / edge)² steps, a diffusion over about that radius — every
-// vertex pulled back to within options.max_distance of the input surface after each step, and one
-// more remeshing pass to even the triangles. UVs are dropped (the
-// baker makes charts for the new surface) and normals recomputed. Throws std::invalid_argument when
+// vertex pulled back to within options.max_distance of the input surface after each step and the
+// smoothed faces remeshed every two; where a crease is still sharper, the faces around it remeshed
+// at half the edge and rounded again (twice at most); then, level by level, the faces whose corners'
+// surroundings turn by less than 0.14 rad per edge remeshed at twice the edge, up to options.max_edge.
+// UVs are dropped (the baker makes charts for the new surface) and normals recomputed. Throws std::invalid_argument when
 // the triangles do not form a closed polygon mesh or the options are not positive.
 RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason);
 

@@ -37,6 +37,13 @@ constexpr int kHoldRounds = 6;
 constexpr double kHoldOvershoot = 1.5;  // pull a little past the excess: neighbours move too
 constexpr double kExtraStepGainDegrees = 0.5;  // per two extra steps
 constexpr int kRemeshIterations = 3;
+constexpr int kRefineRounds = 2;
+// Neighbouring faces of a coarsened region turn by at most about this (rad: 8°, well under the 20°
+// the shells follow).
+constexpr double kTurnPerEdge = 0.14;
+// A coarser level is made only when it would remesh at least this many faces.
+constexpr std::size_t kCoarsenAtLeast = 64;
+constexpr int kBorderRings = 3;
 
 SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
   std::vector<Point> points;
@@ -140,12 +147,50 @@ double largest_crease(const SurfaceMesh& sm) {
   return largest;
 }
 
-// One remeshing pass (it projects onto the surface it is given, the smoothed one), then the vertices
-// held near the input again.
-void even_triangles(SurfaceMesh& sm, const Tree& input, const RemeshOptions& options) {
-  PMP::isotropic_remeshing(faces(sm), options.edge, sm, CGAL::parameters::number_of_iterations(1));
+// The faces with a corner among `marked` vertices.
+std::vector<SurfaceMesh::Face_index> faces_touching(const SurfaceMesh& sm, const std::vector<bool>& marked) {
+  std::vector<SurfaceMesh::Face_index> out;
+  for (SurfaceMesh::Face_index f : sm.faces())
+    for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(sm.halfedge(f), sm))
+      if (marked[std::size_t(v)]) {
+        out.push_back(f);
+        break;
+      }
+  return out;
+}
+
+// One remeshing pass over `patch` (it projects onto the surface it is given, the smoothed one), then
+// the vertices held near the input again. The patch's border edges are kept where they run (CGAL
+// treats them as constraints), so the rest of the surface is left as it is.
+void even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch, double edge, const Tree& input,
+                    const RemeshOptions& options) {
+  PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(1));
   sm.collect_garbage();
   hold_near(sm, input, vertex_bound(options));
+}
+
+// How fast the surface turns at each vertex (rad per Å): the largest angle between its normal and a
+// neighbour's over their distance, then the largest over its one-ring, so that a region's size is
+// set by its most curved corner.
+std::vector<double> vertex_turn_rates(const SurfaceMesh& sm) {
+  std::vector<Vector> normal(sm.number_of_vertices());
+  for (SurfaceMesh::Vertex_index v : sm.vertices()) normal[std::size_t(v)] = PMP::compute_vertex_normal(v, sm);
+  std::vector<double> rate(sm.number_of_vertices(), 0.0);
+  for (SurfaceMesh::Edge_index e : sm.edges()) {
+    const SurfaceMesh::Vertex_index a = sm.vertex(e, 0), b = sm.vertex(e, 1);
+    const double length = std::sqrt(CGAL::squared_distance(sm.point(a), sm.point(b)));
+    if (!(length > 0.0)) continue;
+    const double turn = std::acos(std::clamp(normal[std::size_t(a)] * normal[std::size_t(b)], -1.0, 1.0)) / length;
+    rate[std::size_t(a)] = std::max(rate[std::size_t(a)], turn);
+    rate[std::size_t(b)] = std::max(rate[std::size_t(b)], turn);
+  }
+  std::vector<double> ring = rate;
+  for (SurfaceMesh::Edge_index e : sm.edges()) {
+    const std::size_t a = std::size_t(sm.vertex(e, 0)), b = std::size_t(sm.vertex(e, 1));
+    ring[a] = std::max(ring[a], rate[b]);
+    ring[b] = std::max(ring[b], rate[a]);
+  }
+  return ring;
 }
 
 // Faces and edges of a coarse remeshing can bulge past the bound between vertices that keep it (a
@@ -178,6 +223,93 @@ void hold_faces_near(SurfaceMesh& sm, const Tree& input, double bound) {
   }
 }
 
+// Rounds the creases over the crease radius: a diffusion of the vertices near them, the umbrella
+// operator spreading a crease by about one edge per two steps of weight ½ (its variance grows by
+// w·edge² per step). Smoothing alone leaves a dimple at a vertex of valence 3 (a box's corner), so
+// every two steps a remeshing pass over the smoothed faces evens their triangles and valences; it
+// ends early once no crease is left sharper than the shells take. Returns the steps taken.
+int round_creases(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options, double edge, int max_steps) {
+  std::vector<Point> scratch;
+  const double rings = options.crease_radius / edge;
+  const int steps = std::min(max_steps, int(std::ceil(2.0 * rings * rings)));
+  // Past the diffusion over the radius, only what is still sharper than the shells take (a saddle
+  // where a hole meets a face) is smoothed on, up to kMaxExtraSteps more, while the sharpest crease
+  // keeps easing (edges coarse against the radius never get under 20°; the surface would only
+  // shrink to the bound).
+  double crease_before = INFINITY;
+  int done = 0;
+  while (done < steps + kMaxExtraSteps) {
+    const bool extra = done >= steps;
+    if (extra) {
+      const double crease = largest_crease(work);
+      if (crease > crease_before - kExtraStepGainDegrees) break;
+      crease_before = crease;
+    }
+    const std::vector<bool> marked =
+        extra ? near_creases(work, kRemeshCreaseDegrees, 1) : near_creases(work, kRemeshCreaseDegrees, 2 * int(std::ceil(rings)));
+    if (std::find(marked.begin(), marked.end(), true) == marked.end()) break;
+    for (int k = 0; k < 2; ++k) {
+      umbrella_step(work, marked, kSmoothingWeight, scratch);
+      hold_near(work, tree, vertex_bound(options));
+    }
+    done += 2;
+    even_triangles(work, faces_touching(work, marked), edge, tree, options);
+  }
+  return done;
+}
+
+// Where a crease is still sharper than the shells take (a box's corner, where three creases meet),
+// the faces around it are remeshed at half the edge and rounded again, twice at most.
+double refine_creases(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options, RemeshReport& report) {
+  double edge = options.edge;
+  for (int round = 0; round < kRefineRounds && largest_crease(work) > kRemeshCreaseDegrees; ++round) {
+    edge *= 0.5;
+    const std::vector<bool> zone = near_creases(work, kRemeshCreaseDegrees, int(std::ceil(options.crease_radius / edge)));
+    PMP::isotropic_remeshing(faces_touching(work, zone), edge, work, CGAL::parameters::number_of_iterations(2));
+    work.collect_garbage();
+    hold_near(work, tree, vertex_bound(options));
+    report.smoothing_steps += round_creases(work, tree, options, edge, kMaxSmoothingSteps / 4);
+  }
+  return edge;
+}
+
+// Where the surface is flat enough, coarser triangles: a vertex whose surroundings turn by κ rad/Å
+// takes edges up to kTurnPerEdge / κ, and the faces whose three corners all take twice the edge are
+// remeshed at it, level by level up to options.max_edge. The shells need no finer triangles where
+// neighbouring faces turn by less than the creases they follow; a cell's flat side needs no 30 Å edge.
+double coarsen(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options) {
+  double coarsest = options.edge;
+  for (double edge = 2.0 * options.edge; edge <= options.max_edge * (1.0 + 1e-9); edge *= 2.0) {
+    const std::vector<double> rate = vertex_turn_rates(work);
+    // The border between the levels runs where the surface is flat, kBorderRings rings from anything
+    // curved, so the long triangles CGAL fans onto its fine edges lie in one plane and make no crease.
+    std::vector<bool> fine(work.number_of_vertices(), false);
+    for (SurfaceMesh::Vertex_index v : work.vertices()) fine[std::size_t(v)] = rate[std::size_t(v)] * edge > kTurnPerEdge;
+    for (int ring = 0; ring < kBorderRings; ++ring) {
+      std::vector<bool> grown = fine;
+      for (SurfaceMesh::Edge_index e : work.edges()) {
+        const std::size_t a = std::size_t(work.vertex(e, 0)), b = std::size_t(work.vertex(e, 1));
+        if (fine[a] || fine[b]) grown[a] = grown[b] = true;
+      }
+      fine = std::move(grown);
+    }
+    std::vector<bool> coarse(fine.size());
+    for (std::size_t v = 0; v < fine.size(); ++v) coarse[v] = !fine[v];
+    std::vector<SurfaceMesh::Face_index> patch;
+    for (SurfaceMesh::Face_index f : work.faces()) {
+      bool all = true;
+      for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(work.halfedge(f), work)) all = all && coarse[std::size_t(v)];
+      if (all) patch.push_back(f);
+    }
+    if (patch.size() < kCoarsenAtLeast) break;
+    PMP::isotropic_remeshing(patch, edge, work, CGAL::parameters::number_of_iterations(2));
+    work.collect_garbage();
+    hold_near(work, tree, vertex_bound(options));
+    coarsest = edge;
+  }
+  return coarsest;
+}
+
 }  // namespace
 
 RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason) {
@@ -198,36 +330,12 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   SurfaceMesh work = input;
   PMP::isotropic_remeshing(faces(work), options.edge, work, CGAL::parameters::number_of_iterations(kRemeshIterations));
   work.collect_garbage();
-  // A diffusion over the crease radius: the umbrella operator spreads a crease by about one edge per
-  // two steps of weight ½ (its variance grows by w·edge² per step). Smoothing alone leaves a dimple
-  // at a vertex of valence 3 (a box's corner), so every two steps a remeshing pass evens the
-  // triangles and valences; it ends early once no crease is left sharper than the shells take.
-  std::vector<Point> scratch;
-  const double rings = options.crease_radius / options.edge;
-  const int steps = std::min(kMaxSmoothingSteps, int(std::ceil(2.0 * rings * rings)));
-  // Past the diffusion over the radius, only what is still sharper than the shells take (a saddle
-  // where a hole meets a face) is smoothed on, up to kMaxExtraSteps more.
-  double crease_before = INFINITY;
-  while (report.smoothing_steps < steps + kMaxExtraSteps) {
-    const bool extra = report.smoothing_steps >= steps;
-    // Past the diffusion, smoothing on pays only while the sharpest crease keeps easing (edges coarse
-    // against the radius never get under 20°; the surface would only shrink to the bound).
-    if (extra) {
-      const double crease = largest_crease(work);
-      if (crease > crease_before - kExtraStepGainDegrees) break;
-      crease_before = crease;
-    }
-    const std::vector<bool> marked =
-        extra ? near_creases(work, kRemeshCreaseDegrees, 1) : near_creases(work, kRemeshCreaseDegrees, 2 * int(std::ceil(rings)));
-    if (std::find(marked.begin(), marked.end(), true) == marked.end()) break;
-    for (int k = 0; k < 2; ++k) {
-      umbrella_step(work, marked, kSmoothingWeight, scratch);
-      hold_near(work, tree, vertex_bound(options));
-    }
-    report.smoothing_steps += 2;
-    even_triangles(work, tree, options);
-  }
-  even_triangles(work, tree, options);
+  report.triangles_uniform = work.number_of_faces();
+  report.smoothing_steps = round_creases(work, tree, options, options.edge, kMaxSmoothingSteps);
+  report.finest_edge = refine_creases(work, tree, options, report);
+  report.coarsest_edge = options.max_edge > options.edge ? coarsen(work, tree, options) : options.edge;
+  // What the borders between the levels still fold is refined and rounded like a crease.
+  report.finest_edge = std::min(report.finest_edge, refine_creases(work, tree, options, report));
   hold_faces_near(work, tree, options.max_distance);
   report.largest_crease_out = largest_crease(work);
   report.area_out = PMP::area(work);
