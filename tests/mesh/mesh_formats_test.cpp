@@ -149,18 +149,29 @@ TEST(OffReader, TextureCoordinatesAreKeptAsUvs) {
   }
 }
 
+// Twice the area of a triangle of the plane z = const, positive when counter-clockwise seen from +z.
+double twice_area_xy(const Corners& c) {
+  return (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
+}
+
 TEST(OffReader, PolygonsOfAnySize) {
   TempDir dir;
-  // A pentagon (fan from corner 0), the quad (shorter diagonal) and a triangle padded to a quad.
+  // A pentagon (area 5: cut along diagonals inside it, polygon_triangulation_test.cpp), the quad
+  // (shorter diagonal) and a triangle padded to a quad.
   const ProxyMesh mesh = read_proxy_mesh(dir.write("p.off",
       "OFF\n9 3 0\n"
       "0 0 9\n2 0 9\n3 1 9\n1 2 9\n-1 1 9\n"
       "0 0 0\n2 0 0\n3 1 0\n0 1 0\n"
       "5 0 1 2 3 4\n4 5 6 7 8\n4 5 6 7 7\n"));
   ASSERT_EQ(mesh.triangles.size(), 6u);
-  EXPECT_EQ(mesh.corner_position(0, 2), glm::dvec3(3, 1, 9));
-  EXPECT_EQ(mesh.corner_position(2, 0), glm::dvec3(0, 0, 9));
-  EXPECT_EQ(mesh.corner_position(2, 2), glm::dvec3(-1, 1, 9));
+  double twice_area = 0.0;
+  for (std::size_t t = 0; t < 3; ++t) {
+    const Corners c{mesh.corner_position(t, 0), mesh.corner_position(t, 1), mesh.corner_position(t, 2)};
+    EXPECT_GT(twice_area_xy(c), 0.0);
+    for (const glm::dvec3& p : c) EXPECT_EQ(p.z, 9.0);
+    twice_area += twice_area_xy(c);
+  }
+  EXPECT_DOUBLE_EQ(twice_area, 10.0);
   const std::vector<Corners> all = corners_of(mesh);
   EXPECT_EQ(std::vector<Corners>(all.begin() + 3, all.begin() + 5), kQuadSplit);
   EXPECT_EQ(all[5], (Corners{kQuad[0], kQuad[1], kQuad[2]}));
@@ -203,12 +214,19 @@ TEST(ObjReader, QuadsAreSplitAlongTheShorterDiagonal) {
   EXPECT_EQ(corners_of(mesh), expected);
 }
 
-TEST(ObjReader, NgonsAreFans) {
+// An n-gon becomes n − 2 triangles of its own corners in its winding, tiling it (area 12 here);
+// which diagonals: polygon_triangulation_test.cpp.
+TEST(ObjReader, NgonsAreCutIntoTrianglesInsideThem) {
   TempDir dir;
   const ProxyMesh mesh = read_proxy_mesh(dir.write("hex.obj",
       "v 2 0 0\nv 1 2 0\nv -1 2 0\nv -2 0 0\nv -1 -2 0\nv 1 -2 0\nf 1 2 3 4 5 6\n"));
   ASSERT_EQ(mesh.triangles.size(), 4u);
-  for (std::size_t t = 0; t < 4; ++t) EXPECT_EQ(mesh.triangles[t], (Triangle{0, std::uint32_t(t + 1), std::uint32_t(t + 2)}));
+  double twice_area = 0.0;
+  for (const Corners& c : corners_of(mesh)) {
+    EXPECT_GT(twice_area_xy(c), 0.0);
+    twice_area += twice_area_xy(c);
+  }
+  EXPECT_DOUBLE_EQ(twice_area, 24.0);
 }
 
 TEST(ObjReader, NegativeIndicesCountBackFromTheLastOneRead) {
