@@ -21,8 +21,10 @@ std::vector<std::byte> encode_draco_mesh(const ProxyMesh& mesh, const DracoQuant
 
 // A Draco mesh buffer read as a proxy mesh: bit-identical positions welded, UVs and normals per
 // corner (normals recomputed when absent or not usable). Throws nano::InputError naming `file` when
-// Draco refuses the bytes, the buffer holds a point cloud, positions are missing or not finite,
-// texture coordinates are not finite, or a face refers to a value its attribute does not hold.
+// Draco refuses the bytes, the buffer holds a point cloud, it declares more than 4,194,304 faces or
+// 3 points a face (or metadata running past its end: both read before libdraco allocates for them),
+// positions are missing or not finite, texture coordinates are not finite, or a face refers to a
+// value its attribute does not hold.
 ProxyMesh decode_draco_mesh(std::span<const std::byte> bytes, const std::string& file);
 
 }  // namespace nano::mesh

@@ -29,8 +29,8 @@ std::optional<MeshFormat> mesh_format_of(const std::filesystem::path& path);
 // the face or vertex (0-based) on: a missing or unreadable file, an unknown extension, a parse
 // failure, a truncated file or counts larger than it could hold, a face that references a missing
 // vertex, UV or normal, a face with fewer than 3 distinct vertices or through one vertex twice,
-// non-finite coordinates, or a file with no faces. A mesh without UVs loads (has_uvs() is false) so
-// that check-mesh can report it as a problem.
+// non-finite coordinates or UVs, or a file with no faces (Draco: draco_codec.hpp). A mesh without
+// UVs loads (has_uvs() is false) so that check-mesh can report it as a problem.
 ProxyMesh read_proxy_mesh(const std::filesystem::path& path);
 
 // The same from the file's bytes in memory, in the format given (what read_proxy_mesh does once it
