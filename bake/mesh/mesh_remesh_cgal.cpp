@@ -44,6 +44,9 @@ constexpr double kTurnPerEdge = 0.14;
 // A coarser level is made only when it would remesh at least this many faces.
 constexpr std::size_t kCoarsenAtLeast = 64;
 constexpr int kBorderRings = 3;
+// Triangles with an angle under this are remeshed again with their surroundings, a few rounds at most.
+constexpr double kSliverMendDegrees = 5.0;
+constexpr int kMendRounds = 3;
 
 SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
   std::vector<Point> points;
@@ -310,6 +313,54 @@ double coarsen(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options
   return coarsest;
 }
 
+// The smallest interior angle of face f, degrees.
+double smallest_angle(const SurfaceMesh& sm, SurfaceMesh::Face_index f) {
+  const SurfaceMesh::Halfedge_index h = sm.halfedge(f);
+  const Point p[3] = {sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h)))};
+  double smallest = 180.0;
+  for (int c = 0; c < 3; ++c) {
+    const Vector a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
+    const double la = std::sqrt(a.squared_length()), lb = std::sqrt(b.squared_length());
+    if (!(la > 0.0) || !(lb > 0.0)) return 0.0;
+    smallest = std::min(smallest, std::acos(std::clamp(a * b / (la * lb), -1.0, 1.0)) * kDegreesPerRadian);
+  }
+  return smallest;
+}
+
+// Long thin triangles left where levels meet or creases were refined (a check-mesh sliver, under
+// 1°, stops the charts): the faces within two rings of each are remeshed at their own mean edge.
+void mend_slivers(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options) {
+  for (int round = 0; round < kMendRounds; ++round) {
+    std::vector<bool> marked(work.number_of_vertices(), false);
+    bool any = false;
+    for (SurfaceMesh::Face_index f : work.faces())
+      if (smallest_angle(work, f) < kSliverMendDegrees) {
+        any = true;
+        for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(work.halfedge(f), work)) marked[std::size_t(v)] = true;
+      }
+    if (!any) return;
+    for (int ring = 0; ring < 2; ++ring) {
+      std::vector<bool> grown = marked;
+      for (SurfaceMesh::Edge_index e : work.edges()) {
+        const std::size_t a = std::size_t(work.vertex(e, 0)), b = std::size_t(work.vertex(e, 1));
+        if (marked[a] || marked[b]) grown[a] = grown[b] = true;
+      }
+      marked = std::move(grown);
+    }
+    const std::vector<SurfaceMesh::Face_index> patch = faces_touching(work, marked);
+    double length = 0.0;
+    std::size_t edges = 0;
+    for (SurfaceMesh::Face_index f : patch)
+      for (SurfaceMesh::Halfedge_index h : CGAL::halfedges_around_face(work.halfedge(f), work)) {
+        length += std::sqrt(CGAL::squared_distance(work.point(work.source(h)), work.point(work.target(h))));
+        ++edges;
+      }
+    PMP::isotropic_remeshing(patch, edges ? length / double(edges) : options.edge, work, CGAL::parameters::number_of_iterations(2));
+    work.collect_garbage();
+    hold_near(work, tree, vertex_bound(options));
+  }
+}
+
 }  // namespace
 
 RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason) {
@@ -336,6 +387,7 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   report.coarsest_edge = options.max_edge > options.edge ? coarsen(work, tree, options) : options.edge;
   // What the borders between the levels still fold is refined and rounded like a crease.
   report.finest_edge = std::min(report.finest_edge, refine_creases(work, tree, options, report));
+  mend_slivers(work, tree, options);
   hold_faces_near(work, tree, options.max_distance);
   report.largest_crease_out = largest_crease(work);
   report.area_out = PMP::area(work);

@@ -75,7 +75,7 @@ scene::CompartmentDescription command_line_compartment(const Arguments& args) {
 }
 
 // check-mesh --diameter/--scale/--scene: the bake's mesh stages (compartment_mesh.hpp) up to and
-// including the judgement, the same verdict and the same numbers.
+// including the charts (which refuse what the shells could not use), the same verdict and numbers.
 void judge_membrane_fit(const Arguments& args) {
   scene::CompartmentDescription compartment;
   std::optional<double> thickness = args.bilayer;
@@ -84,7 +84,7 @@ void judge_membrane_fit(const Arguments& args) {
   const std::string file = compartment.mesh.kind == scene::MeshSource::Kind::file ? compartment.mesh.file.string() : args.mesh;
   scene_bake::CompartmentMesh prepared;
   try {
-    prepared = scene_bake::load_compartment_mesh(compartment, thickness, {}, scene_bake::MeshStage::judged);
+    prepared = scene_bake::load_compartment_mesh(compartment, thickness, {}, scene_bake::MeshStage::charted);
   } catch (const InputError& e) {
     std::fputs((std::string(e.what()) + "\n").c_str(), stdout);
     std::fflush(stdout);
@@ -151,7 +151,7 @@ void add_check_mesh_command(CLI::App& app) {
       ->needs(scene);
   command->add_option("--write-prepared", args->write_prepared,
                       "with --diameter, --scale or --scene: write the mesh as the baker would shell it (sized, repaired, "
-                      "remeshed if needed) as OBJ");
+                      "remeshed if needed, charted) as OBJ");
   command->callback([args] {
     if (args->mesh.empty() && args->scene.empty()) throw CLI::RequiredError("mesh (or --scene)");
     if (args->judges()) {

@@ -3,7 +3,7 @@
 // one before: read (or generated) → repaired (when the scene asks) → sized → prepared for its
 // membrane and judged (mesh/membrane_fit.hpp: remeshed when it needs it) → charted (UVs made when it
 // has none usable) → checked. An unusable mesh stops the bake with every problem listed, naming the
-// file. `nanobake check-mesh` runs the same stages and stops after the judgement.
+// file. `nanobake check-mesh --diameter` runs the same stages and stops before the shells.
 #include <functional>
 #include <optional>
 #include <string>
