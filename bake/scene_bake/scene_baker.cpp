@@ -352,7 +352,7 @@ struct TileSets {
 };
 
 // Every Wang set is generated on its own (own seed, shared read-only inputs), so the sets run side by
-// side on the jobs: a scene's slowest set, not their sum, bounds the stage.
+// side on the jobs, and each spreads its own work over them too: a membrane's set is most of the stage.
 TileSets bake_tile_sets(const BakeInputs& in, const Molecules& molecules,
                         const std::vector<tiles::SurfaceDistortion>& surfaces) {
   const scene::SceneDescription& scene = in.scene;
@@ -362,11 +362,11 @@ TileSets bake_tile_sets(const BakeInputs& in, const Molecules& molecules,
     if (k < membrane_count) {
       const auto& patch = molecules.patches[k];
       sets.membrane[k] = bake_membrane_tiles(scene.membranes[k], molecules.library, patch ? &*patch : nullptr,
-                                             surfaces[k], derive_seed(in.seed, SeedTag::membrane_tiles, k));
+                                             surfaces[k], derive_seed(in.seed, SeedTag::membrane_tiles, k), in.threads);
     } else {
       const std::size_t i = k - membrane_count;
       sets.soluble[i] =
-          bake_soluble_cubes(scene.solubles[i], molecules.library, derive_seed(in.seed, SeedTag::soluble_cubes, i));
+          bake_soluble_cubes(scene.solubles[i], molecules.library, derive_seed(in.seed, SeedTag::soluble_cubes, i), in.threads);
     }
   });
   return sets;

@@ -73,7 +73,7 @@ double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size) {
 
 BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, const std::vector<BakedMolecule>& library,
                                  const BakedLipidPatch* patch, const tiles::SurfaceDistortion& surface,
-                                 std::uint64_t seed) {
+                                 std::uint64_t seed, int threads) {
   if (membrane.tiles != integer_power(membrane.edge_colours, 4))
     throw InputError("", "membranes." + membrane.name + ".tiles",
                      "Wang squares are generated as the complete set of colours^4 = " +
@@ -83,6 +83,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
   request.edge = static_cast<float>(membrane.tile_size);
   request.colours = membrane.edge_colours;
   request.seed = seed;
+  request.budget.threads = threads;
   request.surface = surface;
   for (const scene::MembraneProtein& protein : membrane.proteins) {
     tiles::MembraneMolecule m;
@@ -141,7 +142,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
 }
 
 BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
-                                const std::vector<BakedMolecule>& library, std::uint64_t seed) {
+                                const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads) {
   const int complete = integer_power(soluble.face_colours, 6);
   const int per_incoming = integer_power(soluble.face_colours, 3);
   if (soluble.cubes != complete && soluble.cubes % per_incoming != 0)
@@ -154,6 +155,7 @@ BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
   request.colours = soluble.face_colours;
   request.variants = soluble.cubes == complete ? 0 : soluble.cubes / per_incoming;
   request.seed = seed;
+  request.budget.threads = threads;
   for (const scene::SolubleMolecule& molecule : soluble.molecules) {
     tiles::SolubleMolecule m;
     m.type = local_type(baked, request.types, library, molecule.molecule.index);

@@ -39,13 +39,14 @@ tiles::MoleculeType to_tile_molecule(const BakedMolecule& molecule);
 double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size);
 
 // lateral_stretch: see tiles::MembraneTileRequest (mesh::chart_anisotropy − 1 of the meshes wearing it).
+// `threads`: worker threads for the packing (the set does not depend on them).
 // `patch`: the membrane's lipid patch (load_lipid_patch) when it has one, else nullptr. Densities
 // of types sharing a name (a patch's lipids) are reported summed, under that name.
 BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, const std::vector<BakedMolecule>& library,
                                  const BakedLipidPatch* patch, const tiles::SurfaceDistortion& surface,
-                                 std::uint64_t seed);
+                                 std::uint64_t seed, int threads = 1);
 BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
-                                const std::vector<BakedMolecule>& library, std::uint64_t seed);
+                                const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads = 1);
 
 // Periodic recipe covering UV [0,1]² for tiles of UV size s (capped at kMaxRecipe2DCells per axis).
 tiles::TilingRecipe membrane_recipe(const tiles::WangSet& set, double tile_uv_size, std::uint64_t seed);

@@ -2,12 +2,14 @@
 
 #include "bake/tiles/copy_neighbourhood.hpp"
 #include "bake/tiles/rotation_sampling.hpp"
+#include "common/parallel_for.hpp"
 #include "common/progress.hpp"
 #include "bake/tiles/tile_random.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <optional>
 
 namespace nano::tiles {
 namespace {
@@ -237,50 +239,92 @@ private:
     track(a, copy);
   }
 
+  // Each layer copy in each unit instance, decided side by side (they read the packed copies only),
+  // gathered in the layer's order.
   LayerDecision decide_layer(LayerLaying& laying) const {
     const FixedLayer& layer = laying.layer;
+    constexpr size_t kChunk = 64;
+    const size_t chunks = (layer.copies.size() + kChunk - 1) / kChunk;
+    std::vector<LayerDecision> decided(chunks);
+    std::vector<std::vector<double>> per_tile(chunks, std::vector<double>(laying.per_tile.size(), 0.0));
+    parallel_for(chunks, settings_.threads, [&](size_t chunk) {
+      for (size_t i = chunk * kChunk; i < std::min(layer.copies.size(), (chunk + 1) * kChunk); ++i)
+        decide_layer_copy(laying, layer.copies[i], decided[chunk], per_tile[chunk]);
+    });
     LayerDecision out;
-    for (const Instance& copy : layer.copies) {
-      unsigned mask = 0;
-      Instance local = copy;  // relative to the anchor of the unit holding it
-      for (int k = 0; k < D_; ++k) {
-        if (copy.position[k] < layer.band) mask |= 1u << k;
-        if (copy.position[k] >= S_ - layer.band) {
-          mask |= 1u << k;
-          local.position[k] -= S_;
-        }
+    for (size_t chunk = 0; chunk < chunks; ++chunk) {
+      for (UnitCopies* list : {&out.kept, &out.refused, &out.alternates}) {
+        const UnitCopies& from = list == &out.kept ? decided[chunk].kept : list == &out.refused ? decided[chunk].refused : decided[chunk].alternates;
+        list->insert(list->end(), from.begin(), from.end());
       }
-      for (size_t a = 0; a < units_.size(); ++a) {
-        if (units_[a].mask != mask) continue;
-        if (!fits(a, local, kNone, laying.rule, laying.laid_through)) {
-          if (!copy.alternate) out.refused.emplace_back(a, local);
-          continue;
-        }
-        if (copy.alternate) {  // overlaps its original by design: added last, and no part of the density
-          out.alternates.emplace_back(a, local);
-          continue;
-        }
-        out.kept.emplace_back(a, local);
-        laying.per_tile[copy.type] += units_[a].per_tile;
-      }
+      for (size_t t = 0; t < per_tile[chunk].size(); ++t) laying.per_tile[t] += per_tile[chunk][t];
     }
     return out;
+  }
+
+  void decide_layer_copy(const LayerLaying& laying, const Instance& copy, LayerDecision& out, std::vector<double>& per_tile) const {
+    const FixedLayer& layer = laying.layer;
+    unsigned mask = 0;
+    Instance local = copy;  // relative to the anchor of the unit holding it
+    for (int k = 0; k < D_; ++k) {
+      if (copy.position[k] < layer.band) mask |= 1u << k;
+      if (copy.position[k] >= S_ - layer.band) {
+        mask |= 1u << k;
+        local.position[k] -= S_;
+      }
+    }
+    for (size_t a = 0; a < units_.size(); ++a) {
+      if (units_[a].mask != mask) continue;
+      if (!fits(a, local, kNone, laying.rule, laying.laid_through)) {
+        if (!copy.alternate) out.refused.emplace_back(a, local);
+        continue;
+      }
+      if (copy.alternate) {  // overlaps its original by design: added last, and no part of the density
+        out.alternates.emplace_back(a, local);
+        continue;
+      }
+      out.kept.emplace_back(a, local);
+      per_tile[copy.type] += units_[a].per_tile;
+    }
   }
 
   // Where a packed copy (a protein) pushed a layer lipid out, the hole would show what lies
   // beneath the membrane. Membrane builders pack lipids right against the protein: try other
   // conformers of the same leaflet there, turned about the normal and moved away from the
   // protein, and keep the first that fits.
+  // Each hole's candidates are tried side by side against what stands before any refill, each hole
+  // with its own random stream; then, in order, a hole keeps its find if it still fits beside the
+  // refills kept before it, else tries again alone. The same set whatever the threads.
   void refill_holes(LayerLaying& laying, const UnitCopies& refused, SplitMix64& rng) {
+    if (D_ != 2 || refused.empty()) return;
     std::vector<const Instance*> upper, lower;
     for (const Instance& c : laying.layer.copies)
       if (!c.alternate) (c.position.z >= 0.f ? upper : lower).push_back(&c);
     float layer_reach = 0.f;
     for (const Instance& c : laying.layer.copies) layer_reach = std::max(layer_reach, shapes_[c.type].radius());
-    for (const auto& [a, hole] : refused) {
+    const uint64_t stream = rng.next();
+    std::vector<std::optional<Instance>> found(refused.size());
+    std::vector<glm::vec2> away(refused.size());
+    parallel_for(refused.size(), settings_.threads, [&](size_t h) {
+      const auto& [a, hole] = refused[h];
       const std::vector<const Instance*>& pool = hole.position.z >= 0.f ? upper : lower;
-      if (pool.empty() || D_ != 2) continue;
-      refill_hole(laying, a, hole, pool, away_from_intruder(a, hole, layer_reach, laying.laid_through), rng);
+      if (pool.empty()) return;
+      away[h] = away_from_intruder(a, hole, layer_reach, laying.laid_through);
+      SplitMix64 own(mix64(stream ^ mix64(h + 1)));
+      found[h] = refill_candidate(laying, a, hole, pool, away[h], own);
+    });
+    for (size_t h = 0; h < refused.size(); ++h) {
+      const auto& [a, hole] = refused[h];
+      const std::vector<const Instance*>& pool = hole.position.z >= 0.f ? upper : lower;
+      if (pool.empty()) continue;
+      std::optional<Instance> candidate = found[h];
+      if (candidate && !fits(a, *candidate, kNone, laying.rule, laying.laid_through)) {
+        SplitMix64 again(mix64(stream ^ mix64(h + 1) ^ 0x5EED5EEDull));
+        candidate = refill_candidate(laying, a, hole, pool, away[h], again);
+      }
+      if (!candidate) continue;
+      add(a, *candidate, kLayerSpec);
+      laying.per_tile[candidate->type] += units_[a].per_tile;
     }
   }
 
@@ -301,8 +345,10 @@ private:
     return away;
   }
 
-  void refill_hole(LayerLaying& laying, size_t a, const Instance& hole, const std::vector<const Instance*>& pool,
-                   glm::vec2 away, SplitMix64& rng) {
+  // The first of refill_attempts conformers of the hole's leaflet, turned and moved away from what
+  // pushed the lipid out, that fits where everything stands now.
+  std::optional<Instance> refill_candidate(const LayerLaying& laying, size_t a, const Instance& hole,
+                                           const std::vector<const Instance*>& pool, glm::vec2 away, SplitMix64& rng) const {
     const glm::vec2 across(-away.y, away.x);
     for (int attempt = 0; attempt < laying.layer.refill_attempts; ++attempt) {
       const Instance& conformer = *pool[rng.below(static_cast<uint32_t>(pool.size()))];
@@ -315,10 +361,9 @@ private:
       if (!in_zone(candidate.position, units_[a].mask, laying.layer.band, D_, S_) ||
           !fits(a, candidate, kNone, laying.rule, laying.laid_through))
         continue;
-      add(a, candidate, kLayerSpec);
-      laying.per_tile[candidate.type] += units_[a].per_tile;
-      return;
+      return candidate;
     }
+    return std::nullopt;
   }
 
   void track(size_t a, const Instance& copy) {
@@ -467,33 +512,43 @@ struct Fill {
   std::vector<double> carry, achieved;  // per spec: rounding shortfall passed on; copies per tile placed
 };
 
-// Sequential fill of unit ui by random darts against the units filled before it (and its own
-// copies one lattice step away); `carry` passes each spec's rounding shortfall on to the next unit.
-void fill_unit(const Packing& p, std::vector<Unit>& units, size_t ui, Fill& fill) {
+// Copies of each spec unit u aims for: density × zone, plus the shortfall `carry` passes on (in
+// copies per tile), rounded.
+std::vector<long> unit_targets(const Packing& p, const Unit& u, const std::vector<double>& carry) {
+  std::vector<long> target(p.specs.size(), 0);
+  for (size_t si = 0; si < p.specs.size(); ++si) {
+    const double zone = zone_measure(u.mask, p.specs[si].band, p.set.dims, p.settings.edge);
+    const double want = p.specs[si].copies_per_volume * zone + carry[si] / u.per_tile;
+    target[si] = zone > 0.0 ? std::max(0L, static_cast<long>(std::floor(want + 0.5))) : 0L;
+  }
+  return target;
+}
+
+// Random darts into unit ui, against the units filled before it that it can meet (and its own copies
+// one lattice step away), towards `target` copies per spec; returns how many it placed of each.
+std::vector<long> fill_unit(const Packing& p, std::vector<Unit>& units, size_t ui, const std::vector<Offset>& offsets,
+                            float largest, const std::vector<long>& target, SplitMix64& rng) {
   const auto& [shapes, specs, set, settings] = p;
   const int D = set.dims;
   const float S = settings.edge;
   Unit& u = units[ui];
-  CopyNeighbourhood context(shapes, 2.f * fill.largest);
+  CopyNeighbourhood context(shapes, 2.f * largest);
   for (size_t vi = 0; vi < ui; ++vi)
-    for (const Offset& d : fill.offsets)
+    for (const Offset& d : offsets)
       if (can_meet(u, units[vi], d, set))
         for (const Instance& copy : units[vi].copies) context.add(copy.type, pose_of(copy, d, D, S));
   std::vector<Offset> self;
-  for (const Offset& d : fill.offsets)
+  for (const Offset& d : offsets)
     if (can_meet(u, u, d, set)) self.push_back(d);
 
+  std::vector<long> placed(specs.size(), 0);
   for (size_t si = 0; si < specs.size(); ++si) {
     const PlacementSpec& spec = specs[si];
-    const double zone = zone_measure(u.mask, spec.band, D, S);
-    const double ideal = spec.copies_per_volume * zone;
-    const double want = ideal + fill.carry[si] / u.per_tile;
-    const long target = zone > 0.0 ? std::max(0L, static_cast<long>(std::floor(want + 0.5))) : 0L;
-    const double budget = static_cast<double>(target) * settings.attempts_per_copy;
-    long placed = 0, misses = 0;
-    for (double attempts = 0; placed < target && attempts < budget && misses < settings.max_consecutive_failures;
+    const double budget = static_cast<double>(target[si]) * settings.attempts_per_copy;
+    long misses = 0;
+    for (double attempts = 0; placed[si] < target[si] && attempts < budget && misses < settings.max_consecutive_failures;
          ++attempts) {
-      const Instance copy = random_copy(spec, u.mask, D, S, fill.rng);
+      const Instance copy = random_copy(spec, u.mask, D, S, rng);
       Offset shift;
       if (!owner_shift(copy, u.mask, D, S, shift) ||
           context.collides(copy.type, pose_of(copy, {0, 0, 0}, D, S), clash_rule(settings, D))) {
@@ -501,14 +556,51 @@ void fill_unit(const Packing& p, std::vector<Unit>& units, size_t ui, Fill& fill
         continue;
       }
       misses = 0;
-      ++placed;
+      ++placed[si];
       u.copies.push_back(copy);
       u.spec_of.push_back(static_cast<uint32_t>(si));
       for (const Offset& d : self) context.add(copy.type, pose_of(copy, d, D, S));
     }
-    fill.carry[si] += u.per_tile * (ideal - static_cast<double>(placed));
-    fill.achieved[si] += u.per_tile * static_cast<double>(placed);
   }
+  return placed;
+}
+
+// What unit u's fill leaves the next: the shortfall against density × zone, and what it placed.
+void account(const Packing& p, const Unit& u, const std::vector<long>& placed, Fill& fill) {
+  for (size_t si = 0; si < p.specs.size(); ++si) {
+    const double ideal = p.specs[si].copies_per_volume * zone_measure(u.mask, p.specs[si].band, p.set.dims, p.settings.edge);
+    fill.carry[si] += u.per_tile * (ideal - static_cast<double>(placed[si]));
+    fill.achieved[si] += u.per_tile * static_cast<double>(placed[si]);
+  }
+}
+
+// The shared and face units in order, each against all before it; then the tiles' interiors, which
+// meet only those (never each other), side by side, each with its own random stream and its target
+// set in order as if the ones before it had reached theirs.
+void fill_units(const Packing& p, std::vector<Unit>& units, Fill& fill) {
+  size_t first_interior = 0;
+  while (first_interior < units.size() && units[first_interior].kind != Kind::Interior) ++first_interior;
+  for (size_t ui = 0; ui < first_interior; ++ui) {
+    progress::advance();
+    account(p, units[ui], fill_unit(p, units, ui, fill.offsets, fill.largest, unit_targets(p, units[ui], fill.carry), fill.rng),
+            fill);
+  }
+  const size_t interiors = units.size() - first_interior;
+  std::vector<std::vector<long>> targets(interiors), placed(interiors);
+  std::vector<double> carry = fill.carry;
+  for (size_t k = 0; k < interiors; ++k) {
+    const Unit& u = units[first_interior + k];
+    targets[k] = unit_targets(p, u, carry);
+    for (size_t si = 0; si < p.specs.size(); ++si)
+      carry[si] += u.per_tile * (p.specs[si].copies_per_volume * zone_measure(u.mask, p.specs[si].band, p.set.dims, p.settings.edge) -
+                                 static_cast<double>(targets[k][si]));
+  }
+  const uint64_t stream = fill.rng.next();
+  parallel_for(interiors, p.settings.threads, [&](size_t k) {
+    SplitMix64 rng(mix64(stream ^ mix64(k + 1)));
+    placed[k] = fill_unit(p, units, first_interior + k, fill.offsets, fill.largest, targets[k], rng);
+  });
+  for (size_t k = 0; k < interiors; ++k) account(p, units[first_interior + k], placed[k], fill);
 }
 
 // Each tile gathers the copies of the units it holds: every shared and interior unit of its own, and
@@ -546,11 +638,9 @@ PackedUnits pack_wang_units(const std::vector<CollisionShape>& shapes, const std
   for (const PlacementSpec& s : specs) fill.largest = std::max(fill.largest, shapes[s.type].radius());
   // Progress counts units packed, then relaxation rounds (all announced; those an early stop skips
   // are marked done when it stops).
-  progress::add_work(units.size() + static_cast<std::uint64_t>(std::max(settings.relaxation_rounds, 0)));
-  for (size_t ui = 0; ui < units.size(); ++ui) {
-    progress::advance();
-    fill_unit({shapes, specs, set, settings}, units, ui, fill);
-  }
+  // (the interiors, one per tile, count themselves as they are filled side by side)
+  progress::add_work(units.size() - set.tile_count() + static_cast<std::uint64_t>(std::max(settings.relaxation_rounds, 0)));
+  fill_units({shapes, specs, set, settings}, units, fill);
 
   PackedUnits out;
   if (settings.relaxation_rounds > 0 || !layer.copies.empty()) {

@@ -51,6 +51,10 @@ struct PackerSettings {
   int relaxation_rounds = 0;
   float relaxation_step = 0.25f;  // largest move per sweep, in bands (and twice that in radians)
   float relaxation_darts = 4.f;
+  // Worker threads for what does not depend on order (the tiles' interiors, which never meet; the
+  // layer's decisions; its refills, tried side by side and kept in order). The set is the same
+  // whatever their number.
+  int threads = 1;
 };
 
 // A layer laid over every tile after the specs are packed (a lipid bilayer cut from a periodic

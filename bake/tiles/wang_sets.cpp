@@ -70,7 +70,7 @@ WangSet pack(const char* what, int dims, float edge, const WangColouring& colour
   const PackedUnits packed = pack_wang_units(
       shapes, specs, colouring,
       {edge, budget.clearance, surface, seed, budget.attempts_per_copy, budget.max_consecutive_failures,
-       budget.relaxation_rounds},
+       budget.relaxation_rounds, 0.25f, 4.f, budget.threads},
       layer);
 
   WangSet set{dims, edge, colouring, packed.tiles, {}};

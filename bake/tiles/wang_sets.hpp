@@ -23,6 +23,7 @@ struct GenerationBudget {
   // zones) and inserting more into the largest gaps, stopping once the density is met; 0 = plain
   // random sequential addition. Haemoglobin at 5 mM in 250 Å cubes needs ~100-200 rounds (~3 s).
   int relaxation_rounds = 300;
+  int threads = 1;  // worker threads (unit_packer.hpp: PackerSettings::threads); the set does not depend on them
 };
 
 struct MembraneMolecule {
