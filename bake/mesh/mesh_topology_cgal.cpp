@@ -27,15 +27,6 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 Point3 to_cgal(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
 }  // namespace
 
-bool exactly_collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  return CGAL::collinear(to_cgal(a), to_cgal(b), to_cgal(c));
-}
-
-int exact_orientation_2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
-  using Point2 = Kernel::Point_2;
-  return static_cast<int>(CGAL::orientation(Point2(a.x, a.y), Point2(b.x, b.y), Point2(c.x, c.y)));
-}
-
 SolidProperties analyse_solid(const ProxyMesh& mesh, bool check_intersections) {
   SolidProperties result;
   std::vector<Point3> points;

@@ -1,18 +1,16 @@
 #pragma once
-// Exact predicates and solid properties through CGAL. This header exposes no CGAL type; all CGAL
-// code lives in mesh_topology_cgal.cpp so that only one translation unit pays its compile time.
+// Exact predicates and solid properties through CGAL. This header exposes no CGAL type; the solid
+// properties' CGAL code lives in mesh_topology_cgal.cpp so that only one translation unit pays its
+// compile time (the predicates, which the readers use too, in exact_predicates_cgal.cpp).
 #include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
 
+#include "bake/mesh/exact_predicates.hpp"
 #include "bake/mesh/proxy_mesh.hpp"
 
 namespace nano::mesh {
-
-// Exact (filtered) predicates on the double coordinates: no tolerance, no false verdict.
-bool exactly_collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
-int exact_orientation_2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c);  // +1 ccw, −1 cw, 0
 
 struct SolidProperties {
   bool polygon_mesh = false;  // CGAL accepts the soup as an oriented 2-manifold (with or without border)
