@@ -10,6 +10,7 @@
 
 #include "bake/mesh/mesh_topology_cgal.hpp"
 #include "bake/mesh/number_text.hpp"
+#include "bake/mesh/vertex_normals.hpp"
 
 namespace nano::mesh {
 
@@ -78,12 +79,13 @@ std::vector<TightTriangle> tight_triangles(const ProxyMesh& mesh, const MeshRepo
     fit.thinnest_wall = std::min(fit.thinnest_wall, walls[t]);
     fit.narrowest_gap = std::min(fit.narrowest_gap, gaps[t]);
     const double crease_wall = rounded_wall(creases[t], thickness);
+    const double bend = mesh.has_normals() ? triangle_turn_rate(mesh, t) : 0.0;
     if (walls[t] < thickness) tight[t] = {"wall", walls[t], thickness, creases[t]};
     else if (gaps[t] < thickness) tight[t] = {"gap", gaps[t], thickness, creases[t]};
-    // A crease the remeshing left sharper than the shells follow: rounded on a larger mesh, where the
-    // same bilayer is a smaller share of the shape (checked, like every size, by check_size).
-    else if (creases[t] > kRemeshCreaseDegrees)
-      tight[t] = {"crease", walls[t], std::max(crease_wall, walls[t] * creases[t] / kRemeshCreaseDegrees), creases[t]};
+    // The surface bending tighter than one bilayer thickness: the leaflet on its inner side would
+    // have to fold onto itself (the shells then find no prism that holds it).
+    else if (bend * kMinBendBilayers * thickness > 1.0) tight[t] = {"bend", 1.0 / bend, kMinBendBilayers * thickness, creases[t]};
+    else if (creases[t] > kRemeshCreaseDegrees && walls[t] < crease_wall) tight[t] = {"crease", walls[t], crease_wall, creases[t]};
   }
   return tight;
 }
@@ -161,12 +163,17 @@ MembraneFit prepare_and_judge(const ProxyMesh& input, ProxyMesh& mesh, MeshRepor
   fit.tight = places(mesh, tight_triangles(mesh, report, thickness, fit.remesh.has_value(), fit));
   if (fit.remesh) explain_crossings(input, *fit.remesh, fit.tight);
   // The rounding's toll on the whole shape: what it takes shrinks as the mesh grows against the bilayer.
+  // A surface rounded away that much no longer shows why: the input's own walls, gaps and bends do.
   if (fit.remesh && fit.remesh->area_in > 0.0) {
     const double loss = 1.0 - fit.remesh->area_out / fit.remesh->area_in;
     if (loss > kMaxRoundingAreaLoss) {
       TightFeature whole{glm::dvec3(0.0), "rounding", kMaxRoundingAreaLoss, loss, 0.0, mesh.triangles.size(), false};
       for (const glm::dvec3& p : mesh.positions) whole.position += p / double(mesh.positions.size());
       whole.defect = !(whole.growth() <= kPlausibleGrowth);
+      MembraneFit on_input;
+      std::vector<TightFeature> input_places = places(input, tight_triangles(input, MeshReport{}, thickness, false, on_input));
+      std::erase_if(input_places, [](const TightFeature& f) { return f.what == "self-intersection"; });
+      fit.tight.insert(fit.tight.begin(), input_places.begin(), input_places.end());
       fit.tight.insert(fit.tight.begin(), whole);
     }
   }
@@ -242,6 +249,8 @@ std::string feature_text(const TightFeature& f, double thickness) {
   else if (what == "gap")
     std::snprintf(line, sizeof line, "%s %.1f Å wide (the bilayer needs %.1f Å)",
                   f.found < 0.25 * thickness ? "two sheets of the surface nearly touch: a gap" : "a gap", f.found, f.needed);
+  else if (what == "bend")
+    std::snprintf(line, sizeof line, "the surface bends with a radius of %.1f Å (the bilayer needs %.1f Å)", f.found, f.needed);
   else
     std::snprintf(line, sizeof line, "a %.0f° crease on a wall %.1f Å thick (rounding it for the bilayer needs %.1f Å)",
                   f.crease_degrees, f.found, f.needed);

@@ -29,6 +29,9 @@ inline constexpr double kCreaseWallAt90 = 5.0;
 // scenes' lipid; a test measures it): what check-mesh judges a mesh against when told nothing else,
 // and what a membrane without lipids of its own lines its mesh with.
 inline constexpr double kDefaultBilayerThickness = 61.8;
+// The surface may bend no tighter than this many bilayer thicknesses of radius (the remeshing rounds
+// creases over 1.5; tighter, the inner leaflet folds onto itself).
+inline constexpr double kMinBendBilayers = 0.6;
 // A place needing the mesh this many times larger than asked is a defect of the mesh, not a size.
 inline constexpr double kPlausibleGrowth = 8.0;
 // Rounding a mesh's creases for the bilayer may take at most this share of its area: more, and the
@@ -46,8 +49,8 @@ struct RemeshPolicy {
 // mesh, described by the tightest of them.
 struct TightFeature {
   glm::dvec3 position{0.0};  // the tightest triangle's centroid, Å
-  std::string what;          // "wall", "gap", "crease", "self-intersection" or "rounding" (the whole mesh)
-  double found = 0.0;        // Å: the wall's thickness or the gap's width there (0: the surface crosses itself);
+  std::string what;          // "wall", "gap", "bend", "crease", "self-intersection" or "rounding" (the whole mesh)
+  double found = 0.0;        // Å: the wall's thickness, the gap's width or the bend's radius there (0: the surface crosses itself);
                              // "rounding": the share of the area the rounding takes
   double needed = 0.0;       // Å ("rounding": kMaxRoundingAreaLoss)
   double crease_degrees = 0.0;  // "crease" only

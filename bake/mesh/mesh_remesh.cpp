@@ -73,7 +73,6 @@ nlohmann::json to_json(const RemeshReport& r) {
           {"triangles_out", r.triangles_out},
           {"triangles_at_uniform_edge", r.triangles_uniform},
           {"edge_A", r.edge},
-          {"finest_edge_A", r.finest_edge},
           {"coarsest_edge_A", r.coarsest_edge},
           {"distance_bound_A", r.distance_bound},
           {"max_distance_A", r.max_distance},
@@ -89,9 +88,9 @@ nlohmann::json to_json(const RemeshReport& r) {
 
 std::string describe(const RemeshReport& r) {
   std::string s = "remeshed (" + r.reason + "): " + std::to_string(r.triangles_in) + " -> " +
-                  std::to_string(r.triangles_out) + " triangles" + number_text(", edges %.1f", r.finest_edge) +
-                  number_text("-%.1f Å", r.coarsest_edge) + number_text(" (%.1f Å at creases", r.edge) +
-                  " would give " + std::to_string(r.triangles_uniform) + " everywhere)";
+                  std::to_string(r.triangles_out) + " triangles" + number_text(", edges %.1f", r.edge) +
+                  number_text("-%.1f Å", r.coarsest_edge) + " (" + std::to_string(r.triangles_uniform) +
+                  number_text(" at %.1f Å everywhere)", r.edge);
   s += number_text("; creases %.1f°", r.largest_crease_in) + number_text(" -> %.1f°", r.largest_crease_out);
   s += number_text("; within %.1f Å", r.max_distance) + number_text(" of the input (bound %.1f Å)", r.distance_bound);
   s += number_text("; normals turned by up to %.1f°", r.largest_normal_deviation);

@@ -4,8 +4,7 @@
 // against the surface's curvature, leave molecules no prism that contains them. The baker remeshes
 // such a mesh itself — isotropic remeshing (CGAL Polygon Mesh Processing) to an edge derived from the
 // membrane, smoothing that rounds creases while every vertex is held within a stated distance of the
-// user's surface, finer triangles where a crease is still sharp, coarser ones where the surface is
-// flat enough — and reports what it changed. No CGAL type crosses this header.
+// user's surface, coarser triangles where the surface is flat enough — and reports what it changed. No CGAL type crosses this header.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -59,7 +58,6 @@ struct RemeshReport {
   std::size_t triangles_in = 0, triangles_out = 0;
   std::size_t triangles_uniform = 0;       // after the first, uniform pass at `edge` (what a uniform edge would give)
   double edge = 0.0;                       // target edge, Å
-  double finest_edge = 0.0;                // Å: around creases still sharp after rounding (edge / 2 or / 4)
   double coarsest_edge = 0.0;              // Å: where the surface is flattest
   double distance_bound = 0.0;             // Å
   double largest_crease_in = 0.0;          // degrees between neighbouring faces
@@ -75,9 +73,10 @@ struct RemeshReport {
 // umbrella (Laplacian) smoothing of the vertices within crease_radius of an edge sharper than
 // kRemeshCreaseDegrees — 2·(crease_radius / edge)² steps, a diffusion over about that radius — every
 // vertex pulled back to within options.max_distance of the input surface after each step and the
-// smoothed faces remeshed every two; where a crease is still sharper, the faces around it remeshed
-// at half the edge and rounded again (twice at most); then, level by level, the faces whose corners'
-// surroundings turn by less than 0.14 rad per edge remeshed at twice the edge, up to options.max_edge.
+// smoothed faces remeshed every two; then, level by level, the faces whose corners' surroundings
+// turn by less than 0.14 rad per edge remeshed at twice the edge, up to options.max_edge, the
+// borders between levels rounded again, and faces with an angle under 5° remeshed with their
+// surroundings.
 // UVs are dropped (the baker makes charts for the new surface) and normals recomputed. Throws std::invalid_argument when
 // the triangles do not form a closed polygon mesh or the options are not positive.
 RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason);

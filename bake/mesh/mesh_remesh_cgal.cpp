@@ -13,6 +13,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Surface_mesh.h>
 
 #include "bake/mesh/mesh_remesh.hpp"
@@ -37,13 +38,13 @@ constexpr int kHoldRounds = 6;
 constexpr double kHoldOvershoot = 1.5;  // pull a little past the excess: neighbours move too
 constexpr double kExtraStepGainDegrees = 0.5;  // per two extra steps
 constexpr int kRemeshIterations = 3;
-constexpr int kRefineRounds = 2;
 // Neighbouring faces of a coarsened region turn by at most about this (rad: 8°, well under the 20°
 // the shells follow).
 constexpr double kTurnPerEdge = 0.14;
 // A coarser level is made only when it would remesh at least this many faces.
 constexpr std::size_t kCoarsenAtLeast = 64;
 constexpr int kBorderRings = 3;
+constexpr int kBorderSmoothingSteps = 8;
 // Triangles with an angle under this are remeshed again with their surroundings, a few rounds at most.
 constexpr double kSliverMendDegrees = 5.0;
 constexpr int kMendRounds = 3;
@@ -162,11 +163,18 @@ std::vector<SurfaceMesh::Face_index> faces_touching(const SurfaceMesh& sm, const
   return out;
 }
 
+// CGAL's relaxation divides by the areas it meets: a patch the smoothing crushed flat (a tube thinner
+// than the bilayer) is left as it is, for the judgement to name.
+bool has_degenerate_face(const SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch) {
+  return std::any_of(patch.begin(), patch.end(), [&](SurfaceMesh::Face_index f) { return PMP::is_degenerate_triangle_face(f, sm); });
+}
+
 // One remeshing pass over `patch` (it projects onto the surface it is given, the smoothed one), then
 // the vertices held near the input again. The patch's border edges are kept where they run (CGAL
 // treats them as constraints), so the rest of the surface is left as it is.
 void even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch, double edge, const Tree& input,
                     const RemeshOptions& options) {
+  if (has_degenerate_face(sm, patch)) return;
   PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(1));
   sm.collect_garbage();
   hold_near(sm, input, vertex_bound(options));
@@ -261,21 +269,6 @@ int round_creases(SurfaceMesh& work, const Tree& tree, const RemeshOptions& opti
   return done;
 }
 
-// Where a crease is still sharper than the shells take (a box's corner, where three creases meet),
-// the faces around it are remeshed at half the edge and rounded again, twice at most.
-double refine_creases(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options, RemeshReport& report) {
-  double edge = options.edge;
-  for (int round = 0; round < kRefineRounds && largest_crease(work) > kRemeshCreaseDegrees; ++round) {
-    edge *= 0.5;
-    const std::vector<bool> zone = near_creases(work, kRemeshCreaseDegrees, int(std::ceil(options.crease_radius / edge)));
-    PMP::isotropic_remeshing(faces_touching(work, zone), edge, work, CGAL::parameters::number_of_iterations(2));
-    work.collect_garbage();
-    hold_near(work, tree, vertex_bound(options));
-    report.smoothing_steps += round_creases(work, tree, options, edge, kMaxSmoothingSteps / 4);
-  }
-  return edge;
-}
-
 // Where the surface is flat enough, coarser triangles: a vertex whose surroundings turn by κ rad/Å
 // takes edges up to kTurnPerEdge / κ, and the faces whose three corners all take twice the edge are
 // remeshed at it, level by level up to options.max_edge. The shells need no finer triangles where
@@ -304,7 +297,7 @@ double coarsen(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options
       for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(work.halfedge(f), work)) all = all && coarse[std::size_t(v)];
       if (all) patch.push_back(f);
     }
-    if (patch.size() < kCoarsenAtLeast) break;
+    if (patch.size() < kCoarsenAtLeast || has_degenerate_face(work, patch)) break;
     PMP::isotropic_remeshing(patch, edge, work, CGAL::parameters::number_of_iterations(2));
     work.collect_garbage();
     hold_near(work, tree, vertex_bound(options));
@@ -355,6 +348,7 @@ void mend_slivers(SurfaceMesh& work, const Tree& tree, const RemeshOptions& opti
         length += std::sqrt(CGAL::squared_distance(work.point(work.source(h)), work.point(work.target(h))));
         ++edges;
       }
+    if (has_degenerate_face(work, patch)) return;
     PMP::isotropic_remeshing(patch, edges ? length / double(edges) : options.edge, work, CGAL::parameters::number_of_iterations(2));
     work.collect_garbage();
     hold_near(work, tree, vertex_bound(options));
@@ -383,10 +377,10 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   work.collect_garbage();
   report.triangles_uniform = work.number_of_faces();
   report.smoothing_steps = round_creases(work, tree, options, options.edge, kMaxSmoothingSteps);
-  report.finest_edge = refine_creases(work, tree, options, report);
   report.coarsest_edge = options.max_edge > options.edge ? coarsen(work, tree, options) : options.edge;
-  // What the borders between the levels still fold is refined and rounded like a crease.
-  report.finest_edge = std::min(report.finest_edge, refine_creases(work, tree, options, report));
+  // What the borders between the levels still fold is rounded and evened at the fine edge.
+  if (report.coarsest_edge > options.edge && largest_crease(work) > kRemeshCreaseDegrees)
+    report.smoothing_steps += round_creases(work, tree, options, options.edge, kBorderSmoothingSteps);
   mend_slivers(work, tree, options);
   hold_faces_near(work, tree, options.max_distance);
   report.largest_crease_out = largest_crease(work);

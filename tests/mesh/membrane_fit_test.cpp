@@ -72,8 +72,12 @@ TEST(MembraneFit, AWallThinnerThanTheBilayerIsNamedAndAFittingSizeChecked) {
   EXPECT_NEAR(fit.tight.front().found, 30.0, 0.5);
   EXPECT_EQ(fit.tight.size(), 1u) << "one place: the whole sphere's tight triangles touch";
   ASSERT_TRUE(fit.size_checked);
-  EXPECT_NEAR(fit.scale_needed, 40.0 / 30.0, 0.08);
+  // The walls alone would fit at 40/30; the checked size also keeps the sphere's bend within the
+  // kMinBendBilayers radius the shells take, which for a sphere is the stricter of the two.
+  EXPECT_GE(fit.scale_needed, kMinBendBilayers * 40.0 / 15.0);
+  EXPECT_LT(fit.scale_needed, 1.1 * kMinBendBilayers * 40.0 / 15.0);
   EXPECT_TRUE(judge(make_sphere_mesh(2000, 15.0 * fit.scale_needed), 40.0).fits());
+  EXPECT_FALSE(judge(make_sphere_mesh(2000, 15.0 * kMinBendBilayers * 40.0 / 15.0 * 0.97), 40.0).fits());
   const std::string text = describe_tight_features(fit, 40.0, 30.0);
   EXPECT_NE(text.find("a wall 29.9 Å thick (the bilayer needs 40.0 Å)"), std::string::npos) << text;
 }
