@@ -103,7 +103,7 @@ struct BlockTotals {
   ShellStats stats;
   std::vector<std::size_t> owned_by_type;
   std::vector<std::size_t> dropped_by_type;
-  std::vector<std::uint32_t> uncontained;
+  std::vector<std::uint32_t> uncontained, lipids_left_out;
 };
 
 void merge(ShellStats& into, const ShellStats& s) {
@@ -237,6 +237,20 @@ void shell_block(const MembraneMapping& mapping, const std::vector<double>& radi
     if (!fit.contained) {
       stats.uncontained_triangles += 1;
       totals.uncontained.push_back(static_cast<std::uint32_t>(t));
+      PrismFit without = fit_without_unfit(mapping, t, spheres, cmin, std::vector<bool>(type_count, true), dropped[t],
+                                           totals.dropped_by_type);
+      if (!without.contained) {  // not even one copy: the triangle is left empty (a flat prism)
+        for (const Sphere& s : spheres)
+          if (!s.alternate) {
+            dropped[t].push_back(s.key);
+            ++totals.dropped_by_type[s.type];
+          }
+        std::sort(dropped[t].begin(), dropped[t].end());
+        dropped[t].erase(std::unique(dropped[t].begin(), dropped[t].end()), dropped[t].end());
+        without = PrismFit{{0.f, 0.f, 0.f}, 0, true};
+      }
+      fit = without;
+      totals.lipids_left_out.push_back(static_cast<std::uint32_t>(t));
     }
 
     // The prism contract of ray_prism.h: neither cap may face against the face normal.
@@ -275,6 +289,7 @@ ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vec
       out.dropped_by_type[i] += block.dropped_by_type[i];
     }
     out.uncontained.insert(out.uncontained.end(), block.uncontained.begin(), block.uncontained.end());
+    out.lipids_left_out.insert(out.lipids_left_out.end(), block.lipids_left_out.begin(), block.lipids_left_out.end());
   }
   out.fixed = fixed_offsets(out.offsets);
   return out;

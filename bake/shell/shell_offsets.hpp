@@ -47,6 +47,10 @@ struct ShellResult {
   std::vector<std::size_t> dropped_by_type;
   // Triangles that no prism fits even without droppable copies (uncontained_triangles of them).
   std::vector<std::uint32_t> uncontained;
+  // All of them again: each gets the prism that fits once copies of any type are left out (lipids
+  // too, largest first; at worst all of them, a flat prism), in `dropped` and `dropped_by_type`. A
+  // caller decides whether so few holes in the bilayer are acceptable.
+  std::vector<std::uint32_t> lipids_left_out;
 };
 
 // Fixed-height alternative: componentwise maximum over triangles (the runtime can derive it from
