@@ -63,8 +63,10 @@ struct TightTriangle {
   double found = 0.0, needed = 0.0, crease = 0.0;
 };
 
+// `prepared`: the surface the shells will get, whose creases and bends count (on a user's coarse input
+// a triangle's corner normals say little of how its surface bends).
 std::vector<TightTriangle> tight_triangles(const ProxyMesh& mesh, const MeshReport& report, double thickness,
-                                           bool creases_count, MembraneFit& fit) {
+                                           bool creases_count, MembraneFit& fit, bool prepared = true) {
   const std::size_t n = mesh.triangles.size();
   std::vector<TightTriangle> tight(n);
   for (const MeshProblem& p : report.problems)
@@ -79,7 +81,7 @@ std::vector<TightTriangle> tight_triangles(const ProxyMesh& mesh, const MeshRepo
     fit.thinnest_wall = std::min(fit.thinnest_wall, walls[t]);
     fit.narrowest_gap = std::min(fit.narrowest_gap, gaps[t]);
     const double crease_wall = rounded_wall(creases[t], thickness);
-    const double bend = mesh.has_normals() ? triangle_turn_rate(mesh, t) : 0.0;
+    const double bend = prepared && mesh.has_normals() ? triangle_turn_rate(mesh, t) : 0.0;
     if (walls[t] < thickness) tight[t] = {"wall", walls[t], thickness, creases[t]};
     else if (gaps[t] < thickness) tight[t] = {"gap", gaps[t], thickness, creases[t]};
     // The surface bending tighter than one bilayer thickness: the leaflet on its inner side would
@@ -163,7 +165,8 @@ MembraneFit prepare_and_judge(const ProxyMesh& input, ProxyMesh& mesh, MeshRepor
   fit.tight = places(mesh, tight_triangles(mesh, report, thickness, fit.remesh.has_value(), fit));
   if (fit.remesh) explain_crossings(input, *fit.remesh, fit.tight);
   // The rounding's toll on the whole shape: what it takes shrinks as the mesh grows against the bilayer.
-  // A surface rounded away that much no longer shows why: the input's own walls, gaps and bends do.
+  // A surface rounded away that much no longer shows why (what it shows is the rounding's damage):
+  // the input's own walls and gaps do.
   if (fit.remesh && fit.remesh->area_in > 0.0) {
     const double loss = 1.0 - fit.remesh->area_out / fit.remesh->area_in;
     if (loss > kMaxRoundingAreaLoss) {
@@ -171,9 +174,9 @@ MembraneFit prepare_and_judge(const ProxyMesh& input, ProxyMesh& mesh, MeshRepor
       for (const glm::dvec3& p : mesh.positions) whole.position += p / double(mesh.positions.size());
       whole.defect = !(whole.growth() <= kPlausibleGrowth);
       MembraneFit on_input;
-      std::vector<TightFeature> input_places = places(input, tight_triangles(input, MeshReport{}, thickness, false, on_input));
-      std::erase_if(input_places, [](const TightFeature& f) { return f.what == "self-intersection"; });
-      fit.tight.insert(fit.tight.begin(), input_places.begin(), input_places.end());
+      const std::vector<TightFeature> input_places =
+          places(input, tight_triangles(input, MeshReport{}, thickness, false, on_input, /*prepared=*/false));
+      fit.tight = input_places;  // what the prepared surface shows there is the rounding's own damage
       fit.tight.insert(fit.tight.begin(), whole);
     }
   }
@@ -187,7 +190,8 @@ MembraneFit prepare_and_judge(const ProxyMesh& input, ProxyMesh& mesh, MeshRepor
 // takes the bilayer; records it in `fit` when one of kSizeChecks rounds finds it.
 void check_size(const ProxyMesh& input, double thickness, const RemeshPolicy& policy, MembraneFit& fit) {
   double scale = fit.scale_needed * kSizeMargin;
-  for (int round = 0; round < kSizeChecks; ++round) {
+  for (int round = 0; round < kSizeChecks && scale <= kPlausibleGrowth; ++round) {
+    fit.largest_scale_tried = scale;
     ProxyMesh larger = input;
     for (glm::dvec3& p : larger.positions) p *= scale;
     MeshReport report = check_mesh(larger, CheckOptions{});
@@ -277,10 +281,18 @@ std::string describe_tight_features(const MembraneFit& fit, double thickness, st
   }
   if (fit.tight.size() > shown) text += "\n  ...";
   if (fit.has_defect()) return text + "\n  mend the mesh at the places named a defect; no diameter is given while they remain";
-  const char* checked = fit.size_checked ? " (checked: at that size it fits)" : " (estimated: not confirmed within three tries)";
+  if (!fit.size_checked) {
+    // Prepared and judged again at larger sizes, it still did not fit: no size within reason is named.
+    const std::string tried = diameter ? number_text("\"diameter\": %.0f Å", std::ceil(*diameter * fit.largest_scale_tried))
+                                       : number_text("%.3g times the size", fit.largest_scale_tried);
+    return text + "\n  prepared and judged again at up to " + tried +
+           ", it still does not take the bilayer: mend the mesh at the places named";
+  }
   if (diameter)
-    return text + number_text("\n  the mesh would take the bilayer at \"diameter\": %.0f Å or more", std::ceil(*diameter * fit.scale_needed)) + checked;
-  return text + number_text("\n  the mesh would take the bilayer scaled by %.3g or more (\"scale\")", fit.scale_needed) + checked;
+    return text + number_text("\n  the mesh would take the bilayer at \"diameter\": %.0f Å or more", std::ceil(*diameter * fit.scale_needed)) +
+           " (checked: at that size it fits)";
+  return text + number_text("\n  the mesh would take the bilayer scaled by %.3g or more (\"scale\")", fit.scale_needed) +
+         " (checked: at that size it fits)";
 }
 
 }  // namespace nano::mesh

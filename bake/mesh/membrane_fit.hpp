@@ -6,7 +6,7 @@
 // Tight triangles that touch are one place. A place that only a size far beyond the one asked could
 // cure (a near-contact of two sheets, a razor-thin rim) is a defect of the mesh, named where it is;
 // otherwise the smallest uniform scale at which the mesh takes the bilayer is found and checked by
-// preparing and judging the mesh again at that size.
+// preparing and judging the mesh again at that size (up to kPlausibleGrowth; beyond, none is named).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -31,7 +31,7 @@ inline constexpr double kCreaseWallAt90 = 5.0;
 inline constexpr double kDefaultBilayerThickness = 61.8;
 // The surface may bend no tighter than this many bilayer thicknesses of radius (the remeshing rounds
 // creases over 1.5; tighter, the inner leaflet folds onto itself).
-inline constexpr double kMinBendBilayers = 0.6;
+inline constexpr double kMinBendBilayers = 0.5;
 // A place needing the mesh this many times larger than asked is a defect of the mesh, not a size.
 inline constexpr double kPlausibleGrowth = 8.0;
 // Rounding a mesh's creases for the bilayer may take at most this share of its area: more, and the
@@ -69,6 +69,7 @@ struct MembraneFit {
   // (size_checked), or the estimate from the places found (> 1 when it does not fit now).
   double scale_needed = 1.0;
   bool size_checked = false;
+  double largest_scale_tried = 0.0;  // by the size checks (at most kPlausibleGrowth)
   double thinnest_wall = 0.0, narrowest_gap = 0.0;  // Å, over the whole prepared mesh (INFINITY: none)
   bool fits() const { return tight.empty(); }
   bool has_defect() const;

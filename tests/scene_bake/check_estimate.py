@@ -19,11 +19,11 @@ def within(label, estimated, measured, factor, problems):
         problems.append(label)
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser()
     parser.add_argument("report")
     parser.add_argument("--factor", type=float, default=2.0)
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     report = json.load(open(args.report))
     estimate, measured = report["estimate"], report["measured"]
     problems = []
