@@ -29,7 +29,7 @@ struct StageCost {
   double seconds;  // fixed
 };
 constexpr StageCost kTileSets{"tile sets", 2.2e-6, 0.3};    // per atom of the copies in the sets
-constexpr StageCost kShells{"shells", 1.6e-5, 0.1};           // per membrane copy checked on the surface
+constexpr StageCost kShells{"shells", 2.0e-5, 0.1};           // per membrane copy checked on the surface
 constexpr StageCost kCoreGrids{"core grids", 3e-7, 0.05};     // per soluble copy in a boundary box
 constexpr StageCost kPackage{"package content", 2e-9, 0.3};   // per atom of the copies in the sets (and writing)
 // Of a patch's lipids, the share kept once the clashes of an equilibrated patch are resolved
@@ -138,12 +138,12 @@ double estimate_membrane(const EstimateInputs& in, std::size_t membrane, const E
   }
   const double lipid_copies = kPatchLipidsKept * l.per_a2 * measure.area;
   for (const auto& [name, share] : l.share) named_entry(out.copies, name) += share * lipid_copies;
-  copies += lipid_copies;
-  // The shells check every copy of a small membrane, only those along the UV seams of a large one.
+  // The shells check the copies the triangles own before any is dropped: every place of the patch.
+  const double owned = copies + l.per_a2 * measure.area;
   // The checked triangles (all of a membrane checked everywhere) and a band along the seams elsewhere.
-  const double checked = copies * mesh.checked_share;
+  const double checked = owned * mesh.checked_share;
   if (mesh.checked_share >= 1.0) return checked;
-  return checked + std::min(copies - checked, mesh.seam_length * kSeamBand * copies / measure.area);
+  return checked + std::min(owned - checked, mesh.seam_length * kSeamBand * owned / measure.area);
 }
 
 // Adds the core grid's copies to `out` and its boxes to `work`; the solubles start `inset` inside the mesh.

@@ -110,6 +110,30 @@ TEST(BakeEstimate, CopiesFollowTheDensityTimesTheAreaAndTheConcentrationTimesThe
   EXPECT_LE(e.wall_seconds, e.cpu_seconds);
 }
 
+// The shells' work: every copy the triangles own before any is dropped (all of a lipid fill's places,
+// not only those kept), on a membrane checked everywhere; a quarter of them on one checked on a
+// quarter of its area (membrane_surface.hpp) and without seams.
+TEST(BakeEstimate, ShellsCheckWhatTheCheckedTrianglesOwn) {
+  scene::SceneDescription s = one_molecule_scene(0.0);
+  s.membranes[0].proteins[0].abundance = {scene::SurfaceAbundance::Unit::per_um2, 1000.0};
+  s.membranes[0].lipids = scene::LipidFill{.molecule = {"rod", 0}, .area_per_lipid = 65.0};
+  scene::CompartmentDescription c;
+  c.name = "cell";
+  c.membrane = scene::NameRef{"m", 0};
+  s.compartments.push_back(c);
+  s.instances.push_back(scene::ExplicitInstance{.compartment = {"cell", 0}});
+  scene::CompartmentMeasure measure = measure_compartment(mesh::make_sphere_mesh(5000, 1000.0));
+  const double owned = measure.area * (2.0 / 65.0 + 1000.0 / 1e8);
+  const auto shells_work = [&](double checked_share) {
+    const BakeEstimate e = estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0, checked_share}}, 2);
+    for (const StageEstimate& stage : e.stages)
+      if (stage.stage == "shells") return stage.work;
+    return -1.0;
+  };
+  EXPECT_NEAR(shells_work(1.0), owned, 1e-6 * owned);
+  EXPECT_NEAR(shells_work(0.25), 0.25 * owned, 1e-6 * owned);
+}
+
 TEST(BakeEstimate, MembraneCopiesForPruningAddTheLipidsAndEveryProtein) {
   // 1e6 Å² (0.01 µm²) with 65 Å² lipids in two leaflets, 1000 per µm² and 0.5 per 100 Å tile.
   scene::MembraneDescription m = one_molecule_scene(0.0).membranes[0];
