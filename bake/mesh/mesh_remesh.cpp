@@ -29,9 +29,12 @@ RemeshOptions membrane_remesh_options(const ProxyMesh& mesh, double bilayer_thic
     const double edge_for_count = std::sqrt(area / (kEquilateralAreaFactor * double(kRemeshMaxTriangles)));
     options.edge = std::max(0.5 * bilayer_thickness, edge_for_count);
   }
-  options.max_distance = std::max(bilayer_thickness, options.edge) + 0.25 * options.edge;
+  // Around creases, half the bilayer whatever the mesh's size: a large cell's coarser first pass would
+  // round them over its own edge, not the bilayer's.
+  options.crease_edge = edge ? options.edge : std::min(options.edge, 0.5 * bilayer_thickness);
+  options.max_distance = std::max(bilayer_thickness, options.crease_edge) + 0.25 * options.crease_edge;
   options.max_edge = edge ? options.edge : kCoarsestEdgeFactor * options.edge;  // the scene's edge is kept everywhere
-  options.crease_radius = std::max(kCreaseRadiusBilayers * bilayer_thickness, options.edge);
+  options.crease_radius = std::max(kCreaseRadiusBilayers * bilayer_thickness, options.crease_edge);
   return options;
 }
 
@@ -73,6 +76,7 @@ nlohmann::json to_json(const RemeshReport& r) {
           {"triangles_out", r.triangles_out},
           {"triangles_at_uniform_edge", r.triangles_uniform},
           {"edge_A", r.edge},
+          {"crease_edge_A", r.crease_edge},
           {"coarsest_edge_A", r.coarsest_edge},
           {"distance_bound_A", r.distance_bound},
           {"max_distance_A", r.max_distance},
@@ -88,7 +92,7 @@ nlohmann::json to_json(const RemeshReport& r) {
 
 std::string describe(const RemeshReport& r) {
   std::string s = "remeshed (" + r.reason + "): " + std::to_string(r.triangles_in) + " -> " +
-                  std::to_string(r.triangles_out) + " triangles" + number_text(", edges %.1f", r.edge) +
+                  std::to_string(r.triangles_out) + " triangles" + number_text(", edges %.1f", std::min(r.crease_edge, r.edge)) +
                   number_text("-%.1f Å", r.coarsest_edge) + " (" + std::to_string(r.triangles_uniform) +
                   number_text(" at %.1f Å everywhere)", r.edge);
   s += number_text("; creases %.1f°", r.largest_crease_in) + number_text(" -> %.1f°", r.largest_crease_out);

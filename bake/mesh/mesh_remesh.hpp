@@ -32,12 +32,14 @@ struct RemeshOptions {
   double max_distance = 0.0;  // Å: the remeshed surface (vertices, edge midpoints, centroids) stays this close to the input (> 0)
   double crease_radius = 0.0; // Å: creases are rounded over about this radius (0: not smoothed)
   double max_edge = 0.0;      // Å: flat enough regions are coarsened up to this edge (<= edge: uniform)
+  double crease_edge = 0.0;   // Å: the edge around creases, when finer than `edge` (0: `edge`)
 };
 
 // The options the baker derives for a membrane `bilayer_thickness` Å thick on `mesh`: creases rounded
 // over one thickness (so the bilayer's inner leaflet, half a thickness deep, never meets itself
-// inside a convex crease, nor the outer one outside a concave crease), an edge of half the thickness,
-// grown so that the mesh stays under kRemeshMaxTriangles, and a distance bound of one thickness (or
+// inside a convex crease, nor the outer one outside a concave crease), an edge of half the thickness
+// around the creases, grown elsewhere so that the first pass stays under kRemeshMaxTriangles, and a
+// distance bound of one thickness (or
 // one edge, if larger) plus a quarter edge: a chord across a rounded crease lies farther from the input
 // than its vertices, which are held half an edge inside the bound.
 // `edge`: the scene's own edge instead of the derived one (the bound and radius follow it).
@@ -58,6 +60,7 @@ struct RemeshReport {
   std::size_t triangles_in = 0, triangles_out = 0;
   std::size_t triangles_uniform = 0;       // after the first, uniform pass at `edge` (what a uniform edge would give)
   double edge = 0.0;                       // target edge, Å
+  double crease_edge = 0.0;                // Å: around creases (`edge`, or half the bilayer when finer)
   double coarsest_edge = 0.0;              // Å: where the surface is flattest
   double distance_bound = 0.0;             // Å
   double largest_crease_in = 0.0;          // degrees between neighbouring faces

@@ -376,11 +376,23 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   PMP::isotropic_remeshing(faces(work), options.edge, work, CGAL::parameters::number_of_iterations(kRemeshIterations));
   work.collect_garbage();
   report.triangles_uniform = work.number_of_faces();
-  report.smoothing_steps = round_creases(work, tree, options, options.edge, kMaxSmoothingSteps);
+  // A large cell's first pass is coarser than half the bilayer: its creases get that edge first.
+  const double fine = options.crease_edge > 0.0 ? std::min(options.crease_edge, options.edge) : options.edge;
+  if (fine < options.edge) {
+    const std::vector<bool> zone = near_creases(work, kRemeshCreaseDegrees, int(std::ceil(options.crease_radius / options.edge)) + 1);
+    const std::vector<SurfaceMesh::Face_index> patch = faces_touching(work, zone);
+    if (!patch.empty() && !has_degenerate_face(work, patch)) {
+      PMP::isotropic_remeshing(patch, fine, work, CGAL::parameters::number_of_iterations(2));
+      work.collect_garbage();
+      hold_near(work, tree, vertex_bound(options));
+    }
+  }
+  report.crease_edge = fine;
+  report.smoothing_steps = round_creases(work, tree, options, fine, kMaxSmoothingSteps);
   report.coarsest_edge = options.max_edge > options.edge ? coarsen(work, tree, options) : options.edge;
   // What the borders between the levels still fold is rounded and evened at the fine edge.
   if (report.coarsest_edge > options.edge && largest_crease(work) > kRemeshCreaseDegrees)
-    report.smoothing_steps += round_creases(work, tree, options, options.edge, kBorderSmoothingSteps);
+    report.smoothing_steps += round_creases(work, tree, options, fine, kBorderSmoothingSteps);
   mend_slivers(work, tree, options);
   hold_faces_near(work, tree, options.max_distance);
   report.largest_crease_out = largest_crease(work);

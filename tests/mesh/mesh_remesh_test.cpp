@@ -69,7 +69,16 @@ TEST(MeshRemesh, OptionsFollowTheBilayerAndCapTheTriangleCount) {
   // A box of 10^6 Å: 6·10^12 Å² in at most kRemeshMaxTriangles equilateral triangles.
   const RemeshOptions large = membrane_remesh_options(box(1e6), 40.0);
   EXPECT_NEAR(large.edge, std::sqrt(6e12 / (std::sqrt(3.0) / 4.0 * double(kRemeshMaxTriangles))), 1e-6 * large.edge);
-  EXPECT_DOUBLE_EQ(large.max_distance, 1.25 * large.edge);
+  // Its creases still get half the bilayer, and the bound and radius follow that edge.
+  EXPECT_DOUBLE_EQ(large.crease_edge, 20.0);
+  EXPECT_DOUBLE_EQ(large.max_distance, 45.0);
+  EXPECT_DOUBLE_EQ(large.crease_radius, 60.0);
+  EXPECT_DOUBLE_EQ(large.max_edge, kCoarsestEdgeFactor * large.edge);
+  // The scene's own edge is kept everywhere.
+  const RemeshOptions scene_edge = membrane_remesh_options(box(1e6), 40.0, 70.0);
+  EXPECT_DOUBLE_EQ(scene_edge.edge, 70.0);
+  EXPECT_DOUBLE_EQ(scene_edge.crease_edge, 70.0);
+  EXPECT_DOUBLE_EQ(scene_edge.max_edge, 70.0);
 }
 
 TEST(MeshRemesh, ABoxIsRoundedWithinTheBoundAndStaysSound) {
