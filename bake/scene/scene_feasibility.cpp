@@ -218,6 +218,25 @@ void check_scene_amounts(const SceneDescription& scene) {
 
 namespace {
 
+// An outer-leaflet lipid stands at +offset along the normal (the inner one mirrored at −offset), so
+// its tail end is offset − reach_below from the mid-surface: the leaflets meet where that is ~0.
+void check_leaflets_meet(const SceneDescription& scene, const MembraneDescription& m, const MoleculeMeasure& l) {
+  const double tail_end = m.lipids->leaflet_offset - l.reach_below;
+  if (std::abs(tail_end) <= kLeafletMeetTolerance) return;
+  const std::string apart = tail_end > 0.0 ? "leaves lipid '" + m.lipids->molecule.name +
+                                                 "' detached from its membrane: the two leaflets stand " +
+                                                 short_number(2.0 * tail_end) + " Å apart, with nothing between them"
+                                           : "runs the tails of lipid '" + m.lipids->molecule.name +
+                                                 "' through the other leaflet: the leaflets overlap by " +
+                                                 short_number(-2.0 * tail_end) + " Å";
+  refuse(scene, membrane_key(m) + ".lipids.leaflet_offset",
+         short_number(m.lipids->leaflet_offset) + " Å " + apart + " (its tail end reaches " +
+             short_number(l.reach_below) + " Å below its centre, and a bilayer's leaflets meet at the mid-surface); " +
+             (tail_end > 0.0 ? "at most " + at_most(l.reach_below + kLeafletMeetTolerance)
+                             : "at least " + at_least(std::max(0.0, l.reach_below - kLeafletMeetTolerance))) +
+             " Å");
+}
+
 // Each protein and the lipid fit a tile, and the lipid's area is no smaller than its own cross-section.
 void check_membrane_sizes(const SceneDescription& scene, const MembraneDescription& m,
                           std::span<const MoleculeMeasure> molecules) {
@@ -245,6 +264,7 @@ void check_membrane_sizes(const SceneDescription& scene, const MembraneDescripti
            short_number(m.lipids->area_per_lipid) + " Å² cannot fit: lipid '" + m.lipids->molecule.name + "' takes " +
                short_number(l.volume) + " Å³ over its " + short_number(l.height) +
                " Å length, so at least " + short_number(least) + " Å² per lipid (a real bilayer: 55-75 Å²)");
+  check_leaflets_meet(scene, m, l);
 }
 
 // Proteins share each leaflet: their footprints add up to at most the whole leaflet.
@@ -338,9 +358,9 @@ std::string range_text(double lo, double hi) {
   return text;
 }
 
-// A membrane copy is laid along the surface's normal with its centre at its depth (a lipid fill's
-// at ± its leaflet offset, turned over in the inner leaflet): standing clear of the bilayer's slab,
-// its copies hang where no ray meets them beside the compartment they belong to.
+// A membrane protein is laid along the surface's normal with its centre at its depth: standing clear
+// of the bilayer's slab, its copies hang where no ray meets them beside the compartment they belong
+// to. (A lipid fill makes the slab itself; check_leaflets_meet judges its offset.)
 void check_bilayer_reach(const SceneDescription& scene, const CompartmentDescription& c, const MembraneDescription& m,
                          double thickness, std::span<const MoleculeMeasure> molecules) {
   const double half = 0.5 * thickness;
@@ -359,16 +379,6 @@ void check_bilayer_reach(const SceneDescription& scene, const CompartmentDescrip
                ", so its copies would hang where no picture of the compartment shows them; a depth from " +
                signed_bound(-half - p.reach_above, true) + " to " + signed_bound(half + p.reach_below, false) + " Å");
   }
-  if (!m.lipids) return;
-  const MoleculeMeasure& l = measure_of(molecules, m.lipids->molecule, "check_compartment_amounts");
-  const double offset = m.lipids->leaflet_offset;
-  if (offset - l.reach_below > half)
-    refuse(scene, membrane_key(m) + ".lipids.leaflet_offset",
-           short_number(offset) + " Å leaves lipid '" + m.lipids->molecule.name +
-               "' detached from its membrane: each leaflet's lipids then span " +
-               range_text(offset - l.reach_below, offset + l.reach_above) +
-               " from the mid-surface (the inner one mirrored), clear of " + slab + "; at most " +
-               at_most(half + l.reach_below) + " Å");
 }
 
 }  // namespace

@@ -52,6 +52,10 @@ inline constexpr double kMaxCompartmentExtent = 1048576.0;
 // Tiles and cubes: below an atom, nothing fits; above 10 µm, a single tile set is more copies
 // than a machine holds.
 inline constexpr double kMinTileSize = 10.0, kMaxTileSize = 100000.0;
+// A lipid fill's two leaflets meet at the mid-surface: the tail ends of each leaflet stand at most
+// this far from it (apart, the bilayer would be two sheets with vacuum between; overlapping, the
+// tails of one leaflet would run through the other's).
+inline constexpr double kLeafletMeetTolerance = 3.0;
 // Proxy meshes are low-poly.
 inline constexpr double kMaxMeshTriangles = 4e6;
 

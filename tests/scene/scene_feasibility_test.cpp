@@ -234,17 +234,27 @@ TEST(SceneFeasibility, ADepthThatDetachesAProteinFromItsBilayerNamesTheDepthsTha
   EXPECT_NO_THROW(check_compartment_amounts(none, 0, sphere_measure(500), measures()));
 }
 
-TEST(SceneFeasibility, ALeafletOffsetThatDetachesTheLipidFillNamesTheLargestThatReaches) {
-  // popc reaches 12.5 Å below its centre: an outer-leaflet lipid at offset o spans [o - 12.5, o + 12.5]
-  // and meets the [-20, 20] bilayer up to o = 32.5.
+TEST(SceneFeasibility, LeafletsThatDoNotMeetAtTheMidSurfaceAreRefusedWithTheOffsetsThatWork) {
+  // popc reaches 12.5 Å below its centre: at offset o an outer-leaflet lipid's tail ends o - 12.5
+  // from the mid-surface (the inner leaflet's mirrored), so the leaflets meet for o in 12.5 ± 3.
   const auto at = [](double offset) {
     return scene_with([&](Json& d) { d["membranes"]["envelope"]["lipids"]["leaflet_offset"] = offset; });
   };
-  EXPECT_NO_THROW(check_compartment_amounts(at(32.5), 0, sphere_measure(500), measures()));
-  EXPECT_INPUT_ERROR(check_compartment_amounts(at(32.51), 0, sphere_measure(500), measures()),
-                     "membranes.envelope.lipids.leaflet_offset", "at most 32.5 Å");
-  EXPECT_INPUT_ERROR(check_compartment_amounts(at(1e6), 0, sphere_measure(500), measures()),
-                     "membranes.envelope.lipids.leaflet_offset", "detached from its membrane");
+  EXPECT_NO_THROW(check_molecule_amounts(at(12.0), measures()));
+  EXPECT_NO_THROW(check_molecule_amounts(at(15.5), measures()));
+  EXPECT_NO_THROW(check_molecule_amounts(at(9.5), measures()));
+  EXPECT_INPUT_ERROR(check_molecule_amounts(at(15.6), measures()), "membranes.envelope.lipids.leaflet_offset",
+                     "the two leaflets stand 6.2 Å apart");
+  EXPECT_INPUT_ERROR(check_molecule_amounts(at(15.6), measures()), "membranes.envelope.lipids.leaflet_offset",
+                     "; at most 15.5 Å");
+  EXPECT_INPUT_ERROR(check_molecule_amounts(at(1e6), measures()), "membranes.envelope.lipids.leaflet_offset",
+                     "detached from its membrane");
+  EXPECT_INPUT_ERROR(check_molecule_amounts(at(9.4), measures()), "membranes.envelope.lipids.leaflet_offset",
+                     "through the other leaflet");
+  EXPECT_INPUT_ERROR(check_molecule_amounts(at(9.4), measures()), "membranes.envelope.lipids.leaflet_offset",
+                     "; at least 9.5 Å");
+  EXPECT_INPUT_ERROR(check_molecule_amounts(at(0.0), measures()), "membranes.envelope.lipids.leaflet_offset",
+                     "the leaflets overlap by 25 Å");
 }
 
 TEST(SceneFeasibility, APerCompartmentCountOfZeroKeepsNoCopyAndIsRefused) {
