@@ -205,56 +205,61 @@ std::vector<std::array<std::uint32_t, 3>> corners_of(const SurfaceMesh& sm) {
 
 }  // namespace
 
-RepairReport repair_mesh(ProxyMesh& mesh, const RepairOptions& options) {
-  RepairReport report;
-  report.faces_before = mesh.triangles.size();
+namespace {
+
+// The input's triangles as a polygon soup, without faces that repeat a corner or another face.
+struct Soup {
   std::vector<Kernel::Point_3> points;
-  for (const glm::dvec3& p : mesh.positions) points.emplace_back(p.x, p.y, p.z);
   std::vector<Polygon> polygons;
   std::vector<std::size_t> face_of;  // the input triangle of each polygon
-  {
-    std::unordered_set<std::array<std::uint32_t, 3>, TriangleHash> seen;
-    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-      const Triangle& t = mesh.triangles[f];
-      if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
-        ++report.repeated_vertex_faces_removed;
-        continue;
-      }
-      std::array<std::uint32_t, 3> sorted = t;
-      std::sort(sorted.begin(), sorted.end());
-      if (!seen.insert(sorted).second) {
-        ++report.duplicate_faces_removed;
-        continue;
-      }
-      polygons.push_back({t[0], t[1], t[2]});
-      face_of.push_back(f);
-    }
-  }
-  if (polygons.empty()) throw std::invalid_argument("cannot repair: no face is left");
-  refuse_non_manifold_edges(mesh, polygons, face_of);
+};
 
-  // Orientation and non-manifold vertices, on the soup: CGAL turns faces to agree across their edges
-  // and gives each fan of faces around a vertex its own copy of it.
+Soup distinct_faces(const ProxyMesh& mesh, RepairReport& report) {
+  Soup soup;
+  for (const glm::dvec3& p : mesh.positions) soup.points.emplace_back(p.x, p.y, p.z);
+  std::unordered_set<std::array<std::uint32_t, 3>, TriangleHash> seen;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
+      ++report.repeated_vertex_faces_removed;
+      continue;
+    }
+    std::array<std::uint32_t, 3> sorted = t;
+    std::sort(sorted.begin(), sorted.end());
+    if (!seen.insert(sorted).second) {
+      ++report.duplicate_faces_removed;
+      continue;
+    }
+    soup.polygons.push_back({t[0], t[1], t[2]});
+    soup.face_of.push_back(f);
+  }
+  if (soup.polygons.empty()) throw std::invalid_argument("cannot repair: no face is left");
+  return soup;
+}
+
+// Orientation and non-manifold vertices, on the soup: CGAL turns faces to agree across their edges
+// and gives each fan of faces around a vertex its own copy of it.
+void orient_and_split(const ProxyMesh& mesh, Soup& soup, RepairReport& report) {
   OrientationRecord record;
-  record.reversed.assign(polygons.size(), 0);
-  record.origin.resize(points.size());
+  record.reversed.assign(soup.polygons.size(), 0);
+  record.origin.resize(soup.points.size());
   std::iota(record.origin.begin(), record.origin.end(), std::size_t(0));
   OrientationVisitor visitor;
   visitor.record = &record;
-  const std::size_t input_vertices = points.size();
-  PMP::orient_polygon_soup(points, polygons, CGAL::parameters::visitor(visitor));
-  refuse_one_sided(mesh, polygons, face_of, record.origin);
+  const std::size_t input_vertices = soup.points.size();
+  PMP::orient_polygon_soup(soup.points, soup.polygons, CGAL::parameters::visitor(visitor));
+  refuse_one_sided(mesh, soup.polygons, soup.face_of, record.origin);
   report.non_manifold_vertices_split = record.vertices_split;
   report.vertex_copies_added = record.copies;
-  report.faces_reoriented = keep_the_majority(polygons, record.reversed);
-  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons))
+  report.faces_reoriented = keep_the_majority(soup.polygons, record.reversed);
+  if (!PMP::is_polygon_soup_a_polygon_mesh(soup.polygons))
     throw std::invalid_argument("cannot repair: the faces do not form a surface even after orienting them and splitting "
                                 "their non-manifold vertices; check-mesh names the problems");
-  report.split_separation = pull_copies_apart(points, polygons, record.origin, input_vertices);
+  report.split_separation = pull_copies_apart(soup.points, soup.polygons, record.origin, input_vertices);
+}
 
-  SurfaceMesh sm;
-  PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
-  // CGAL mends a zero-area face by flipping or collapsing edges: count the degenerate faces it left.
+// CGAL mends a zero-area face by flipping or collapsing edges: count the degenerate faces it left.
+void remove_degenerate_faces(SurfaceMesh& sm, RepairReport& report) {
   const auto degenerate_faces = [&sm] {
     std::size_t n = 0;
     for (SurfaceMesh::Face_index f : sm.faces()) n += PMP::is_degenerate_triangle_face(f, sm);
@@ -264,7 +269,9 @@ RepairReport repair_mesh(ProxyMesh& mesh, const RepairOptions& options) {
   if (degenerate_before > 0) PMP::remove_degenerate_faces(sm);
   sm.collect_garbage();
   report.degenerate_faces_removed = degenerate_before - std::min(degenerate_before, degenerate_faces());
+}
 
+void fill_small_holes(SurfaceMesh& sm, const RepairOptions& options, RepairReport& report) {
   std::vector<SurfaceMesh::Halfedge_index> cycles;
   PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));
   for (SurfaceMesh::Halfedge_index h : cycles) {
@@ -285,25 +292,28 @@ RepairReport repair_mesh(ProxyMesh& mesh, const RepairOptions& options) {
     report.triangles_added += patch.size();
   }
   sm.collect_garbage();
+}
 
+// Each closed piece faces out of the volume it bounds (a piece inside another into it).
+void face_pieces_outward(SurfaceMesh& sm, RepairReport& report) {
   auto piece = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:piece", 0).first;
   report.pieces = PMP::connected_components(sm, piece);
-  if (CGAL::is_closed(sm)) {
-    // Each closed piece faces out of the volume it bounds (a piece inside another into it).
-    const std::vector<std::array<std::uint32_t, 3>> before = corners_of(sm);
-    PMP::orient_to_bound_a_volume(sm);
-    const std::vector<std::array<std::uint32_t, 3>> after = corners_of(sm);
-    std::unordered_set<std::size_t> turned;
-    for (SurfaceMesh::Face_index f : sm.faces()) {
-      const auto& a = before[f.idx()];
-      const auto& b = after[f.idx()];
-      const bool same = (b == a) || (b == std::array{a[1], a[2], a[0]}) || (b == std::array{a[2], a[0], a[1]});
-      if (!same) turned.insert(piece[f]);
-    }
-    report.pieces_turned_over = turned.size();
-    report.reoriented = !turned.empty();
+  if (!CGAL::is_closed(sm)) return;
+  const std::vector<std::array<std::uint32_t, 3>> before = corners_of(sm);
+  PMP::orient_to_bound_a_volume(sm);
+  const std::vector<std::array<std::uint32_t, 3>> after = corners_of(sm);
+  std::unordered_set<std::size_t> turned;
+  for (SurfaceMesh::Face_index f : sm.faces()) {
+    const auto& a = before[f.idx()];
+    const auto& b = after[f.idx()];
+    const bool same = (b == a) || (b == std::array{a[1], a[2], a[0]}) || (b == std::array{a[2], a[0], a[1]});
+    if (!same) turned.insert(piece[f]);
   }
+  report.pieces_turned_over = turned.size();
+  report.reoriented = !turned.empty();
+}
 
+ProxyMesh proxy_of(const SurfaceMesh& sm) {
   ProxyMesh repaired;
   for (SurfaceMesh::Vertex_index v : sm.vertices()) {
     const Kernel::Point_3& p = sm.point(v);
@@ -320,8 +330,24 @@ RepairReport repair_mesh(ProxyMesh& mesh, const RepairOptions& options) {
   }
   if (repaired.triangles.empty()) throw std::invalid_argument("cannot repair: no face is left");
   compute_angle_weighted_normals(repaired);
-  report.faces_after = repaired.triangles.size();
-  mesh = std::move(repaired);
+  return repaired;
+}
+
+}  // namespace
+
+RepairReport repair_mesh(ProxyMesh& mesh, const RepairOptions& options) {
+  RepairReport report;
+  report.faces_before = mesh.triangles.size();
+  Soup soup = distinct_faces(mesh, report);
+  refuse_non_manifold_edges(mesh, soup.polygons, soup.face_of);
+  orient_and_split(mesh, soup, report);
+  SurfaceMesh sm;
+  PMP::polygon_soup_to_polygon_mesh(soup.points, soup.polygons, sm);
+  remove_degenerate_faces(sm, report);
+  fill_small_holes(sm, options, report);
+  face_pieces_outward(sm, report);
+  mesh = proxy_of(sm);
+  report.faces_after = mesh.triangles.size();
   return report;
 }
 

@@ -104,6 +104,44 @@ void judge_membrane_fit(const Arguments& args) {
   if (!args.write_prepared.empty()) mesh::write_obj(args.write_prepared, prepared.mesh);
 }
 
+// The mesh file's own checks (closed, manifold, UVs...), and the charts a scene would get.
+void check_proxy_mesh(const Arguments& args) {
+  mesh::ProxyMesh proxy = mesh::read_proxy_mesh(args.mesh);
+  mesh::CheckOptions options;
+  options.tile_size = args.tile_size;
+  options.max_triangles = args.max_triangles;
+  mesh::MeshReport report = mesh::check_mesh(proxy, options);
+  // The charts a scene would get ("uv": "auto"), when nothing but the UVs is wrong, or those
+  // --make-uvs asks for.
+  const bool surface_sound = std::all_of(report.problems.begin(), report.problems.end(),
+                                         [](const mesh::MeshProblem& p) { return mesh::is_uv_rule(p.rule); });
+  const bool make = !args.make_uvs.empty();
+  std::optional<mesh::ChartAtlas> atlas;
+  mesh::ProxyMesh charted = proxy;
+  if (surface_sound && (make || !report.usable())) {
+    atlas = mesh::generate_uv_charts(charted);
+    if (make) report = mesh::check_mesh(charted, options);
+  }
+  std::string text = args.json ? [&] {
+    nlohmann::json j = mesh::report_to_json(report);
+    if (atlas) j["baker_charts"] = mesh::to_json(*atlas);
+    return j.dump(2) + "\n";
+  }()
+                                : mesh::report_to_text(report, args.mesh);
+  if (atlas && !args.json) {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "%s: the baker %s UVs: %zu charts, seam %.4g (mesh units), stretch max %.3f (mean %.3f), %.2f s\n",
+                  args.mesh.c_str(), args.make_uvs.empty() ? "would make (scene \"uv\": \"auto\")" : "made", atlas->charts.size(),
+                  atlas->seam_length, atlas->max_stretch, atlas->mean_stretch, atlas->seconds);
+    text += line;
+  }
+  std::fputs(text.c_str(), stdout);
+  std::fflush(stdout);
+  if (!args.make_uvs.empty() && atlas && report.usable()) mesh::write_obj(args.make_uvs, charted);
+  if (!report.usable()) throw CLI::RuntimeError(1);
+}
+
 }  // namespace
 
 void add_check_mesh_command(CLI::App& app) {
@@ -158,40 +196,7 @@ void add_check_mesh_command(CLI::App& app) {
       judge_membrane_fit(*args);
       return;
     }
-    mesh::ProxyMesh proxy = mesh::read_proxy_mesh(args->mesh);
-    mesh::CheckOptions options;
-    options.tile_size = args->tile_size;
-    options.max_triangles = args->max_triangles;
-    mesh::MeshReport report = mesh::check_mesh(proxy, options);
-    // The charts a scene would get ("uv": "auto"), when nothing but the UVs is wrong, or those
-    // --make-uvs asks for.
-    const bool surface_sound = std::all_of(report.problems.begin(), report.problems.end(),
-                                           [](const mesh::MeshProblem& p) { return mesh::is_uv_rule(p.rule); });
-    const bool make = !args->make_uvs.empty();
-    std::optional<mesh::ChartAtlas> atlas;
-    mesh::ProxyMesh charted = proxy;
-    if (surface_sound && (make || !report.usable())) {
-      atlas = mesh::generate_uv_charts(charted);
-      if (make) report = mesh::check_mesh(charted, options);
-    }
-    std::string text = args->json ? [&] {
-      nlohmann::json j = mesh::report_to_json(report);
-      if (atlas) j["baker_charts"] = mesh::to_json(*atlas);
-      return j.dump(2) + "\n";
-    }()
-                                  : mesh::report_to_text(report, args->mesh);
-    if (atlas && !args->json) {
-      char line[400];
-      std::snprintf(line, sizeof line,
-                    "%s: the baker %s UVs: %zu charts, seam %.4g (mesh units), stretch max %.3f (mean %.3f), %.2f s\n",
-                    args->mesh.c_str(), args->make_uvs.empty() ? "would make (scene \"uv\": \"auto\")" : "made", atlas->charts.size(),
-                    atlas->seam_length, atlas->max_stretch, atlas->mean_stretch, atlas->seconds);
-      text += line;
-    }
-    std::fputs(text.c_str(), stdout);
-    std::fflush(stdout);
-    if (!args->make_uvs.empty() && atlas && report.usable()) mesh::write_obj(args->make_uvs, charted);
-    if (!report.usable()) throw CLI::RuntimeError(1);
+    check_proxy_mesh(*args);
   });
 }
 
