@@ -276,7 +276,14 @@ private:
     for (size_t a = 0; a < units_.size(); ++a) {
       if (units_[a].mask != mask) continue;
       if (!fits(a, local, kNone, laying.rule, laying.laid_through)) {
-        if (!copy.alternate) out.refused.emplace_back(a, local);
+        if (copy.alternate) continue;
+        out.refused.emplace_back(a, local);
+        if (layer.refused_stay_as_alternates) {
+          Instance stand_in = local;
+          stand_in.alternate = true;
+          stand_in.has_alternate = false;
+          out.alternates.emplace_back(a, stand_in);
+        }
         continue;
       }
       if (copy.alternate) {  // overlaps its original by design: added last, and no part of the density

@@ -79,6 +79,10 @@ struct FixedLayer {
   // Packed types the layer is laid through (neither refuses a layer copy nor is refilled around):
   // their clashes with the layer are settled later, on the real surface.
   std::vector<uint32_t> laid_through;
+  // A membrane pruned on its whole surface: each layer copy a packed copy refuses stays as an
+  // alternate, so that where the pruning drops that protein (a clash across a seam, no prism) its
+  // place is not a hole down to the lumen but the lipids it displaced, wherever they fit.
+  bool refused_stay_as_alternates = false;
 };
 
 struct PackedUnits {

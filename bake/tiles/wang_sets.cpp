@@ -357,6 +357,7 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   layer.clearance = patch.clearance;
   const float largest = request_places(p, mixed, layer.band, requested);
   layer.copies = repeat_patch(p, largest);
+  layer.refused_stay_as_alternates = surface.rigid();
   if (patch.mix.empty()) return layer;
   // Only a membrane pruned on its whole surface (tiles packed rigid) can pick alternates.
   const std::vector<Instance> base_lipids = surface.rigid() ? layer.copies : std::vector<Instance>{};
