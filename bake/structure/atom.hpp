@@ -12,6 +12,11 @@ namespace nano::structure {
 // such atoms still dedupe among themselves instead of colliding with a real residue 0.
 inline constexpr int kNoResidueNumber = INT_MIN;
 
+// No structure reaches this far from its own origin (a PDB coordinate field holds at most 9999.999;
+// the largest assemblies in the PDB span a few thousand Å): a coordinate beyond it is a broken file,
+// and further on it would overflow the bake's float and integer grids.
+inline constexpr double kMaxCoordinate = 1e6;
+
 struct Atom {
   glm::dvec3 position{0.0};
   double occupancy = 1.0;

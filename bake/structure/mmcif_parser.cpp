@@ -178,6 +178,14 @@ private:
                          std::string(token.text) + "'");
   }
 
+  double coordinate(const std::vector<CifToken>& row, int index, std::string_view item) const {
+    const double value = real(row, index, item);
+    if (std::abs(value) > kMaxCoordinate)
+      fail(row[index].line, "_atom_site." + std::string(item) + " has a far-off value '" + std::string(row[index].text) +
+                                "' (beyond ±1e6 Å)");
+    return value;
+  }
+
   int model_index(const std::vector<CifToken>& row, int index) {
     int number = 1;
     if (present(row, index)) {
@@ -195,7 +203,8 @@ private:
   void add_atom(const AtomSiteLayout& layout, const std::vector<CifToken>& row) {
     Atom atom;
     atom.line = row.front().line;
-    atom.position = {real(row, layout[kX], "Cartn_x"), real(row, layout[kY], "Cartn_y"), real(row, layout[kZ], "Cartn_z")};
+    atom.position = {coordinate(row, layout[kX], "Cartn_x"), coordinate(row, layout[kY], "Cartn_y"),
+                     coordinate(row, layout[kZ], "Cartn_z")};
     if (present(row, layout[kOccupancy])) atom.occupancy = real(row, layout[kOccupancy], "occupancy");
     atom.atom_name = std::string(preferred(row, layout[kAuthAtom], layout[kLabelAtom]));
     atom.residue_name = std::string(preferred(row, layout[kAuthComp], layout[kLabelComp]));

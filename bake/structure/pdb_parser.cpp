@@ -63,8 +63,9 @@ private:
   double coordinate(std::string_view line, std::size_t first, const char* axis, std::size_t line_number) const {
     const std::string_view field = columns(line, first, first + 7);
     const auto value = parse_real(field);
-    if (value && std::isfinite(*value)) return *value;
-    fail(line_number, std::string(record_name(line)) + " record has a " + (value ? "non-finite " : "non-numeric ") + axis +
+    if (value && std::isfinite(*value) && std::abs(*value) <= kMaxCoordinate) return *value;
+    fail(line_number, std::string(record_name(line)) + " record has a " +
+                          (!value ? "non-numeric " : std::isfinite(*value) ? "far-off (beyond ±1e6 Å) " : "non-finite ") + axis +
                           " coordinate '" + std::string(trim_blanks(field)) + "' (columns " + std::to_string(first) +
                           "-" + std::to_string(first + 7) + ")");
   }

@@ -147,6 +147,14 @@ TEST(MmcifParser, RejectsNonFiniteValues) {
   expect_input_error([&] { parse_mmcif(header + "C 0 0 0 INF\n", "m.cif"); }, {"m.cif:line 8:", "occupancy has a non-finite value"});
 }
 
+TEST(MmcifParser, RejectsFarOffCoordinates) {
+  const std::string header = "data_A\nloop_\n_atom_site.label_atom_id\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n"
+                             "_atom_site.Cartn_z\n";
+  expect_input_error([&] { parse_mmcif(header + "C 0 1e300 0\n", "m.cif"); },
+                     {"m.cif:line 7:", "Cartn_y has a far-off value '1e300' (beyond ±1e6 Å)"});
+  EXPECT_NO_THROW(parse_mmcif(header + "C 0 -99999.5 0\n", "m.cif"));
+}
+
 // Found by mmcif_fuzzer: an _atom_site loop holding a tag of another category shorter than
 // "_atom_site." threw std::out_of_range (and a longer one ending like an item, _zzzzzzzzzzCartn_z,
 // was taken for it). Such items are not _atom_site's, and are read past.

@@ -120,6 +120,20 @@ TEST(PdbParser, RejectsNonFiniteCoordinatesAndOccupancy) {
   expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "non-finite occupancy 'inf' (columns 55-60)"});
 }
 
+// 1e+300 fits a coordinate field and parsed as a finite number; further on it overflowed the
+// bake's bead grid (a float-to-int cast). No structure reaches a million Å.
+TEST(PdbParser, RejectsFarOffCoordinates) {
+  std::string line = pdb_line({});
+  line.replace(30, 8, "  1e+300");
+  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "far-off (beyond ±1e6 Å) x coordinate '1e+300'"});
+  line = pdb_line({});
+  line.replace(46, 8, "-1000001");
+  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "far-off (beyond ±1e6 Å) z coordinate"});
+  line = pdb_line({});
+  line.replace(30, 8, "9999.999");
+  EXPECT_EQ(parse_pdb(line, "x.pdb").atoms.at(0).position.x, 9999.999);
+}
+
 TEST(PdbParser, RejectsTruncatedRecords) {
   const std::string line = pdb_line({}).substr(0, 45) + "\n";
   expect_input_error([&] { parse_pdb(pdb_line({}) + line, "x.pdb"); }, {"x.pdb:line 2:", "truncated", "31-54"});
