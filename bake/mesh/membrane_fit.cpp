@@ -288,11 +288,9 @@ std::string describe_tight_features(const MembraneFit& fit, double thickness, st
     return text + "\n  prepared and judged again at up to " + tried +
            ", it still does not take the bilayer: mend the mesh at the places named";
   }
-  if (diameter)
-    return text + number_text("\n  the mesh would take the bilayer at \"diameter\": %.0f Å or more", std::ceil(*diameter * fit.scale_needed)) +
-           " (checked: at that size it fits)";
-  return text + number_text("\n  the mesh would take the bilayer scaled by %.3g or more (\"scale\")", fit.scale_needed) +
-         " (checked: at that size it fits)";
+  const std::string size = diameter ? number_text("at \"diameter\": %.0f Å or more", std::ceil(*diameter * fit.scale_needed))
+                                    : number_text("scaled by %.3g or more (\"scale\")", fit.scale_needed);
+  return text + "\n  the mesh would take the bilayer " + size + " (checked: at that size it fits)";
 }
 
 }  // namespace nano::mesh

@@ -169,15 +169,17 @@ bool has_degenerate_face(const SurfaceMesh& sm, const std::vector<SurfaceMesh::F
   return std::any_of(patch.begin(), patch.end(), [&](SurfaceMesh::Face_index f) { return PMP::is_degenerate_triangle_face(f, sm); });
 }
 
-// One remeshing pass over `patch` (it projects onto the surface it is given, the smoothed one), then
-// the vertices held near the input again. The patch's border edges are kept where they run (CGAL
-// treats them as constraints), so the rest of the surface is left as it is.
-void even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch, double edge, const Tree& input,
-                    const RemeshOptions& options) {
-  if (has_degenerate_face(sm, patch)) return;
-  PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(1));
+// Remeshing passes over `patch` (they project onto the surface they are given, the smoothed one),
+// then the vertices held near the input again. The patch's border edges are kept where they run
+// (CGAL treats them as constraints), so the rest of the surface is left as it is. False, and the
+// patch left as it is, where it holds a degenerate face.
+bool even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch, double edge, const Tree& input,
+                    const RemeshOptions& options, int iterations = 1) {
+  if (has_degenerate_face(sm, patch)) return false;
+  PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(iterations));
   sm.collect_garbage();
   hold_near(sm, input, vertex_bound(options));
+  return true;
 }
 
 // How fast the surface turns at each vertex (rad per Å): the largest angle between its normal and a
@@ -297,10 +299,7 @@ double coarsen(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options
       for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(work.halfedge(f), work)) all = all && coarse[std::size_t(v)];
       if (all) patch.push_back(f);
     }
-    if (patch.size() < kCoarsenAtLeast || has_degenerate_face(work, patch)) break;
-    PMP::isotropic_remeshing(patch, edge, work, CGAL::parameters::number_of_iterations(2));
-    work.collect_garbage();
-    hold_near(work, tree, vertex_bound(options));
+    if (patch.size() < kCoarsenAtLeast || !even_triangles(work, patch, edge, tree, options, 2)) break;
     coarsest = edge;
   }
   return coarsest;
@@ -348,10 +347,7 @@ void mend_slivers(SurfaceMesh& work, const Tree& tree, const RemeshOptions& opti
         length += std::sqrt(CGAL::squared_distance(work.point(work.source(h)), work.point(work.target(h))));
         ++edges;
       }
-    if (has_degenerate_face(work, patch)) return;
-    PMP::isotropic_remeshing(patch, edges ? length / double(edges) : options.edge, work, CGAL::parameters::number_of_iterations(2));
-    work.collect_garbage();
-    hold_near(work, tree, vertex_bound(options));
+    if (!even_triangles(work, patch, edges ? length / double(edges) : options.edge, tree, options, 2)) return;
   }
 }
 
@@ -381,11 +377,7 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   if (fine < options.edge) {
     const std::vector<bool> zone = near_creases(work, kRemeshCreaseDegrees, int(std::ceil(options.crease_radius / options.edge)) + 1);
     const std::vector<SurfaceMesh::Face_index> patch = faces_touching(work, zone);
-    if (!patch.empty() && !has_degenerate_face(work, patch)) {
-      PMP::isotropic_remeshing(patch, fine, work, CGAL::parameters::number_of_iterations(2));
-      work.collect_garbage();
-      hold_near(work, tree, vertex_bound(options));
-    }
+    if (!patch.empty()) even_triangles(work, patch, fine, tree, options, 2);
   }
   report.crease_edge = fine;
   report.smoothing_steps = round_creases(work, tree, options, fine, kMaxSmoothingSteps);
