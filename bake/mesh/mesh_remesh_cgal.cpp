@@ -135,9 +135,12 @@ double vertex_bound(const RemeshOptions& options) {
   return std::max(options.max_distance - 0.5 * options.edge, 0.5 * options.max_distance);
 }
 
-// Every vertex farther than `bound` from the input surface moves back along its offset to `bound`.
-void hold_near(SurfaceMesh& sm, const Tree& input, double bound) {
+// Every vertex farther than `bound` from the input surface moves back along its offset to `bound`;
+// with `moved`, only those marked there (the others stayed where the last hold left them: a closest
+// point on a 75k-triangle scan is most of a smoothing step's cost).
+void hold_near(SurfaceMesh& sm, const Tree& input, double bound, const std::vector<bool>* moved = nullptr) {
   for (SurfaceMesh::Vertex_index v : sm.vertices()) {
+    if (moved && !(*moved)[std::size_t(v)]) continue;
     const Point p = sm.point(v);
     const Point q = input.closest_point(p);
     const double d = std::sqrt(CGAL::squared_distance(p, q));
@@ -173,12 +176,29 @@ bool has_degenerate_face(const SurfaceMesh& sm, const std::vector<SurfaceMesh::F
 // then the vertices held near the input again. The patch's border edges are kept where they run
 // (CGAL treats them as constraints), so the rest of the surface is left as it is. False, and the
 // patch left as it is, where it holds a degenerate face.
+// Where `held`, the vertices the pass leaves where they were are already held, and are not looked
+// at again.
 bool even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch, double edge, const Tree& input,
-                    const RemeshOptions& options, int iterations = 1) {
+                    const RemeshOptions& options, int iterations = 1, bool held = true) {
   if (has_degenerate_face(sm, patch)) return false;
+  std::vector<Point> before;
+  if (held)
+    for (SurfaceMesh::Vertex_index v : sm.vertices()) {
+      if (std::size_t(v) >= before.size()) before.resize(std::size_t(v) + 1, Point(NAN, NAN, NAN));
+      before[std::size_t(v)] = sm.point(v);
+    }
   PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(iterations));
+  // Before the garbage goes, a vertex the pass kept has its index still; a slot it reused for a new
+  // vertex holds another point (at the very same point it would be held already).
+  std::vector<bool> moved;
+  if (held)
+    for (SurfaceMesh::Vertex_index v : sm.vertices()) {
+      const std::size_t i = std::size_t(v);
+      if (i >= moved.size()) moved.resize(i + 1, false);
+      moved[i] = i >= before.size() || !(sm.point(v) == before[i]);
+    }
+  hold_near(sm, input, vertex_bound(options), held ? &moved : nullptr);
   sm.collect_garbage();
-  hold_near(sm, input, vertex_bound(options));
   return true;
 }
 
@@ -263,7 +283,8 @@ int round_creases(SurfaceMesh& work, const Tree& tree, const RemeshOptions& opti
     if (std::find(marked.begin(), marked.end(), true) == marked.end()) break;
     for (int k = 0; k < 2; ++k) {
       umbrella_step(work, marked, kSmoothingWeight, scratch);
-      hold_near(work, tree, vertex_bound(options));
+      // The first step holds every vertex: the surface it starts from may not have been held yet.
+      hold_near(work, tree, vertex_bound(options), done == 0 && k == 0 ? nullptr : &marked);
     }
     done += 2;
     even_triangles(work, faces_touching(work, marked), edge, tree, options);
@@ -377,7 +398,7 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   if (fine < options.edge) {
     const std::vector<bool> zone = near_creases(work, kRemeshCreaseDegrees, int(std::ceil(options.crease_radius / options.edge)) + 1);
     const std::vector<SurfaceMesh::Face_index> patch = faces_touching(work, zone);
-    if (!patch.empty()) even_triangles(work, patch, fine, tree, options, 2);
+    if (!patch.empty()) even_triangles(work, patch, fine, tree, options, 2, /*held=*/false);
   }
   report.crease_edge = fine;
   report.smoothing_steps = round_creases(work, tree, options, fine, kMaxSmoothingSteps);
