@@ -5,12 +5,15 @@
 #include "bake/tiles/tile_random.hpp"
 #include "bake/tiles/unit_packer.hpp"
 #include "common/error.hpp"
+#include "common/parallel_for.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <sstream>
+#include <unordered_map>
 
 namespace nano::tiles {
 namespace {
@@ -277,12 +280,12 @@ public:
     for (std::size_t i = 0; i < places_.size(); ++i) standing_[i] = add_with_images(mixed_, places_[i], p_.edge);
   }
 
-  // Whether place i now holds a conformer of the species.
-  bool try_species(std::size_t i, const LipidSpecies& species) {
+  // Whether place i now holds a conformer of the species, trying `candidates` (ranked_conformers of
+  // the place's base lipid) in their order.
+  bool try_species(std::size_t i, const std::vector<Candidate>& candidates) {
     Instance& place = places_[i];
     for (const std::size_t id : standing_[i]) mixed_.retire(id);
     bool fitted = false;
-    const std::vector<Candidate> candidates = ranked_conformers(place, species, p_.shapes);
     for (std::size_t k = 0; k < candidates.size() && !fitted; ++k) {
       // The best-ranked shapes also nudged a little: equilibrated neighbours leave no room to spare.
       const int nudges = k < kNudgedCandidates ? 5 : 1;
@@ -305,8 +308,37 @@ private:
   CopyNeighbourhood mixed_;
 };
 
+// The conformers ranked for the places a leaflet's mixing will try next. A place is tried holding
+// its base lipid (a place that takes no conformer gets it back), so its ranking depends on nothing
+// the mixing changes, and the next kRankedAhead places are ranked at once, on every job.
+class RankedAhead {
+public:
+  RankedAhead(const PatchLaying& p, const LipidSpecies& species, const std::vector<Instance>& places, int threads)
+      : p_(p), species_(species), places_(places), threads_(threads) {}
+
+  // `upcoming`: the places still to try, in order (the first is asked for now).
+  const std::vector<Candidate>& at(std::span<const std::size_t> upcoming) {
+    const std::size_t place = upcoming.front();
+    if (const auto it = ranked_.find(place); it != ranked_.end()) return it->second;
+    ranked_.clear();
+    const std::size_t count = std::min(upcoming.size(), kRankedAhead);
+    std::vector<std::vector<Candidate>> batch(count);
+    parallel_for(count, threads_, [&](std::size_t k) { batch[k] = ranked_conformers(places_[upcoming[k]], species_, p_.shapes); });
+    for (std::size_t k = 0; k < count; ++k) ranked_.emplace(upcoming[k], std::move(batch[k]));
+    return ranked_.at(place);
+  }
+
+private:
+  static constexpr std::size_t kRankedAhead = 32;
+  const PatchLaying& p_;
+  const LipidSpecies& species_;
+  const std::vector<Instance>& places_;
+  int threads_;
+  std::unordered_map<std::size_t, std::vector<Candidate>> ranked_;
+};
+
 // Gives each mixed species its share of each leaflet's places; returns per place whether a species took it.
-std::vector<char> mix_species(const PatchLaying& p, float largest, uint64_t seed, std::vector<Instance>& places) {
+std::vector<char> mix_species(const PatchLaying& p, float largest, uint64_t seed, int threads, std::vector<Instance>& places) {
   SplitMix64 rng(mix64(seed ^ 0x11D1DC0FFEEull));
   PatchMixer mixer(p, largest, places);
   std::vector<char> taken(places.size(), 0);
@@ -318,14 +350,15 @@ std::vector<char> mix_species(const PatchLaying& p, float largest, uint64_t seed
       std::size_t leaflet_places = 0;
       for (const Instance& c : places) leaflet_places += (c.position.z >= 0.f) == outer;
       std::size_t wanted = static_cast<std::size_t>(std::lround((outer ? species.outer : species.inner) * double(leaflet_places)));
-      for (const std::size_t i : order) {
-        if (wanted == 0) break;
-        if (taken[i] || (places[i].position.z >= 0.f) != outer) continue;
-        if (mixer.try_species(i, species)) {
-          taken[i] = 1;
+      std::vector<std::size_t> to_try;  // in order: only the place being tried can be taken before its turn
+      for (const std::size_t i : order)
+        if (!taken[i] && (places[i].position.z >= 0.f) == outer) to_try.push_back(i);
+      RankedAhead ranked(p, species, places, threads);
+      for (std::size_t k = 0; k < to_try.size() && wanted > 0; ++k)
+        if (mixer.try_species(to_try[k], ranked.at(std::span(to_try).subspan(k)))) {
+          taken[to_try[k]] = 1;
           --wanted;
         }
-      }
     }
   return taken;
 }
@@ -348,7 +381,7 @@ void keep_base_lipids_as_alternates(const std::vector<Instance>& base_lipids, co
 // The patch repeated over one tile with centres rescaled to the tile edge, minus the lipids that
 // clash with kept ones (in patch order) or with their images one edge away.
 FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, const std::vector<MoleculeType>& types,
-                     const std::vector<CollisionShape>& shapes, SurfaceDistortion surface, uint64_t seed,
+                     const std::vector<CollisionShape>& shapes, SurfaceDistortion surface, uint64_t seed, int threads,
                      std::vector<double>& requested) {
   const PatchLaying p{what, patch, edge, types, shapes, ClashRule{patch.clearance, surface}};
   requested.assign(types.size(), 0.0);
@@ -361,7 +394,7 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   if (patch.mix.empty()) return layer;
   // Only a membrane pruned on its whole surface (tiles packed rigid) can pick alternates.
   const std::vector<Instance> base_lipids = surface.rigid() ? layer.copies : std::vector<Instance>{};
-  const std::vector<char> taken = mix_species(p, largest, seed, layer.copies);
+  const std::vector<char> taken = mix_species(p, largest, seed, threads, layer.copies);
   if (!base_lipids.empty()) keep_base_lipids_as_alternates(base_lipids, taken, layer);
   return layer;
 }
@@ -417,7 +450,7 @@ WangSet make_membrane_tiles(const MembraneTileRequest& r) {
   std::vector<double> layer_requested;
   if (r.lipid_patch) {
     if (r.lipids) throw InputError(what, "lipids", "give either a lipid fill or a lipid patch, not both");
-    layer = lay_patch(what, *r.lipid_patch, r.edge, r.types, shapes, surface, r.seed, layer_requested);
+    layer = lay_patch(what, *r.lipid_patch, r.edge, r.types, shapes, surface, r.seed, r.budget.threads, layer_requested);
     for (const MembraneMolecule& m : r.molecules)
       if (m.lipids_displaced_on_surface) layer.laid_through.push_back(m.type);
   }

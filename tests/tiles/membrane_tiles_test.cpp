@@ -331,9 +331,8 @@ TEST(MembraneTiles, LipidsAreLaidThroughProteinsDisplacedOnTheSurface) {
 // taking 40 % of the outer leaflet's places and 80 % of the inner one's. Random tilings stay
 // clash-free at the patch clearance, the species sits only in its leaflets and never above its
 // share, mixing opens no hole (as many lipids as the unmixed patch), and the set reports it.
-TEST(MembraneTiles, LipidMixTakesPlacesWithoutOpeningHoles) {
+MembraneTileRequest mixed_patch_request() {
   MembraneTileRequest req = patch_request();
-  const WangSet unmixed = make_membrane_tiles(req);
   tiles::MoleculeType thin = test::make_lipid();
   thin.name = "thin";
   for (auto& a : thin.atoms) a.radius *= 0.8f;
@@ -344,6 +343,21 @@ TEST(MembraneTiles, LipidMixTakesPlacesWithoutOpeningHoles) {
   const glm::quat flip(0.f, 1.f, 0.f, 0.f);
   species.conformers = {{2, glm::vec3(0, 0, 16.f), glm::quat(1, 0, 0, 0)}, {2, glm::vec3(0, 0, -16.f), flip}};
   req.lipid_patch->mix = {species};
+  return req;
+}
+
+// The places a mixed species may take are ranked several at a time on the jobs: the same set.
+TEST(MembraneTiles, SameMixedSetWhateverTheThreads) {
+  MembraneTileRequest req = mixed_patch_request();
+  req.budget.threads = 1;
+  const std::vector<std::uint8_t> one = test::set_bytes(make_membrane_tiles(req));
+  req.budget.threads = 3;
+  EXPECT_EQ(test::set_bytes(make_membrane_tiles(req)), one);
+}
+
+TEST(MembraneTiles, LipidMixTakesPlacesWithoutOpeningHoles) {
+  const WangSet unmixed = make_membrane_tiles(patch_request());
+  MembraneTileRequest req = mixed_patch_request();
   const WangSet set = make_membrane_tiles(req);
   for (uint64_t recipe_seed : {11u, 12u}) {
     const TilingRecipe recipe = make_tiling_recipe(set.colouring, {6, 6, 1}, recipe_seed, false);
