@@ -45,7 +45,7 @@ std::optional<RemeshReport> prepare(ProxyMesh& mesh, MeshReport& report, double 
   const RemeshOptions options = membrane_remesh_options(
       mesh, thickness, policy.mode == RemeshPolicy::Mode::edge ? std::optional<double>(policy.edge) : std::nullopt);
   RemeshReport remeshed = remesh_for_membrane(mesh, options, *reason);
-  report = check_mesh(mesh, CheckOptions{});
+  report = check_mesh_surface(mesh, CheckOptions{});  // its UVs are gone: the chart stage makes them
   return remeshed;
 }
 
@@ -194,7 +194,7 @@ void check_size(const ProxyMesh& input, double thickness, const RemeshPolicy& po
     fit.largest_scale_tried = scale;
     ProxyMesh larger = input;
     for (glm::dvec3& p : larger.positions) p *= scale;
-    MeshReport report = check_mesh(larger, CheckOptions{});
+    MeshReport report = check_mesh_surface(larger, CheckOptions{});
     const ProxyMesh larger_input = larger;
     const MembraneFit again = prepare_and_judge(larger_input, larger, report, thickness, policy);
     if (again.fits()) {

@@ -216,18 +216,38 @@ void measure_replication_area(const ProxyMesh& mesh, const CheckOptions& options
 
 }  // namespace
 
-MeshReport check_mesh(const ProxyMesh& mesh, const CheckOptions& options) {
-  MeshReport report;
+namespace {
+
+void check_surface(const ProxyMesh& mesh, const std::vector<MeshEdge>& edges, const CheckOptions& options, MeshReport& report) {
   report.triangles = mesh.triangles.size();
   report.vertices = mesh.positions.size();
   if (mesh.triangles.size() > options.max_triangles)
     report.problems.push_back({-1, rule::too_many_triangles, static_cast<double>(mesh.triangles.size()),
                                "more than " + std::to_string(options.max_triangles) +
                                    " triangles: a proxy mesh is low-poly (its triangles become prisms of molecules)"});
-  const std::vector<MeshEdge> edges = collect_edges(mesh);
   check_topology(mesh, edges, report);
   const bool degenerate = check_triangle_shapes(mesh, options, report);
   check_solid(mesh, degenerate, report);
+}
+
+void sort_problems(MeshReport& report) {
+  std::stable_sort(report.problems.begin(), report.problems.end(),
+                   [](const MeshProblem& a, const MeshProblem& b) { return a.face < b.face; });
+}
+
+}  // namespace
+
+MeshReport check_mesh_surface(const ProxyMesh& mesh, const CheckOptions& options) {
+  MeshReport report;
+  check_surface(mesh, collect_edges(mesh), options, report);
+  sort_problems(report);
+  return report;
+}
+
+MeshReport check_mesh(const ProxyMesh& mesh, const CheckOptions& options) {
+  MeshReport report;
+  const std::vector<MeshEdge> edges = collect_edges(mesh);
+  check_surface(mesh, edges, options, report);
   report.has_uvs = mesh.has_uvs();
   if (!report.has_uvs) {
     report.problems.push_back({-1, rule::no_uvs, 0.0, "the mesh has no texture coordinates"});
@@ -237,8 +257,7 @@ MeshReport check_mesh(const ProxyMesh& mesh, const CheckOptions& options) {
     measure_distortion(mesh, options, report);
     measure_replication_area(mesh, options, report);
   }
-  std::stable_sort(report.problems.begin(), report.problems.end(),
-                   [](const MeshProblem& a, const MeshProblem& b) { return a.face < b.face; });
+  sort_problems(report);
   return report;
 }
 

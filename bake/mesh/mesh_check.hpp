@@ -99,6 +99,9 @@ struct MeshReport {
 // - warning: a UV triangle whose box sets W or H of the replication area while its elongation
 //   (longest box side)² / (2·UV area) exceeds thin_uv_elongation (1 for a right isosceles triangle).
 MeshReport check_mesh(const ProxyMesh& mesh, const CheckOptions& options);
+// The surface alone (every rule above but the UVs'; has_uvs and what follows it left unset): what
+// the membrane fit judges before any chart is made.
+MeshReport check_mesh_surface(const ProxyMesh& mesh, const CheckOptions& options);
 
 nlohmann::json report_to_json(const MeshReport& report);
 // Human-readable report; problem lines read "FILE:face N: RULE (value ...)".

@@ -136,7 +136,7 @@ void fit_for_membrane(CompartmentMesh& result, const scene::CompartmentDescripti
 // mesh checked as the shells will use it.
 void chart(CompartmentMesh& result, const scene::CompartmentDescription& compartment) {
   const scene::MeshSource& source = compartment.mesh;
-  bool uv_trouble = false;
+  bool uv_trouble = !result.mesh.has_uvs();  // none read, or remeshed away (the fit checks the surface only)
   std::vector<mesh::MeshProblem> shape_problems;
   for (const mesh::MeshProblem& p : result.report.problems) {
     if (mesh::is_uv_rule(p.rule)) uv_trouble = true;

@@ -157,6 +157,37 @@ TEST(CheckMesh, SliverTriangle) {
   EXPECT_NEAR(it->value, std::atan(0.008) * 180 / M_PI, 1e-6);  // the angles at both ends of the base
 }
 
+// The surface alone: the same surface problems as the whole check, nothing of the UVs (a UV outside
+// the unit square and a non-manifold edge planted together).
+TEST(CheckMesh, SurfaceCheckLeavesTheUvsOut) {
+  TempDir dir;
+  const ProxyMesh mesh = read_proxy_mesh(dir.write(
+      "m.obj", octahedron_vertices + "v 1 1 1\n" + octahedron_uvs + "vt 0.5 1.25\n" +
+                   replace_line(octahedron_faces, "f 1/1 2/2 5/5", "f 1/1 2/10 5/5") + "f 1/1 2/2 7/10\n"));
+  const MeshReport whole = check_mesh(mesh, CheckOptions{});
+  const MeshReport surface = check_mesh_surface(mesh, CheckOptions{});
+  ASSERT_FALSE(faces_with(whole, rule::uv_outside).empty());
+  std::vector<MeshProblem> whole_surface_problems;
+  for (const MeshProblem& p : whole.problems)
+    if (!is_uv_rule(p.rule)) whole_surface_problems.push_back(p);
+  ASSERT_EQ(surface.problems.size(), whole_surface_problems.size());
+  for (std::size_t i = 0; i < surface.problems.size(); ++i) {
+    EXPECT_EQ(surface.problems[i].face, whole_surface_problems[i].face);
+    EXPECT_EQ(surface.problems[i].rule, whole_surface_problems[i].rule);
+  }
+  EXPECT_FALSE(faces_with(surface, rule::non_manifold_edge).empty());
+  EXPECT_FALSE(surface.has_uvs);
+  EXPECT_EQ(surface.closed, whole.closed);
+  EXPECT_EQ(surface.manifold, whole.manifold);
+  EXPECT_DOUBLE_EQ(surface.area, whole.area);
+  // Without UVs: no no_uvs problem either.
+  const MeshReport bare = check_mesh_surface(
+      read_proxy_mesh(dir.write("bare.obj", octahedron_vertices + "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 2 1 6\nf 3 2 6\nf 4 3 6\nf 1 4 6\n")),
+      CheckOptions{});
+  EXPECT_TRUE(bare.problems.empty()) << report_to_text(bare, "bare");
+  EXPECT_TRUE(bare.closed && bare.manifold && bare.oriented && bare.outward);
+}
+
 TEST(CheckMesh, OpenBorder) {
   // Drop the last face (1, 4, 6): its three edges become border edges of faces 3, 6 and 4.
   const MeshReport r = check_text(octahedron_vertices + octahedron_uvs +
