@@ -11,9 +11,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
-#include <span>
 #include <sstream>
-#include <unordered_map>
 
 namespace nano::tiles {
 namespace {
@@ -308,24 +306,24 @@ private:
   CopyNeighbourhood mixed_;
 };
 
-// The conformers ranked for the places a leaflet's mixing will try next. A place is tried holding
-// its base lipid (a place that takes no conformer gets it back), so its ranking depends on nothing
-// the mixing changes, and the next kRankedAhead places are ranked at once, on every job.
+// The conformers ranked for the places a leaflet's mixing tries, in its order. A place is tried
+// holding its base lipid (a place that takes no conformer gets it back), so its ranking depends on
+// nothing the mixing changes, and the next kRankedAhead places are ranked at once, on every job.
 class RankedAhead {
 public:
-  RankedAhead(const PatchLaying& p, const LipidSpecies& species, const std::vector<Instance>& places, int threads)
-      : p_(p), species_(species), places_(places), threads_(threads) {}
+  RankedAhead(const PatchLaying& p, const LipidSpecies& species, const std::vector<Instance>& places,
+              const std::vector<std::size_t>& to_try, int threads)
+      : p_(p), species_(species), places_(places), to_try_(to_try), threads_(threads) {}
 
-  // `upcoming`: the places still to try, in order (the first is asked for now).
-  const std::vector<Candidate>& at(std::span<const std::size_t> upcoming) {
-    const std::size_t place = upcoming.front();
-    if (const auto it = ranked_.find(place); it != ranked_.end()) return it->second;
-    ranked_.clear();
-    const std::size_t count = std::min(upcoming.size(), kRankedAhead);
-    std::vector<std::vector<Candidate>> batch(count);
-    parallel_for(count, threads_, [&](std::size_t k) { batch[k] = ranked_conformers(places_[upcoming[k]], species_, p_.shapes); });
-    for (std::size_t k = 0; k < count; ++k) ranked_.emplace(upcoming[k], std::move(batch[k]));
-    return ranked_.at(place);
+  // The ranking of to_try[k]; k only grows from one call to the next.
+  const std::vector<Candidate>& at(std::size_t k) {
+    if (k >= first_ + batch_.size()) {
+      first_ = k;
+      batch_.assign(std::min(to_try_.size() - k, kRankedAhead), {});
+      parallel_for(batch_.size(), threads_,
+                   [&](std::size_t i) { batch_[i] = ranked_conformers(places_[to_try_[first_ + i]], species_, p_.shapes); });
+    }
+    return batch_[k - first_];
   }
 
 private:
@@ -333,8 +331,10 @@ private:
   const PatchLaying& p_;
   const LipidSpecies& species_;
   const std::vector<Instance>& places_;
+  const std::vector<std::size_t>& to_try_;
   int threads_;
-  std::unordered_map<std::size_t, std::vector<Candidate>> ranked_;
+  std::size_t first_ = 0;
+  std::vector<std::vector<Candidate>> batch_;
 };
 
 // Gives each mixed species its share of each leaflet's places; returns per place whether a species took it.
@@ -353,9 +353,9 @@ std::vector<char> mix_species(const PatchLaying& p, float largest, uint64_t seed
       std::vector<std::size_t> to_try;  // in order: only the place being tried can be taken before its turn
       for (const std::size_t i : order)
         if (!taken[i] && (places[i].position.z >= 0.f) == outer) to_try.push_back(i);
-      RankedAhead ranked(p, species, places, threads);
+      RankedAhead ranked(p, species, places, to_try, threads);
       for (std::size_t k = 0; k < to_try.size() && wanted > 0; ++k)
-        if (mixer.try_species(to_try[k], ranked.at(std::span(to_try).subspan(k)))) {
+        if (mixer.try_species(to_try[k], ranked.at(k))) {
           taken[to_try[k]] = 1;
           --wanted;
         }
