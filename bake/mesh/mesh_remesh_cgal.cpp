@@ -181,23 +181,19 @@ bool has_degenerate_face(const SurfaceMesh& sm, const std::vector<SurfaceMesh::F
 bool even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch, double edge, const Tree& input,
                     const RemeshOptions& options, int iterations = 1, bool held = true) {
   if (has_degenerate_face(sm, patch)) return false;
+  // One per slot, removed ones included (num_vertices), indexed as the vertices are; NaN never equals.
   std::vector<Point> before;
-  if (held)
-    for (SurfaceMesh::Vertex_index v : sm.vertices()) {
-      if (std::size_t(v) >= before.size()) before.resize(std::size_t(v) + 1, Point(NAN, NAN, NAN));
-      before[std::size_t(v)] = sm.point(v);
-    }
+  if (held) {
+    before.assign(sm.num_vertices(), Point(NAN, NAN, NAN));
+    for (SurfaceMesh::Vertex_index v : sm.vertices()) before[std::size_t(v)] = sm.point(v);
+  }
   PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(iterations));
   // Before the garbage goes, a vertex the pass kept has its index still; a slot it reused for a new
   // vertex holds another point (at the very same point it would be held already).
-  std::vector<bool> moved;
-  if (held)
-    for (SurfaceMesh::Vertex_index v : sm.vertices()) {
-      const std::size_t i = std::size_t(v);
-      if (i >= moved.size()) moved.resize(i + 1, false);
-      moved[i] = i >= before.size() || !(sm.point(v) == before[i]);
-    }
-  hold_near(sm, input, vertex_bound(options), held ? &moved : nullptr);
+  std::vector<bool> moved(sm.num_vertices(), true);
+  for (std::size_t i = 0; i < std::min(before.size(), moved.size()); ++i)
+    moved[i] = !(sm.point(SurfaceMesh::Vertex_index(SurfaceMesh::size_type(i))) == before[i]);
+  hold_near(sm, input, vertex_bound(options), &moved);
   sm.collect_garbage();
   return true;
 }
