@@ -107,31 +107,29 @@ TEST(PdbParser, RejectsANonNumericCoordinateNamingFileLineAndColumns) {
   }
 }
 
+// An ATOM line with `text` written over `width` columns from (0-based) `first`.
+std::string with_field(std::size_t first, std::size_t width, const std::string& text) {
+  std::string line = pdb_line({});
+  return line.replace(first, width, text);
+}
+
 // Found by pdb_fuzzer: "nan" and "inf" parse as numbers, and were taken as coordinates.
 TEST(PdbParser, RejectsNonFiniteCoordinatesAndOccupancy) {
-  std::string line = pdb_line({});
-  line.replace(38, 8, "     nan");
-  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "non-finite y coordinate 'nan' (columns 39-46)"});
-  line = pdb_line({});
-  line.replace(46, 8, "    -inf");
-  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "non-finite z coordinate '-inf'"});
-  line = pdb_line({});
-  line.replace(54, 6, "   inf");
-  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "non-finite occupancy 'inf' (columns 55-60)"});
+  expect_input_error([&] { parse_pdb(with_field(38, 8, "     nan"), "x.pdb"); },
+                     {"x.pdb:line 1:", "non-finite y coordinate 'nan' (columns 39-46)"});
+  expect_input_error([&] { parse_pdb(with_field(46, 8, "    -inf"), "x.pdb"); }, {"x.pdb:line 1:", "non-finite z coordinate '-inf'"});
+  expect_input_error([&] { parse_pdb(with_field(54, 6, "   inf"), "x.pdb"); },
+                     {"x.pdb:line 1:", "non-finite occupancy 'inf' (columns 55-60)"});
 }
 
 // 1e+300 fits a coordinate field and parsed as a finite number; further on it overflowed the
 // bake's bead grid (a float-to-int cast). No structure reaches a million Å.
 TEST(PdbParser, RejectsFarOffCoordinates) {
-  std::string line = pdb_line({});
-  line.replace(30, 8, "  1e+300");
-  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "far-off (beyond ±1e6 Å) x coordinate '1e+300'"});
-  line = pdb_line({});
-  line.replace(46, 8, "-1000001");
-  expect_input_error([&] { parse_pdb(line, "x.pdb"); }, {"x.pdb:line 1:", "far-off (beyond ±1e6 Å) z coordinate"});
-  line = pdb_line({});
-  line.replace(30, 8, "9999.999");
-  EXPECT_EQ(parse_pdb(line, "x.pdb").atoms.at(0).position.x, 9999.999);
+  expect_input_error([&] { parse_pdb(with_field(30, 8, "  1e+300"), "x.pdb"); },
+                     {"x.pdb:line 1:", "far-off (beyond ±1e6 Å) x coordinate '1e+300'"});
+  expect_input_error([&] { parse_pdb(with_field(46, 8, "-1000001"), "x.pdb"); },
+                     {"x.pdb:line 1:", "far-off (beyond ±1e6 Å) z coordinate"});
+  EXPECT_EQ(parse_pdb(with_field(30, 8, "9999.999"), "x.pdb").atoms.at(0).position.x, 9999.999);
 }
 
 TEST(PdbParser, RejectsTruncatedRecords) {
