@@ -61,6 +61,8 @@ namespace {
     problems << p.rule << " (" << p.value << ")";
     if (!p.detail.empty()) problems << " " << p.detail;
   }
+  // What "repair" did and left is half of why the mesh is still refused.
+  if (m.repair) problems << "\n  " << mesh::describe(*m.repair);
   throw InputError(m.origin, "", problems.str());
 }
 

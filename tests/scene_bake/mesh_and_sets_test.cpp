@@ -202,6 +202,18 @@ TEST(CompartmentMesh, UnusableMeshNamesTheFileAndTheProblem) {
   EXPECT_NE(what.find("tetra"), std::string::npos) << what;
 }
 
+// A mesh "repair" could not make usable is refused with what the repair did (here: nothing to mend).
+TEST(CompartmentMesh, RefusalAfterRepairSaysWhatTheRepairDid) {
+  scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_repaired_no_uvs.obj"));
+  c.mesh.uv = scene::MeshSource::Uv::keep;
+  c.mesh.repair = true;
+  const std::string what = load_error(c);
+  EXPECT_NE(what.find("no UVs"), std::string::npos) << what;
+  EXPECT_NE(what.find("repair: nothing to mend"), std::string::npos) << what;
+  c.mesh.repair = false;
+  EXPECT_EQ(load_error(c).find("repair:"), std::string::npos);
+}
+
 // Without UVs the baker makes them and the result passes check-mesh: a tetrahedron's face normals
 // lie 109.5° apart, so two faces stay within 60° (54.7° each) of their mean and pair up: 2 charts.
 TEST(CompartmentMesh, MeshWithoutUvsGetsCharts) {
