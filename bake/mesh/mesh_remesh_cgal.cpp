@@ -93,20 +93,26 @@ double crease_degrees(const SurfaceMesh& sm, SurfaceMesh::Edge_index e) {
 
 // The vertices within `rings` edges of an edge sharper than `degrees`: only they are smoothed,
 // so smooth parts of the user's surface (a sphere's cap) do not shrink.
+// A breadth-first walk from the creases' ends, ring by ring: its cost follows the marked zone, not
+// the mesh times the rings (a 1 µm CAD part is rounded over 20 rings, 100 times).
 std::vector<bool> near_creases(const SurfaceMesh& sm, double degrees, int rings) {
   std::vector<bool> marked(sm.number_of_vertices(), false);
+  std::vector<SurfaceMesh::Vertex_index> ring, next;
+  const auto mark = [&](SurfaceMesh::Vertex_index v, std::vector<SurfaceMesh::Vertex_index>& into) {
+    if (marked[std::size_t(v)]) return;
+    marked[std::size_t(v)] = true;
+    into.push_back(v);
+  };
   for (SurfaceMesh::Edge_index e : sm.edges())
     if (crease_degrees(sm, e) > degrees) {
-      marked[std::size_t(sm.vertex(e, 0))] = true;
-      marked[std::size_t(sm.vertex(e, 1))] = true;
+      mark(sm.vertex(e, 0), ring);
+      mark(sm.vertex(e, 1), ring);
     }
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<bool> grown = marked;
-    for (SurfaceMesh::Edge_index e : sm.edges()) {
-      const std::size_t a = std::size_t(sm.vertex(e, 0)), b = std::size_t(sm.vertex(e, 1));
-      if (marked[a] || marked[b]) grown[a] = grown[b] = true;
-    }
-    marked = std::move(grown);
+  for (int r = 0; r < rings && !ring.empty(); ++r) {
+    next.clear();
+    for (SurfaceMesh::Vertex_index v : ring)
+      for (SurfaceMesh::Vertex_index u : CGAL::vertices_around_target(sm.halfedge(v), sm)) mark(u, next);
+    ring.swap(next);
   }
   return marked;
 }
