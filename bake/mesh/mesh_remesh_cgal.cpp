@@ -47,6 +47,10 @@ constexpr int kBorderRings = 3;
 constexpr int kBorderSmoothingSteps = 8;
 // Triangles with an angle under this are remeshed again with their surroundings, a few rounds at most.
 constexpr double kSliverMendDegrees = 5.0;
+// A cap (one angle near 180°) is flat but short across: the corner normals it interpolates turn over
+// its small height, as tight a bend as the judgement sees (a 1 µm cube's corners: 166°, a radius of
+// 20 Å against the 31 Å half a bilayer needs). Mended like a sliver.
+constexpr double kCapMendDegrees = 150.0;
 constexpr int kMendRounds = 3;
 
 SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
@@ -193,11 +197,19 @@ bool even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>&
     before.assign(sm.num_vertices(), Point(NAN, NAN, NAN));
     for (SurfaceMesh::Vertex_index v : sm.vertices()) before[std::size_t(v)] = sm.point(v);
   }
-  PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(iterations));
+  try {
+    PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(iterations));
+  } catch (const std::out_of_range&) {
+    // CGAL 5.5's collapse check can look up a face's patch in a map that lacks it ("map::at": CGAL's
+    // genus-3 sample at 10,000 Å, once per remeshing). It throws before that collapse, so the mesh is
+    // whole and the pass only cut short: every vertex is held again below, and the judgement checks
+    // the surface as always.
+    held = false;
+  }
   // Before the garbage goes, a vertex the pass kept has its index still; a slot it reused for a new
   // vertex holds another point (at the very same point it would be held already).
   std::vector<bool> moved(sm.num_vertices(), true);
-  for (std::size_t i = 0; i < std::min(before.size(), moved.size()); ++i)
+  for (std::size_t i = 0; held && i < std::min(before.size(), moved.size()); ++i)
     moved[i] = !(sm.point(SurfaceMesh::Vertex_index(SurfaceMesh::size_type(i))) == before[i]);
   hold_near(sm, input, vertex_bound(options), &moved);
   sm.collect_garbage();
@@ -328,28 +340,28 @@ double coarsen(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options
   return coarsest;
 }
 
-// The smallest interior angle of face f, degrees.
-double smallest_angle(const SurfaceMesh& sm, SurfaceMesh::Face_index f) {
+// Whether face f is a sliver (an angle under kSliverMendDegrees) or a cap (one over kCapMendDegrees).
+bool sliver_or_cap(const SurfaceMesh& sm, SurfaceMesh::Face_index f) {
   const SurfaceMesh::Halfedge_index h = sm.halfedge(f);
   const Point p[3] = {sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h)))};
-  double smallest = 180.0;
   for (int c = 0; c < 3; ++c) {
     const Vector a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
     const double la = std::sqrt(a.squared_length()), lb = std::sqrt(b.squared_length());
-    if (!(la > 0.0) || !(lb > 0.0)) return 0.0;
-    smallest = std::min(smallest, std::acos(std::clamp(a * b / (la * lb), -1.0, 1.0)) * kDegreesPerRadian);
+    if (!(la > 0.0) || !(lb > 0.0)) return true;
+    const double degrees = std::acos(std::clamp(a * b / (la * lb), -1.0, 1.0)) * kDegreesPerRadian;
+    if (degrees < kSliverMendDegrees || degrees > kCapMendDegrees) return true;
   }
-  return smallest;
+  return false;
 }
 
-// Long thin triangles left where levels meet or creases were refined (a check-mesh sliver, under
+// Long thin triangles and caps left where levels meet or creases were refined (a check-mesh sliver, under
 // 1°, stops the charts): the faces within two rings of each are remeshed at their own mean edge.
 void mend_slivers(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options) {
   for (int round = 0; round < kMendRounds; ++round) {
     std::vector<bool> marked(work.number_of_vertices(), false);
     bool any = false;
     for (SurfaceMesh::Face_index f : work.faces())
-      if (smallest_angle(work, f) < kSliverMendDegrees) {
+      if (sliver_or_cap(work, f)) {
         any = true;
         for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(work.halfedge(f), work)) marked[std::size_t(v)] = true;
       }
