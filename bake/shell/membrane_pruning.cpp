@@ -19,19 +19,32 @@ namespace {
 using glm::dmat3;
 using glm::dvec3;
 
-// One owned copy where the triangle places it.
+// One owned copy where the triangle places it. A whole 1 µm cell checks 10^7 of them at once, so
+// what the Wang tile instance says (its flat pose) is looked up, not kept: 96 bytes a copy.
 struct Placed {
+  dvec3 centre{0.0};         // compartment space, in double: far-off cells lose nothing to float
+  glm::mat3 rotation{1.f};   // the atom test's own precision
   std::uint32_t triangle = 0;
   std::uint32_t key = 0;     // membrane_copy_key(slot, instance)
   std::uint32_t type = 0;
   std::uint32_t island = 0;  // UV island of the triangle: copies of one island share one flat tiling
+  glm::ivec2 cell{0};        // its tile's cell in that island's unwrapped tiling
+  std::uint16_t tile = 0, instance = 0;
   bool alternate = false;    // tiles::Instance::alternate: shown only if it fits where its original clashes
   bool has_alternate = false;
-  dvec3 flat{0.0};           // tile-space centre in the island's unwrapped tiling: cell·S + position
-  dmat3 flat_rotation{1.0};
-  dvec3 centre{0.0};         // compartment space
-  dmat3 rotation{1.0};
 };
+static_assert(sizeof(Placed) <= 96);
+
+// Where the island's flat tiling has the copy: tile-space centre cell·S + position, and its turn.
+struct FlatPose {
+  dvec3 centre;
+  dmat3 rotation;
+};
+FlatPose flat_pose(const tiles::WangSet& set, const Placed& p) {
+  const tiles::Instance& in = set.tiles[p.tile].instances[p.instance];
+  return {dvec3(p.cell.x * set.edge + in.position.x, p.cell.y * set.edge + in.position.y, in.position.z),
+          dmat3(glm::mat3_cast(in.rotation))};
+}
 
 // UV islands: triangles that share a UV index lie in one connected piece of the chart.
 std::vector<std::uint32_t> uv_islands(const mesh::ProxyMesh& mesh) {
@@ -76,16 +89,18 @@ std::vector<Segment> seam_segments(const MembraneMapping& mapping) {
 // so compartment coordinates of tens of µm lose nothing to float.
 bool atoms_clash(const tiles::CollisionShape& sa, const Placed& a, const tiles::CollisionShape& sb, const Placed& b,
                  float clearance) {
-  const tiles::Pose pa{glm::vec3(0.f), glm::mat3(a.rotation)};
-  const tiles::Pose pb{glm::vec3(b.centre - a.centre), glm::mat3(b.rotation)};
+  const tiles::Pose pa{glm::vec3(0.f), a.rotation};
+  const tiles::Pose pb{glm::vec3(b.centre - a.centre), b.rotation};
   return tiles::copies_collide(sa, pa, sb, pb, tiles::ClashRule{clearance, {}});
 }
 
 // How far any atom of b moves relative to a between the flat tiling and the surface, in a's frame:
 // |u| + ‖M‖_F · r_b with u = R_aᵀ(c_b − c_a) − Q_aᵀ(T_b − T_a) and M = R_aᵀR_b − Q_aᵀQ_b.
-double relative_displacement(const Placed& a, const Placed& b, double radius_b) {
-  const dvec3 u = glm::transpose(a.rotation) * (b.centre - a.centre) - glm::transpose(a.flat_rotation) * (b.flat - a.flat);
-  const dmat3 m = glm::transpose(a.rotation) * b.rotation - glm::transpose(a.flat_rotation) * b.flat_rotation;
+double relative_displacement(const tiles::WangSet& set, const Placed& a, const Placed& b, double radius_b) {
+  const FlatPose fa = flat_pose(set, a), fb = flat_pose(set, b);
+  const dmat3 ra(a.rotation), rb(b.rotation);
+  const dvec3 u = glm::transpose(ra) * (b.centre - a.centre) - glm::transpose(fa.rotation) * (fb.centre - fa.centre);
+  const dmat3 m = glm::transpose(ra) * rb - glm::transpose(fa.rotation) * fb.rotation;
   double f = 0.0;
   for (int c = 0; c < 3; ++c) f += glm::dot(m[c], m[c]);
   return glm::length(u) + std::sqrt(f) * radius_b;
@@ -230,39 +245,44 @@ void check_key_room(const MembraneMapping& mapping) {
   if (largest_tile > (std::size_t{1} << gpu::NANO_DROP_INSTANCE_BITS) || slots > (std::uint64_t{1} << (32 - gpu::NANO_DROP_INSTANCE_BITS)))
     throw InputError("", "membrane", "a Wang square of " + std::to_string(largest_tile) + " copies or a replication area of " +
                                          std::to_string(slots) + " slots is too large for the dropped-copy keys (2^16 each)");
+  // Placed keeps the tile and the instance in 16 bits each.
+  static_assert(gpu::NANO_DROP_INSTANCE_BITS <= 16);
+  if (mapping.set().tiles.size() > (std::size_t{1} << 16))
+    throw InputError("", "membrane", "a Wang set of " + std::to_string(mapping.set().tiles.size()) + " tiles is more than 2^16");
 }
 
 Placed placed_copy(const MembraneMapping& mapping, std::size_t t, const OwnedPlace& m, std::uint32_t key,
                    std::uint32_t island) {
   const tiles::Instance& in = mapping.set().tiles[m.tile].instances[m.instance];
-  const double S = mapping.set().edge;
   Placed p;
   p.triangle = static_cast<std::uint32_t>(t);
   p.key = key;
   p.type = m.type;
   p.island = island;
+  p.cell = m.cell;
+  p.tile = static_cast<std::uint16_t>(m.tile);
+  p.instance = static_cast<std::uint16_t>(m.instance);
   p.alternate = in.alternate;
   p.has_alternate = in.has_alternate;
-  p.flat = dvec3(m.cell.x * S + in.position.x, m.cell.y * S + in.position.y, in.position.z);
-  p.flat_rotation = dmat3(glm::mat3_cast(in.rotation));
   const gpu::Affine3 transform = mapping.transform_of(t, m);
   p.centre = dvec3(transform.translation);
-  p.rotation = dmat3(transform.linear);
+  p.rotation = transform.linear;
   return p;
 }
 
-// The owned copies to check, in triangle order, less those dropped before.
+// The owned copies to check, in triangle order, less those dropped before. Two passes (which copies
+// of each triangle, then placing them at their offsets) so that the copies of a whole cell are
+// never held twice.
 std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh, const TypeShapes& t,
                                     const CheckedRegion& region, const PruningSettings& settings, int threads) {
   const std::size_t triangles = mapping.triangle_count();
   const std::vector<std::uint32_t> island = uv_islands(mesh);
-  std::vector<std::vector<Placed>> per_triangle(triangles);
-  parallel_for(triangles, threads, [&](std::size_t tri) {
+  // Calls take(place, key) for each copy of `tri` to check.
+  const auto for_each_checked = [&](std::size_t tri, const auto& take) {
     const bool whole = region.whole_surface || region.whole_triangle[tri];
     if (!whole && region.near_seams[tri].empty()) return;
     const TriangleMapping& tm = mapping.triangle(tri);
     const std::vector<std::uint32_t>& near_seams = region.near_seams[tri];
-    // Placed only once kept: most copies of a triangle near a seam stand too far from it.
     mapping.for_each_owned_membrane_place(
         tri,
         [&](const OwnedPlace& m) {
@@ -277,15 +297,22 @@ std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const mesh::
             const auto near = [&](std::uint32_t s) { return point_segment_distance(surface, region.seams[s]) < reach; };
             if (std::none_of(near_seams.begin(), near_seams.end(), near)) return;
           }
-          per_triangle[tri].push_back(placed_copy(mapping, tri, m, key, island[tri]));
+          take(m, key);
         },
         SeamRule::ignore);
+  };
+  std::vector<std::size_t> offset(triangles + 1, 0);
+  parallel_for(triangles, threads, [&](std::size_t tri) {
+    for_each_checked(tri, [&](const OwnedPlace&, std::uint32_t) { ++offset[tri + 1]; });
   });
-  std::vector<Placed> copies;
-  std::size_t placed = 0;
-  for (const auto& v : per_triangle) placed += v.size();
-  copies.reserve(placed);  // one allocation: growing it copy by copy costs page faults and moves
-  for (auto& v : per_triangle) copies.insert(copies.end(), v.begin(), v.end());
+  for (std::size_t tri = 0; tri < triangles; ++tri) offset[tri + 1] += offset[tri];
+  std::vector<Placed> copies(offset[triangles]);
+  parallel_for(triangles, threads, [&](std::size_t tri) {
+    std::size_t next = offset[tri];
+    for_each_checked(tri, [&](const OwnedPlace& m, std::uint32_t key) {
+      copies[next++] = placed_copy(mapping, tri, m, key, island[tri]);
+    });
+  });
   return copies;
 }
 
@@ -331,6 +358,7 @@ struct PairTest {
   const TypeShapes& types;
   const PruningSettings& settings;
   std::vector<char> always_tested;  // per type
+  const tiles::WangSet& set;
 
   void operator()(std::uint32_t i, std::uint32_t j, Found& f) const {
     const Placed& a = copies[i];
@@ -344,7 +372,7 @@ struct PairTest {
         !always_tested[b.type] && !a.alternate && !b.alternate) {
       const double slack =
           (double(settings.flat_clearance) - settings.clearance) * (types.smallest_atom[a.type] + types.smallest_atom[b.type]);
-      if (relative_displacement(a, b, radius[b.type]) < slack) return;
+      if (relative_displacement(set, a, b, radius[b.type]) < slack) return;
     }
     ++f.atom_tests;
     if (atoms_clash(types.shapes[a.type], a, types.shapes[b.type], b, settings.clearance)) f.clashes.emplace_back(i, j);
@@ -468,7 +496,7 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   if (!settings.dropped_before.empty()) out.dropped = settings.dropped_before;
   if (copies.empty()) return out;
 
-  PairTest test{copies, shapes, settings, std::vector<char>(types.size(), 0)};
+  PairTest test{copies, shapes, settings, std::vector<char>(types.size(), 0), mapping.set()};
   for (const std::uint32_t type : settings.always_tested)
     if (type < types.size()) test.always_tested[type] = 1;
   const CopyGrid grid = grid_copies(copies, shapes.radius);
