@@ -95,29 +95,32 @@ double crease_degrees(const SurfaceMesh& sm, SurfaceMesh::Edge_index e) {
   return std::acos(std::clamp(a * b, -1.0, 1.0)) * kDegreesPerRadian;
 }
 
-// The vertices within `rings` edges of an edge sharper than `degrees`: only they are smoothed,
-// so smooth parts of the user's surface (a sphere's cap) do not shrink.
-// A breadth-first walk from the creases' ends, ring by ring: its cost follows the marked zone, not
-// the mesh times the rings (a 1 µm CAD part is rounded over 20 rings, 100 times).
-std::vector<bool> near_creases(const SurfaceMesh& sm, double degrees, int rings) {
-  std::vector<bool> marked(sm.number_of_vertices(), false);
+// Marks every vertex within `rings` edges of one marked already (indexed by vertex). A breadth-first
+// walk from the marked ones, ring by ring: its cost follows the zone, not the mesh times the rings
+// (a 1 µm CAD part's creases are grown by 20 rings, 100 times).
+void grow_by_rings(const SurfaceMesh& sm, std::vector<bool>& marked, int rings) {
   std::vector<SurfaceMesh::Vertex_index> ring, next;
-  const auto mark = [&](SurfaceMesh::Vertex_index v, std::vector<SurfaceMesh::Vertex_index>& into) {
-    if (marked[std::size_t(v)]) return;
-    marked[std::size_t(v)] = true;
-    into.push_back(v);
-  };
-  for (SurfaceMesh::Edge_index e : sm.edges())
-    if (crease_degrees(sm, e) > degrees) {
-      mark(sm.vertex(e, 0), ring);
-      mark(sm.vertex(e, 1), ring);
-    }
+  for (SurfaceMesh::Vertex_index v : sm.vertices())
+    if (marked[std::size_t(v)]) ring.push_back(v);
   for (int r = 0; r < rings && !ring.empty(); ++r) {
     next.clear();
     for (SurfaceMesh::Vertex_index v : ring)
-      for (SurfaceMesh::Vertex_index u : CGAL::vertices_around_target(sm.halfedge(v), sm)) mark(u, next);
+      for (SurfaceMesh::Vertex_index u : CGAL::vertices_around_target(sm.halfedge(v), sm))
+        if (!marked[std::size_t(u)]) {
+          marked[std::size_t(u)] = true;
+          next.push_back(u);
+        }
     ring.swap(next);
   }
+}
+
+// The vertices within `rings` edges of an edge sharper than `degrees`: only they are smoothed,
+// so smooth parts of the user's surface (a sphere's cap) do not shrink.
+std::vector<bool> near_creases(const SurfaceMesh& sm, double degrees, int rings) {
+  std::vector<bool> marked(sm.number_of_vertices(), false);
+  for (SurfaceMesh::Edge_index e : sm.edges())
+    if (crease_degrees(sm, e) > degrees) marked[std::size_t(sm.vertex(e, 0))] = marked[std::size_t(sm.vertex(e, 1))] = true;
+  grow_by_rings(sm, marked, rings);
   return marked;
 }
 
@@ -318,14 +321,7 @@ double coarsen(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options
     // curved, so the long triangles CGAL fans onto its fine edges lie in one plane and make no crease.
     std::vector<bool> fine(work.number_of_vertices(), false);
     for (SurfaceMesh::Vertex_index v : work.vertices()) fine[std::size_t(v)] = rate[std::size_t(v)] * edge > kTurnPerEdge;
-    for (int ring = 0; ring < kBorderRings; ++ring) {
-      std::vector<bool> grown = fine;
-      for (SurfaceMesh::Edge_index e : work.edges()) {
-        const std::size_t a = std::size_t(work.vertex(e, 0)), b = std::size_t(work.vertex(e, 1));
-        if (fine[a] || fine[b]) grown[a] = grown[b] = true;
-      }
-      fine = std::move(grown);
-    }
+    grow_by_rings(work, fine, kBorderRings);
     std::vector<bool> coarse(fine.size());
     for (std::size_t v = 0; v < fine.size(); ++v) coarse[v] = !fine[v];
     std::vector<SurfaceMesh::Face_index> patch;
@@ -366,14 +362,7 @@ void mend_slivers(SurfaceMesh& work, const Tree& tree, const RemeshOptions& opti
         for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(work.halfedge(f), work)) marked[std::size_t(v)] = true;
       }
     if (!any) return;
-    for (int ring = 0; ring < 2; ++ring) {
-      std::vector<bool> grown = marked;
-      for (SurfaceMesh::Edge_index e : work.edges()) {
-        const std::size_t a = std::size_t(work.vertex(e, 0)), b = std::size_t(work.vertex(e, 1));
-        if (marked[a] || marked[b]) grown[a] = grown[b] = true;
-      }
-      marked = std::move(grown);
-    }
+    grow_by_rings(work, marked, 2);
     const std::vector<SurfaceMesh::Face_index> patch = faces_touching(work, marked);
     double length = 0.0;
     std::size_t edges = 0;
