@@ -22,6 +22,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "scene_bake"))
 import cgal_corpus  # noqa: E402
+import scene_files  # noqa: E402  (beside this script)
 
 
 def timed(cmd):
@@ -36,13 +37,7 @@ def timed(cmd):
 
 def virion_scene(mesh_keys):
     with open(os.path.join(ROOT, "data", "virion.json")) as f:
-        scene = json.load(f)
-    data = os.path.join(ROOT, "data")
-    for mol in scene["molecules"].values():
-        mol["file"] = os.path.join(data, mol["file"])
-    for membrane in scene["membranes"].values():
-        for patch in [membrane["lipid_patch"]] + membrane.get("lipid_mix", []):
-            patch["file"] = os.path.join(data, patch["file"])
+        scene = scene_files.with_absolute_files(json.load(f), os.path.join(ROOT, "data"))
     scene.pop("camera", None)
     scene["compartments"]["virion"]["mesh"] = mesh_keys
     return scene

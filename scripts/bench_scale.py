@@ -10,6 +10,9 @@ OUT/scale.svg (through `nanoview plot`).
 usage: bench_scale.py BUILD_DIR OUT_DIR [--cells 1,4,20,100,1000] [--size 128x128] [--frames 8]"""
 import argparse, json, os, subprocess, sys, time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import scene_files  # noqa: E402
+
 ap = argparse.ArgumentParser()
 ap.add_argument("build")
 ap.add_argument("out")
@@ -32,12 +35,7 @@ base_box = blood["instances"][0]["box"]
 
 
 def scene_for(cells):
-    s = json.loads(json.dumps(blood))
-    for mol in s["molecules"].values():
-        mol["file"] = os.path.join(data, mol["file"])
-    for m in s.get("membranes", {}).values():
-        for patch in ([m["lipid_patch"]] if "lipid_patch" in m else []) + m.get("lipid_mix", []):
-            patch["file"] = os.path.join(data, patch["file"])
+    s = scene_files.with_absolute_files(json.loads(json.dumps(blood)), data)
     k = (2 * cells / base_cells) ** 0.5  # twice blood.json's area per cell, same thickness
     box = [[base_box[0][0] * k, base_box[0][1] * k, base_box[0][2]], [base_box[1][0] * k, base_box[1][1] * k, base_box[1][2]]]
     s["instances"][0]["count"] = cells

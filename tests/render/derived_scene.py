@@ -5,7 +5,10 @@
 --mesh replaces a compartment's mesh by a mesh file (e.g. one with sliver triangles);
 --effects JSON sets the scene's "effects" object; --transform JSON sets instance 0's transform
 (before --offset)."""
-import argparse, json, os
+import argparse, json, os, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import scene_files  # noqa: E402
 
 ap = argparse.ArgumentParser()
 ap.add_argument("src")
@@ -17,12 +20,7 @@ ap.add_argument("--transform")
 a = ap.parse_args()
 with open(a.src) as f:
     scene = json.load(f)
-base = os.path.dirname(os.path.abspath(a.src))
-for mol in scene["molecules"].values():
-    mol["file"] = os.path.join(base, mol["file"])
-for membrane in scene.get("membranes", {}).values():
-    for patch in ([membrane["lipid_patch"]] if "lipid_patch" in membrane else []) + membrane.get("lipid_mix", []):
-        patch["file"] = os.path.join(base, patch["file"])
+scene_files.with_absolute_files(scene, os.path.dirname(os.path.abspath(a.src)))
 if a.effects:
     scene["effects"] = json.loads(a.effects)
 if a.transform:
