@@ -1,5 +1,7 @@
 // CGAL's isotropic remeshing and AABB distance queries, in their own translation unit (template-heavy).
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -15,6 +17,7 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 
 #include "bake/mesh/mesh_remesh.hpp"
 #include "bake/mesh/number_text.hpp"
@@ -44,6 +47,9 @@ constexpr double kTurnPerEdge = 0.14;
 // A coarser level is made only when it would remesh at least this many faces.
 constexpr std::size_t kCoarsenAtLeast = 64;
 constexpr int kBorderRings = 3;
+// A vertex made at under this times a level's edge (three quarters of the level just below) was made
+// two or more levels down.
+constexpr double kLowerLevelEdge = 0.375;
 constexpr int kBorderSmoothingSteps = 8;
 // Triangles with an angle under this are remeshed again with their surroundings, a few rounds at most.
 constexpr double kSliverMendDegrees = 5.0;
@@ -52,6 +58,8 @@ constexpr double kSliverMendDegrees = 5.0;
 // 20 Å against the 31 Å half a bilayer needs). Mended like a sliver.
 constexpr double kCapMendDegrees = 150.0;
 constexpr int kMendRounds = 3;
+// A cap whose neighbour across its longest edge lies in its plane within this is mended by a flip.
+constexpr double kFlatCapDegrees = 2.0;
 
 SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
   std::vector<Point> points;
@@ -179,6 +187,36 @@ std::vector<SurfaceMesh::Face_index> faces_touching(const SurfaceMesh& sm, const
   return out;
 }
 
+// Per vertex, the edge (Å) of the remeshing that last made its surroundings: the coarse levels grow
+// each out of the one just below it. A vertex new to a pass reads NaN until the pass is over.
+using MadeAt = SurfaceMesh::Property_map<SurfaceMesh::Vertex_index, double>;
+
+MadeAt made_at(SurfaceMesh& sm) {
+  return sm.add_property_map<SurfaceMesh::Vertex_index, double>("v:made_at", NAN).first;
+}
+
+// Before a pass over `patch` at `edge`: its vertices all of whose faces it holds are made at `edge`
+// (CGAL keeps the patch's border, so the others keep what made them).
+void mark_patch_interior(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch, double edge) {
+  std::vector<bool> in_patch(sm.num_faces(), false);
+  for (SurfaceMesh::Face_index f : patch) in_patch[std::size_t(f)] = true;
+  MadeAt made = made_at(sm);
+  for (SurfaceMesh::Face_index f : patch)
+    for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+      bool interior = true;
+      for (SurfaceMesh::Face_index g : CGAL::faces_around_target(sm.halfedge(v), sm))
+        interior = interior && g != SurfaceMesh::null_face() && in_patch[std::size_t(g)];
+      if (interior) made[v] = edge;
+    }
+}
+
+// After it: the vertices it made (NaN, or a slot of a removed interior one) are made at `edge`.
+void mark_new_vertices(SurfaceMesh& sm, double edge) {
+  MadeAt made = made_at(sm);
+  for (SurfaceMesh::Vertex_index v : sm.vertices())
+    if (std::isnan(made[v])) made[v] = edge;
+}
+
 // CGAL's relaxation divides by the areas it meets: a patch the smoothing crushed flat (a tube thinner
 // than the bilayer) is left as it is, for the judgement to name.
 bool has_degenerate_face(const SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>& patch) {
@@ -200,6 +238,7 @@ bool even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>&
     before.assign(sm.num_vertices(), Point(NAN, NAN, NAN));
     for (SurfaceMesh::Vertex_index v : sm.vertices()) before[std::size_t(v)] = sm.point(v);
   }
+  mark_patch_interior(sm, patch, edge);
   try {
     PMP::isotropic_remeshing(patch, edge, sm, CGAL::parameters::number_of_iterations(iterations));
   } catch (const std::out_of_range&) {
@@ -215,6 +254,7 @@ bool even_triangles(SurfaceMesh& sm, const std::vector<SurfaceMesh::Face_index>&
   for (std::size_t i = 0; held && i < std::min(before.size(), moved.size()); ++i)
     moved[i] = !(sm.point(SurfaceMesh::Vertex_index(SurfaceMesh::size_type(i))) == before[i]);
   hold_near(sm, input, vertex_bound(options), &moved);
+  mark_new_vertices(sm, edge);
   sm.collect_garbage();
   return true;
 }
@@ -319,8 +359,13 @@ double coarsen(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options
     const std::vector<double> rate = vertex_turn_rates(work);
     // The border between the levels runs where the surface is flat, kBorderRings rings from anything
     // curved, so the long triangles CGAL fans onto its fine edges lie in one plane and make no crease.
+    // Each level grows only out of the one just below it, so that its border meets edges half its own:
+    // a 1 µm cube's faces fanned 1537 Å triangles onto 31 Å edges, slivers whose mending refined the
+    // whole faces again.
+    const MadeAt made = made_at(work);
     std::vector<bool> fine(work.number_of_vertices(), false);
-    for (SurfaceMesh::Vertex_index v : work.vertices()) fine[std::size_t(v)] = rate[std::size_t(v)] * edge > kTurnPerEdge;
+    for (SurfaceMesh::Vertex_index v : work.vertices())
+      fine[std::size_t(v)] = rate[std::size_t(v)] * edge > kTurnPerEdge || made[v] < kLowerLevelEdge * edge;
     grow_by_rings(work, fine, kBorderRings);
     std::vector<bool> coarse(fine.size());
     for (std::size_t v = 0; v < fine.size(); ++v) coarse[v] = !fine[v];
@@ -336,24 +381,86 @@ double coarsen(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options
   return coarsest;
 }
 
+// The angles (degrees) at corners a, b and c of a triangle; 0 at a corner with a zero-length side.
+std::array<double, 3> corner_degrees(const Point& a, const Point& b, const Point& c) {
+  const Point p[3] = {a, b, c};
+  std::array<double, 3> degrees{};
+  for (int k = 0; k < 3; ++k) {
+    const Vector u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+    const double lu = std::sqrt(u.squared_length()), lv = std::sqrt(v.squared_length());
+    degrees[k] = lu > 0.0 && lv > 0.0 ? std::acos(std::clamp(u * v / (lu * lv), -1.0, 1.0)) * kDegreesPerRadian : 0.0;
+  }
+  return degrees;
+}
+
+double smallest_angle(const Point& a, const Point& b, const Point& c) {
+  const std::array<double, 3> degrees = corner_degrees(a, b, c);
+  return *std::min_element(degrees.begin(), degrees.end());
+}
+
 // Whether face f is a sliver (an angle under kSliverMendDegrees) or a cap (one over kCapMendDegrees).
 bool sliver_or_cap(const SurfaceMesh& sm, SurfaceMesh::Face_index f) {
   const SurfaceMesh::Halfedge_index h = sm.halfedge(f);
-  const Point p[3] = {sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h)))};
-  for (int c = 0; c < 3; ++c) {
-    const Vector a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
-    const double la = std::sqrt(a.squared_length()), lb = std::sqrt(b.squared_length());
-    if (!(la > 0.0) || !(lb > 0.0)) return true;
-    const double degrees = std::acos(std::clamp(a * b / (la * lb), -1.0, 1.0)) * kDegreesPerRadian;
-    if (degrees < kSliverMendDegrees || degrees > kCapMendDegrees) return true;
+  const std::array<double, 3> degrees = corner_degrees(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))));
+  return std::any_of(degrees.begin(), degrees.end(), [](double d) { return d < kSliverMendDegrees || d > kCapMendDegrees; });
+}
+
+Vector unit_normal(const Point& a, const Point& b, const Point& c) {
+  const Vector n = CGAL::cross_product(b - a, c - a);
+  const double length = std::sqrt(n.squared_length());
+  return length > 0.0 ? n / length : Vector(0, 0, 0);
+}
+
+double degrees_between(const Vector& a, const Vector& b) {
+  return std::acos(std::clamp(a * b, -1.0, 1.0)) * kDegreesPerRadian;
+}
+
+// The halfedge of face f opposite its cap's corner (an angle over kCapMendDegrees), if it is a cap.
+std::optional<SurfaceMesh::Halfedge_index> cap_base(const SurfaceMesh& sm, SurfaceMesh::Face_index f) {
+  SurfaceMesh::Halfedge_index h = sm.halfedge(f);
+  for (int k = 0; k < 3; ++k, h = sm.next(h)) {
+    // The corner opposite a→b is the target of b's next halfedge: the third of corner_degrees(a, b, c).
+    const std::array<double, 3> degrees = corner_degrees(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))));
+    if (degrees[2] > kCapMendDegrees) return h;
   }
-  return false;
+  return std::nullopt;
+}
+
+// A cap lying flat with the face across its base (in a coarse level's plane, where CGAL's remeshing
+// leaves a few) is mended by flipping that edge: the same surface, where remeshing around it would pick
+// one size for two levels. Returns whether any was flipped.
+bool flip_flat_caps(SurfaceMesh& sm) {
+  bool any = false;
+  for (SurfaceMesh::Face_index f : sm.faces()) {
+    const std::optional<SurfaceMesh::Halfedge_index> base = cap_base(sm, f);
+    if (!base || sm.is_border(sm.opposite(*base))) continue;
+    const SurfaceMesh::Halfedge_index h = *base;
+    const SurfaceMesh::Vertex_index a = sm.source(h), b = sm.target(h), c = sm.target(sm.next(h));
+    const SurfaceMesh::Vertex_index d = sm.target(sm.next(sm.opposite(h)));
+    if (CGAL::halfedge(c, d, sm).second) continue;
+    const Point &pa = sm.point(a), &pb = sm.point(b), &pc = sm.point(c), &pd = sm.point(d);
+    // The flipped faces (c,a,d) and (d,b,c) keep the plane and the orientation, and are better shaped.
+    const Vector n = unit_normal(pa, pb, pc);
+    const Vector n_other = unit_normal(pb, pa, pd), n_cad = unit_normal(pc, pa, pd), n_dbc = unit_normal(pd, pb, pc);
+    if (degrees_between(n, n_other) > kFlatCapDegrees || degrees_between(n, n_cad) > kFlatCapDegrees ||
+        degrees_between(n, n_dbc) > kFlatCapDegrees)
+      continue;
+    if (std::min(smallest_angle(pc, pa, pd), smallest_angle(pd, pb, pc)) <=
+        std::min(smallest_angle(pa, pb, pc), smallest_angle(pb, pa, pd)))
+      continue;
+    CGAL::Euler::flip_edge(h, sm);
+    any = true;
+  }
+  return any;
 }
 
 // Long thin triangles and caps left where levels meet or creases were refined (a check-mesh sliver, under
-// 1°, stops the charts): the faces within two rings of each are remeshed at their own mean edge.
+// 1°, stops the charts): flat caps are flipped, and the faces within two rings of what is left are
+// remeshed at their own mean edge.
 void mend_slivers(SurfaceMesh& work, const Tree& tree, const RemeshOptions& options) {
   for (int round = 0; round < kMendRounds; ++round) {
+    for (int flips = 0; flips < kMendRounds; ++flips)
+      if (!flip_flat_caps(work)) break;
     std::vector<bool> marked(work.number_of_vertices(), false);
     bool any = false;
     for (SurfaceMesh::Face_index f : work.faces())
@@ -395,6 +502,7 @@ RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, 
   SurfaceMesh work = input;
   PMP::isotropic_remeshing(faces(work), options.edge, work, CGAL::parameters::number_of_iterations(kRemeshIterations));
   work.collect_garbage();
+  mark_new_vertices(work, options.edge);
   report.triangles_uniform = work.number_of_faces();
   // A large cell's first pass is coarser than half the bilayer: its creases get that edge first.
   const double fine = options.crease_edge > 0.0 ? std::min(options.crease_edge, options.edge) : options.edge;
