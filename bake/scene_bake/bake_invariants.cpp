@@ -7,7 +7,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "bake/grid/core_grid.hpp"
 #include "bake/mesh/number_text.hpp"
+#include "bake/scene_bake/wang_bake.hpp"
 #include "common/error.hpp"
 
 namespace nano::scene_bake {
@@ -49,6 +51,12 @@ void check_nothing_emptied(const scene::SceneDescription& scene, std::span<const
     scene::CompartmentMeasure measure = meshes[c];
     if (scene.compartments[c].soluble) measure.deepest = deepest_inside(mesh_of(c), measure.volume);
     scene::check_compartment_room(scene, c, measure, molecules);
+    if (scene.compartments[c].soluble) {
+      // The core grid the bake will lay (core_bake.cpp), sized now: its recipe must be one it can build.
+      const scene::SolubleDescription& s = scene.solubles.at(scene.compartments[c].soluble->index);
+      const grid::CoreGrid grid = grid::make_core_grid(mesh_of(c), s.cube_size, {}, "soluble '" + s.name + "'");
+      check_recipe_covers(complete_cube_set(s), {grid.dims.x, grid.dims.y, grid.dims.z}, s.name, &s);
+    }
   }
 }
 

@@ -178,14 +178,32 @@ tiles::TilingRecipe membrane_recipe(const tiles::WangSet& set, double tile_uv_si
   return tiles::make_tiling_recipe(set.colouring, {cells, cells, 1}, seed, /*periodic=*/true);
 }
 
+bool complete_cube_set(const scene::SolubleDescription& soluble) {
+  return soluble.cubes == integer_power(soluble.face_colours, 6);
+}
+
+void check_recipe_covers(bool complete_set, std::array<int, 3> grid_dims, const std::string& soluble_name,
+                         const scene::SolubleDescription* soluble) {
+  const int largest = *std::max_element(grid_dims.begin(), grid_dims.end());
+  if (largest <= kMaxRecipe3DCells || complete_set) return;
+  std::string fix = "use the complete cube set (colours^6 cubes)";
+  if (soluble) {
+    // The grid spans less than `largest` boxes of the present size: this size keeps it within the limit.
+    char size[64];
+    std::snprintf(size, sizeof size, "%.0f", std::ceil(soluble->cube_size * largest / kMaxRecipe3DCells));
+    fix = "use the complete cube set (\"cubes\": " + std::to_string(integer_power(soluble->face_colours, 6)) +
+          "), or a \"cube_size\" of at least " + size + " Å";
+  }
+  throw InputError("", "solubles." + soluble_name + ".cubes",
+                   "the core grid has " + std::to_string(largest) + " boxes along an axis, more than " +
+                       std::to_string(kMaxRecipe3DCells) + ", so its recipe must repeat: " + fix);
+}
+
 tiles::TilingRecipe soluble_recipe(const tiles::WangSet& set, std::array<int, 3> grid_dims, std::uint64_t seed,
                                    const std::string& soluble_name) {
   const bool fits = std::all_of(grid_dims.begin(), grid_dims.end(), [](int d) { return d <= kMaxRecipe3DCells; });
   if (fits) return tiles::make_tiling_recipe(set.colouring, grid_dims, seed, /*periodic=*/set.colouring.complete());
-  if (!set.colouring.complete())
-    throw InputError("", "solubles." + soluble_name + ".cubes",
-                     "the core grid has more than " + std::to_string(kMaxRecipe3DCells) +
-                         " boxes along an axis, so its recipe must repeat: use the complete cube set (colours^6 cubes)");
+  check_recipe_covers(set.colouring.complete(), grid_dims, soluble_name);
   std::array<int, 3> block{};
   for (int a = 0; a < 3; ++a) block[a] = std::min(grid_dims[a], kMaxRecipe3DCells);
   return tiles::make_tiling_recipe(set.colouring, block, seed, /*periodic=*/true);

@@ -50,6 +50,15 @@ BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
 
 // Periodic recipe covering UV [0,1]² for tiles of UV size s (capped at kMaxRecipe2DCells per axis).
 tiles::TilingRecipe membrane_recipe(const tiles::WangSet& set, double tile_uv_size, std::uint64_t seed);
+// Refuses (InputError at solubles.NAME.cubes) a core grid of more than kMaxRecipe3DCells boxes along
+// an axis for a cube set that is not complete (colours^6 cubes): its recipe would have to repeat.
+// The bake asks before its heavy stages (check_nothing_emptied), soluble_recipe again when it builds.
+// With `soluble`, the refusal names the values that work: its complete set's count and a cube size.
+void check_recipe_covers(bool complete_set, std::array<int, 3> grid_dims, const std::string& soluble_name,
+                         const scene::SolubleDescription* soluble = nullptr);
+// Whether a soluble's `cubes` make the complete set of its face colours (colours^6).
+bool complete_cube_set(const scene::SolubleDescription& soluble);
+
 // Recipe over a core grid of `dims` boxes: the whole grid when it fits kMaxRecipe3DCells per axis,
 // otherwise a periodic block (InputError naming the soluble when its cube set is not complete).
 tiles::TilingRecipe soluble_recipe(const tiles::WangSet& set, std::array<int, 3> grid_dims, std::uint64_t seed,

@@ -77,14 +77,26 @@ scene::SceneDescription scene(const std::string& soluble_extra = "") {
   })", "scene.json"), "scene.json");
 }
 
-TEST(BakeInvariants, BeforeTheHeavyStagesAClearanceDeeperThanTheMeshIsRefusedOnTheMeshItself) {
-  const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(1280, 450.0);
-  scene::CompartmentMeasure measure = measure_compartment(sphere);
-  measure.bilayer_thickness = 60.0;
-  const std::vector<scene::CompartmentMeasure> meshes{measure, measure};
+// The four molecules of scene() as the checks measure them: hb and small reach into their cubes.
+std::vector<scene::MoleculeMeasure> molecule_measures() {
   std::vector<scene::MoleculeMeasure> molecules(4);
   molecules[2].bounding_radius = 37.0;  // hb
   molecules[3].bounding_radius = 10.0;
+  return molecules;
+}
+
+// Both compartments of scene() on `mesh`, wearing a 60 Å bilayer.
+std::vector<scene::CompartmentMeasure> both_compartments(const mesh::ProxyMesh& mesh) {
+  scene::CompartmentMeasure measure = measure_compartment(mesh);
+  measure.bilayer_thickness = 60.0;
+  return {measure, measure};
+}
+
+TEST(BakeInvariants, BeforeTheHeavyStagesAClearanceDeeperThanTheMeshIsRefusedOnTheMeshItself) {
+  const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(1280, 450.0);
+  const scene::CompartmentMeasure measure = measure_compartment(sphere);
+  const std::vector<scene::CompartmentMeasure> meshes = both_compartments(sphere);
+  const std::vector<scene::MoleculeMeasure> molecules = molecule_measures();
   const auto mesh_of = [&](std::size_t) -> const mesh::ProxyMesh& { return sphere; };
   const double deepest = deepest_inside(sphere, measure.volume);
   EXPECT_NO_THROW(check_nothing_emptied(scene("\"clearance\": " + std::to_string(deepest - 37.5) + ","), molecules, {},
@@ -144,6 +156,30 @@ InputError refusal(F&& f) {
   }
   ADD_FAILURE() << "expected an InputError";
   return InputError("", "", "");
+}
+
+// A core grid wider than a recipe without repeats, for a cube set that cannot repeat, is refused
+// with the meshes (not after the membrane's tiles and shells, minutes later), naming what works.
+TEST(BakeInvariants, BeforeTheHeavyStagesACoreGridTooWideForItsCubeSetIsRefused) {
+  const mesh::ProxyMesh sphere = mesh::make_sphere_mesh(1280, 9000.0);
+  const std::vector<scene::CompartmentMeasure> meshes = both_compartments(sphere);
+  const std::vector<scene::MoleculeMeasure> molecules = molecule_measures();
+  const auto mesh_of = [&](std::size_t) -> const mesh::ProxyMesh& { return sphere; };
+  // 18,000 Å across in boxes of 250 Å: floor(18000 / 250) + 1 = 73 boxes, past 64.
+  try {
+    check_nothing_emptied(scene(), molecules, {}, meshes, mesh_of);
+    ADD_FAILURE() << "73 boxes along an axis with 16 of 64 cubes were not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "solubles.lumen.cubes");
+    EXPECT_NE(e.rule().find("73 boxes"), std::string::npos) << e.what();
+    EXPECT_NE(e.rule().find("\"cubes\": 64"), std::string::npos) << e.what();
+    EXPECT_NE(e.rule().find("\"cube_size\" of at least 286 Å"), std::string::npos) << e.what();
+  }
+  // Each value it names works: the complete set repeats, and 286 Å boxes make 63 along the axis.
+  EXPECT_NO_THROW(check_nothing_emptied(scene("\"cubes\": 64,"), molecules, {}, meshes, mesh_of));
+  scene::SceneDescription larger_cubes = scene();
+  larger_cubes.solubles[0].cube_size = 286.0;
+  EXPECT_NO_THROW(check_nothing_emptied(larger_cubes, molecules, {}, meshes, mesh_of));
 }
 
 TEST(BakeInvariants, ABakeThatPlacedEveryListedMoleculePasses) {
