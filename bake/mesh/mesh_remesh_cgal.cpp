@@ -417,12 +417,11 @@ double degrees_between(const Vector& a, const Vector& b) {
 
 // The halfedge of face f opposite its cap's corner (an angle over kCapMendDegrees), if it is a cap.
 std::optional<SurfaceMesh::Halfedge_index> cap_base(const SurfaceMesh& sm, SurfaceMesh::Face_index f) {
-  SurfaceMesh::Halfedge_index h = sm.halfedge(f);
-  for (int k = 0; k < 3; ++k, h = sm.next(h)) {
-    // The corner opposite a→b is the target of b's next halfedge: the third of corner_degrees(a, b, c).
-    const std::array<double, 3> degrees = corner_degrees(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))));
-    if (degrees[2] > kCapMendDegrees) return h;
-  }
+  SurfaceMesh::Halfedge_index h = sm.halfedge(f);  // a→b; then b→c, c→a
+  const std::array<double, 3> degrees = corner_degrees(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))));
+  // The corner at a faces b→c, at b faces c→a, at c faces a→b: k + 1 halfedges on from h.
+  for (int k = 0; k < 3; ++k, h = sm.next(h))
+    if (degrees[(k + 2) % 3] > kCapMendDegrees) return h;
   return std::nullopt;
 }
 
