@@ -120,6 +120,16 @@ struct SolubleDescription {
   bool operator==(const SolubleDescription&) const = default;
 };
 
+// The medium between the compartment instances (blood's plasma): a soluble that fills `region`, or
+// the instances' bounding box grown by `margin`, everywhere outside every instance's membrane shell
+// and interior, virtually (a periodic Wang-cube recipe, no storage per cube of the region).
+struct MediumDescription {
+  NameRef soluble;            // into SceneDescription::solubles
+  std::optional<Box> region;  // world Å; absent: the instances' bounds grown by `margin`
+  std::optional<double> margin;  // Å; absent (and no region): two cube edges of the soluble
+  bool operator==(const MediumDescription&) const = default;
+};
+
 struct MeshSource {
   enum class Kind { file, sphere, rbc };
   // UVs: kept when the mesh has usable ones, made by the baker otherwise (automatic); or always
@@ -223,6 +233,7 @@ struct SceneDescription {
   std::vector<SolubleDescription> solubles;
   std::vector<CompartmentDescription> compartments;
   std::vector<InstanceEntry> instances;
+  std::optional<MediumDescription> medium;
   Effects effects;
   std::optional<Camera> camera;  // absent: derived from the scene bounds by the baker
   bool operator==(const SceneDescription&) const = default;

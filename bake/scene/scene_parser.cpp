@@ -341,6 +341,18 @@ InstanceEntry parse_instance(const JsonCursor& c, std::size_t index, std::uint64
   return r;
 }
 
+// "medium": {"soluble": name, "region": [[x, y, z], [x, y, z]]} or {"soluble": name, "margin": Å}.
+MediumDescription parse_medium(const JsonCursor& c, const Defined<SolubleDescription>& solubles) {
+  c.only_keys({"soluble", "region", "margin"});
+  MediumDescription m;
+  m.soluble = resolve(c.required("soluble"), solubles, "soluble");
+  if (c.has("region") && c.has("margin"))
+    c.fail("give either \"region\" (the box the medium fills) or \"margin\" (how far it reaches beyond the instances), not both");
+  if (const auto region = c.optional("region")) m.region = parse_box(*region);
+  if (const auto margin = c.optional("margin")) m.margin = margin->number_at_least(0.0);
+  return m;
+}
+
 // Calls parse(name, value) for every member of the optional named map `key`, in file order.
 template <class Parse>
 void for_each_named(const JsonCursor& root, const char* key, Parse parse) {
@@ -360,7 +372,7 @@ SceneDescription parse_scene_description(const Json& document, const std::filesy
   const std::filesystem::path folder = scene_file.parent_path();
   const JsonCursor root(document, file);
   root.only_keys({"format", "version", "description", "seed", "molecules", "membranes", "solubles", "compartments",
-                  "instances", "effects", "camera"});
+                  "instances", "medium", "effects", "camera"});
 
   const JsonCursor format = root.required("format");
   if (format.string() != scene_format_marker)
@@ -394,6 +406,7 @@ SceneDescription parse_scene_description(const Json& document, const std::filesy
   const auto instances = root.required("instances").elements(1);
   for (std::size_t i = 0; i < instances.size(); ++i)
     scene.instances.push_back(parse_instance(instances[i], i, scene.seed, compartments));
+  if (const auto medium = root.optional("medium")) scene.medium = parse_medium(*medium, solubles);
   if (const auto effects = root.optional("effects")) scene.effects = parse_effects(*effects, expanded_instance_count(scene));
   if (const auto camera = root.optional("camera")) scene.camera = parse_camera(*camera);
   return scene;

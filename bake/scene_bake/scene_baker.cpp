@@ -9,6 +9,7 @@
 
 #include "bake/mesh/uv_distortion.hpp"
 #include "bake/mesh/vertex_normals.hpp"
+#include "bake/scene/medium_region.hpp"
 #include "bake/scene/random_placement.hpp"
 #include "bake/scene_bake/bake_invariants.hpp"
 #include "bake/scene_bake/compartment_mesh.hpp"
@@ -301,11 +302,14 @@ MeshMeasures measure_meshes(const std::vector<CompartmentBake>& compartments) {
   return out;
 }
 
-void check_placements(const scene::SceneDescription& scene, const MeshMeasures& measured) {
+void check_placements(const scene::SceneDescription& scene, const Molecules& molecules, const MeshMeasures& measured) {
   scene::check_placement_amounts(scene, measured.radii);
   // A trial of the random placements with the meshes' own radii (the real one, after the shells,
-  // adds their margin): a box too crowded to fill is refused now, not after the heavy stages.
-  if (scene::expanded_instance_count(scene) > scene.instances.size()) scene::expand_random_instances(scene, measured.radii);
+  // adds their margin): a box too crowded to fill, or a medium around nothing, is refused now, not
+  // after the heavy stages.
+  if (scene::expanded_instance_count(scene) == scene.instances.size() && !scene.medium) return;
+  const std::vector<scene::PlacedInstance> trial = scene::expand_random_instances(scene, measured.radii);
+  scene::check_medium_region(scene, molecules.measures, scene::instance_spheres(trial, measured.radii));
 }
 
 BakeEstimate estimate(const BakeInputs& in, const Molecules& molecules, const std::vector<CompartmentBake>& compartments,
@@ -592,7 +596,12 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   const MeshMeasures measured = measure_meshes(compartments);
   check_nothing_emptied(scene, molecules.measures, molecules.patches, measured.measures,
                         [&](std::size_t c) -> const mesh::ProxyMesh& { return compartments[c].mesh.mesh; });
-  check_placements(scene, measured);
+  check_placements(scene, molecules, measured);
+  if (scene.medium)
+    throw InputError(scene.source.string(), "medium",
+                     "the medium passed its checks, but this baker cannot yet put a medium in a package (the "
+                     "exclusion fields are baked and tested; the package sections and the renderer's walk are "
+                     "not written yet): remove \"medium\" to bake the rest of the scene");
 
   const std::vector<tiles::SurfaceDistortion> surfaces = plan_membranes(in, molecules, compartments);
   baked.estimate = estimate(in, molecules, compartments, measured);
