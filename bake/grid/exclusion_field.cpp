@@ -1,0 +1,157 @@
+#include "bake/grid/exclusion_field.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <mutex>
+
+#include "common/error.hpp"
+#include "common/parallel_for.hpp"
+#include "shaders/shared/medium.h"
+
+namespace nano::grid {
+namespace {
+
+// Where each cell is sampled (fractions of the cell): its centre, three face centres and points
+// spread through it, deterministic.
+constexpr std::array<glm::dvec3, 9> kSamples{{{0.5, 0.5, 0.5},
+                                              {0.5, 0.5, 0.0},
+                                              {0.5, 0.0, 0.5},
+                                              {0.0, 0.5, 0.5},
+                                              {0.25, 0.25, 0.25},
+                                              {0.75, 0.75, 0.25},
+                                              {0.75, 0.25, 0.75},
+                                              {0.25, 0.75, 0.75},
+                                              {0.5, 0.25, 0.75}}};
+
+gpu::ExclusionField record_of(const ExclusionField& f) {
+  gpu::ExclusionField r{};
+  r.origin = glm::vec4(glm::vec3(f.origin), static_cast<float>(f.spacing));
+  r.dims = glm::uvec4(glm::uvec3(f.dims), 0u);
+  r.limits = glm::vec4(0.0f, static_cast<float>(f.clamp), 0.0f, 0.0f);
+  return r;
+}
+
+}  // namespace
+
+double exact_clearance(const MeshSurface& surface, const glm::dvec3& p, double shell_reach) {
+  const double d = std::sqrt(surface.squared_distance(p));
+  return (surface.contains(p) ? -d : d) - shell_reach;
+}
+
+double interpolated_clearance(const ExclusionField& field, const glm::dvec3& p) {
+  const gpu::ExclusionField r = record_of(field);
+  glm::ivec3 cell;
+  glm::vec3 frac;
+  if (!gpu::exclusion_cell(r, glm::vec3(p), cell, frac)) return field.clamp;
+  float corners[8];
+  for (int c = 0; c < 8; ++c)
+    corners[c] = field.values[gpu::exclusion_node(r, cell + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1))];
+  return gpu::exclusion_trilinear(corners, frac);
+}
+
+ExclusionField bake_exclusion_field(const MeshSurface& surface, const ExclusionFieldRequest& request) {
+  const mesh::ProxyMesh& mesh = surface.mesh();
+  if (mesh.positions.empty()) throw InputError("", "", "an exclusion field needs a mesh with vertices");
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const glm::dvec3& v : mesh.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
+  const double grow = request.shell_reach + request.medium_reach;
+  lo -= grow, hi += grow;
+
+  ExclusionField f;
+  const glm::dvec3 size = hi - lo;
+  f.spacing = std::max(request.min_spacing, std::cbrt(size.x * size.y * size.z / static_cast<double>(request.max_nodes)));
+  const auto nodes_at = [&](double h) { return glm::ivec3(glm::ceil(size / h)) + glm::ivec3(5); };  // two spacings each side
+  for (glm::ivec3 n = nodes_at(f.spacing); double(n.x) * n.y * n.z > double(request.max_nodes); n = nodes_at(f.spacing))
+    f.spacing *= 1.02;
+  f.dims = nodes_at(f.spacing);
+  f.origin = lo - 2.0 * f.spacing;
+  f.clamp = request.medium_reach + 4.0 * f.spacing;
+  const std::size_t count = static_cast<std::size_t>(f.dims.x) * f.dims.y * f.dims.z;
+  const auto position = [&](int i, int j, int k) { return f.origin + f.spacing * glm::dvec3(i, j, k); };
+
+  // Distances everywhere; the inside test only near the surface. A node farther than one spacing
+  // from it shares its side with every such neighbour (the segment between them stays more than
+  // half a spacing from the surface), so far nodes take their side from one test per component.
+  std::vector<double> distance(count);
+  std::vector<std::int8_t> side(count, 0);  // −1 inside, +1 outside, 0 not yet known
+  parallel_for(static_cast<std::size_t>(f.dims.z), request.threads, [&](std::size_t k) {
+    for (int j = 0; j < f.dims.y; ++j)
+      for (int i = 0; i < f.dims.x; ++i) {
+        const std::size_t n = f.node_index(i, j, static_cast<int>(k));
+        const glm::dvec3 p = position(i, j, static_cast<int>(k));
+        distance[n] = std::sqrt(surface.squared_distance(p));
+        if (distance[n] <= f.spacing) side[n] = surface.contains(p) ? -1 : 1;
+      }
+  });
+  std::deque<std::size_t> queue;
+  for (std::size_t start = 0; start < count; ++start) {
+    if (side[start] != 0) continue;
+    const int k0 = static_cast<int>(start / (std::size_t(f.dims.x) * f.dims.y));
+    const int j0 = static_cast<int>(start / f.dims.x % f.dims.y), i0 = static_cast<int>(start % f.dims.x);
+    const std::int8_t s = surface.contains(position(i0, j0, k0)) ? -1 : 1;
+    side[start] = s;
+    queue.push_back(start);
+    while (!queue.empty()) {
+      const std::size_t n = queue.front();
+      queue.pop_front();
+      const int k = static_cast<int>(n / (std::size_t(f.dims.x) * f.dims.y));
+      const int j = static_cast<int>(n / f.dims.x % f.dims.y), i = static_cast<int>(n % f.dims.x);
+      const std::array<glm::ivec3, 6> steps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
+      for (const glm::ivec3& step : steps) {
+        const glm::ivec3 m = glm::ivec3(i, j, k) + step;
+        if (glm::any(glm::lessThan(m, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(m, f.dims))) continue;
+        const std::size_t mi = f.node_index(m.x, m.y, m.z);
+        if (side[mi] != 0) continue;
+        side[mi] = s;
+        queue.push_back(mi);
+      }
+    }
+  }
+  f.values.resize(count);
+  for (std::size_t n = 0; n < count; ++n)
+    f.values[n] = static_cast<float>(std::clamp(side[n] * distance[n] - request.shell_reach, -f.clamp, f.clamp));
+
+  // The excess, where a decision can go wrong: cells that can keep a copy (some corner above 0)
+  // and whose true clearance can fall below the largest threshold (some corner below it plus the
+  // distance from a point of the cell to its nearest corner).
+  const double near_threshold = request.medium_reach + f.spacing;
+  std::mutex merge;
+  std::atomic<std::size_t> samples{0};
+  parallel_for(static_cast<std::size_t>(f.dims.z - 1), request.threads, [&](std::size_t k) {
+    double excess = 0;
+    std::size_t taken = 0;
+    for (int j = 0; j + 1 < f.dims.y; ++j)
+      for (int i = 0; i + 1 < f.dims.x; ++i) {
+        float lowest = f.values[f.node_index(i, j, int(k))], highest = lowest;
+        for (int c = 1; c < 8; ++c) {
+          const float v = f.values[f.node_index(i + (c & 1), j + ((c >> 1) & 1), int(k) + ((c >> 2) & 1))];
+          lowest = std::min(lowest, v), highest = std::max(highest, v);
+        }
+        if (!(highest > 0.0f && lowest < near_threshold)) continue;
+        for (const glm::dvec3& t : kSamples) {
+          const glm::dvec3 p = f.origin + f.spacing * (glm::dvec3(i, j, double(k)) + t);
+          const double d = std::sqrt(surface.squared_distance(p));
+          // Beyond one spacing from the surface p shares the side of its nearest node (within 0.87
+          // spacings of it).
+          const glm::ivec3 nearest = glm::ivec3(i, j, int(k)) + glm::ivec3(glm::round(t));
+          const bool inside = d <= f.spacing ? surface.contains(p) : side[f.node_index(nearest.x, nearest.y, nearest.z)] < 0;
+          const double exact = (inside ? -d : d) - request.shell_reach;
+          excess = std::max(excess, interpolated_clearance(f, p) - std::clamp(exact, -f.clamp, f.clamp));
+          ++taken;
+        }
+      }
+    samples += taken;
+    const std::lock_guard lock(merge);
+    f.measured_excess = std::max(f.measured_excess, excess);
+  });
+  f.samples = samples;
+  f.margin = 2.0 * f.measured_excess + 0.5;
+  return f;
+}
+
+}  // namespace nano::grid
