@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "shaders/shared/medium.h"
 #include "shaders/shared/package_records.h"
 
 namespace nano::format {

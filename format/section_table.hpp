@@ -130,4 +130,16 @@
     "side (x fastest; two cells a byte, low nibble first): 0 where a box within one step holds a copy a ray "  \
     "can hit, else L ≥ 1: the aligned block of 2^(L−1) cells per axis around the cell has no such box. Must "   \
     "equal what the validator derives from occupancy, cubes and keep-masks. Absent or empty (before 2.7): the " \
-    "runtime derives it at load")
+    "runtime derives it at load")                                                                              \
+  X(medium, 31, gpu::Medium, required, 8, zstd, check_medium, (tiles3d, recipes, exclusion_fields),              \
+    "none or exactly one record (`shaders/shared/medium.h`): the world region the medium fills (region_min, "     \
+    "w = box edge B > 0; region_max, w = clearance ≥ 0), boxes per axis ≥ 1 (region_max ≥ region_min + "        \
+    "boxes·B) and its 3D recipe (w); its cube set (range in tiles3d), the largest instance count of those "     \
+    "cubes (z, exact), w reserved; every molecule of its cubes reaches at most one box beyond its own")         \
+  X(exclusion_fields, 32, gpu::ExclusionField, required, 8, zstd, check_medium, (exclusion_values, compartments), \
+    "parallel to compartments (with a medium): node (0, 0, 0) in compartment space (xyz) and spacing w > 0; "   \
+    "nodes per axis ≥ 2 (xyz) and the first value (w) of x·y·z in exclusion_values; margin (limits.x ≥ 0) and " \
+    "clamp (limits.y > margin), zw reserved")                                                                  \
+  X(exclusion_values, 33, float, required, 8, zstd, check_medium, (),                                           \
+    "f32 node values of all exclusion fields: signed distance to the mesh less the shell's reach (Å), within "  \
+    "± their field's clamp")

@@ -505,6 +505,81 @@ private:
              level(*mine) + ", the level its boxes give");
   }
 
+  // The medium (format 2.8): its region, cube set and recipe, and the molecules of its cubes within
+  // one box of their own (the renderer's walk looks one box around each cell); one exclusion field
+  // per compartment, each inside exclusion_values with finite values within its clamp. The shader
+  // indexes fields by compartment and values by node, so both are checked here.
+  void check_medium() {
+    const auto media = p_.records<SectionKind::medium>();
+    const auto fields = p_.records<SectionKind::exclusion_fields>();
+    const auto values = p_.records<SectionKind::exclusion_values>();
+    if (media.size() > 1)
+      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::medium, 0),
+                         "medium has " + str(media.size()) + " records; a package holds at most one medium");
+    const std::uint64_t compartments = p_.record_count(SectionKind::compartments);
+    if (!fields.empty() && fields.size() != compartments)
+      throw PackageError(p_.name(), Rule::record_size, p_.locate(SectionKind::exclusion_fields, 0),
+                         "exclusion_fields has " + str(fields.size()) + " records for " + str(compartments) + " compartments");
+    if (!media.empty() && fields.empty() && compartments > 0)
+      throw PackageError(p_.name(), Rule::missing_section, p_.locate(SectionKind::medium, 0),
+                         "a medium needs one exclusion field per compartment; exclusion_fields is empty");
+    for (std::uint64_t i = 0; i < fields.size(); ++i) {
+      const gpu::ExclusionField& f = fields[i];
+      const Cursor c = cursor<SectionKind::exclusion_fields>(i);
+      finite(c, 0, f.origin, "field origin and spacing");
+      finite(c, 32, f.limits, "field limits");
+      if (!(f.origin.w > 0)) fail(c, 12, Rule::bad_value, "node spacing is not positive");
+      if (f.dims.x < 2 || f.dims.y < 2 || f.dims.z < 2) fail(c, 16, Rule::bad_value, "a field needs at least 2 nodes per axis");
+      const auto nodes = checked_mul(std::uint64_t{f.dims.x} * f.dims.y, f.dims.z);
+      if (!nodes) fail(c, 16, Rule::index_out_of_range, "node count overflows");
+      range(c, 28, f.dims.w, *nodes, SectionKind::exclusion_values, "node values");
+      if (!(f.limits.x >= 0)) fail(c, 32, Rule::bad_value, "margin is negative");
+      if (!(f.limits.y > f.limits.x)) fail(c, 36, Rule::bad_value, "clamp does not exceed the margin");
+      zero(c, 40, f.limits.z != 0.0f);
+      zero(c, 44, f.limits.w != 0.0f);
+      for (std::uint64_t n = f.dims.w; n < f.dims.w + *nodes; ++n)
+        if (!(std::abs(values[n]) <= f.limits.y))
+          fail(cursor<SectionKind::exclusion_values>(n), 0, Rule::bad_value,
+               "value " + std::to_string(values[n]) + " of exclusion field " + str(i) + " is not within its clamp ±" +
+                   std::to_string(f.limits.y));
+    }
+    if (media.empty()) return;
+    const gpu::Medium& m = media[0];
+    const Cursor c = cursor<SectionKind::medium>(0);
+    finite(c, 0, m.region_min, "region minimum and box edge");
+    finite(c, 16, m.region_max, "region maximum and clearance");
+    const float B = m.region_min.w;
+    if (!(B > 0)) fail(c, 12, Rule::bad_value, "box edge is not positive");
+    if (!(m.region_max.w >= 0)) fail(c, 28, Rule::bad_value, "clearance is negative");
+    if (m.boxes.x == 0 || m.boxes.y == 0 || m.boxes.z == 0) fail(c, 32, Rule::bad_value, "the region has no box");
+    for (int a = 0; a < 3; ++a)
+      if (!(m.region_max[a] >= m.region_min[a] + float(m.boxes[a]) * B * (1.0f - 1e-6f)))
+        fail(c, 16 + 4 * a, Rule::bad_value, "region maximum on axis " + str(a) + " is below its boxes' extent");
+    // Copy numbers: boxes · I below 2^60 (format/validator and placement share the 64-bit space).
+    const auto boxes = checked_mul(std::uint64_t{m.boxes.x} * m.boxes.y, m.boxes.z);
+    if (!boxes || *boxes > (std::uint64_t{1} << 50)) fail(c, 32, Rule::bad_value, "the region has more than 2^50 boxes");
+    check_tile_set(c, 48, m.tiles.x, m.tiles.y, m.boxes.w, SectionKind::tiles3d, gpu::NANO_RECIPE_3D);
+    if (m.boxes.w == gpu::NANO_NO_INDEX) fail(c, 44, Rule::bad_value, "a medium needs a recipe");
+    zero(c, 60, m.tiles.w);
+    const auto cubes = p_.records<SectionKind::tiles3d>();
+    const auto instances = p_.records<SectionKind::instances>();
+    const auto molecules = p_.records<SectionKind::molecules>();
+    std::uint32_t largest = 0;
+    for (std::uint64_t t = m.tiles.x; t < std::uint64_t{m.tiles.x} + m.tiles.y; ++t) {
+      largest = std::max(largest, cubes[t].instance_count);
+      for (std::uint64_t k = cubes[t].first_instance; k < std::uint64_t{cubes[t].first_instance} + cubes[t].instance_count; ++k) {
+        const gpu::MoleculeInstance& mi = instances[k];
+        const float r = molecules[mi.molecule_type].aabb_min.w;
+        for (int a = 0; a < 3; ++a)
+          if (!(mi.position[a] - r >= -B && mi.position[a] + r <= 2.0f * B))
+            fail(cursor<SectionKind::instances>(k), 16 + 4 * a, Rule::bad_value,
+                 "a molecule of the medium's cube " + str(t) + " reaches beyond the boxes next to its own");
+      }
+    }
+    if (m.tiles.z != largest)
+      fail(c, 56, Rule::bad_value, "largest instance count " + str(m.tiles.z) + " is not the cube set's " + str(largest));
+  }
+
   // The level of detail (format 2.5): per molecule type a non-empty range of beads that together
   // merge exactly its atoms, each bead a finite sphere inside the type's box holding the atom it
   // reports, which is one of the type's. The renderer trusts these indices and boxes.

@@ -47,6 +47,8 @@ auto fields(const gpu::BoundaryBox& b) { return std::tie(b.box, b.first_word); }
 auto fields(const gpu::TriangleDrops& d) { return std::tie(d.first, d.count); }
 auto fields(const gpu::Bead& b) { return std::tie(b.centre_radius, b.atom, b.atom_count, b.reserved0, b.reserved1); }
 auto fields(const gpu::BeadRange& r) { return std::tie(r.first, r.count); }
+auto fields(const gpu::Medium& m) { return std::tie(m.region_min, m.region_max, m.boxes, m.tiles); }
+auto fields(const gpu::ExclusionField& f) { return std::tie(f.origin, f.dims, f.limits); }
 auto fields(const gpu::SceneSettings& s) {
   return std::tie(s.camera_position, s.camera_look_at, s.camera_up, s.effect_flags, s.reserved0, s.reserved1, s.reserved2);
 }
@@ -94,6 +96,9 @@ void expect_scene(const Package& p, const SampleScene& s) {
   expect_section<K::dropped_copies>(p, s.dropped_copies);
   expect_section<K::beads>(p, s.beads);
   expect_section<K::bead_ranges>(p, s.bead_ranges);
+  expect_section<K::medium>(p, s.medium);
+  expect_section<K::exclusion_fields>(p, s.exclusion_fields);
+  expect_section<K::exclusion_values>(p, s.exclusion_values);
 }
 
 TEST(RoundTrip, EverySectionKindUncompressed) {
@@ -209,7 +214,10 @@ TEST(SectionKinds, NamesRoundTripAndRecordSizes) {
     EXPECT_EQ(section_kind_from_name(section_kind_name(k)), k);
   }
   EXPECT_FALSE(is_known_section_kind(0));
-  EXPECT_FALSE(is_known_section_kind(31));
+  EXPECT_FALSE(is_known_section_kind(34));
+  EXPECT_EQ(record_size(SectionKind::medium), 64u);
+  EXPECT_EQ(record_size(SectionKind::exclusion_fields), 48u);
+  EXPECT_EQ(record_size(SectionKind::exclusion_values), 4u);
   EXPECT_EQ(record_size(SectionKind::draco_meshes), 1u);
   EXPECT_EQ(record_size(SectionKind::triangle_drops), 8u);
   EXPECT_EQ(record_size(SectionKind::dropped_copies), 4u);

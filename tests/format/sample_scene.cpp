@@ -84,6 +84,14 @@ SampleScene make_sample_scene() {
   // reporting atom 2 (the nearest); type 1's two atoms as a bead each.
   s.beads = {{vec4(0, 0, 1.0f / 6, 2.02f), 2, 3, 0, 0}, {vec4(0, 0, 0, 1.001f), 3, 1, 0, 0}, {vec4(0.5f, 0, 0, 0.501f), 4, 1, 0, 0}};
   s.bead_ranges = {{0, 1}, {1, 2}};
+  // A medium of the one cube over 8 x 8 x 8 boxes of 5 Å, and the compartment's exclusion field:
+  // 5 x 5 x 5 nodes 1 Å apart, the distance from the point (0, 0, 0) less 1 Å, clamped to ±3.
+  s.medium = {{vec4(-20, -20, -20, 5), vec4(20, 20, 20, 1), uvec4(8, 8, 8, 1), uvec4(0, 1, 1, 0)}};
+  s.exclusion_fields = {{vec4(-2, -2, -2, 1), uvec4(5, 5, 5, 0), vec4(0.5f, 3, 0, 0)}};
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i)
+        s.exclusion_values.push_back(std::clamp(std::sqrt(float((i - 2) * (i - 2) + (j - 2) * (j - 2) + (k - 2) * (k - 2))) - 1.0f, -3.0f, 3.0f));
   s.scene = {{vec4(0, 0, 10, 0.8f), vec4(0, 0, 0, 0), vec4(0, 1, 0, 0),
               package_flag(EffectId::ambient_occlusion) | package_flag(EffectId::shadows) | package_flag(EffectId::clipping) |
                   package_flag(EffectId::animation),
@@ -140,6 +148,9 @@ std::vector<SectionSource> sections_of(const SampleScene& s, Compression mesh_c,
       source(K::beads, s.beads, c),
       source(K::bead_ranges, s.bead_ranges, c),
       source(K::core_skip, s.core_skip, c),
+      source(K::medium, s.medium, c),
+      source(K::exclusion_fields, s.exclusion_fields, c),
+      source(K::exclusion_values, s.exclusion_values, c),
   };
   std::vector<SectionSource> out;
   for (const SectionSource& src : all)

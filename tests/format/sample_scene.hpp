@@ -38,6 +38,9 @@ struct SampleScene {
   std::vector<gpu::InstanceKeyframe> keyframes;
   std::vector<gpu::Bead> beads;
   std::vector<gpu::BeadRange> bead_ranges;
+  std::vector<gpu::Medium> medium;
+  std::vector<gpu::ExclusionField> exclusion_fields;
+  std::vector<float> exclusion_values;
   std::vector<std::uint8_t> core_skip;  // derived by make_sample_scene; refresh_core_skip after changing the grid
 };
 

@@ -30,6 +30,7 @@ using glm::vec4;
 void grow_cube_past_one_word(SampleScene& s) {
   for (int i = 0; i < 32; ++i) s.instances.push_back(s.instances[3]);
   s.tiles3d[0].instance_count = 33;
+  s.medium[0].tiles.z = 33;  // the medium shares the cube
 }
 
 // The grown cube with masks rewritten to match: box 199 keeps all 33 molecules, box 260 none.
@@ -167,6 +168,36 @@ const Case kCases[] = {
     {"core skip one byte short", [](SampleScene& s) { s.core_skip.pop_back(); }, Rule::record_size, SectionKind::core_skip, 0},
     {"core skip for a changed occupancy", [](SampleScene& s) { s.occupancy[5] = gpu::NANO_BOX_INSIDE; }, Rule::bad_value,
      SectionKind::core_skip, 2},
+    {"two media", [](SampleScene& s) { s.medium.push_back(s.medium[0]); }, Rule::record_size, SectionKind::medium, 0},
+    {"medium box edge zero", [](SampleScene& s) { s.medium[0].region_min.w = 0; }, Rule::bad_value, SectionKind::medium, 12},
+    {"medium region short of its boxes", [](SampleScene& s) { s.medium[0].region_max.x = 0; }, Rule::bad_value,
+     SectionKind::medium, 16},
+    {"medium recipe of squares", [](SampleScene& s) { s.medium[0].boxes.w = 0; }, Rule::bad_value, SectionKind::medium, 48},
+    {"medium recipe out of range", [](SampleScene& s) { s.medium[0].boxes.w = 9; }, Rule::index_out_of_range,
+     SectionKind::medium, 56},
+    {"medium largest instance count", [](SampleScene& s) { s.medium[0].tiles.z = 2; }, Rule::bad_value, SectionKind::medium, 56},
+    {"medium molecule beyond the next box", [](SampleScene& s) { s.medium[0].region_min.w = 2; }, Rule::bad_value,
+     SectionKind::instances, 3 * 80 + 16},
+    {"medium without exclusion fields",
+     [](SampleScene& s) {
+       s.exclusion_fields.clear();
+       s.exclusion_values.clear();
+     },
+     Rule::missing_section, SectionKind::medium, 0},
+    {"exclusion fields not one per compartment", [](SampleScene& s) { s.exclusion_fields.push_back(s.exclusion_fields[0]); },
+     Rule::record_size, SectionKind::exclusion_fields, 0},
+    {"exclusion field spacing zero", [](SampleScene& s) { s.exclusion_fields[0].origin.w = 0; }, Rule::bad_value,
+     SectionKind::exclusion_fields, 12},
+    {"exclusion field of one node per axis", [](SampleScene& s) { s.exclusion_fields[0].dims.y = 1; }, Rule::bad_value,
+     SectionKind::exclusion_fields, 16},
+    {"exclusion field beyond its values", [](SampleScene& s) { s.exclusion_fields[0].dims.w = 1; }, Rule::index_out_of_range,
+     SectionKind::exclusion_fields, 28},
+    {"exclusion clamp below margin", [](SampleScene& s) { s.exclusion_fields[0].limits.y = 0.25f; }, Rule::bad_value,
+     SectionKind::exclusion_fields, 36},
+    {"exclusion value beyond the clamp", [](SampleScene& s) { s.exclusion_values[7] = 4; }, Rule::bad_value,
+     SectionKind::exclusion_values, 7 * 4},
+    {"exclusion value NaN", [](SampleScene& s) { s.exclusion_values[9] = kNaN; }, Rule::bad_value, SectionKind::exclusion_values,
+     9 * 4},
     {"two scene records", [](SampleScene& s) { s.scene.push_back(s.scene[0]); }, Rule::record_size, SectionKind::scene, 0},
     {"field of view", [](SampleScene& s) { s.scene[0].camera_position.w = 0; }, Rule::bad_value, SectionKind::scene, 12},
     {"scene compartment index", [](SampleScene& s) { s.compartment_instances[1].compartment = 1; },
