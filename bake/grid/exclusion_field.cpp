@@ -71,6 +71,7 @@ ExclusionField bake_exclusion_field(const MeshSurface& surface, const ExclusionF
   f.dims = nodes_at(f.spacing);
   f.origin = lo - 2.0 * f.spacing;
   f.clamp = request.medium_reach + 4.0 * f.spacing;
+  f.shell_reach = request.shell_reach;
   const std::size_t count = static_cast<std::size_t>(f.dims.x) * f.dims.y * f.dims.z;
   const auto position = [&](int i, int j, int k) { return f.origin + f.spacing * glm::dvec3(i, j, k); };
 

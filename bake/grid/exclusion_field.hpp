@@ -27,6 +27,7 @@ struct ExclusionField {
   glm::ivec3 dims{0};      // nodes per axis
   std::vector<float> values;  // node i + X·(j + Y·k): signed distance to the mesh − shell_reach, clamped to ±clamp
   double clamp = 0.0;
+  double shell_reach = 0.0;      // the request's: what the values are less than the distance
   double measured_excess = 0.0;  // the most the interpolated value exceeded the true one at the samples
   double margin = 0.0;           // what the rule subtracts: 2 × measured_excess + 0.5 Å
   std::size_t samples = 0;       // points where the excess was measured

@@ -75,6 +75,13 @@ void check_medium_region(const SceneDescription& scene, std::span<const Molecule
   const SolubleDescription& soluble = scene.solubles.at(m.soluble.index);
   const Box region = medium_region(scene, instances);
   const std::string file = scene.source.string();
+  int complete = 1;
+  for (int face = 0; face < 6; ++face) complete *= soluble.face_colours;
+  if (soluble.cubes != complete)
+    throw InputError(file, "solubles." + soluble.name + ".cubes",
+                     std::to_string(soluble.cubes) + " cubes: the medium repeats one recipe through its region, which "
+                     "needs the complete cube set of its " + std::to_string(soluble.face_colours) + " face colours (\"cubes\": " +
+                         std::to_string(complete) + ")");
 
   double widest = 0;  // the largest diameter among the medium's molecules
   std::string widest_name;

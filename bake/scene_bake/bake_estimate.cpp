@@ -1,5 +1,7 @@
 #include "bake/scene_bake/bake_estimate.hpp"
 
+#include "bake/grid/exclusion_field.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -32,6 +34,9 @@ constexpr StageCost kTileSets{"tile sets", 2.2e-6, 0.3};    // per atom of the c
 constexpr StageCost kShells{"shells", 2.0e-5, 0.1};           // per membrane copy checked on the surface
 constexpr StageCost kCoreGrids{"core grids", 3e-7, 0.05};     // per soluble copy in a boundary box
 constexpr StageCost kPackage{"package content", 2e-9, 0.3};   // per atom of the copies in the sets (and writing)
+// per node of the medium's exclusion fields (one a compartment, grid::ExclusionFieldRequest's
+// budget): blood's two fields of ~10^6 nodes took 14.8 CPU s.
+constexpr StageCost kMedium{"medium", 7e-6, 0.1};
 // Of a patch's lipids, the share kept once the clashes of an equilibrated patch are resolved
 // (clearance 0.6: the bundled scenes keep 72-78 %).
 constexpr double kPatchLipidsKept = 0.75;
@@ -101,6 +106,7 @@ std::string gigabytes(double bytes) {
 struct StageWork {
   double tile_atoms = 0.0;  // atoms of the copies in every tile and cube set
   double checked_copies = 0.0, core_box_copies = 0.0, core_boxes = 0.0, triangles = 0.0;
+  double medium_nodes = 0.0;  // of the exclusion fields (none without a medium)
 };
 
 struct EstimateInputs {
@@ -207,6 +213,7 @@ void add_stage_costs(const StageWork& work, BakeEstimate& e) {
   stage(kShells, work.checked_copies);
   stage(kCoreGrids, work.core_box_copies);
   stage(kPackage, work.tile_atoms);
+  if (work.medium_nodes > 0) stage(kMedium, work.medium_nodes);
   const double threads = e.jobs;
   for (const StageEstimate& s : e.stages) {
     e.cpu_seconds += s.cpu_seconds;
@@ -252,6 +259,7 @@ BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vect
   work.tile_atoms = tile_set_atoms(in);
   for (std::size_t c = 0; c < scene.compartments.size(); ++c)
     e.compartments.push_back(estimate_compartment(in, scene.compartments[c], meshes[c], work));
+  if (scene.medium) work.medium_nodes = double(scene.compartments.size()) * double(grid::ExclusionFieldRequest{}.max_nodes);
   e.instances = scene::expanded_instance_count(scene);
   e.represented_atoms = represented_atoms(scene, e.compartments, library);
   e.jobs = std::max(1, jobs);

@@ -190,6 +190,23 @@ void PackageContent::add_core_skip() {
   core_skip = format::core_skip_section({compartments, occupancy, tiles3d, recipes, recipe_indices, boundary_boxes, mask_words});
 }
 
+void PackageContent::add_medium(const BakedMedium& m, const TileRange& cubes, std::uint32_t largest_cube) {
+  gpu::Medium record{};
+  record.region_min = glm::vec4(glm::vec3(m.region.min), static_cast<float>(m.box_edge));
+  record.region_max = glm::vec4(glm::vec3(m.region.max), static_cast<float>(m.clearance));
+  record.boxes = glm::uvec4(m.boxes, add_recipe(m.recipe, cubes));
+  record.tiles = glm::uvec4(cubes.first, cubes.count, largest_cube, 0u);
+  medium.push_back(record);
+  for (const grid::ExclusionField& f : m.fields) {
+    gpu::ExclusionField field{};
+    field.origin = glm::vec4(glm::vec3(f.origin), static_cast<float>(f.spacing));
+    field.dims = glm::uvec4(glm::uvec3(f.dims), checked_index(exclusion_values));
+    field.limits = glm::vec4(static_cast<float>(f.margin), static_cast<float>(f.clamp), 0.0f, 0.0f);
+    exclusion_fields.push_back(field);
+    exclusion_values.insert(exclusion_values.end(), f.values.begin(), f.values.end());
+  }
+}
+
 std::vector<format::SectionSource> PackageContent::sections() const {
   using format::SectionKind;
   using format::section_source;
@@ -228,6 +245,9 @@ std::vector<format::SectionSource> PackageContent::sections() const {
   add(SectionKind::boundary_boxes, std::span(boundary_boxes));
   add(SectionKind::mask_words, std::span(mask_words));
   add(SectionKind::core_skip, std::span(core_skip));
+  add(SectionKind::medium, std::span(medium));
+  add(SectionKind::exclusion_fields, std::span(exclusion_fields));
+  add(SectionKind::exclusion_values, std::span(exclusion_values));
   add(SectionKind::scene, std::span(&scene, 1));
   add(SectionKind::effects, std::span(effects));
   add(SectionKind::keyframes, std::span(keyframes));

@@ -8,6 +8,7 @@
 
 #include "bake/grid/soluble_masks.hpp"
 #include "bake/scene_bake/mesh_packing.hpp"
+#include "bake/scene_bake/medium_bake.hpp"
 #include "bake/scene_bake/molecule_library.hpp"
 #include "bake/scene_bake/wang_bake.hpp"
 #include "format/records.hpp"
@@ -44,6 +45,9 @@ struct PackageContent {
   std::vector<gpu::BoundaryBox> boundary_boxes;
   std::vector<std::uint32_t> mask_words;
   std::vector<std::uint8_t> core_skip;  // empty-space skipping of every core grid (format/core_skip.hpp)
+  std::vector<gpu::Medium> medium;                     // none or one record (shaders/shared/medium.h)
+  std::vector<gpu::ExclusionField> exclusion_fields;   // with a medium: parallel to compartments
+  std::vector<float> exclusion_values;
   gpu::SceneSettings scene{};
   std::vector<gpu::SceneEffects> effects;           // none or one record
   std::vector<gpu::InstanceKeyframe> keyframes;     // ascending (instance, time)
@@ -68,6 +72,10 @@ struct PackageContent {
   std::uint32_t add_occupancy(const std::vector<std::uint8_t>& classes);
   // Boundary boxes with W = ceil(largest cube / 32) words each; returns (first record, count).
   std::pair<std::uint32_t, std::uint32_t> add_keep_masks(const grid::KeepMasks& masks, std::uint32_t largest_cube);
+
+  // The medium over its cube set (added as a Wang set at `cubes`): its record, recipe and the
+  // compartments' exclusion fields (in compartment order).
+  void add_medium(const BakedMedium& medium, const TileRange& cubes, std::uint32_t largest_cube);
 
   // The skip levels of every core grid, once the compartments and their grids are all added.
   void add_core_skip();

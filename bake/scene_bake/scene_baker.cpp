@@ -29,7 +29,7 @@ namespace nano::scene_bake {
 namespace {
 
 // Every random choice of the bake derives from the scene seed and a tag naming what it seeds.
-enum class SeedTag : std::uint64_t { membrane_tiles = 1, soluble_cubes, membrane_recipe, soluble_recipe };
+enum class SeedTag : std::uint64_t { membrane_tiles = 1, soluble_cubes, membrane_recipe, soluble_recipe, medium_recipe };
 
 std::uint64_t derive_seed(std::uint64_t seed, SeedTag tag, std::size_t index) {
   return tiles::mix64(seed ^ tiles::mix64(static_cast<std::uint64_t>(tag) * 0x100000001B3ull + index));
@@ -424,12 +424,44 @@ std::vector<scene::PlacedInstance> place_instances(const scene::SceneDescription
   return scene::expand_random_instances(scene, radii);
 }
 
+// The medium around the placed instances: its region from their spheres (meshes and shells), one
+// exclusion field per compartment.
+BakedMedium bake_scene_medium(const BakeInputs& in, const Molecules& molecules, const TileSets& sets,
+                              const std::vector<CompartmentBake>& compartments, const MeshMeasures& measured,
+                              const std::vector<scene::PlacedInstance>& placed) {
+  const scene::SceneDescription& scene = in.scene;
+  std::vector<double> radii;
+  std::vector<MediumCompartment> walls;
+  for (std::size_t c = 0; c < compartments.size(); ++c) {
+    radii.push_back(measured.radii[c] + compartments[c].shell_margin);
+    walls.push_back({&compartments[c].mesh.mesh, compartments[c].shell_margin});
+  }
+  const scene::Box region = scene::medium_region(scene, scene::instance_spheres(placed, radii));
+  return bake_medium(scene, region, sets.soluble[scene.medium->soluble.index], molecules.library, walls, placed,
+                     derive_seed(in.seed, SeedTag::medium_recipe, 0), in.threads);
+}
+
+MediumSummary medium_summary(const scene::SceneDescription& scene, const BakedMedium& m) {
+  MediumSummary s;
+  s.soluble = scene.solubles[scene.medium->soluble.index].name;
+  s.region_min = m.region.min;
+  s.region_max = m.region.max;
+  s.boxes = m.boxes;
+  s.copies_in_region = m.copies_in_region;
+  for (const MediumMoleculeCount& n : m.counts) s.counts.push_back(n);
+  for (std::size_t c = 0; c < m.fields.size(); ++c)
+    s.fields.push_back({scene.compartments[c].name, m.fields[c].spacing, m.fields[c].margin, m.fields[c].measured_excess,
+                        m.fields[c].shell_reach, m.fields[c].values.size() * sizeof(float) + sizeof(gpu::ExclusionField)});
+  return s;
+}
+
 // What the package content stage writes from: every earlier stage's result.
 struct PackageInputs {
   const BakeInputs& in;
   const Molecules& molecules;
   const TileSets& sets;
   const std::vector<CompartmentBake>& compartments;
+  const std::optional<BakedMedium>& medium;
 };
 
 struct TileSetRanges {
@@ -572,6 +604,12 @@ void fill_package_content(BakedScene& baked, const PackageInputs& p, const std::
   }
   content.add_core_skip();
   for (const scene::PlacedInstance& instance : placed) add_instance(baked, instance, p.compartments[instance.compartment.index]);
+  if (p.medium) {
+    const std::size_t s = p.in.scene.medium->soluble.index;
+    content.add_medium(*p.medium, ranges.soluble[s], largest_tile(p.sets.soluble[s]));
+    baked.medium = medium_summary(p.in.scene, *p.medium);
+    for (const MediumMoleculeCount& n : p.medium->counts) baked.represented_atoms += static_cast<std::uint64_t>(n.atoms);
+  }
   const scene::SceneDescription& scene = p.in.scene;
   content.scene = scene_settings(scene, baked.instances);
   content.effects = scene_effects(scene.effects);
@@ -597,11 +635,6 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   check_nothing_emptied(scene, molecules.measures, molecules.patches, measured.measures,
                         [&](std::size_t c) -> const mesh::ProxyMesh& { return compartments[c].mesh.mesh; });
   check_placements(scene, molecules, measured);
-  if (scene.medium)
-    throw InputError(scene.source.string(), "medium",
-                     "the medium passed its checks, but this baker cannot yet put a medium in a package (the "
-                     "exclusion fields are baked and tested; the package sections and the renderer's walk are "
-                     "not written yet): remove \"medium\" to bake the rest of the scene");
 
   const std::vector<tiles::SurfaceDistortion> surfaces = plan_membranes(in, molecules, compartments);
   baked.estimate = estimate(in, molecules, compartments, measured);
@@ -627,7 +660,9 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
 
   const std::vector<scene::PlacedInstance> placed =
       clock.run("instances", [&] { return place_instances(scene, compartments, measured); });
-  clock.run("package content", [&] { fill_package_content(baked, {in, molecules, sets, compartments}, placed); });
+  std::optional<BakedMedium> medium;
+  if (scene.medium) medium = clock.run("medium", [&] { return bake_scene_medium(in, molecules, sets, compartments, measured, placed); });
+  clock.run("package content", [&] { fill_package_content(baked, {in, molecules, sets, compartments, medium}, placed); });
   check_every_molecule_placed(scene, baked);  // before anything is written (bake_invariants.hpp)
   return baked;
 }

@@ -10,6 +10,7 @@
 
 #include "bake/scene/scene_description.hpp"
 #include "bake/scene_bake/bake_estimate.hpp"
+#include "bake/scene_bake/medium_bake.hpp"
 #include "bake/scene_bake/package_content.hpp"
 
 #include "bake/mesh/mesh_remesh.hpp"
@@ -94,8 +95,26 @@ struct WangSetSummary {
   std::optional<tiles::SurfaceDistortion> surface;  // membranes only: what the tiles were packed to survive
 };
 
+// The medium as the report gives it: region, what it holds (estimated by volume, medium_bake.hpp)
+// and the exclusion field of each compartment.
+struct MediumSummary {
+  std::string soluble;
+  glm::dvec3 region_min{0.0}, region_max{0.0};
+  glm::uvec3 boxes{0};
+  double copies_in_region = 0.0;  // before exclusion
+  std::vector<MediumMoleculeCount> counts;
+  struct Field {
+    std::string compartment;
+    double spacing = 0.0, margin = 0.0, measured_excess = 0.0;
+    double shell_reach = 0.0;  // how far its membrane's prisms reach beyond the mesh
+    std::size_t bytes = 0;
+  };
+  std::vector<Field> fields;
+};
+
 struct BakedScene {
   PackageContent content;
+  std::optional<MediumSummary> medium;
   std::vector<CompartmentSummary> compartments;
   std::vector<InstanceSummary> instances;
   std::vector<WangSetSummary> wang_sets;

@@ -103,6 +103,15 @@ TEST(MediumRegion, ARegionThatNoInstanceReachesIsRefusedWithTheirBounds) {
   EXPECT_NO_THROW(check_medium_region(touching, measures(40), two_cells()));
 }
 
+TEST(MediumRegion, AMediumNeedsTheCompleteCubeSet) {
+  Json doc = scene_with_medium(R"({"soluble": "plasma"})");
+  doc["solubles"]["plasma"]["cubes"] = 16;
+  const SceneDescription s = parse_scene_description(doc, "scene.json");
+  EXPECT_INPUT_ERROR(check_medium_region(s, measures(40), two_cells()), "solubles.plasma.cubes",
+                     "16 cubes: the medium repeats one recipe through its region, which needs the complete cube set of "
+                     "its 2 face colours (\"cubes\": 64)");
+}
+
 TEST(MediumRegion, ADerivedRegionIsBlamedOnItsMargin) {
   // One 600 Å cell and margin 0: 1200 Å across, narrower than a 700 Å-radius molecule.
   const SceneDescription s = parse(R"({"soluble": "plasma", "margin": 0})");
