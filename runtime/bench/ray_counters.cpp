@@ -12,13 +12,14 @@ constexpr const char* kNames[kCounterRows] = {
     "ulas_queries",      "ulas_candidates", "prism_tests",       "prisms_entered", "replas_queries",   "slots_tried",
     "mlas_queries",      "mlas_candidates", "ownership_rejects", "listed_rejects", "nlas_queries",     "nlas_candidates",
     "sphere_tests",      "core_steps",      "core_boxes",        "mask_rejects",   "flat_queries",     "flat_candidates",
+    "medium_steps",      "medium_keep_queries", "medium_rejects",
     "queries_started",   "candidates_met"};
 
 std::uint64_t row_value(std::span<const std::uint32_t> pixel, std::uint32_t row) {
   using namespace gpu;
   if (row == kQueriesStarted)
     return std::uint64_t(pixel[NANO_RC_ULAS_QUERIES]) + pixel[NANO_RC_REPLAS_QUERIES] + pixel[NANO_RC_MLAS_QUERIES] +
-           pixel[NANO_RC_NLAS_QUERIES] + pixel[NANO_RC_FLAT_QUERIES];
+           pixel[NANO_RC_NLAS_QUERIES] + pixel[NANO_RC_FLAT_QUERIES] + pixel[NANO_RC_MEDIUM_KEEP_QUERIES];
   if (row == kCandidatesMet)
     return std::uint64_t(pixel[NANO_RC_ULAS_CANDIDATES]) + pixel[NANO_RC_SLOTS_TRIED] + pixel[NANO_RC_MLAS_CANDIDATES] +
            pixel[NANO_RC_NLAS_CANDIDATES] + pixel[NANO_RC_FLAT_CANDIDATES];

@@ -55,7 +55,8 @@ void add_pick_command(CLI::App& app) {
       // What the effects change for ids, as verify gives them to the oracle: moved instances,
       // jittered copies, clipped atoms (AO and shadows change colours only).
       const render::EffectSettings effects = o->effects.settings(package);
-      const session::OracleEffects oracle_view = session::oracle_effects(package, effects);
+      session::OracleEffects oracle_view = session::oracle_effects(package, effects);
+      oracle_view.scene.medium = o->variant.render_settings().show_medium;
       const oracle::ExplicitScene scene(package, oracle_view.scene);
       oracle::OracleRenderOptions render_options;
       render_options.clip = oracle_view.clip;

@@ -76,7 +76,8 @@ void run_verify(const VerifyOptions& o) {
   session::RenderSession session(o.package, o.variant.scene_options());
   settings.effects = o.effects.settings(session.package);
   // The oracle sees what the effects change: moved instances, jittered copies, clipped atoms.
-  const session::OracleEffects oracle_view = session::oracle_effects(session.package, settings.effects);
+  session::OracleEffects oracle_view = session::oracle_effects(session.package, settings.effects);
+  oracle_view.scene.medium = settings.show_medium;  // --hide medium hides it from both sides
   const oracle::ExplicitScene scene(session.package, oracle_view.scene);
   if (settings.effects.flag(EffectId::ambient_occlusion) || settings.effects.flag(EffectId::shadows))
     std::fprintf(stderr, "verify: ambient occlusion and shadows change colours only; the ids compared here do not see them\n");

@@ -59,12 +59,14 @@ protected:
 class CsvWriter final : public Writer {
 public:
   using Writer::Writer;
-  void begin() override { std::fputs("copy,type,chain,residue,atom,element,x,y,z,radius\n", f_); }
+  void begin() override { std::fputs("copy,type,chain,residue,atom,element,x,y,z,radius,kind\n", f_); }
   void atom(const AtomSample& a) override {
     const AtomText t = text_of(a, false);
-    std::fprintf(f_, "%llu,%u,%s,%s,%s,%s,%.6f,%.6f,%.6f,%.6f\n", static_cast<unsigned long long>(a.copy->number),
+    static constexpr const char* kKinds[] = {"membrane", "core", "medium"};
+    std::fprintf(f_, "%llu,%u,%s,%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%s\n", static_cast<unsigned long long>(a.copy->number),
                  a.copy->molecule_type, quoted(t.chain).c_str(), quoted(t.residue).c_str(), quoted(t.atom).c_str(),
-                 quoted(t.element).c_str(), a.position.x, a.position.y, a.position.z, a.radius);
+                 quoted(t.element).c_str(), a.position.x, a.position.y, a.position.z, a.radius,
+                 kKinds[static_cast<int>(a.copy->id.kind)]);
   }
 
 private:

@@ -53,8 +53,16 @@ public:
   void for_each_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit) const;
   void for_each_copy_of(std::uint32_t instance, const WorldBox& box, const std::function<void(const Copy&)>& visit) const;
   void for_each_membrane_copy(std::uint32_t instance, std::uint32_t triangle, const std::function<void(const Copy&)>& visit) const;
+  // The medium's kept copies of region box `box` (placement::CopyEnumerator::for_each_medium_copy).
+  bool has_medium() const;
+  void for_each_medium_copy(const glm::ivec3& box, const std::function<void(const Copy&)>& visit) const;
   // Every atom whose centre lies in `box`; atoms of a copy are consecutive, in the type's order.
-  void for_each_atom(const WorldBox& box, const std::function<void(const AtomSample&)>& visit) const;
+  // The medium's atoms come last; a box spanning more than `max_medium_boxes` of its region boxes
+  // is refused (InputError): they would hold billions of copies.
+  void for_each_atom(const WorldBox& box, const std::function<void(const AtomSample&)>& visit,
+                     std::uint64_t max_medium_boxes = 4'000'000) const;
+  // The same without the medium (the oracle's rounds trace it apart, along each ray).
+  void for_each_compartment_atom(const WorldBox& box, const std::function<void(const AtomSample&)>& visit) const;
 
   // Copy numbers lie in [0, copy_number_limit()).
   std::uint64_t copy_number_limit() const;

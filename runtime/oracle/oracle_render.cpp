@@ -5,10 +5,12 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <unordered_set>
 
 #include "common/error.hpp"
 #include "common/parallel_for.hpp"
 #include "format/package_view.hpp"
+#include "runtime/placement/medium_rule.hpp"
 
 namespace nano::oracle {
 namespace {
@@ -281,18 +283,128 @@ private:
   std::vector<Node> nodes_;
 };
 
-gpu::PixelHit make_hit(double t, const HeldAtom& a, const HeldCopy& c) {
+gpu::PixelHit make_hit(double t, std::uint32_t atom, const CopyId& id, std::uint64_t number) {
   gpu::PixelHit h;
   h.depth = float(t);
-  h.compartment_instance = c.id.compartment_instance;
-  h.element = c.id.element;
-  h.kind = std::uint32_t(c.id.kind);
-  h.cell = glm::ivec4(c.id.cell, 0);
-  h.instance = c.id.instance;
-  h.atom = a.atom;
-  h.copy_number_lo = std::uint32_t(c.number);
-  h.copy_number_hi = std::uint32_t(c.number >> 32);
+  h.compartment_instance = id.compartment_instance;
+  h.element = id.element;
+  h.kind = std::uint32_t(id.kind);
+  h.cell = glm::ivec4(id.cell, 0);
+  h.instance = id.instance;
+  h.atom = atom;
+  h.copy_number_lo = std::uint32_t(number);
+  h.copy_number_hi = std::uint32_t(number >> 32);
   return h;
+}
+
+// The medium along each pixel's ray, traced apart from the rounds (their pyramid boxes would hold
+// billions of its copies) and independently of the renderer's DDA: the ray is sampled every B/4
+// within the region grown by two boxes and on the kept side of every clip half-space; each sample's
+// box and the boxes within two of it (a copy reaches one box beyond its own, so a copy the ray meets
+// stands within two boxes of a sampled one) give their kept copies (the shared keep rule) and every
+// atom of a copy whose sphere the ray meets. A box wholly inside an instance is skipped by its
+// field: trilinear values change by at most √3 per unit step, so a centre value below
+// margin − 1.5·B rejects every copy of the box. Sampling stops half a box beyond the nearest hit.
+}  // namespace
+gpu::PixelHit background_pixel();
+namespace {
+
+struct MediumHit {
+  double t = kInf;
+  std::uint32_t atom = 0;
+  CopyId id;
+  std::uint64_t number = 0;
+};
+
+struct MediumWalls {
+  std::vector<gpu::MediumInstance> records;        // per compartment instance (placement::medium_instances)
+  std::vector<std::pair<dvec3, dvec3>> boxes;      // their fields' region-space boxes
+};
+
+MediumHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView& p, const MediumWalls& walls, const Ray& ray,
+                           const OracleRenderOptions& options) {
+  const gpu::Medium& m = p.medium[0];
+  const double B = m.region_min.w;
+  const dvec3 lo = dvec3(m.region_min) - 2.0 * B, hi = dvec3(m.region_max) + 2.0 * B;
+  double t0 = 0, t1 = kInf;
+  for (int a = 0; a < 3; ++a) {
+    if (ray.d[a] == 0) {
+      if (ray.o[a] < lo[a] || ray.o[a] > hi[a]) return {};
+      continue;
+    }
+    double ta = (lo[a] - ray.o[a]) * ray.inv[a], tb = (hi[a] - ray.o[a]) * ray.inv[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+  }
+  // The kept side of each half-space, widened by two boxes (a kept atom's copy may stand beyond it).
+  for (const glm::dvec4& h : options.clip) {
+    const double along = glm::dot(dvec3(h), ray.d), at = glm::dot(dvec3(h), ray.o) + h.w + 4.0 * B;
+    if (along == 0) {
+      if (at < 0) return {};
+    } else if (along > 0) {
+      t0 = std::max(t0, -at / along);
+    } else {
+      t1 = std::min(t1, -at / along);
+    }
+  }
+  if (!(t0 <= t1)) return {};
+  MediumHit best;
+  std::unordered_set<std::uint64_t> seen;
+  const glm::ivec3 boxes(glm::uvec3(m.boxes));
+  const auto visit_box = [&](const glm::ivec3& b) {
+    if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, boxes))) return;
+    const std::uint64_t key = std::uint64_t(b.x) + std::uint64_t(boxes.x) * (std::uint64_t(b.y) + std::uint64_t(boxes.y) * std::uint64_t(b.z));
+    if (!seen.insert(key).second) return;
+    const glm::vec3 centre = gpu::medium_copy_centre(b, float(B), glm::vec3(float(B) / 2));
+    for (std::size_t i = 0; i < walls.records.size(); ++i) {
+      const auto& [box_lo, box_hi] = walls.boxes[i];
+      const dvec3 q(centre);
+      if (glm::any(glm::lessThan(q, box_lo)) || glm::any(glm::greaterThan(q, box_hi))) continue;
+      const gpu::MediumInstance& r = walls.records[i];
+      if (double(placement::exclusion_value(p, r, centre)) < double(p.exclusion_fields[r.ids.x].limits.x) - 1.5 * B) return;
+    }
+    scene.for_each_medium_copy(b, [&](const Copy& c) {
+      if (sphere_hit(ray, c.origin, c.radius * std::max(1.0, options.radius_scale)) == kInf) return;
+      const gpu::MoleculeType& type = p.molecules[c.molecule_type];
+      for (std::uint32_t a = type.first_atom; a < type.first_atom + type.atom_count; ++a) {
+        const dvec3 centre_a = c.origin + c.linear * dvec3(p.atoms[a].centre_radius);
+        bool clipped = false;
+        for (const glm::dvec4& h : options.clip) clipped = clipped || !(glm::dot(dvec3(h), centre_a) + h.w >= 0);
+        if (clipped) continue;
+        const double t = sphere_hit(ray, centre_a, p.atoms[a].centre_radius.w * c.stretch * options.radius_scale);
+        if (t > best.t) continue;
+        if (t == best.t && !(c.number < best.number || (c.number == best.number && a < best.atom))) continue;
+        best = {t, a, c.id, c.number};
+      }
+    });
+  };
+  for (double t = t0; t <= t1 && t <= best.t + B / 2; t += B / 4) {
+    const glm::ivec3 cell(glm::floor((ray.o + t * ray.d - dvec3(m.region_min)) / B));
+    for (int dz = -2; dz <= 2; ++dz)
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) visit_box(cell + glm::ivec3(dx, dy, dz));
+  }
+  return best;
+}
+
+// The medium's hit of every pixel (background where it has none).
+std::vector<gpu::PixelHit> trace_medium(const ExplicitScene& scene, const format::Package& package, const std::vector<Ray>& rays,
+                                        const OracleRenderOptions& options) {
+  std::vector<gpu::PixelHit> image(rays.size(), background_pixel());
+  const format::PackageView p(package);
+  MediumWalls walls;
+  walls.records = placement::medium_instances(p, scene.instance_transforms());
+  for (std::size_t i = 0; i < walls.records.size(); ++i)
+    walls.boxes.push_back(placement::exclusion_box(p.exclusion_fields[p.compartment_instances[i].compartment],
+                                                   scene.instance_transforms()[i], dvec3(p.medium[0].region_min)));
+  constexpr std::size_t kChunk = 16;
+  parallel_for((rays.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
+    for (std::size_t i = chunk * kChunk; i < std::min(rays.size(), (chunk + 1) * kChunk); ++i) {
+      const MediumHit hit = trace_medium_ray(scene, p, walls, rays[i], options);
+      if (hit.t != kInf) image[i] = make_hit(hit.t, hit.atom, hit.id, hit.number);
+    }
+  });
+  return image;
 }
 
 std::string count(double v) {
@@ -363,6 +475,13 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
   const double grow = largest_type_radius(package) * largest_instance_stretch(scene.instance_transforms()) + 1e-3;
   double depth_bound = (std::isfinite(nearest) ? nearest : 0) + options.first_margin;
 
+  // The medium first: a pixel whose medium hit lies within a round's depth bound is resolved by that
+  // round whether or not a compartment atom comes nearer, so the rounds stop where the plasma does.
+  const std::vector<gpu::PixelHit> medium_hits = scene.has_medium() ? trace_medium(scene, package, rays, options)
+                                                                    : std::vector<gpu::PixelHit>{};
+  const auto medium_depth = [&](std::uint32_t p) {
+    return medium_hits.empty() || medium_hits[p].atom == gpu::kNoHit ? kInf : double(medium_hits[p].depth);
+  };
   std::vector<std::uint32_t> pending(image.size());
   std::iota(pending.begin(), pending.end(), 0u);
   std::vector<HeldAtom> atoms;
@@ -382,7 +501,7 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
     box.min -= grow, box.max += grow;
 
     atoms.clear(), copies.clear();
-    scene.for_each_atom(box, [&](const AtomSample& s) {
+    scene.for_each_compartment_atom(box, [&](const AtomSample& s) {
       // Clipping keeps or removes an atom whole, by its centre (as the renderer).
       for (const glm::dvec4& h : options.clip)
         if (!(glm::dot(dvec3(h), s.position) + h.w >= 0)) return;
@@ -406,8 +525,15 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
     parallel_for((pending.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
       for (std::size_t i = chunk * kChunk; i < std::min(pending.size(), (chunk + 1) * kChunk); ++i) {
         const auto [hit, t] = bvh.trace(rays[pending[i]], depth_bound, copies);
-        if (hit < 0) continue;
-        image[pending[i]] = make_hit(t, atoms[hit], copies[atoms[hit].copy]);
+        const double medium_t = medium_depth(pending[i]);
+        if (hit >= 0 && t <= medium_t) {
+          const HeldCopy& c = copies[atoms[hit].copy];
+          image[pending[i]] = make_hit(t, atoms[hit].atom, c.id, c.number);
+        } else if (medium_t <= depth_bound) {
+          image[pending[i]] = medium_hits[pending[i]];
+        } else {
+          continue;
+        }
         resolved[i] = 1;
       }
     });
@@ -419,6 +545,8 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
     if (depth_bound >= farthest) break;  // nothing lies beyond: the rest is background
     depth_bound *= 2;
   }
+  for (std::uint32_t p : pending)
+    if (!medium_hits.empty() && medium_hits[p].atom != gpu::kNoHit) image[p] = medium_hits[p];
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return image;
 }

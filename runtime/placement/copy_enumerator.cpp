@@ -1,5 +1,7 @@
 #include "runtime/placement/copy_enumerator.hpp"
 
+#include "runtime/placement/medium_rule.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -93,6 +95,14 @@ struct CopyEnumerator::Impl : format::PackageView {
 
   CopyOptions options;
 
+  // The medium: per instance its region → compartment record and the region-space box of its field.
+  std::vector<gpu::MediumInstance> medium_records;
+  std::vector<std::pair<dvec3, dvec3>> exclusion_boxes;
+  bool medium_on = false;  // a medium, and shown
+  std::uint64_t medium_base = 0;
+  std::uint32_t medium_instances_per_cube = 0;
+  Aabb medium_reach;  // cube-space bounds of every medium molecule's sphere
+
   Impl(const format::Package& package, const CopyOptions& o)
       : PackageView(package), p(package), type_radius(atom_bounding_radii()), options(o) {
     if (options.instance_transforms.empty())
@@ -102,6 +112,57 @@ struct CopyEnumerator::Impl : format::PackageView {
                                         std::to_string(compartment_instances.size()) + " instances");
     for (std::uint32_t c = 0; c < compartments.size(); ++c) plans.push_back(plan(c));
     for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) instance_plans.push_back(plan_instance(i));
+    medium_on = !medium.empty() && options.medium;
+    if (medium_on) plan_medium();
+  }
+
+  void plan_medium() {
+    const gpu::Medium& m = medium[0];
+    medium_records = medium_instances(*this, options.instance_transforms);
+    for (std::uint32_t i = 0; i < compartment_instances.size(); ++i)
+      exclusion_boxes.push_back(exclusion_box(exclusion_fields[compartment_instances[i].compartment], options.instance_transforms[i],
+                                              dvec3(m.region_min)));
+    medium_instances_per_cube = m.tiles.z;
+    for (std::uint32_t t = m.tiles.x; t < m.tiles.x + m.tiles.y; ++t)
+      for (std::uint32_t k = tiles3d[t].first_instance; k < tiles3d[t].first_instance + tiles3d[t].instance_count; ++k)
+        medium_reach.add(Aabb{dvec3(instances[k].position) - type_radius[instances[k].molecule_type], dvec3(instances[k].position) + type_radius[instances[k].molecule_type]});
+    medium_base = number_limit;
+    const auto boxes = format::checked_mul(std::uint64_t{m.boxes.x} * m.boxes.y, m.boxes.z);
+    const auto span = boxes ? format::checked_mul(*boxes, medium_instances_per_cube) : std::nullopt;
+    const auto end = span ? format::checked_add(number_limit, *span) : std::nullopt;
+    if (!end) fail("medium", "copy numbers exceed 64 bits");
+    number_limit = *end;
+  }
+
+  void walk_medium_box(const ivec3& ijk, const WorldBox& cull, const std::function<void(const Copy&)>& visit) const {
+    const gpu::Medium& m = medium[0];
+    if (glm::any(glm::lessThan(ijk, ivec3(0))) || glm::any(glm::greaterThanEqual(ijk, ivec3(glm::uvec3(m.boxes))))) return;
+    const float B = m.region_min.w;
+    // The medium's copies stand in region space: an identity instance at the box's world corner.
+    InstancePlan ip;
+    ip.translation = dvec3(m.region_min) + dvec3(ijk) * double(B);
+    Emitter emit{*this, ip, cull, visit, {}, {}};
+    emit.copy.id.compartment_instance = gpu::NANO_MEDIUM_OWNER;
+    emit.copy.id.kind = CopyKind::medium;
+    const std::uint32_t box = std::uint32_t(ijk.x) + m.boxes.x * (std::uint32_t(ijk.y) + m.boxes.y * std::uint32_t(ijk.z));
+    emit.copy.id.element = box;
+    emit.copy.id.cell = ijk;
+    const gpu::Tile3D& cube = tiles3d[recipe_cell(m.boxes.w, ijk.x, ijk.y, ijk.z)];
+    std::vector<std::uint32_t> near;
+    for (std::uint32_t k = 0; k < cube.instance_count; ++k) {
+      const gpu::MoleculeInstance& inst = instances[cube.first_instance + k];
+      const vec3 c = gpu::medium_copy_centre(ijk, B, vec3(inst.position));
+      near.clear();
+      for (std::uint32_t i = 0; i < exclusion_boxes.size(); ++i) {
+        const auto& [lo, hi] = exclusion_boxes[i];
+        const dvec3 q(c);
+        if (q.x >= lo.x && q.y >= lo.y && q.z >= lo.z && q.x <= hi.x && q.y <= hi.y && q.z <= hi.z) near.push_back(i);
+      }
+      if (!medium_copy_kept(*this, medium_records, near, c, molecules[inst.molecule_type].aabb_min.w)) continue;
+      emit.copy.id.instance = k;
+      emit.copy.number = medium_base + std::uint64_t{box} * medium_instances_per_cube + k;
+      emit(gpu::core_soluble_molecule(vec3(0.0f), vec3(inst.position), inst.rotation), inst.molecule_type);
+    }
   }
 
   [[noreturn]] void fail(const std::string& where, const std::string& rule) const { throw InputError(p.name(), where, rule); }
@@ -425,6 +486,34 @@ CopyEnumerator::~CopyEnumerator() = default;
 CopyEnumerator::CopyEnumerator(CopyEnumerator&&) noexcept = default;
 
 std::uint64_t CopyEnumerator::copy_number_limit() const { return impl_->number_limit; }
+
+bool CopyEnumerator::has_medium() const { return impl_->medium_on; }
+
+void CopyEnumerator::for_each_medium_copy(const glm::ivec3& box, const WorldBox& cull, const std::function<void(const Copy&)>& visit) const {
+  if (impl_->medium_on) impl_->walk_medium_box(box, cull, visit);
+}
+
+void CopyEnumerator::for_each_medium_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit,
+                                          std::uint64_t max_boxes) const {
+  if (!impl_->medium_on) return;
+  const Impl& s = *impl_;
+  const gpu::Medium& m = s.medium[0];
+  const double B = m.region_min.w;
+  ivec3 first, last;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = std::floor((box.min[a] - m.region_min[a] - s.medium_reach.hi[a]) / B) - 1;
+    const double hi = std::floor((box.max[a] - m.region_min[a] - s.medium_reach.lo[a]) / B) + 1;
+    if (lo > double(m.boxes[a]) - 1 || hi < 0) return;
+    first[a] = int(std::clamp(lo, 0.0, double(m.boxes[a]) - 1)), last[a] = int(std::clamp(hi, 0.0, double(m.boxes[a]) - 1));
+  }
+  const double count = double(last.x - first.x + 1) * (last.y - first.y + 1) * (last.z - first.z + 1);
+  if (count > double(max_boxes))
+    s.fail("medium", "the box holds " + std::to_string(std::uint64_t(count)) + " of the medium's boxes, more than " +
+                         std::to_string(max_boxes) + ": choose a smaller box");
+  for (int k = first.z; k <= last.z; ++k)
+    for (int j = first.y; j <= last.y; ++j)
+      for (int i = first.x; i <= last.x; ++i) s.walk_medium_box(ivec3(i, j, k), box, visit);
+}
 
 void CopyEnumerator::for_each_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit) const {
   for (std::uint32_t i = 0; i < impl_->compartment_instances.size(); ++i) for_each_copy_of(i, box, visit);

@@ -43,14 +43,14 @@ struct WorldBox {
   bool meets_sphere(const glm::dvec3& centre, double radius) const;
 };
 
-enum class CopyKind : std::uint8_t { membrane = 0, core = 1 };
+enum class CopyKind : std::uint8_t { membrane = 0, core = 1, medium = 2 };
 
 // The identity of a copy as docs/placement.md names it.
 struct CopyId {
   std::uint32_t compartment_instance = 0;
   CopyKind kind = CopyKind::membrane;
-  std::uint32_t element = 0;    // membrane: triangle (index into section triangles); core: box linear index
-  glm::ivec3 cell{0};           // membrane: tile cell (a, b, 0); core: box (i, j, k)
+  std::uint32_t element = 0;    // membrane: triangle (index into section triangles); core, medium: box linear index
+  glm::ivec3 cell{0};           // membrane: tile cell (a, b, 0); core, medium: box (i, j, k)
   std::uint32_t instance = 0;   // index of the molecule within its Wang square / cube (0-based)
 };
 
@@ -59,6 +59,8 @@ struct Copy {
   // Compact unique number, decodable back into the id (CopyEnumerator::copy_number_limit):
   //   base(instance) + (t_local·W·H + slot)·I₂ + instance   for membrane copies,
   //   base(instance) + T·W·H·I₂ + box·I₃ + instance         for core copies,
+  //   (every instance's range) + box·I_medium + instance    for medium copies (compartment_instance
+  //                                                          then names no instance: NANO_MEDIUM_OWNER),
   // with T the mesh's triangle count, slot = (a − origin_a) + W·(b − origin_b) in the triangle's
   // replication area, I₂ / I₃ the largest instance count of the compartment's squares / cubes, and
   // base the prefix sum of those ranges over the compartment instances.
@@ -80,6 +82,8 @@ struct CopyOptions {
   // every atom centre lies outside one of them are skipped (an oracle view behind a clip plane
   // would otherwise enumerate everything it removes). Atoms are still judged one by one by the caller.
   std::vector<glm::dvec4> clip;
+  // The scene's medium is part of the picture (false: `--hide medium`, has_medium() says no).
+  bool medium = true;
 };
 
 class CopyEnumerator {
@@ -102,6 +106,15 @@ public:
   // The membrane copies local triangle `triangle` of compartment instance `instance` owns (none
   // beyond the mesh's last triangle), in for_each_copy's order.
   void for_each_membrane_copy(std::uint32_t instance, std::uint32_t triangle, const std::function<void(const Copy&)>& visit) const;
+
+  // The medium (shaders/shared/medium.h; not part of for_each_copy, whose boxes would hold
+  // billions of its copies): the copies of region box `box` that its keep rule keeps, none beyond
+  // the region or without a medium; and the ones whose sphere meets `box`, refusing (InputError)
+  // a box of more than `max_boxes` region boxes.
+  bool has_medium() const;
+  void for_each_medium_copy(const glm::ivec3& box, const WorldBox& cull, const std::function<void(const Copy&)>& visit) const;
+  void for_each_medium_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit,
+                            std::uint64_t max_boxes = 100'000'000) const;
 
   // Copy numbers lie in [0, copy_number_limit()).
   std::uint64_t copy_number_limit() const;

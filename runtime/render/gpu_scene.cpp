@@ -17,6 +17,7 @@
 #include "common/singular_value.hpp"
 #include "format/core_skip.hpp"
 #include "format/package_view.hpp"
+#include "runtime/placement/medium_rule.hpp"
 #include "runtime/render/flat_level.hpp"
 #include "runtime/render/kept_boxes.hpp"
 #include "runtime/render/morton.hpp"
@@ -129,6 +130,13 @@ struct GpuScene::Impl : format::PackageView {
   std::uint32_t first_square = 0, first_cube = 0, first_area = 0, first_atom_square = 0, first_bead = 0, first_class_square = 0;
   std::vector<std::pair<dvec3, dvec3>> square_reach;  // per Wang square: tile-space union of its mLAS boxes
   format::CoreSkipLayout core_skip_layout = format::core_skip_layout(compartments);
+  // The medium (shared/medium.h): per instance region → compartment records, the exclusion fields
+  // as region-space boxes (one BLAS, primitive = instance), and the per-frame record.
+  std::vector<gpu::MediumInstance> medium_records;
+  vk::Buffer medium_instance_buffer, render_medium_buffer;
+  vk::AccelerationStructure exclusion_blas, exclusion_tlas;
+  gpu::RenderMedium render_medium{};
+  std::uint64_t medium_number_base = 0;  // copy numbers of the medium follow every instance's
 
   Impl(const vk::Device& d, const format::Package& package, const SceneOptions& o)
       : PackageView(package), device(d), p(package), options(o), type_radius(atom_bounding_radii()) {
@@ -159,7 +167,63 @@ struct GpuScene::Impl : format::PackageView {
     start = std::chrono::steady_clock::now();
     build_compartment_blases();
     upload_derived();
+    prepare_medium();
     report.ulas_seconds = seconds_since(start);
+  }
+
+  bool has_medium() const { return !medium.empty(); }
+
+  std::vector<format::InstanceTransform> package_transforms() const {
+    std::vector<format::InstanceTransform> t;
+    for (const gpu::CompartmentInstance& ci : compartment_instances) t.push_back(format::instance_transform(ci));
+    return t;
+  }
+
+  // The medium's per-instance records and exclusion structure for these instance transforms; a
+  // placeholder structure without a medium, so the binding is always valid.
+  void build_medium_instances(std::span<const format::InstanceTransform> transforms) {
+    std::vector<VkAabbPositionsKHR> boxes;
+    if (has_medium()) {
+      medium_records = placement::medium_instances(*this, transforms);
+      const dvec3 region_min(medium[0].region_min);
+      for (std::uint32_t i = 0; i < transforms.size(); ++i) {
+        const auto [lo, hi] = placement::exclusion_box(exclusion_fields[compartment_instances[i].compartment], transforms[i], region_min);
+        boxes.push_back(box_of(lo, hi));
+      }
+    }
+    if (medium_records.empty()) medium_records.push_back(gpu::MediumInstance{});  // no buffer may be empty
+    if (boxes.empty()) boxes.push_back(box_of(dvec3(-2e30), dvec3(-1e30)));    // never met by a region-space ray
+    if (medium_instance_buffer.handle() != VK_NULL_HANDLE) report.memory.derived -= medium_instance_buffer.size();
+    if (exclusion_tlas.handle() != VK_NULL_HANDLE) report.memory.ulas -= exclusion_tlas.size() + exclusion_blas.size();
+    medium_instance_buffer = storage(std::as_bytes(std::span(medium_records)));
+    const vk::Buffer input =
+        vk::Buffer::with_data(device, std::as_bytes(std::span(boxes)), vk::kBuildInputUsage, vk::MemoryUse::DeviceLocal);
+    exclusion_blas = vk::build_bottom_level(device, vk::AabbGeometry{input.address(), std::uint32_t(boxes.size())});
+    const VkAccelerationStructureInstanceKHR whole = vk::make_instance(exclusion_blas, glm::dmat4(1.0), 0);
+    exclusion_tlas = vk::build_top_level(device, std::span(&whole, 1));
+    report.memory.derived += medium_instance_buffer.size();
+    report.memory.ulas += exclusion_tlas.size() + exclusion_blas.size();
+    render_medium.numbers.z = has_medium() ? std::uint32_t(compartment_instances.size()) : 0u;
+  }
+
+  void prepare_medium() {
+    render_medium.numbers = glm::uvec4(std::uint32_t(medium_number_base), std::uint32_t(medium_number_base >> 32), 0u, 0u);
+    if (has_medium()) {
+      // Every medium copy's sphere in its cube's space (the box its DDA looks one box around).
+      dvec3 lo(INFINITY), hi(-INFINITY);
+      const gpu::Medium& m = medium[0];
+      for (std::uint32_t t = m.tiles.x; t < m.tiles.x + m.tiles.y; ++t)
+        for (std::uint32_t k = tiles3d[t].first_instance; k < tiles3d[t].first_instance + tiles3d[t].instance_count; ++k) {
+          const double r = type_radius[instances[k].molecule_type];
+          lo = glm::min(lo, dvec3(instances[k].position) - r), hi = glm::max(hi, dvec3(instances[k].position) + r);
+        }
+      if (!(lo.x <= hi.x)) lo = hi = dvec3(0.0);
+      render_medium.reach_lo = glm::vec4(vec3(lo - 0.01), 0.f);
+      render_medium.reach_hi = glm::vec4(vec3(hi + 0.01), 0.f);
+    }
+    build_medium_instances(package_transforms());
+    render_medium_buffer = vk::Buffer(device, sizeof(gpu::RenderMedium), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
+    report.memory.derived += render_medium_buffer.size();
   }
 
   [[noreturn]] void fail(const std::string& where, const std::string& rule) const { throw InputError(p.name(), where, rule); }
@@ -183,6 +247,8 @@ struct GpuScene::Impl : format::PackageView {
         {gpu::NANO_B_BOUNDARY_BOXES, SectionKind::boundary_boxes}, {gpu::NANO_B_MASK_WORDS, SectionKind::mask_words},
         {gpu::NANO_B_TRIANGLE_DROPS, SectionKind::triangle_drops}, {gpu::NANO_B_DROPPED_COPIES, SectionKind::dropped_copies},
         {gpu::NANO_B_BEADS, SectionKind::beads},            {gpu::NANO_B_CORE_SKIP, SectionKind::core_skip},
+        {gpu::NANO_B_MEDIUM, SectionKind::medium},          {gpu::NANO_B_EXCLUSION_FIELDS, SectionKind::exclusion_fields},
+        {gpu::NANO_B_EXCLUSION_VALUES, SectionKind::exclusion_values},
     };
     section_buffers.resize(gpu::NANO_SCENE_BINDING_COUNT);
     for (const auto& [binding, kind] : kinds) {
@@ -864,6 +930,7 @@ struct GpuScene::Impl : format::PackageView {
           rc.span.z ? std::uint64_t{c.grid_dims.x} * c.grid_dims.y * c.grid_dims.z * rc.counts.y : 0;
       base += (std::uint64_t{rc.span.y} << 32 | rc.span.x) + core_span;
     }
+    medium_number_base = base;
     render_instance_buffer = vk::Buffer(device, render_instances.size() * sizeof(gpu::RenderInstance),
                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::HostVisible);
     level_buffer = storage(std::as_bytes(std::span(level_records)));
@@ -923,7 +990,22 @@ struct GpuScene::Impl : format::PackageView {
     note_scratch(ulas);
     render_instance_buffer.write(std::as_bytes(std::span(render_instances)));
     report.memory.ulas += ulas.size();
+    if (has_medium()) {
+      if (!moved.empty()) build_medium_instances(moved);
+      else if (moved_medium) build_medium_instances(package_transforms());
+      moved_medium = !moved.empty();
+      const double B = medium[0].region_min.w;
+      const dvec3 eye_region = eye - dvec3(medium[0].region_min);
+      const dvec3 box = glm::clamp(glm::floor(eye_region / B), dvec3(-1e9), dvec3(1e9));
+      const dvec3 within = eye_region - box * B;
+      const vec3 hi(within);
+      render_medium.eye_box = glm::ivec4(glm::ivec3(box), 0);
+      render_medium.eye_hi = glm::vec4(hi, 0.f);
+      render_medium.eye_lo = glm::vec4(vec3(within - dvec3(hi)), 0.f);
+    }
+    render_medium_buffer.write(std::as_bytes(std::span(&render_medium, 1)));
   }
+  bool moved_medium = false;  // the medium's records follow moved instances (animation)
 };
 
 GpuScene::GpuScene(const vk::Device& device, const format::Package& package, const SceneOptions& options)
@@ -949,6 +1031,11 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
   for (std::uint32_t b : {gpu::NANO_B_TRIANGLE_DROPS, gpu::NANO_B_DROPPED_COPIES, gpu::NANO_B_BEADS, gpu::NANO_B_CORE_SKIP,
                          gpu::NANO_B_KEPT_BOXES})
     vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
+  for (std::uint32_t b : {gpu::NANO_B_MEDIUM, gpu::NANO_B_EXCLUSION_FIELDS, gpu::NANO_B_EXCLUSION_VALUES})
+    vk::write_storage_buffer(d, set, b, s.section_buffers[b]);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_MEDIUM_INSTANCES, s.medium_instance_buffer);
+  vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_MEDIUM, s.render_medium_buffer);
+  vk::write_acceleration_structure(d, set, gpu::NANO_B_EXCLUSION_TLAS, s.exclusion_tlas);
   vk::write_storage_buffer(d, set, gpu::NANO_B_TRIANGLE_SHELLS, s.shell_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_COMPARTMENTS, s.render_compartment_buffer);
   vk::write_storage_buffer(d, set, gpu::NANO_B_RENDER_INSTANCES, s.render_instance_buffer);
@@ -978,6 +1065,7 @@ std::uint32_t GpuScene::first_cube_level() const { return impl_->first_cube; }
 std::uint32_t GpuScene::first_atom_square_level() const { return impl_->first_atom_square; }
 std::uint32_t GpuScene::first_bead_level() const { return impl_->first_bead; }
 bool GpuScene::has_beads() const { return !impl_->bead_ranges.empty(); }
+bool GpuScene::has_medium() const { return impl_->has_medium(); }
 bool GpuScene::has_large_replication_areas() const { return impl_->large_replication_areas; }
 std::uint32_t GpuScene::molecule_type_count() const { return std::uint32_t(impl_->molecules.size()); }
 const LoadReport& GpuScene::report() const { return impl_->report; }

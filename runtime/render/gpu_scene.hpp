@@ -102,6 +102,7 @@ public:
   std::uint32_t first_atom_square_level() const;  // valid with SceneOptions::two_level_membranes
   std::uint32_t first_bead_level() const;         // then one bead level per molecule type (package_records.h Bead)
   bool has_beads() const;                         // the package holds the level of detail (format ≥ 2.5)
+  bool has_medium() const;                        // the package holds a medium (format ≥ 2.8)
   // Some compartment's replication area has more than NANO_DIRECT_SLOTS slots, so a prism may walk
   // its slots through the repLAS; without one the pipeline leaves that traversal out.
   bool has_large_replication_areas() const;

@@ -57,6 +57,38 @@ const gpu::MoleculeInstance& tile_instance(const format::Package& package, const
             "instance");
 }
 
+// The box (i, j, k) a core or medium hit names, inside `grid` of `dims` boxes and matching its
+// linear index.
+glm::ivec3 hit_box(const gpu::PixelHit& hit, const glm::uvec3& dims, const char* grid) {
+  const glm::ivec3 ijk(hit.cell);
+  if (ijk.x < 0 || ijk.y < 0 || ijk.z < 0 || std::uint32_t(ijk.x) >= dims.x || std::uint32_t(ijk.y) >= dims.y ||
+      std::uint32_t(ijk.z) >= dims.z)
+    throw BadHit("box (" + std::to_string(ijk.x) + ", " + std::to_string(ijk.y) + ", " + std::to_string(ijk.z) + ") lies outside " +
+                 grid);
+  if (hit.element != ijk.x + std::uint64_t(dims.x) * (ijk.y + std::uint64_t(dims.y) * ijk.z))
+    throw BadHit("box index " + std::to_string(hit.element) + " is not the linear index of its (i, j, k)");
+  return ijk;
+}
+
+// The answer, once the copy the ids name is known: it must hold a molecule of the atom's type (a
+// check that the ids agree with each other, not only that each is in range).
+nlohmann::json finish(const format::Package& package, const gpu::PixelHit& hit, std::uint32_t type, const gpu::MoleculeType& molecule,
+                      nlohmann::json atom, nlohmann::json owner, nlohmann::json placement, const gpu::MoleculeInstance& copy) {
+  if (copy.molecule_type != type)
+    throw BadHit("atom " + std::to_string(hit.atom) + " belongs to molecule type " + std::to_string(type) +
+                 " but the copy the ids name is of type " + std::to_string(copy.molecule_type));
+  placement["copy"] = hit.instance;
+  placement["copy_number"] = (std::uint64_t(hit.copy_number_hi) << 32) | hit.copy_number_lo;
+  nlohmann::json m{{"type", type}, {"name", string_at(package, molecule.name_offset, molecule.name_length)},
+                   {"source", string_at(package, molecule.source_offset, molecule.source_length)}};
+  return {{"hit", true},
+          {"depth", hit.depth},
+          {"atom", std::move(atom)},
+          {"molecule", std::move(m)},
+          {"compartment_instance", std::move(owner)},
+          {"placement", std::move(placement)}};
+}
+
 nlohmann::json describe(const format::Package& package, const gpu::PixelHit& hit) {
   if (!std::isfinite(hit.depth) || hit.depth < 0) throw BadHit("depth " + std::to_string(hit.depth) + " is not a distance");
 
@@ -84,6 +116,21 @@ nlohmann::json describe(const format::Package& package, const gpu::PixelHit& hit
     if (info.alt_location != '\0') a["alt_location"] = std::string(1, info.alt_location);
   }
 
+  nlohmann::json placement;
+  const gpu::MoleculeInstance* copy = nullptr;
+  if (hit.kind == gpu::NANO_KIND_MEDIUM) {
+    // The medium's copies belong to no compartment instance: the region box and its cube name them.
+    const auto media = package.records<format::SectionKind::medium>();
+    if (media.empty()) throw BadHit("medium hit in a package without a medium");
+    if (hit.compartment_instance != gpu::NANO_MEDIUM_OWNER)
+      throw BadHit("medium hit naming compartment instance " + std::to_string(hit.compartment_instance));
+    const glm::ivec3 ijk = hit_box(hit, glm::uvec3(media[0].boxes), "the medium's region");
+    const std::uint32_t tile_index = recipe_tile(package, media[0].boxes.w, ijk);
+    const gpu::Tile3D& tile = at(package.records<format::SectionKind::tiles3d>(), tile_index, "tiles3d", "Wang cube");
+    copy = &tile_instance(package, tile, hit.instance, "cube");
+    placement = {{"kind", "medium"}, {"box", hit.element}, {"box_ijk", {ijk.x, ijk.y, ijk.z}}, {"wang_cube", tile_index}};
+    return finish(package, hit, type, molecule, std::move(a), nlohmann::json{{"medium", true}}, std::move(placement), *copy);
+  }
   const gpu::CompartmentInstance& ci = at(package.records<format::SectionKind::compartment_instances>(),
                                           hit.compartment_instance, "compartment_instances", "compartment instance");
   const gpu::Compartment& c =
@@ -92,10 +139,6 @@ nlohmann::json describe(const format::Package& package, const gpu::PixelHit& hit
   if (const std::string name = string_at(package, c.name_offset, c.name_length); !name.empty())
     compartment["name"] = name;
 
-  // The copy the ids name must hold a molecule of the atom's type: a check that the ids agree with
-  // each other, not only that each is in range.
-  nlohmann::json placement;
-  const gpu::MoleculeInstance* copy = nullptr;
   if (hit.kind == 0) {
     if (c.membrane_recipe == gpu::NANO_NO_INDEX) throw BadHit("membrane hit in a compartment without a membrane");
     const gpu::Mesh& mesh = at(package.records<format::SectionKind::meshes>(), c.mesh, "meshes", "mesh");
@@ -108,37 +151,16 @@ nlohmann::json describe(const format::Package& package, const gpu::PixelHit& hit
                  {"wang_square", tile_index}};
   } else if (hit.kind == 1) {
     if (c.soluble_recipe == gpu::NANO_NO_INDEX) throw BadHit("core hit in a compartment without a core grid");
-    const glm::uvec3 dims(c.grid_dims);
-    const glm::ivec3 ijk(hit.cell);
-    if (ijk.x < 0 || ijk.y < 0 || ijk.z < 0 || std::uint32_t(ijk.x) >= dims.x || std::uint32_t(ijk.y) >= dims.y ||
-        std::uint32_t(ijk.z) >= dims.z)
-      throw BadHit("box (" + std::to_string(ijk.x) + ", " + std::to_string(ijk.y) + ", " + std::to_string(ijk.z) +
-                   ") lies outside the core grid");
-    if (hit.element != ijk.x + std::uint64_t(dims.x) * (ijk.y + std::uint64_t(dims.y) * ijk.z))
-      throw BadHit("box index " + std::to_string(hit.element) + " is not the linear index of its (i, j, k)");
+    const glm::ivec3 ijk = hit_box(hit, glm::uvec3(c.grid_dims), "the core grid");
     const std::uint32_t tile_index = recipe_tile(package, c.soluble_recipe, ijk);
     const gpu::Tile3D& tile = at(package.records<format::SectionKind::tiles3d>(), tile_index, "tiles3d", "Wang cube");
     copy = &tile_instance(package, tile, hit.instance, "cube");
     placement = {{"kind", "core"}, {"box", hit.element}, {"box_ijk", {ijk.x, ijk.y, ijk.z}}, {"wang_cube", tile_index}};
   } else {
-    throw BadHit("kind " + std::to_string(hit.kind) + " is neither 0 (membrane) nor 1 (core)");
+    throw BadHit("kind " + std::to_string(hit.kind) + " is neither 0 (membrane), 1 (core) nor 2 (medium)");
   }
-  if (copy->molecule_type != type)
-    throw BadHit("atom " + std::to_string(hit.atom) + " belongs to molecule type " + std::to_string(type) +
-                 " but the copy the ids name is of type " + std::to_string(copy->molecule_type));
-  placement["copy"] = hit.instance;
-  placement["copy_number"] = (std::uint64_t(hit.copy_number_hi) << 32) | hit.copy_number_lo;
-
-  nlohmann::json m{{"type", type}, {"name", string_at(package, molecule.name_offset, molecule.name_length)},
-                   {"source", string_at(package, molecule.source_offset, molecule.source_length)}};
-  return {{"hit", true},
-          {"depth", hit.depth},
-          {"atom", std::move(a)},
-          {"molecule", std::move(m)},
-          {"compartment_instance", std::move(compartment)},
-          {"placement", std::move(placement)}};
+  return finish(package, hit, type, molecule, std::move(a), std::move(compartment), std::move(placement), *copy);
 }
-
 }  // namespace
 
 nlohmann::json describe_hit(const format::Package& package, const gpu::PixelHit& hit) {

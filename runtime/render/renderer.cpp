@@ -28,6 +28,7 @@ namespace {
 struct Variant {
   bool exact_prism, replication_las, two_level, no_effect_code, eye_from_host, world_space_ulas, counters, lod, flat;
   bool large_areas;  // of the scene, not of the settings: GpuScene::has_large_replication_areas
+  bool medium;       // the scene has a medium (GpuScene::has_medium) and the settings show it
   std::array<bool, kEffectCount> effects;  // compiled in, per row of the effect table
   bool code(EffectId id) const { return effects[static_cast<std::size_t>(id)]; }
   bool image_pass() const {
@@ -37,7 +38,7 @@ struct Variant {
   }
   auto key() const {
     return std::tuple(exact_prism, replication_las, two_level, no_effect_code, effects, eye_from_host, world_space_ulas, counters,
-                      lod, flat, large_areas);
+                      lod, flat, large_areas, medium);
   }
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
@@ -52,7 +53,7 @@ bool compiled_in(const EffectSettings& e, const EffectDeclaration& effect) {
   return true;
 }
 
-Variant variant_of(const RenderSettings& s, bool large_areas) {
+Variant variant_of(const RenderSettings& s, bool large_areas, bool medium) {
   std::array<bool, kEffectCount> effects{};
   if (!s.without_effect_code)
     for (const EffectDeclaration& effect : effect_table()) effects[static_cast<std::size_t>(effect.id)] = compiled_in(s.effects, effect);
@@ -60,7 +61,8 @@ Variant variant_of(const RenderSettings& s, bool large_areas) {
   return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
           s.precision == Precision::two_float_eye, s.precision == Precision::world, !s.without_effect_code && s.counters,
           !s.without_effect_code && s.lod_pixels > 0,
-          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world, large_areas, effects};
+          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world, large_areas,
+          medium && s.show_medium, effects};
 }
 
 std::string name_of(const Variant& v) {
@@ -78,6 +80,7 @@ std::string name_of(const Variant& v) {
   add(v.world_space_ulas, "world_space_ulas");
   add(v.flat, "flat");
   add(!v.large_areas, "small_areas");
+  add(v.medium, "medium");
   for (const EffectDeclaration& effect : effect_table()) add(v.code(effect.id), std::string(effect.name).c_str());
   add(v.counters, "counters");
   add(v.lod, "lod");
@@ -106,7 +109,7 @@ unsigned count_ray_query_loops(const vk::SpirvCode& code) {
 vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   vk::ComputePipelineDesc desc;
   desc.code = shader_code(v);
-  desc.sets = {ray_query_set({gpu::NANO_B_ULAS, gpu::NANO_B_FLAT_TLAS}, gpu::NANO_RENDER_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
+  desc.sets = {ray_query_set({gpu::NANO_B_ULAS, gpu::NANO_B_FLAT_TLAS, gpu::NANO_B_EXCLUSION_TLAS}, gpu::NANO_RENDER_BINDING_COUNT)};  // set NANO_DESCRIPTOR_SET, the only one
   desc.push_constant_bytes = 2 * sizeof(std::uint32_t);  // the part's first pixel
   desc.specialization.set_bool(gpu::NANO_SPEC_EXACT_PRISM, v.exact_prism);
   desc.specialization.set_bool(gpu::NANO_SPEC_REPLICATION_LAS, v.replication_las);
@@ -115,6 +118,7 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   desc.specialization.set_bool(gpu::NANO_SPEC_WORLD_SPACE_ULAS, v.world_space_ulas);
   desc.specialization.set_bool(gpu::NANO_SPEC_FLAT, v.flat);
   desc.specialization.set_bool(gpu::NANO_SPEC_LARGE_REPLICATION_AREAS, v.large_areas);
+  desc.specialization.set_bool(gpu::NANO_SPEC_MEDIUM, v.medium);
   if (!v.no_effect_code) {
     for (const EffectDeclaration& effect : effect_table())
       if (effect.spec_constant >= 0) desc.specialization.set_bool(effect.spec_constant, v.code(effect.id));
@@ -206,7 +210,9 @@ struct Renderer::Impl {
     set_settings(r);
   }
 
-  Variant variant(const RenderSettings& r) const { return variant_of(r, scene.has_large_replication_areas()); }
+  Variant variant(const RenderSettings& r) const {
+    return variant_of(r, scene.has_large_replication_areas(), scene.has_medium());
+  }
 
   void set_settings(const RenderSettings& r) {
     check(r);
@@ -411,10 +417,10 @@ Renderer::PipelineBuild Renderer::pipeline_build() const {
 }
 
 // The settings' part of the name: the scene's part (small_areas) shows in pipeline_build().
-std::string Renderer::variant_name(const RenderSettings& settings) { return name_of(variant_of(settings, true)); }
+std::string Renderer::variant_name(const RenderSettings& settings) { return name_of(variant_of(settings, true, false)); }
 
 std::uint64_t Renderer::rays_per_frame(const RenderSettings& settings, std::uint64_t pixels) {
-  const Variant v = variant_of(settings, true);
+  const Variant v = variant_of(settings, true, false);
   return pixels * (1 + (v.code(EffectId::shadows) ? 1 : 0) + (v.code(EffectId::ambient_occlusion) ? settings.effects.ao_rays() : 0));
 }
 

@@ -43,6 +43,9 @@ struct RenderSettings {
   // Copies the flat level may enumerate on the CPU before a frame (the rest before later frames):
   // the viewer bounds the pause a frame's start takes; a single render takes them all.
   std::uint64_t flatten_new_copies = ~std::uint64_t{0};
+  // Trace the scene's medium (its plasma) when it has one; false shows the cells alone, and the
+  // pipeline then has no medium code at all (--hide medium).
+  bool show_medium = true;
 };
 inline constexpr std::uint64_t kFlattenAuto = ~std::uint64_t{0};
 

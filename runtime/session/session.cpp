@@ -58,6 +58,10 @@ render::RenderSettings VariantOptions::render_settings() const {
   s.two_level = levels == "2";
   s.lod_pixels = parse_lod(lod);
   s.flatten_bytes = parse_flatten(flatten);
+  for (const std::string& what : hide) {
+    if (what != "medium") throw InputError("--hide", "", "expected medium (the plasma between the cells), got '" + what + "'");
+    s.show_medium = false;
+  }
   return s;
 }
 

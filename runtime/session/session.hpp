@@ -35,6 +35,7 @@ struct SessionOptions {
 struct VariantOptions {
   std::string shell = "adaptive-overlap", prism = "exact", levels = "3+rep", precision = "two-float-eye", lod = "off",
               flatten = "auto";
+  std::vector<std::string> hide;  // --hide: what the picture leaves out ("medium")
   bool no_pipeline_cache = false;
   // Throw InputError naming the option whose value is not one of its choices. scene_options() is
   // what RenderSession opens the scene (and its device) with.

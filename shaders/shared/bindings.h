@@ -47,12 +47,18 @@ NANO_CONST uint NANO_B_FLAT_COPIES = 26u;
 NANO_CONST uint NANO_B_FLAT_TRIANGLES = 27u;  // one bit per triangle of every compartment instance: flattened
 NANO_CONST uint NANO_B_CORE_SKIP = 28u;  // the core grids' skip levels (shared/core_skip.h), 8 cells a word
 NANO_CONST uint NANO_B_KEPT_BOXES = 29u;  // per BOUNDARY box record: what its keep-mask keeps (render_scene.h kept_box_unpack)
-NANO_CONST uint NANO_SCENE_BINDING_COUNT = 30u;
-NANO_CONST uint NANO_B_FRAME = 30u;
-NANO_CONST uint NANO_B_HITS = 31u;
-NANO_CONST uint NANO_B_COLOURS = 32u;
-NANO_CONST uint NANO_B_COUNTERS = 33u;  // per pixel work counters (shared/ray_counters.h); a one-word buffer when off
-NANO_CONST uint NANO_RENDER_BINDING_COUNT = 34u;
+NANO_CONST uint NANO_B_MEDIUM = 30u;             // the medium (shared/medium.h), a zero record when the package has none
+NANO_CONST uint NANO_B_EXCLUSION_FIELDS = 31u;
+NANO_CONST uint NANO_B_EXCLUSION_VALUES = 32u;
+NANO_CONST uint NANO_B_MEDIUM_INSTANCES = 33u;   // per compartment instance: region → compartment space
+NANO_CONST uint NANO_B_RENDER_MEDIUM = 34u;      // per frame: the eye in region space, copy numbers
+NANO_CONST uint NANO_B_EXCLUSION_TLAS = 35u;     // the instances' exclusion fields as boxes in region space
+NANO_CONST uint NANO_SCENE_BINDING_COUNT = 36u;
+NANO_CONST uint NANO_B_FRAME = 36u;
+NANO_CONST uint NANO_B_HITS = 37u;
+NANO_CONST uint NANO_B_COLOURS = 38u;
+NANO_CONST uint NANO_B_COUNTERS = 39u;  // per pixel work counters (shared/ray_counters.h); a one-word buffer when off
+NANO_CONST uint NANO_RENDER_BINDING_COUNT = 40u;
 
 // render.comp's specialization constants (runtime/render/renderer.cpp sets them per variant).
 NANO_CONST int NANO_SPEC_EXACT_PRISM = 0;
@@ -70,6 +76,8 @@ NANO_CONST int NANO_SPEC_FLAT = 11;  // the flat level is traced (runtime/render
 NANO_CONST int NANO_SPEC_OUTLINES = 12;
 // Some replication area has more than NANO_DIRECT_SLOTS slots (GpuScene::has_large_replication_areas).
 NANO_CONST int NANO_SPEC_LARGE_REPLICATION_AREAS = 13;
+// The package has a medium and it is shown (GpuScene::has_medium, RenderSettings::show_medium).
+NANO_CONST int NANO_SPEC_MEDIUM = 14;
 
 // shaders/explicit_instancing/instanced.comp, set 0 (explicit instancing: runtime/explicit_instancing/).
 NANO_CONST uint NANO_IB_TLAS = 0u;  // one instance per copy; every other binding is a storage buffer
@@ -88,7 +96,7 @@ NANO_CONST uint NANO_INSTANCED_BINDING_COUNT = 9u;
 NANO_CONST int NANO_SPEC_INSTANCED_COUNTERS = 0;
 
 NANO_STATIC_ASSERT(NANO_DESCRIPTOR_SET == 0u, "a pipeline's first and only set is set 0");
-NANO_STATIC_ASSERT(NANO_B_KEPT_BOXES + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
+NANO_STATIC_ASSERT(NANO_B_EXCLUSION_TLAS + 1u == NANO_SCENE_BINDING_COUNT, "scene bindings are 0 .. count - 1");
 NANO_STATIC_ASSERT(NANO_B_COUNTERS + 1u == NANO_RENDER_BINDING_COUNT, "frame bindings follow the scene's");
 NANO_STATIC_ASSERT(NANO_IB_ORDERS + 1u == NANO_INSTANCED_SCENE_BINDING_COUNT, "instanced scene bindings are 0 .. count - 1");
 NANO_STATIC_ASSERT(NANO_IB_COUNTERS + 1u == NANO_INSTANCED_BINDING_COUNT, "instanced frame bindings follow the scene's");

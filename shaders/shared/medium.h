@@ -33,6 +33,40 @@ struct Medium {
                     // count I of those cubes; w: reserved
 };
 
+// What the renderer and the CPU oracle derive for each compartment instance (runtime/placement/
+// medium_instances.hpp): the affine map from region space (world − region_min) to the instance's
+// compartment space, row-major, and the least factor by which the instance's linear part stretches.
+struct MediumInstance {
+  vec4 row0;      // compartment = (row0·(p, 1), row1·(p, 1), row2·(p, 1)) for region-space p
+  vec4 row1;
+  vec4 row2;
+  vec4 stretch;   // x: least singular value of the instance's linear part; yzw: reserved
+  uvec4 ids;      // x: compartment (its exclusion field); yzw: reserved
+};
+
+// Per frame (GpuScene::set_eye): the box holding the eye and the eye within it as an unevaluated sum
+// of floats, so the walk traces in eye-box space (box (i, j, k) at (ijk − eye_box)·B: small numbers
+// near the eye, wherever the region lies); where the medium's copy numbers start; and the cube-space
+// box that holds every medium copy's sphere.
+struct RenderMedium {
+  ivec4 eye_box;  // xyz: the box (i, j, k) of the eye (may lie outside the region); w: reserved
+  vec4 eye_hi;    // xyz: float(eye − region_min − eye_box·B); w: reserved
+  vec4 eye_lo;    // xyz: the rest
+  uvec4 numbers;  // xy: first copy number of the medium (lo, hi); z: instances with a field; w: reserved
+  vec4 reach_lo;  // xyz: cube-space minimum of every medium molecule's bounding sphere (≥ −B)
+  vec4 reach_hi;  // xyz: cube-space maximum (≤ 2B)
+};
+
+// PixelHit.compartment_instance of a medium copy (kind NANO_KIND_MEDIUM): it belongs to no instance.
+NANO_CONST uint NANO_MEDIUM_OWNER = 0xFFFFFFFEu;
+NANO_CONST uint NANO_KIND_MEDIUM = 2u;
+
+// Region space to compartment space by an instance's record.
+NANO_FN vec3 medium_to_compartment(NANO_IN(MediumInstance) m, NANO_IN(vec3) p) {
+  vec4 q = vec4(p, 1.0f);
+  return vec3(dot(m.row0, q), dot(m.row1, q), dot(m.row2, q));
+}
+
 // Where compartment-space point p falls among the field's nodes: the cell (its lowest node) and
 // the fraction within it. False beyond the grid, where the field is clear.
 NANO_FN bool exclusion_cell(NANO_IN(ExclusionField) f, NANO_IN(vec3) p, NANO_OUT(ivec3) cell, NANO_OUT(vec3) frac) {
@@ -79,5 +113,7 @@ NANO_END
 #ifdef __cplusplus
 static_assert(sizeof(nano::gpu::ExclusionField) == 48);
 static_assert(sizeof(nano::gpu::Medium) == 64);
+static_assert(sizeof(nano::gpu::MediumInstance) == 80);
+static_assert(sizeof(nano::gpu::RenderMedium) == 96);
 #endif
 #endif

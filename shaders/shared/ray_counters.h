@@ -27,7 +27,10 @@ NANO_CONST uint NANO_RC_CORE_BOXES = 14u;       // core boxes traced (inside the
 NANO_CONST uint NANO_RC_MASK_REJECTS = 15u;     // soluble candidates a boundary box's keep mask removes
 NANO_CONST uint NANO_RC_FLAT_QUERIES = 16u;     // queries of the flat level (copies of flattened compartment instances)
 NANO_CONST uint NANO_RC_FLAT_CANDIDATES = 17u;  // atom candidates the flat level met
-NANO_CONST uint NANO_RAY_COUNTER_COUNT = 18u;
+NANO_CONST uint NANO_RC_MEDIUM_STEPS = 18u;        // medium DDA steps (its region's boxes)
+NANO_CONST uint NANO_RC_MEDIUM_KEEP_QUERIES = 19u;  // keep-rule queries of the exclusion structure (copies whose sphere the ray meets)
+NANO_CONST uint NANO_RC_MEDIUM_REJECTS = 20u;       // medium candidates an instance's exclusion field removes
+NANO_CONST uint NANO_RAY_COUNTER_COUNT = 21u;
 
 NANO_END
 

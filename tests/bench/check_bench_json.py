@@ -87,7 +87,7 @@ elif mode == "counters":
     rows = ("ulas_queries", "ulas_candidates", "prism_tests", "prisms_entered", "replas_queries", "slots_tried",
             "mlas_queries", "mlas_candidates", "ownership_rejects", "listed_rejects", "nlas_queries", "nlas_candidates",
             "sphere_tests", "core_steps", "core_boxes", "mask_rejects", "flat_queries", "flat_candidates",
-            "queries_started", "candidates_met")
+            "medium_steps", "medium_keep_queries", "medium_rejects", "queries_started", "candidates_met")
     per = {}
     for side in ("virtual", "explicit"):
         s = (need(work, side, "work", dict) or {}).get("per_pixel", {})

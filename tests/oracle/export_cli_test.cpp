@@ -116,7 +116,7 @@ TEST_F(ExportCli, CsvHeaderAndRowsMatchPlaneGeometry) {
     std::istringstream in(slurp(dir_ / "atoms.csv"));
     std::string line;
     std::getline(in, line);
-    EXPECT_EQ(line, "copy,type,chain,residue,atom,element,x,y,z,radius");
+    EXPECT_EQ(line, "copy,type,chain,residue,atom,element,x,y,z,radius,kind");
     std::vector<glm::dvec3> found;
     std::set<std::string> copy_numbers;
     while (std::getline(in, line)) {
