@@ -139,7 +139,7 @@
   X(exclusion_fields, 32, gpu::ExclusionField, required, 8, zstd, check_medium, (exclusion_values, compartments), \
     "parallel to compartments (with a medium): node (0, 0, 0) in compartment space (xyz) and spacing w > 0; "   \
     "nodes per axis ≥ 2 (xyz) and the first value (w) of x·y·z in exclusion_values; margin (limits.x ≥ 0) and " \
-    "clamp (limits.y > margin), zw reserved")                                                                  \
+    "clamp (limits.y > margin), 1 / spacing (limits.z, as a float division gives it), w reserved")                                                                  \
   X(exclusion_values, 33, float, required, 8, zstd, check_medium, (),                                           \
     "f32 node values of all exclusion fields: signed distance to the mesh less the shell's reach (Å), within "  \
     "± their field's clamp")

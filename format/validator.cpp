@@ -535,7 +535,7 @@ private:
       range(c, 28, f.dims.w, *nodes, SectionKind::exclusion_values, "node values");
       if (!(f.limits.x >= 0)) fail(c, 32, Rule::bad_value, "margin is negative");
       if (!(f.limits.y > f.limits.x)) fail(c, 36, Rule::bad_value, "clamp does not exceed the margin");
-      zero(c, 40, f.limits.z != 0.0f);
+      if (f.limits.z != 1.0f / f.origin.w) fail(c, 40, Rule::bad_value, "limits.z is not 1 / spacing");
       zero(c, 44, f.limits.w != 0.0f);
       for (std::uint64_t n = f.dims.w; n < f.dims.w + *nodes; ++n)
         if (!(std::abs(values[n]) <= f.limits.y))

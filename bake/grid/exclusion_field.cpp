@@ -32,7 +32,7 @@ gpu::ExclusionField record_of(const ExclusionField& f) {
   gpu::ExclusionField r{};
   r.origin = glm::vec4(glm::vec3(f.origin), static_cast<float>(f.spacing));
   r.dims = glm::uvec4(glm::uvec3(f.dims), 0u);
-  r.limits = glm::vec4(0.0f, static_cast<float>(f.clamp), 0.0f, 0.0f);
+  r.limits = glm::vec4(0.0f, static_cast<float>(f.clamp), 1.0f / static_cast<float>(f.spacing), 0.0f);
   return r;
 }
 

@@ -201,7 +201,7 @@ void PackageContent::add_medium(const BakedMedium& m, const TileRange& cubes, st
     gpu::ExclusionField field{};
     field.origin = glm::vec4(glm::vec3(f.origin), static_cast<float>(f.spacing));
     field.dims = glm::uvec4(glm::uvec3(f.dims), checked_index(exclusion_values));
-    field.limits = glm::vec4(static_cast<float>(f.margin), static_cast<float>(f.clamp), 0.0f, 0.0f);
+    field.limits = glm::vec4(static_cast<float>(f.margin), static_cast<float>(f.clamp), 1.0f / field.origin.w, 0.0f);
     exclusion_fields.push_back(field);
     exclusion_values.insert(exclusion_values.end(), f.values.begin(), f.values.end());
   }

@@ -19,7 +19,8 @@ struct ExclusionField {
   vec4 origin;  // xyz: compartment-space position of node (0, 0, 0); w: node spacing (Å, > 0)
   uvec4 dims;   // xyz: nodes per axis (≥ 2 each); w: first value in section "exclusion_values"
   vec4 limits;  // x: margin subtracted from every interpolated value (Å, ≥ 0); y: clamp (Å, > 0);
-                // zw: reserved
+                // z: 1 / spacing as a float division gives it (a multiplication decides alike on
+                // every device: GLSL may divide to 2.5 ulp); w: reserved
 };
 
 // Section "medium": no record, or exactly one. The region's boxes are (i, j, k) with corner
@@ -61,16 +62,31 @@ struct RenderMedium {
 NANO_CONST uint NANO_MEDIUM_OWNER = 0xFFFFFFFEu;
 NANO_CONST uint NANO_KIND_MEDIUM = 2u;
 
+// The keep rule must decide alike on the device and in the oracle: its arithmetic is written out
+// operation by operation and `precise` in GLSL, so no compiler fuses or reorders it (C++ on x86-64
+// without -mfma fuses nothing either).
+NANO_FN float medium_row(NANO_IN(vec4) r, NANO_IN(vec3) p) {
+  NANO_PRECISE float s = r.x * p.x;
+  s = s + r.y * p.y;
+  s = s + r.z * p.z;
+  return s + r.w;
+}
+
 // Region space to compartment space by an instance's record.
 NANO_FN vec3 medium_to_compartment(NANO_IN(MediumInstance) m, NANO_IN(vec3) p) {
-  vec4 q = vec4(p, 1.0f);
-  return vec3(dot(m.row0, q), dot(m.row1, q), dot(m.row2, q));
+  return vec3(medium_row(m.row0, p), medium_row(m.row1, p), medium_row(m.row2, p));
+}
+
+NANO_FN float medium_lerp(float a, float b, float t) {
+  NANO_PRECISE float d = b - a;
+  NANO_PRECISE float r = a + t * d;
+  return r;
 }
 
 // Where compartment-space point p falls among the field's nodes: the cell (its lowest node) and
 // the fraction within it. False beyond the grid, where the field is clear.
 NANO_FN bool exclusion_cell(NANO_IN(ExclusionField) f, NANO_IN(vec3) p, NANO_OUT(ivec3) cell, NANO_OUT(vec3) frac) {
-  vec3 g = (p - vec3(f.origin)) / f.origin.w;
+  NANO_PRECISE vec3 g = (p - vec3(f.origin)) * f.limits.z;
   vec3 top = vec3(ivec3(f.dims) - ivec3(1));
   cell = ivec3(0);
   frac = vec3(0.0f);
@@ -87,11 +103,11 @@ NANO_FN uint exclusion_node(NANO_IN(ExclusionField) f, NANO_IN(ivec3) n) {
 
 // The trilinear value of a cell's corners c[x + 2y + 4z] at fraction t.
 NANO_FN float exclusion_trilinear(float c[8], NANO_IN(vec3) t) {
-  float x00 = mix(c[0], c[1], t.x);
-  float x10 = mix(c[2], c[3], t.x);
-  float x01 = mix(c[4], c[5], t.x);
-  float x11 = mix(c[6], c[7], t.x);
-  return mix(mix(x00, x10, t.y), mix(x01, x11, t.y), t.z);
+  float x00 = medium_lerp(c[0], c[1], t.x);
+  float x10 = medium_lerp(c[2], c[3], t.x);
+  float x01 = medium_lerp(c[4], c[5], t.x);
+  float x11 = medium_lerp(c[6], c[7], t.x);
+  return medium_lerp(medium_lerp(x00, x10, t.y), medium_lerp(x01, x11, t.y), t.z);
 }
 
 // A copy whose bounding sphere has world radius r keeps the medium's clearance from one instance:
@@ -99,7 +115,9 @@ NANO_FN float exclusion_trilinear(float c[8], NANO_IN(vec3) t) {
 // instance's least stretch (world Å per compartment Å), is at least r + clearance.
 NANO_FN bool medium_copy_clear(float field_value, NANO_IN(ExclusionField) f, float least_stretch, float radius,
                                float clearance) {
-  return (field_value - f.limits.x) * least_stretch >= radius + clearance;
+  NANO_PRECISE float room = (field_value - f.limits.x) * least_stretch;
+  NANO_PRECISE float needed = radius + clearance;
+  return room >= needed;
 }
 
 // The centre of copy m of box ijk in region space (world − region_min): how the renderer and the

@@ -87,7 +87,7 @@ SampleScene make_sample_scene() {
   // A medium of the one cube over 8 x 8 x 8 boxes of 5 Å, and the compartment's exclusion field:
   // 5 x 5 x 5 nodes 1 Å apart, the distance from the point (0, 0, 0) less 1 Å, clamped to ±3.
   s.medium = {{vec4(-20, -20, -20, 5), vec4(20, 20, 20, 1), uvec4(8, 8, 8, 1), uvec4(0, 1, 1, 0)}};
-  s.exclusion_fields = {{vec4(-2, -2, -2, 1), uvec4(5, 5, 5, 0), vec4(0.5f, 3, 0, 0)}};
+  s.exclusion_fields = {{vec4(-2, -2, -2, 1), uvec4(5, 5, 5, 0), vec4(0.5f, 3, 1, 0)}};
   for (int k = 0; k < 5; ++k)
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 5; ++i)

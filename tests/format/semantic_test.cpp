@@ -192,6 +192,8 @@ const Case kCases[] = {
      SectionKind::exclusion_fields, 16},
     {"exclusion field beyond its values", [](SampleScene& s) { s.exclusion_fields[0].dims.w = 1; }, Rule::index_out_of_range,
      SectionKind::exclusion_fields, 28},
+    {"exclusion field without its inverse spacing", [](SampleScene& s) { s.exclusion_fields[0].limits.z = 0; }, Rule::bad_value,
+     SectionKind::exclusion_fields, 40},
     {"exclusion clamp below margin", [](SampleScene& s) { s.exclusion_fields[0].limits.y = 0.25f; }, Rule::bad_value,
      SectionKind::exclusion_fields, 36},
     {"exclusion value beyond the clamp", [](SampleScene& s) { s.exclusion_values[7] = 4; }, Rule::bad_value,
