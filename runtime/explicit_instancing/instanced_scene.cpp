@@ -106,7 +106,7 @@ struct InstancedScene::Impl : format::PackageView {
   // Every copy in the whole world; stops (throws) as soon as the limit is passed, so the refusal
   // costs at most max_copies copies of host memory.
   std::vector<Placed> enumerate() {
-    if (p.has(format::SectionKind::medium))
+    if (p.record_count(format::SectionKind::medium) > 0)
       fail("medium", "the package's medium fills its region with ~10^9 copies or more, one TLAS instance each under "
                      "explicit instancing: render it with virtual instancing");
     const oracle::ExplicitScene scene(p);

@@ -191,13 +191,16 @@ std::string describe_hit_text(const nlohmann::json& d) {
   text += "molecule " + m["name"].get<std::string>() + " (type " + std::to_string(m["type"].get<std::uint32_t>());
   if (!m["source"].get<std::string>().empty()) text += ", from " + m["source"].get<std::string>();
   text += ")\n";
-  text += "compartment " + ci.value("name", std::to_string(ci["compartment"].get<std::uint32_t>())) +
-          ", instance " + std::to_string(ci["index"].get<std::uint32_t>()) + "; ";
+  if (ci.value("medium", false))
+    text += "the medium, between the compartments; ";
+  else
+    text += "compartment " + ci.value("name", std::to_string(ci["compartment"].get<std::uint32_t>())) +
+            ", instance " + std::to_string(ci["index"].get<std::uint32_t>()) + "; ";
   if (p["kind"] == "membrane")
     text += "membrane, triangle " + std::to_string(p["triangle"].get<std::uint32_t>()) + ", tile (" +
             std::to_string(p["tile"][0].get<int>()) + ", " + std::to_string(p["tile"][1].get<int>()) + ")";
   else
-    text += "core, box (" + std::to_string(p["box_ijk"][0].get<int>()) + ", " + std::to_string(p["box_ijk"][1].get<int>()) +
+    text += p["kind"].get<std::string>() + ", box (" + std::to_string(p["box_ijk"][0].get<int>()) + ", " + std::to_string(p["box_ijk"][1].get<int>()) +
             ", " + std::to_string(p["box_ijk"][2].get<int>()) + ")";
   text += ", copy " + std::to_string(p["copy"].get<std::uint32_t>()) + "\n";
   std::snprintf(line, sizeof line, "depth %.2f Å, copy number %llu", d["depth"].get<double>(),

@@ -10,6 +10,7 @@
 
 #include "runtime/render/pick_info.hpp"
 #include "tests/oracle/hand_scene.hpp"
+#include "tests/format/sample_scene.hpp"
 #include "tests/oracle/test_package.hpp"
 
 namespace {
@@ -129,6 +130,33 @@ TEST_F(PickInfo, CoreHit) {
   EXPECT_NE(render::describe_hit_text(d).find("core, box (0, 0, 1), copy 1"), std::string::npos);
 }
 
+// A medium copy belongs to no instance: the format tests' sample package puts its one cube (whose
+// molecule 0 is of type 0, atoms 0-2) in every box of an 8 × 8 × 8 region.
+TEST(PickInfoMedium, MediumHitNamesItsBoxAndCube) {
+  const explicit_test::TestPackage sample(format::test::make_sample_scene());
+  gpu::PixelHit h{};
+  h.depth = 5;
+  h.compartment_instance = gpu::NANO_MEDIUM_OWNER;
+  h.kind = gpu::NANO_KIND_MEDIUM;
+  h.cell = glm::ivec4(1, 2, 3, 0);
+  h.element = 1 + 8 * (2 + 8 * 3);
+  h.instance = 0;
+  h.atom = 1;
+  h.copy_number_lo = 7;
+  const json d = render::describe_hit(sample.package, h);
+  ASSERT_FALSE(d.contains("error")) << d.dump();
+  EXPECT_EQ(d["placement"], json({{"kind", "medium"}, {"box", 209}, {"box_ijk", {1, 2, 3}}, {"wang_cube", 0}, {"copy", 0},
+                                  {"copy_number", 7}}));
+  EXPECT_EQ(d["compartment_instance"], json({{"medium", true}}));
+  EXPECT_NE(render::describe_hit_text(d).find("the medium, between the compartments; medium, box (1, 2, 3), copy 0"),
+            std::string::npos) << render::describe_hit_text(d);
+  h.cell.x = 8;
+  EXPECT_NE(render::describe_hit(sample.package, h).value("error", "").find("lies outside the medium's region"), std::string::npos);
+  h.cell.x = 1, h.compartment_instance = 0;
+  EXPECT_NE(render::describe_hit(sample.package, h).value("error", "").find("medium hit naming compartment instance 0"),
+            std::string::npos);
+}
+
 // Every copy the analytic oracle knows describes without error and with its atom's own records.
 TEST_F(PickInfo, EveryRealCopyDescribes) {
   const std::vector<explicit_test::Placement> placements = explicit_test::default_placements();
@@ -159,8 +187,10 @@ TEST_F(PickInfo, HostileHitsAreErrorsNamingTheProblem) {
   EXPECT_NE(error_of(h).find("atom 4 is out of range: section atoms has 4 record(s)"), std::string::npos);
   h = good, h.compartment_instance = 4;
   EXPECT_NE(error_of(h).find("compartment instance 4 is out of range"), std::string::npos);
-  h = good, h.kind = 2;
-  EXPECT_NE(error_of(h).find("kind 2"), std::string::npos);
+  h = good, h.kind = 2;  // a medium hit in a package without a medium
+  EXPECT_NE(error_of(h).find("medium hit in a package without a medium"), std::string::npos);
+  h = good, h.kind = 3;
+  EXPECT_NE(error_of(h).find("kind 3 is neither 0 (membrane), 1 (core) nor 2 (medium)"), std::string::npos);
   h = good, h.element = 2;  // triangle 2 belongs to the mirrored square's mesh
   EXPECT_NE(error_of(h).find("triangle 2 is not one of the compartment's mesh"), std::string::npos);
   h = good, h.instance = 4;  // Wang square 0 holds 4 molecules
