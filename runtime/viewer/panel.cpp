@@ -150,6 +150,7 @@ bool parameter_widget(const EffectParameter& p, glm::dvec3& value) {
 void effects_section(ViewerState& s, const PanelContext& c) {
   if (!ImGui::CollapsingHeader("effects")) return;
   render::EffectSettings& e = s.settings.effects;
+  if (c.has_medium && ImGui::Checkbox("medium (the plasma between the cells)", &s.settings.show_medium)) s.touch();
   for (const EffectDeclaration& effect : effect_table())
     if (ImGui::Checkbox(std::string(effect.name).c_str(), &e.flag(effect.id))) s.touch();
   if (ImGui::TreeNode("clipping planes and box")) {

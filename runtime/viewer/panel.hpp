@@ -14,6 +14,7 @@ struct PanelContext {
   const render::LoadReport* load = nullptr;  // device memory
   Bounds bounds;                             // slider ranges for planes and the clip box
   bool scripted = false;                     // the script drives the camera; the panel only shows
+  bool has_medium = false;                   // the scene has a medium: a switch to show it or not
 };
 
 // Issues the panel's widgets (between Overlay::begin_frame and end_frame).

@@ -154,6 +154,13 @@ ScriptCommand parse_line(std::string_view line) {
     c.kind = K::effect;
     c.text = std::string(name);
     c.on = state == "on";
+  } else if (word == "show" || word == "hide") {
+    std::string_view tail;
+    const std::string_view what = next_word(rest, tail);
+    if (what != "medium") throw std::invalid_argument(std::string(word) + " expects medium, got '" + std::string(what) + "'");
+    expect_no_more(tail, std::string(word) + " medium");
+    c.kind = K::show_medium;
+    c.on = word == "show";
   } else if (word == "time") {
     std::string_view tail;
     const std::string_view value = next_word(rest, tail);

@@ -10,6 +10,7 @@
 //   clip box x0,y0,z0,x1,y1,z1                   sets the clip box
 //   clip off                                     removes every plane and the box
 //   effect NAME on|off                           NAME one of the effect table's names (common/effect_table.hpp)
+//   show medium | hide medium                    the scene's medium (its plasma) in the picture or not
 //   time SECONDS                                 animation / jitter time
 //   wait N                                       renders N frames
 //   pick X Y                                     prints the pixel's describe_hit JSON (one line)
@@ -41,7 +42,7 @@ namespace nano::viewer {
 
 struct ScriptCommand {
   enum class Kind {
-    camera, clip_plane, clip_box, clip_off, effect, time, wait, pick, screenshot, size,
+    camera, clip_plane, clip_box, clip_off, effect, show_medium, time, wait, pick, screenshot, size,
     keyframe, path_save, path_load, path_clear, path_frame, path_play, quit
   };
   Kind kind = Kind::quit;
@@ -49,7 +50,7 @@ struct ScriptCommand {
   std::string text;            // camera: the spec; effect: the name; screenshot, path save/load: the file
   glm::dvec4 plane{0.0};       // clip_plane
   std::pair<glm::dvec3, glm::dvec3> box{};  // clip_box
-  bool on = false;             // effect
+  bool on = false;             // effect; show_medium: shown
   double seconds = 0;          // time, keyframe
   std::uint32_t count = 0;     // wait
   std::uint32_t x = 0, y = 0;  // pick: pixel; size: width, height

@@ -44,6 +44,10 @@ void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
       render::set_effect(effects, c.text, c.on);
       s.touch();
       break;
+    case K::show_medium:
+      s.settings.show_medium = c.on;
+      s.touch();
+      break;
     case K::time:
       effects.time = c.seconds;
       s.touch();

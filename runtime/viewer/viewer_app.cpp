@@ -334,7 +334,7 @@ private:
   }
 
   PanelContext panel_context() const {
-    return PanelContext{&session_.scene->report(), bounds_, fixed_size_.has_value()};
+    return PanelContext{&session_.scene->report(), bounds_, fixed_size_.has_value(), session_.scene->has_medium()};
   }
 
   void pick(double x, double y) {

@@ -89,6 +89,14 @@ TEST(Script, ParsesKeyframeAndPathCommands) {
   EXPECT_EQ(s.commands[7].line, 8u);
 }
 
+TEST(Script, ShowsAndHidesTheMedium) {
+  const Script s = parse_script("hide medium\nshow medium\n", "s");
+  ASSERT_EQ(s.commands.size(), 2u);
+  EXPECT_EQ(s.commands[0].kind, ScriptCommand::Kind::show_medium);
+  EXPECT_FALSE(s.commands[0].on);
+  EXPECT_TRUE(s.commands[1].on);
+}
+
 TEST(Script, PartialCameraSpecIsAccepted) {
   // Keys left out keep the camera current when the line runs, so these must parse on their own.
   EXPECT_NO_THROW(parse_script("camera fov=20\ncamera at=0,0,1000\ncamera pos=0,5,0\n", "s"));
@@ -121,6 +129,8 @@ TEST(Script, ErrorsNameFileLineAndProblem) {
   expect_error("effect fog on\n", "line 1", "unknown effect 'fog'");
   expect_error("effect ao maybe\n", "line 1", "on or off");
   expect_error("effect ao\n", "line 1", "on or off");
+  expect_error("hide cells\n", "line 1", "hide expects medium, got 'cells'");
+  expect_error("show medium now\n", "line 1", "unexpected 'now'");
   expect_error("time -1\n", "line 1", "time");
   expect_error("time soon\n", "line 1", "time");
   expect_error("wait\n", "line 1", "wait N");
