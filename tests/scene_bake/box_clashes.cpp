@@ -4,6 +4,7 @@
 //   box_clashes PKG membrane INSTANCE HALF_SIZE MIN_COPIES   box around the instance's first mesh vertex
 //   box_clashes PKG core INSTANCE HALF_SIZE MIN_COPIES       box around the instance's middle INSIDE core box
 //                                                           (or the most central BOUNDARY box)
+//   box_clashes PKG where INSTANCE HALF_SIZE       prints the membrane box ("x0,y0,z0,x1,y1,z1"), checks nothing
 //   box_clashes PKG vertices INSTANCE HALF_SIZE COUNT MIN_COPIES
 //                                    boxes around COUNT mesh vertices spread over the vertex list
 //                                    (rims, dimples, chart corners and seams alike), each checked
@@ -97,10 +98,11 @@ bool check_box(const std::string& path, const nano::oracle::ExplicitScene& scene
 
 int main(int argc, char** argv) {
   const std::string mode = argc > 2 ? argv[2] : "";
-  if (!((mode == "box" && argc == 10) || ((mode == "membrane" || mode == "core") && argc == 6) ||
+  if (!((mode == "box" && argc == 10) || ((mode == "membrane" || mode == "core") && argc == 6) || (mode == "where" && argc == 5) ||
         (mode == "vertices" && argc == 7))) {
     std::fprintf(stderr, "usage: box_clashes PKG box XMIN YMIN ZMIN XMAX YMAX ZMAX MIN_COPIES\n"
                          "       box_clashes PKG membrane|core INSTANCE HALF_SIZE MIN_COPIES\n"
+                         "       box_clashes PKG where INSTANCE HALF_SIZE\n"
                          "       box_clashes PKG vertices INSTANCE HALF_SIZE COUNT MIN_COPIES\n");
     return 2;
   }
@@ -112,10 +114,14 @@ int main(int argc, char** argv) {
     box.max = {std::atof(argv[6]), std::atof(argv[7]), std::atof(argv[8])};
   } else if (mode != "vertices") {
     const auto instance = package.records<SectionKind::compartment_instances>()[std::strtoul(argv[3], nullptr, 10)];
-    const glm::dvec3 centre = to_world(instance, sample_point(package, instance, mode));
+    const glm::dvec3 centre = to_world(instance, sample_point(package, instance, mode == "where" ? "membrane" : mode));
     const double half = std::atof(argv[4]);
     box.min = centre - half;
     box.max = centre + half;
+  }
+  if (mode == "where") {
+    std::printf("%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z);
+    return 0;
   }
   const std::size_t min_copies = std::strtoull(argv[argc - 1], nullptr, 10);
   if (mode != "vertices") return check_box(argv[1], scene, box, min_copies) ? 0 : 1;
