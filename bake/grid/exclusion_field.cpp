@@ -54,14 +54,16 @@ double interpolated_clearance(const ExclusionField& field, const glm::dvec3& p) 
   return gpu::exclusion_trilinear(corners, frac);
 }
 
-ExclusionField bake_exclusion_field(const MeshSurface& surface, const ExclusionFieldRequest& request) {
-  const mesh::ProxyMesh& mesh = surface.mesh();
+namespace {
+
+// The grid: the mesh's box grown by every reach and two spacings, at the coarsest spacing
+// (≥ min_spacing) whose nodes fit the budget.
+ExclusionField lay_out_grid(const mesh::ProxyMesh& mesh, const ExclusionFieldRequest& request) {
   if (mesh.positions.empty()) throw InputError("", "", "an exclusion field needs a mesh with vertices");
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const glm::dvec3& v : mesh.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
   const double grow = request.shell_reach + request.medium_reach;
   lo -= grow, hi += grow;
-
   ExclusionField f;
   const glm::dvec3 size = hi - lo;
   f.spacing = std::max(request.min_spacing, std::cbrt(size.x * size.y * size.z / static_cast<double>(request.max_nodes)));
@@ -72,39 +74,42 @@ ExclusionField bake_exclusion_field(const MeshSurface& surface, const ExclusionF
   f.origin = lo - 2.0 * f.spacing;
   f.clamp = request.medium_reach + 4.0 * f.spacing;
   f.shell_reach = request.shell_reach;
-  const std::size_t count = static_cast<std::size_t>(f.dims.x) * f.dims.y * f.dims.z;
-  const auto position = [&](int i, int j, int k) { return f.origin + f.spacing * glm::dvec3(i, j, k); };
+  return f;
+}
 
-  // Distances everywhere; the inside test only near the surface. A node farther than one spacing
-  // from it shares its side with every such neighbour (the segment between them stays more than
-  // half a spacing from the surface), so far nodes take their side from one test per component.
-  std::vector<double> distance(count);
-  std::vector<std::int8_t> side(count, 0);  // −1 inside, +1 outside, 0 not yet known
-  parallel_for(static_cast<std::size_t>(f.dims.z), request.threads, [&](std::size_t k) {
-    for (int j = 0; j < f.dims.y; ++j)
-      for (int i = 0; i < f.dims.x; ++i) {
-        const std::size_t n = f.node_index(i, j, static_cast<int>(k));
-        const glm::dvec3 p = position(i, j, static_cast<int>(k));
-        distance[n] = std::sqrt(surface.squared_distance(p));
-        if (distance[n] <= f.spacing) side[n] = surface.contains(p) ? -1 : 1;
-      }
+glm::dvec3 node_position(const ExclusionField& f, std::size_t n) {
+  const std::size_t plane = std::size_t(f.dims.x) * f.dims.y;
+  return f.origin + f.spacing * glm::dvec3(double(n % f.dims.x), double(n / f.dims.x % f.dims.y), double(n / plane));
+}
+
+// Every node's side of the surface (−1 inside, +1 outside). Distances everywhere; the inside test
+// only near the surface: a node farther than one spacing from it shares its side with every such
+// neighbour (the segment between them stays more than half a spacing from the surface), so far
+// nodes take their side from one test per connected component.
+std::vector<std::int8_t> node_sides(const MeshSurface& surface, const ExclusionField& f, int threads, std::vector<double>& distance) {
+  const std::size_t count = static_cast<std::size_t>(f.dims.x) * f.dims.y * f.dims.z;
+  distance.assign(count, 0.0);
+  std::vector<std::int8_t> side(count, 0);
+  parallel_for(static_cast<std::size_t>(f.dims.z), threads, [&](std::size_t k) {
+    for (std::size_t n = k * f.dims.x * f.dims.y; n < (k + 1) * f.dims.x * f.dims.y; ++n) {
+      const glm::dvec3 p = node_position(f, n);
+      distance[n] = std::sqrt(surface.squared_distance(p));
+      if (distance[n] <= f.spacing) side[n] = surface.contains(p) ? -1 : 1;
+    }
   });
   std::deque<std::size_t> queue;
+  const std::array<glm::ivec3, 6> steps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
   for (std::size_t start = 0; start < count; ++start) {
     if (side[start] != 0) continue;
-    const int k0 = static_cast<int>(start / (std::size_t(f.dims.x) * f.dims.y));
-    const int j0 = static_cast<int>(start / f.dims.x % f.dims.y), i0 = static_cast<int>(start % f.dims.x);
-    const std::int8_t s = surface.contains(position(i0, j0, k0)) ? -1 : 1;
+    const std::int8_t s = surface.contains(node_position(f, start)) ? -1 : 1;
     side[start] = s;
     queue.push_back(start);
     while (!queue.empty()) {
       const std::size_t n = queue.front();
       queue.pop_front();
-      const int k = static_cast<int>(n / (std::size_t(f.dims.x) * f.dims.y));
-      const int j = static_cast<int>(n / f.dims.x % f.dims.y), i = static_cast<int>(n % f.dims.x);
-      const std::array<glm::ivec3, 6> steps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
+      const glm::ivec3 at(int(n % f.dims.x), int(n / f.dims.x % f.dims.y), int(n / (std::size_t(f.dims.x) * f.dims.y)));
       for (const glm::ivec3& step : steps) {
-        const glm::ivec3 m = glm::ivec3(i, j, k) + step;
+        const glm::ivec3 m = at + step;
         if (glm::any(glm::lessThan(m, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(m, f.dims))) continue;
         const std::size_t mi = f.node_index(m.x, m.y, m.z);
         if (side[mi] != 0) continue;
@@ -113,13 +118,15 @@ ExclusionField bake_exclusion_field(const MeshSurface& surface, const ExclusionF
       }
     }
   }
-  f.values.resize(count);
-  for (std::size_t n = 0; n < count; ++n)
-    f.values[n] = static_cast<float>(std::clamp(side[n] * distance[n] - request.shell_reach, -f.clamp, f.clamp));
+  return side;
+}
 
-  // The excess, where a decision can go wrong: cells that can keep a copy (some corner above 0)
-  // and whose true clearance can fall below the largest threshold (some corner below it plus the
-  // distance from a point of the cell to its nearest corner).
+// The most the interpolated value exceeds the exact one, sampled where a decision can go wrong:
+// cells that can keep a copy (some corner above 0) and whose true clearance can fall below the
+// largest threshold (some corner below it plus the distance from a point of the cell to its
+// nearest corner).
+void measure_excess(const MeshSurface& surface, const std::vector<std::int8_t>& side, const ExclusionFieldRequest& request,
+                    ExclusionField& f) {
   const double near_threshold = request.medium_reach + f.spacing;
   std::mutex merge;
   std::atomic<std::size_t> samples{0};
@@ -151,6 +158,18 @@ ExclusionField bake_exclusion_field(const MeshSurface& surface, const ExclusionF
     f.measured_excess = std::max(f.measured_excess, excess);
   });
   f.samples = samples;
+}
+
+}  // namespace
+
+ExclusionField bake_exclusion_field(const MeshSurface& surface, const ExclusionFieldRequest& request) {
+  ExclusionField f = lay_out_grid(surface.mesh(), request);
+  std::vector<double> distance;
+  const std::vector<std::int8_t> side = node_sides(surface, f, request.threads, distance);
+  f.values.resize(distance.size());
+  for (std::size_t n = 0; n < distance.size(); ++n)
+    f.values[n] = static_cast<float>(std::clamp(side[n] * distance[n] - request.shell_reach, -f.clamp, f.clamp));
+  measure_excess(surface, side, request, f);
   f.margin = 2.0 * f.measured_excess + 0.5;
   return f;
 }

@@ -83,6 +83,45 @@ nlohmann::ordered_json mesh_section_sizes(const format::Package& package) {
   return j;
 }
 
+// The medium as the report gives it (its copies estimated, medium_bake.hpp).
+nlohmann::ordered_json medium_json(const MediumSummary& m) {
+  nlohmann::ordered_json counts = nlohmann::ordered_json::object();
+  for (const MediumMoleculeCount& n : m.counts) counts[n.name] = {{"copies", n.copies}, {"atoms", n.atoms}};
+  nlohmann::ordered_json fields = nlohmann::ordered_json::array();
+  for (const MediumSummary::Field& f : m.fields)
+    fields.push_back({{"compartment", f.compartment}, {"spacing_A", f.spacing}, {"margin_A", f.margin}, {"shell_reach_A", f.shell_reach},
+                      {"measured_excess_A", f.measured_excess}, {"bytes", f.bytes}});
+  return {{"soluble", m.soluble},
+          {"region", {vec(m.region_min), vec(m.region_max)}},
+          {"boxes", {m.boxes.x, m.boxes.y, m.boxes.z}},
+          {"copies_in_region", m.copies_in_region},
+          {"estimated", counts},
+          {"exclusion_fields", fields}};
+}
+
+// The medium's lines of the summary.
+void write_medium_summary(std::ostringstream& out, const MediumSummary& m) {
+  char line[512];
+  std::snprintf(line, sizeof line, "  medium %s: %u x %u x %u boxes over [%.0f, %.0f, %.0f]-[%.0f, %.0f, %.0f] Å, about",
+                m.soluble.c_str(), m.boxes.x, m.boxes.y, m.boxes.z, m.region_min.x, m.region_min.y, m.region_min.z,
+                m.region_max.x, m.region_max.y, m.region_max.z);
+  out << line;
+  double atoms = 0;
+  for (const MediumMoleculeCount& n : m.counts) {
+    std::snprintf(line, sizeof line, " %.3g %s,", n.copies, n.name.c_str());
+    out << line;
+    atoms += n.atoms;
+  }
+  std::snprintf(line, sizeof line, " %.3g atoms (estimated from the excluded volumes)\n", atoms);
+  out << line;
+  for (const MediumSummary::Field& f : m.fields) {
+    std::snprintf(line, sizeof line,
+                  "  medium keeps clear of %s's shell (%.0f Å beyond its mesh) by a field of %.0f Å spacing, margin %.1f Å, %.2f MB\n",
+                  f.compartment.c_str(), f.shell_reach, f.spacing, f.margin, f.bytes / 1e6);
+    out << line;
+  }
+}
+
 }  // namespace
 
 nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Package& package) {
@@ -111,21 +150,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
     if (c.remesh) compartments.back()["remesh"] = mesh::to_json(*c.remesh);
     if (c.membrane) compartments.back()["membrane"] = membrane_json(*c.membrane);
   }
-  if (scene.medium) {
-    const MediumSummary& m = *scene.medium;
-    nlohmann::ordered_json counts = nlohmann::ordered_json::object();
-    for (const MediumMoleculeCount& n : m.counts) counts[n.name] = {{"copies", n.copies}, {"atoms", n.atoms}};
-    nlohmann::ordered_json fields = nlohmann::ordered_json::array();
-    for (const MediumSummary::Field& f : m.fields)
-      fields.push_back({{"compartment", f.compartment}, {"spacing_A", f.spacing}, {"margin_A", f.margin}, {"shell_reach_A", f.shell_reach},
-                        {"measured_excess_A", f.measured_excess}, {"bytes", f.bytes}});
-    j["medium"] = {{"soluble", m.soluble},
-                   {"region", {vec(m.region_min), vec(m.region_max)}},
-                   {"boxes", {m.boxes.x, m.boxes.y, m.boxes.z}},
-                   {"copies_in_region", m.copies_in_region},
-                   {"estimated", counts},
-                   {"exclusion_fields", fields}};
-  }
+  if (scene.medium) j["medium"] = medium_json(*scene.medium);
   auto& instances = j["instances"] = nlohmann::ordered_json::array();
   for (const InstanceSummary& i : scene.instances)
     instances.push_back({{"compartment", i.compartment}, {"aabb", {vec(i.aabb_min), vec(i.aabb_max)}}});
@@ -230,27 +255,7 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       }
     }
   }
-  if (scene.medium) {
-    const MediumSummary& m = *scene.medium;
-    std::snprintf(line, sizeof line, "  medium %s: %u x %u x %u boxes over [%.0f, %.0f, %.0f]-[%.0f, %.0f, %.0f] Å, about",
-                  m.soluble.c_str(), m.boxes.x, m.boxes.y, m.boxes.z, m.region_min.x, m.region_min.y, m.region_min.z,
-                  m.region_max.x, m.region_max.y, m.region_max.z);
-    out << line;
-    double atoms = 0;
-    for (const MediumMoleculeCount& n : m.counts) {
-      std::snprintf(line, sizeof line, " %.3g %s,", n.copies, n.name.c_str());
-      out << line;
-      atoms += n.atoms;
-    }
-    std::snprintf(line, sizeof line, " %.3g atoms (estimated from the excluded volumes)\n", atoms);
-    out << line;
-    for (const MediumSummary::Field& f : m.fields) {
-      std::snprintf(line, sizeof line,
-                    "  medium keeps clear of %s's shell (%.0f Å beyond its mesh) by a field of %.0f Å spacing, margin %.1f Å, %.2f MB\n",
-                    f.compartment.c_str(), f.shell_reach, f.spacing, f.margin, f.bytes / 1e6);
-      out << line;
-    }
-  }
+  if (scene.medium) write_medium_summary(out, *scene.medium);
   std::snprintf(line, sizeof line, "  meshes: %s, %.1f kB\n",
                 package.has(format::SectionKind::draco_meshes) ? "Draco streams (on Draco's exact grids)" : "zstd",
                 mesh_stored_bytes(package) / 1e3);
