@@ -302,9 +302,8 @@ gpu::PixelHit make_hit(double t, std::uint32_t atom, const CopyId& id, std::uint
 // within the region grown by two boxes and on the kept side of every clip half-space; each sample's
 // box and the boxes within two of it (a copy reaches one box beyond its own, so a copy the ray meets
 // stands within two boxes of a sampled one) give their kept copies (the shared keep rule) and every
-// atom of a copy whose sphere the ray meets. A box wholly inside an instance is skipped by its
-// field: trilinear values change by at most √3 per unit step, so a centre value below
-// margin − 1.5·B rejects every copy of the box. Sampling stops half a box beyond the nearest hit.
+// atom of a copy whose sphere the ray meets (the enumerator skips boxes wholly inside an
+// instance). Sampling stops half a box beyond the nearest hit.
 }  // namespace
 gpu::PixelHit background_pixel();
 namespace {
@@ -316,12 +315,7 @@ struct MediumHit {
   std::uint64_t number = 0;
 };
 
-struct MediumWalls {
-  std::vector<gpu::MediumInstance> records;        // per compartment instance (placement::medium_instances)
-  std::vector<std::pair<dvec3, dvec3>> boxes;      // their fields' region-space boxes
-};
-
-MediumHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView& p, const MediumWalls& walls, const Ray& ray,
+MediumHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView& p, const Ray& ray,
                            const OracleRenderOptions& options) {
   const gpu::Medium& m = p.medium[0];
   const double B = m.region_min.w;
@@ -355,14 +349,6 @@ MediumHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView
     if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, boxes))) return;
     const std::uint64_t key = std::uint64_t(b.x) + std::uint64_t(boxes.x) * (std::uint64_t(b.y) + std::uint64_t(boxes.y) * std::uint64_t(b.z));
     if (!seen.insert(key).second) return;
-    const glm::vec3 centre = gpu::medium_copy_centre(b, float(B), glm::vec3(float(B) / 2));
-    for (std::size_t i = 0; i < walls.records.size(); ++i) {
-      const auto& [box_lo, box_hi] = walls.boxes[i];
-      const dvec3 q(centre);
-      if (glm::any(glm::lessThan(q, box_lo)) || glm::any(glm::greaterThan(q, box_hi))) continue;
-      const gpu::MediumInstance& r = walls.records[i];
-      if (double(placement::exclusion_value(p, r, centre)) < double(p.exclusion_fields[r.ids.x].limits.x) - 1.5 * B) return;
-    }
     scene.for_each_medium_copy(b, [&](const Copy& c) {
       if (sphere_hit(ray, c.origin, c.radius * std::max(1.0, options.radius_scale)) == kInf) return;
       const gpu::MoleculeType& type = p.molecules[c.molecule_type];
@@ -392,15 +378,10 @@ std::vector<gpu::PixelHit> trace_medium(const ExplicitScene& scene, const format
                                         const OracleRenderOptions& options) {
   std::vector<gpu::PixelHit> image(rays.size(), background_pixel());
   const format::PackageView p(package);
-  MediumWalls walls;
-  walls.records = placement::medium_instances(p, scene.instance_transforms());
-  for (std::size_t i = 0; i < walls.records.size(); ++i)
-    walls.boxes.push_back(placement::exclusion_box(p.exclusion_fields[p.compartment_instances[i].compartment],
-                                                   scene.instance_transforms()[i], dvec3(p.medium[0].region_min)));
   constexpr std::size_t kChunk = 16;
   parallel_for((rays.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
     for (std::size_t i = chunk * kChunk; i < std::min(rays.size(), (chunk + 1) * kChunk); ++i) {
-      const MediumHit hit = trace_medium_ray(scene, p, walls, rays[i], options);
+      const MediumHit hit = trace_medium_ray(scene, p, rays[i], options);
       if (hit.t != kInf) image[i] = make_hit(hit.t, hit.atom, hit.id, hit.number);
     }
   });

@@ -134,6 +134,16 @@ struct CopyEnumerator::Impl : format::PackageView {
     number_limit = *end;
   }
 
+  // The instances whose exclusion box holds region-space point c.
+  void near_instances(const vec3& c, std::vector<std::uint32_t>& near) const {
+    near.clear();
+    const dvec3 q(c);
+    for (std::uint32_t i = 0; i < exclusion_boxes.size(); ++i) {
+      const auto& [lo, hi] = exclusion_boxes[i];
+      if (q.x >= lo.x && q.y >= lo.y && q.z >= lo.z && q.x <= hi.x && q.y <= hi.y && q.z <= hi.z) near.push_back(i);
+    }
+  }
+
   void walk_medium_box(const ivec3& ijk, const WorldBox& cull, const std::function<void(const Copy&)>& visit) const {
     const gpu::Medium& m = medium[0];
     if (glm::any(glm::lessThan(ijk, ivec3(0))) || glm::any(glm::greaterThanEqual(ijk, ivec3(glm::uvec3(m.boxes))))) return;
@@ -147,17 +157,20 @@ struct CopyEnumerator::Impl : format::PackageView {
     const std::uint32_t box = std::uint32_t(ijk.x) + m.boxes.x * (std::uint32_t(ijk.y) + m.boxes.y * std::uint32_t(ijk.z));
     emit.copy.id.element = box;
     emit.copy.id.cell = ijk;
-    const gpu::Tile3D& cube = tiles3d[recipe_cell(m.boxes.w, ijk.x, ijk.y, ijk.z)];
+    // A box wholly inside an instance keeps nothing: trilinear values change by at most √3 per unit
+    // step, so a centre value below margin − 1.5·B rejects every copy of the box.
     std::vector<std::uint32_t> near;
+    const vec3 middle = gpu::medium_copy_centre(ijk, B, vec3(B / 2));
+    near_instances(middle, near);
+    for (const std::uint32_t i : near)
+      if (double(exclusion_value(*this, medium_records[i], middle)) <
+          double(exclusion_fields[medium_records[i].ids.x].limits.x) - 1.5 * double(B))
+        return;
+    const gpu::Tile3D& cube = tiles3d[recipe_cell(m.boxes.w, ijk.x, ijk.y, ijk.z)];
     for (std::uint32_t k = 0; k < cube.instance_count; ++k) {
       const gpu::MoleculeInstance& inst = instances[cube.first_instance + k];
       const vec3 c = gpu::medium_copy_centre(ijk, B, vec3(inst.position));
-      near.clear();
-      for (std::uint32_t i = 0; i < exclusion_boxes.size(); ++i) {
-        const auto& [lo, hi] = exclusion_boxes[i];
-        const dvec3 q(c);
-        if (q.x >= lo.x && q.y >= lo.y && q.z >= lo.z && q.x <= hi.x && q.y <= hi.y && q.z <= hi.z) near.push_back(i);
-      }
+      near_instances(c, near);
       if (!medium_copy_kept(*this, medium_records, near, c, molecules[inst.molecule_type].aabb_min.w)) continue;
       emit.copy.id.instance = k;
       emit.copy.number = medium_base + std::uint64_t{box} * medium_instances_per_cube + k;
