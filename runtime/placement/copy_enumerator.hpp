@@ -24,6 +24,7 @@
 
 #include "format/package.hpp"
 #include "format/package_view.hpp"
+#include "runtime/placement/visibility.hpp"
 
 namespace nano::placement {
 
@@ -84,6 +85,9 @@ struct CopyOptions {
   std::vector<glm::dvec4> clip;
   // The scene's medium is part of the picture (false: `--hide medium`, has_medium() says no).
   bool medium = true;
+  // Compartments and molecule types left out (--hide): their copies are never visited, while a
+  // hidden compartment still keeps the medium out of its place.
+  Visibility visibility;
 };
 
 class CopyEnumerator {

@@ -187,4 +187,16 @@ std::vector<std::byte> build(const SampleScene& scene, Compression compression) 
   return build_package(sections_of(scene, compression));
 }
 
+SampleScene medium_only_sample_scene() {
+  SampleScene scene = make_sample_scene();
+  scene.compartments[0].membrane_recipe = scene.compartments[0].soluble_recipe = gpu::NANO_NO_INDEX;
+  scene.compartments[0].core_masks = glm::uvec4(0);
+  scene.triangle_drops.clear();
+  scene.dropped_copies.clear();
+  scene.boundary_boxes.clear();
+  scene.mask_words.clear();
+  refresh_core_skip(scene);
+  return scene;
+}
+
 }  // namespace nano::format::test

@@ -48,6 +48,9 @@ struct SampleScene {
 void refresh_core_skip(SampleScene& s);
 
 SampleScene make_sample_scene();
+// The sample scene without its membrane and core grid (made to test the format, not to place
+// copies): its medium alone holds copies.
+SampleScene medium_only_sample_scene();
 
 // One SectionSource per non-empty section (spans into `scene`, which must outlive them), in kind
 // order, optionally leaving one kind out.

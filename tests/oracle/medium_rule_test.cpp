@@ -76,16 +76,7 @@ TEST(MediumRule, ValuesAndDecisionsFollowTheField) {
 // for_each_medium_copy of a world box gives exactly the kept copies of the boxes it covers, each
 // once, numbered after every instance's copies.
 TEST(MediumRule, TheEnumeratorKeepsWhatTheRuleKeeps) {
-  // Without its membrane and core grid (made to test the format, not to place copies).
-  format::test::SampleScene scene = format::test::make_sample_scene();
-  scene.compartments[0].membrane_recipe = scene.compartments[0].soluble_recipe = gpu::NANO_NO_INDEX;
-  scene.compartments[0].core_masks = glm::uvec4(0);
-  scene.triangle_drops.clear();
-  scene.dropped_copies.clear();
-  scene.boundary_boxes.clear();
-  scene.mask_words.clear();
-  format::test::refresh_core_skip(scene);
-  const format::Package package = format::Package::from_bytes(format::test::build(scene));
+  const format::Package package = format::Package::from_bytes(format::test::build(format::test::medium_only_sample_scene()));
   const format::PackageView p(package);
   const CopyEnumerator copies(package);
   ASSERT_TRUE(copies.has_medium());
@@ -118,6 +109,12 @@ TEST(MediumRule, TheEnumeratorKeepsWhatTheRuleKeeps) {
   CopyOptions hidden;
   hidden.medium = false;
   EXPECT_FALSE(CopyEnumerator(package, hidden).has_medium());
+  // Its molecule type hidden, the medium is there and keeps nothing.
+  CopyOptions no_type;
+  no_type.visibility.hidden_molecule_types = {1, 1};
+  std::size_t left = 0;
+  CopyEnumerator(package, no_type).for_each_medium_copy(WorldBox::everything(), [&](const Copy&) { ++left; });
+  EXPECT_EQ(left, 0u);
 }
 
 }  // namespace
