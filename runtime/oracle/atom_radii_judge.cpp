@@ -32,7 +32,7 @@ double exit_distance(const WorldBox& box, const glm::dvec3& eye, const glm::dvec
 
 bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds, const glm::dvec3& eye,
                              const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,
-                             double largest_atom, std::span<const glm::dvec4> clip) {
+                             double largest_atom, std::span<const glm::dvec4> clip, double medium_ulps) {
   const bool background = test.atom == gpu::kNoHit;
   if (!background && !(std::isfinite(test.depth) && test.depth > 0)) return false;
   const glm::dvec3 dir = glm::normalize(direction);
@@ -47,14 +47,22 @@ bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds,
   constexpr double kChunk = 32.0;  // Å of ray per box query: keeps the boxes tight around the ray
   for (double t0 = 0.0; t0 < end && !blocked && !eye_inside; t0 += kChunk) {
     const glm::dvec3 a = eye + t0 * dir, b = eye + std::min(end, t0 + kChunk) * dir;
-    const WorldBox box{glm::min(a, b) - reach, glm::max(a, b) + reach};
+    // The medium's slack at the chunk's far end, the largest it reaches here.
+    const float far = float(std::min(end, t0 + kChunk));
+    const double box_reach = reach + medium_ulps * double(std::nextafter(far, INFINITY) - far);
+    const WorldBox box{glm::min(a, b) - box_reach, glm::max(a, b) + box_reach};
     scene.for_each_atom(box, [&](const AtomSample& s) {
       for (const glm::dvec4& h : clip)  // clipped atoms are not there, whatever their radius
         if (!(glm::dot(glm::dvec3(h), s.position) + h.w >= 0)) return;
       const glm::dvec3 oc = s.position - eye;
       const double tc = glm::dot(oc, dir);
       const double d2 = std::max(0.0, glm::dot(oc, oc) - tc * tc);
-      const double grown = s.radius * (1 + epsilon), shrunk = s.radius * (1 - epsilon);
+      double slack = 0;
+      if (medium_ulps > 0 && s.copy->id.kind == placement::CopyKind::medium) {
+        const float distance = float(std::sqrt(glm::dot(oc, oc)));
+        slack = medium_ulps * double(std::nextafter(distance, INFINITY) - distance);
+      }
+      const double grown = s.radius * (1 + epsilon) + slack, shrunk = std::max(0.0, s.radius * (1 - epsilon) - slack);
       if (d2 >= grown * grown) return;
       const double entry_grown = tc - std::sqrt(grown * grown - d2);
       if (tc + grown <= 0) return;  // wholly behind the eye

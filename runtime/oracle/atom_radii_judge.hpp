@@ -25,8 +25,11 @@ namespace nano::oracle {
 // Never true when an atom meeting the ray is entered at t <= 0 (the eye inside or on it): the
 // device and the oracle may then disagree on what a hit means, and that is not a radius question.
 // `largest_atom`: the largest atom radius of the package (Å), bounding the search around the ray.
+// `medium_ulps`: float steps, at a medium atom's distance from the eye, by which that atom may stand
+// apart on the device, which places the medium relative to the eye's box in float (a 0.008 Å step
+// at 8·10^4 Å, where a pixel spans hundreds of Å); its radius is widened by that much both ways.
 bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds, const glm::dvec3& eye,
                              const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,
-                             double largest_atom, std::span<const glm::dvec4> clip = {});
+                             double largest_atom, std::span<const glm::dvec4> clip = {}, double medium_ulps = 0);
 
 }  // namespace nano::oracle

@@ -65,7 +65,7 @@ std::uint64_t ViewJudge::unexplained_pixels(const oracle::OracleRenderOptions& o
     const std::uint32_t x = std::uint32_t(i % width), y = std::uint32_t(i / width);
     if (!oracle::explained_by_atom_radii(scene_, bounds_, glm::dvec3(glm::vec3(camera.position)),
                                          glm::dvec3(gpu::camera_ray_direction(camera, x, y)), hits[i], kRadiusEpsilon,
-                                         largest_atom_, clip_))
+                                         largest_atom_, clip_, kPlacementUlps))
       ++unexplained;
   }
   return unexplained;

@@ -105,5 +105,31 @@ TEST_F(AtomRadiiJudge, EyeInsideAnAtomIsNeverExplained) {
   EXPECT_FALSE(oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, oracle::background_pixel(), kEpsilon, largest));
 }
 
+// The device places the medium relative to the eye's box in float, so 10^5 Å from the eye a medium
+// atom may stand a few float steps (0.0078 Å each) apart: medium_ulps widens it by that many.
+TEST(AtomRadiiJudgeMedium, FarMediumAtomsMayStandTheirFloatStepsApart) {
+  const TestPackage pkg{format::test::medium_only_sample_scene()};
+  const oracle::ExplicitScene scene(pkg.package);
+  const oracle::WorldBox bounds = oracle::scene_world_bounds(pkg.package, &scene);
+  Topmost top;
+  double largest = 0;
+  scene.for_each_atom(oracle::WorldBox::everything(), [&](const oracle::AtomSample& a) {
+    ASSERT_EQ(a.copy->id.kind, placement::CopyKind::medium);
+    largest = std::max(largest, a.radius);
+    if (a.position.z + a.radius > top.centre.z + top.radius || top.radius == 0) top = {a.position, a.radius, a.copy->number, a.atom};
+  });
+  ASSERT_GT(top.radius, 0);
+  constexpr double kFar = 1e5, kUlps = 4;
+  const double step = double(std::nextafter(float(kFar), INFINITY) - float(kFar));
+  const auto judge = [&](double above, double ulps) {
+    const glm::dvec3 eye = top.centre + glm::dvec3(-kFar, 0, above);
+    return oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, hit(top, kFar), kEpsilon, largest, {}, ulps);
+  };
+  const double just_beyond_radii = top.radius * (1 + kEpsilon) + kUlps * step / 2;
+  EXPECT_FALSE(judge(just_beyond_radii, 0));
+  EXPECT_TRUE(judge(just_beyond_radii, kUlps));
+  EXPECT_FALSE(judge(top.radius * (1 + kEpsilon) + 2 * kUlps * step, kUlps));  // beyond the steps too
+}
+
 }  // namespace
 }  // namespace nano::explicit_test
