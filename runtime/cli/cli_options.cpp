@@ -26,8 +26,9 @@ void add_variant_options(CLI::App& command, session::VariantOptions& o) {
                      "that fit half the scene's device memory become one TLAS instance each) | MB (that budget)")
       ->capture_default_str();
   command.add_option("--hide", o.hide,
-                     "leave out of the picture: medium (the scene's medium, e.g. the plasma between the cells; the pipeline "
-                     "then has no medium code); repeatable");
+                     "leave out of the picture: medium (the scene's medium, e.g. the plasma between the cells), a compartment "
+                     "(every instance of it) or a molecule type, by its name in the scene (compartment:NAME or molecule:NAME "
+                     "where both share it); a wrong name lists the package's names; repeatable");
   command.add_flag("--no-pipeline-cache", o.no_pipeline_cache,
                    "neither read nor write the compiled-pipeline cache ($XDG_CACHE_HOME or ~/.cache, folder nanouniverse): "
                    "every run compiles its shaders afresh (for measurements)");

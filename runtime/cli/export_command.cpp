@@ -1,10 +1,12 @@
 // `nanoview export PKG --box xmin,ymin,zmin,xmax,ymax,zmax -o FILE.csv|.pdb|.cif`: every atom of the
 // package inside a world box, computed by the explicit-instancing oracle (no GPU).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "common/error.hpp"
 #include "format/validator.hpp"
@@ -38,11 +40,16 @@ void add_export_command(CLI::App& app) {
   cmd->add_option("PKG", *file, "package (.nup)")->required();
   cmd->add_option("--box", *box, "world box in Å: xmin,ymin,zmin,xmax,ymax,zmax")->required();
   cmd->add_option("-o,--output", *out, "output file: .csv, .pdb or .cif (written atomically)")->required();
-  cmd->callback([file, box, out] {
+  auto hide = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--hide", *hide, "leave out: medium, a compartment or a molecule type, by name (as render --hide); repeatable");
+  cmd->callback([file, box, out, hide] {
     const oracle::WorldBox world = parse_box(*box);
     const oracle::AtomFormat format = oracle::atom_format_of(*out);
     const format::Package package = format::open_validated(*file);
-    const oracle::ExplicitScene scene(package);
+    oracle::ExplicitSceneOptions options;
+    options.medium = std::find(hide->begin(), hide->end(), "medium") == hide->end();
+    options.visibility = placement::resolve_hidden(package, *hide);
+    const oracle::ExplicitScene scene(package, options);
     const oracle::ExportCounts n = oracle::export_atoms(scene, world, *out, format);
     std::printf("%s: %llu copies, %llu atoms\n", out->c_str(), static_cast<unsigned long long>(n.copies),
                 static_cast<unsigned long long>(n.atoms));

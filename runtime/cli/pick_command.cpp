@@ -56,7 +56,7 @@ void add_pick_command(CLI::App& app) {
       // jittered copies, clipped atoms (AO and shadows change colours only).
       const render::EffectSettings effects = o->effects.settings(package);
       session::OracleEffects oracle_view = session::oracle_effects(package, effects);
-      oracle_view.scene.medium = o->variant.render_settings().show_medium;
+      session::hide_from_oracle(package, o->variant.render_settings(), oracle_view.scene);
       const oracle::ExplicitScene scene(package, oracle_view.scene);
       oracle::OracleRenderOptions render_options;
       render_options.clip = oracle_view.clip;

@@ -77,7 +77,7 @@ void run_verify(const VerifyOptions& o) {
   settings.effects = o.effects.settings(session.package);
   // The oracle sees what the effects change: moved instances, jittered copies, clipped atoms.
   session::OracleEffects oracle_view = session::oracle_effects(session.package, settings.effects);
-  oracle_view.scene.medium = settings.show_medium;  // --hide medium hides it from both sides
+  session::hide_from_oracle(session.package, settings, oracle_view.scene);  // --hide hides from both sides
   const oracle::ExplicitScene scene(session.package, oracle_view.scene);
   if (settings.effects.flag(EffectId::ambient_occlusion) || settings.effects.flag(EffectId::shadows))
     std::fprintf(stderr, "verify: ambient occlusion and shadows change colours only; the ids compared here do not see them\n");

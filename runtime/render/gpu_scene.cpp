@@ -967,7 +967,8 @@ struct GpuScene::Impl : format::PackageView {
       const vec3 hi(eye_c);
       render_instances[i].eye_hi = glm::vec4(hi, 0.f);
       render_instances[i].eye_lo = glm::vec4(vec3(eye_c - dvec3(hi)), 0.f);
-      unsorted.push_back(vk::make_instance(compartment_blas[ci.compartment], m, i));
+      const std::uint8_t mask = visibility.compartment_hidden(ci.compartment) ? 0x00 : 0xFF;  // rays query with 0xFF
+      unsorted.push_back(vk::make_instance(compartment_blas[ci.compartment], m, i, mask));
       const auto& [lo, hi_c] = compartment_bounds[ci.compartment];
       dvec3 w_lo(INFINITY), w_hi(-INFINITY);
       for (int corner = 0; corner < 8; ++corner) {
@@ -1006,6 +1007,18 @@ struct GpuScene::Impl : format::PackageView {
     render_medium_buffer.write(std::as_bytes(std::span(&render_medium, 1)));
   }
   bool moved_medium = false;  // the medium's records follow moved instances (animation)
+
+  placement::Visibility visibility;
+  void set_visibility(const placement::Visibility& v) {
+    if (v == visibility) return;
+    visibility = v;
+    std::vector<gpu::RenderLevel> shown = level_records;
+    for (std::uint32_t t = 0; t < molecules.size(); ++t)
+      if (v.molecule_type_hidden(t)) shown[t].count = shown[first_bead + t].count = 0;
+    report.memory.derived -= level_buffer.size();
+    level_buffer = storage(std::as_bytes(std::span(shown)));
+    report.memory.derived += level_buffer.size();
+  }
 };
 
 GpuScene::GpuScene(const vk::Device& device, const format::Package& package, const SceneOptions& options)
@@ -1046,6 +1059,8 @@ void GpuScene::write_descriptors(VkDescriptorSet set) const {
   vk::write_storage_buffer(d, set, gpu::NANO_B_FLAT_COPIES, flat ? s.flat->copy_records() : s.flat_placeholder);
   vk::write_storage_buffer(d, set, gpu::NANO_B_FLAT_TRIANGLES, s.flat_triangle_buffer);
 }
+
+void GpuScene::set_visibility(const placement::Visibility& visibility) { impl_->set_visibility(visibility); }
 
 void GpuScene::set_flatten(std::uint64_t bytes, const gpu::Camera& camera, bool both_sides, std::uint64_t new_copies) {
   impl_->flatten_new_copies = new_copies;

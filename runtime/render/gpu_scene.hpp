@@ -16,6 +16,7 @@
 
 #include "format/package.hpp"
 #include "format/package_view.hpp"
+#include "runtime/placement/visibility.hpp"
 #include "runtime/vk/acceleration_structure.hpp"
 #include "runtime/vk/buffer.hpp"
 #include "runtime/vk/device.hpp"
@@ -88,6 +89,12 @@ public:
   // `new_copies`: FlatLevel::select's bound on copies enumerated per set_eye.
   void set_flatten(std::uint64_t bytes, const gpu::Camera& camera, bool both_sides,
                    std::uint64_t new_copies = ~std::uint64_t{0});
+  // What the next frames leave out (--hide): a hidden compartment's instances get µLAS mask 0 from
+  // the next set_eye on, so no ray meets them; a hidden molecule type's nLAS and bead level read as
+  // empty (RenderLevel.count 0). The medium's exclusion stays: a hidden cell keeps its place empty.
+  // The flat level must be off while anything is hidden (it holds copies of every type).
+  void set_visibility(const placement::Visibility& visibility);
+
   // The flat level's RenderFrame.flat_eye for a camera at world position `eye` (w = 0: empty level).
   glm::vec4 flat_eye(const glm::dvec3& eye) const;
 

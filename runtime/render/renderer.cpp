@@ -1,5 +1,6 @@
 #include "runtime/render/renderer.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <future>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "runtime/placement/visibility.hpp"
 #include "runtime/render/animation.hpp"
 #include "runtime/render/pixel_outputs.hpp"
 #include "runtime/vk/compute_pipeline.hpp"
@@ -29,6 +31,7 @@ struct Variant {
   bool exact_prism, replication_las, two_level, no_effect_code, eye_from_host, world_space_ulas, counters, lod, flat;
   bool large_areas;  // of the scene, not of the settings: GpuScene::has_large_replication_areas
   bool medium;       // the scene has a medium (GpuScene::has_medium) and the settings show it
+  bool hidden_types;  // some molecule type is hidden (RenderSettings::hidden)
   std::array<bool, kEffectCount> effects;  // compiled in, per row of the effect table
   bool code(EffectId id) const { return effects[static_cast<std::size_t>(id)]; }
   bool image_pass() const {
@@ -38,7 +41,7 @@ struct Variant {
   }
   auto key() const {
     return std::tuple(exact_prism, replication_las, two_level, no_effect_code, effects, eye_from_host, world_space_ulas, counters,
-                      lod, flat, large_areas, medium);
+                      lod, flat, large_areas, medium, hidden_types);
   }
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
@@ -53,7 +56,8 @@ bool compiled_in(const EffectSettings& e, const EffectDeclaration& effect) {
   return true;
 }
 
-Variant variant_of(const RenderSettings& s, bool large_areas, bool medium) {
+// `hidden`: what the settings' hidden names resolve to in the scene.
+Variant variant_of(const RenderSettings& s, bool large_areas, bool medium, const placement::Visibility& hidden = {}) {
   std::array<bool, kEffectCount> effects{};
   if (!s.without_effect_code)
     for (const EffectDeclaration& effect : effect_table()) effects[static_cast<std::size_t>(effect.id)] = compiled_in(s.effects, effect);
@@ -61,8 +65,8 @@ Variant variant_of(const RenderSettings& s, bool large_areas, bool medium) {
   return {s.exact_prism, s.replication_las && !s.two_level, s.two_level, s.without_effect_code,
           s.precision == Precision::two_float_eye, s.precision == Precision::world, !s.without_effect_code && s.counters,
           !s.without_effect_code && s.lod_pixels > 0,
-          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world, large_areas,
-          medium && s.show_medium, effects};
+          s.flatten_bytes > 0 && !jitter && !s.two_level && s.precision != Precision::world && !hidden.hides_anything(), large_areas,
+          medium && s.show_medium, hidden.hides_molecule_types(), effects};
 }
 
 std::string name_of(const Variant& v) {
@@ -81,6 +85,7 @@ std::string name_of(const Variant& v) {
   add(v.flat, "flat");
   add(!v.large_areas, "small_areas");
   add(v.medium, "medium");
+  add(v.hidden_types, "hidden_types");
   for (const EffectDeclaration& effect : effect_table()) add(v.code(effect.id), std::string(effect.name).c_str());
   add(v.counters, "counters");
   add(v.lod, "lod");
@@ -119,6 +124,7 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   desc.specialization.set_bool(gpu::NANO_SPEC_FLAT, v.flat);
   desc.specialization.set_bool(gpu::NANO_SPEC_LARGE_REPLICATION_AREAS, v.large_areas);
   desc.specialization.set_bool(gpu::NANO_SPEC_MEDIUM, v.medium);
+  desc.specialization.set_bool(gpu::NANO_SPEC_HIDDEN_TYPES, v.hidden_types);
   if (!v.no_effect_code) {
     for (const EffectDeclaration& effect : effect_table())
       if (effect.spec_constant >= 0) desc.specialization.set_bool(effect.spec_constant, v.code(effect.id));
@@ -210,17 +216,21 @@ struct Renderer::Impl {
     set_settings(r);
   }
 
+  // Names resolved for every call with other settings (prepare, ready); a few string compares.
   Variant variant(const RenderSettings& r) const {
-    return variant_of(r, scene.has_large_replication_areas(), scene.has_medium());
+    const placement::Visibility hidden = &r == &settings ? visibility : placement::resolve_hidden(scene.package(), r.hidden);
+    return variant_of(r, scene.has_large_replication_areas(), scene.has_medium(), hidden);
   }
+  placement::Visibility visibility;  // settings.hidden resolved
 
   void set_settings(const RenderSettings& r) {
     check(r);
     if (r.lod_pixels > 0 && !scene.has_beads())
       throw std::invalid_argument(scene.package().name() +
                                   ": no beads (baked before format 2.5), so no level of detail: bake it again, or --lod off");
+    visibility = placement::resolve_hidden(scene.package(), r.hidden);
     settings = r;
-    const Variant v = variant(r);
+    const Variant v = variant(settings);
     if (const auto b = building.find(v); b != building.end()) {
       std::future<std::unique_ptr<Pipeline>> pending = std::move(b->second.pipeline);
       building.erase(b);
@@ -306,6 +316,7 @@ struct Renderer::Impl {
     pending.reset();
     const auto start = std::chrono::steady_clock::now();
     const glm::dvec3 eye = ulas_origin(camera);
+    scene.set_visibility(visibility);
     scene.set_flatten(flatten_budget(), camera, variant(settings).code(EffectId::clipping), settings.flatten_new_copies);
     if (settings.effects.flag(EffectId::animation)) {
       const std::vector<format::InstanceTransform> moved = animated_instance_transforms(scene.package(), settings.effects.time);
@@ -414,6 +425,20 @@ Renderer::PipelineBuild Renderer::pipeline_build() const {
   const Pipeline& p = *impl_->pipelines.at(v);
   const vk::SpirvCode code = shader_code(v);
   return {name_of(v), code.word_count * sizeof(std::uint32_t), count_ray_query_loops(code), p.create_seconds, p.first_dispatch_seconds};
+}
+
+bool shown(const RenderSettings& settings, const std::string& name) {
+  if (name == "medium") return settings.show_medium;
+  return std::find(settings.hidden.begin(), settings.hidden.end(), name) == settings.hidden.end();
+}
+
+void set_shown(RenderSettings& settings, const std::string& name, bool show) {
+  if (name == "medium") {
+    settings.show_medium = show;
+    return;
+  }
+  std::erase(settings.hidden, name);
+  if (!show) settings.hidden.push_back(name);
 }
 
 // The settings' part of the name: the scene's part (small_areas) shows in pipeline_build().

@@ -46,7 +46,16 @@ struct RenderSettings {
   // Trace the scene's medium (its plasma) when it has one; false shows the cells alone, and the
   // pipeline then has no medium code at all (--hide medium).
   bool show_medium = true;
+  // Compartments and molecule types left out of the picture, by name (--hide; placement/visibility.hpp
+  // resolves them against the package and says which names it has). A hidden compartment's instances
+  // are masked out of the µLAS (no shader cost); hiding a molecule type compiles a variant that drops
+  // its candidates; either turns the flat level off.
+  std::vector<std::string> hidden;
 };
+// Whether `name` ("medium", or a name RenderSettings::hidden takes) is in the picture, and switching
+// it (the viewer's panel and script).
+bool shown(const RenderSettings& settings, const std::string& name);
+void set_shown(RenderSettings& settings, const std::string& name, bool shown);
 inline constexpr std::uint64_t kFlattenAuto = ~std::uint64_t{0};
 
 struct Frame {

@@ -58,9 +58,10 @@ render::RenderSettings VariantOptions::render_settings() const {
   s.two_level = levels == "2";
   s.lod_pixels = parse_lod(lod);
   s.flatten_bytes = parse_flatten(flatten);
+  // Names beyond "medium" are the package's: Renderer and hide_from_oracle resolve them.
   for (const std::string& what : hide) {
-    if (what != "medium") throw InputError("--hide", "", "expected medium (the plasma between the cells), got '" + what + "'");
-    s.show_medium = false;
+    if (what == "medium") s.show_medium = false;
+    else s.hidden.push_back(what);
   }
   return s;
 }
@@ -114,6 +115,11 @@ OracleEffects oracle_effects(const format::Package& package, const render::Effec
   if (effects.flag(EffectId::clipping)) o.clip = render::clip_half_spaces(effects.clipping);
   o.scene.clip = o.clip;
   return o;
+}
+
+void hide_from_oracle(const format::Package& package, const render::RenderSettings& settings, oracle::ExplicitSceneOptions& scene) {
+  scene.medium = settings.show_medium;
+  scene.visibility = placement::resolve_hidden(package, settings.hidden);
 }
 
 namespace {

@@ -87,6 +87,9 @@ struct OracleEffects {
   std::vector<glm::dvec4> clip;
 };
 OracleEffects oracle_effects(const format::Package& package, const render::EffectSettings& effects);
+// What the settings hide (--hide: the medium, compartments, molecule types), for the oracle as the
+// renderer hides it. Throws InputError naming --hide for a name the package does not have.
+void hide_from_oracle(const format::Package& package, const render::RenderSettings& settings, oracle::ExplicitSceneOptions& scene);
 
 // Wall-clock seconds of each step of opening a session (bench's load time by stage).
 struct SessionTimings {

@@ -68,6 +68,9 @@ layout(constant_id = NANO_SPEC_WORLD_SPACE_ULAS) const bool kWorldSpaceUlas = fa
 layout(constant_id = NANO_SPEC_FLAT) const bool kFlat = false;
 // The scene's medium is traced (it has one, and it is shown): the walk of trace_medium.
 layout(constant_id = NANO_SPEC_MEDIUM) const bool kMedium = false;
+// Some molecule type is hidden (--hide): its levels read as empty, and candidates of its type are
+// dropped at once.
+layout(constant_id = NANO_SPEC_HIDDEN_TYPES) const bool kHiddenTypes = false;
 #ifdef NANO_NO_EFFECTS
 const bool kClipping = false;
 const bool kJitter = false;
@@ -190,6 +193,9 @@ Affine3 jittered(Affine3 m, uvec2 number) {
   return jitter_placement(m, jitter_rotation(number, p.y, p.z, p.w));
 }
 
+// A hidden type (kHiddenTypes): GpuScene::set_visibility emptied its level.
+bool type_hidden(uint type) { return kHiddenTypes && levels[type].count == 0u; }
+
 // Nearest atom of molecule type `type` placed by `m` (compartment space) on the ray (o, d) within
 // [t_lo, best_t] (t_lo: where the copy can begin along the ray, 0 when unknown); o is the
 // compartment-space eye (high part). Updates best_t, best.atom and best_normal_c; true iff it found
@@ -276,6 +282,7 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
     uint m = orders[level.order_first + 2u * p];
     uint a = orders[level.order_first + 2u * p + 1u];
     MoleculeInstance mi = instances[first + m];
+    if (type_hidden(mi.molecule_type)) continue;
     vec4 cr = atoms[a].centre_radius;
     vec3 centre = mi.position.xyz + quat_rotate(mi.rotation, cr.xyz);
     float tn;
@@ -505,6 +512,7 @@ bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool
       continue;
     }
     MoleculeInstance mi = instances[first + m];
+    if (type_hidden(mi.molecule_type)) continue;
     Affine3 placement;
     uvec2 number;
     if (membrane) {
@@ -640,6 +648,7 @@ bool trace_medium_box(ivec3 ijk, vec3 o, vec3 d) {
     if (p >= level.count) continue;
     uint m = orders[level.order_first + p];
     MoleculeInstance mi = instances[first + m];
+    if (type_hidden(mi.molecule_type)) continue;
     float r = molecules[mi.molecule_type].aabb_min.w;
     // The ray must meet the copy's sphere before the keep rule's query is worth asking.
     if (!sphere_intersect(o, d, box_min + mi.position.xyz, r, tn, tf) || tf < 0.0 || tn > best_t) continue;

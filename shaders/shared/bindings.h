@@ -78,6 +78,9 @@ NANO_CONST int NANO_SPEC_OUTLINES = 12;
 NANO_CONST int NANO_SPEC_LARGE_REPLICATION_AREAS = 13;
 // The package has a medium and it is shown (GpuScene::has_medium, RenderSettings::show_medium).
 NANO_CONST int NANO_SPEC_MEDIUM = 14;
+// Some molecule type is hidden (--hide; its levels have count 0): candidates of a hidden type are
+// dropped before their placement, ownership or keep query is computed.
+NANO_CONST int NANO_SPEC_HIDDEN_TYPES = 15;
 
 // shaders/explicit_instancing/instanced.comp, set 0 (explicit instancing: runtime/explicit_instancing/).
 NANO_CONST uint NANO_IB_TLAS = 0u;  // one instance per copy; every other binding is a storage buffer
