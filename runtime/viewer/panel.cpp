@@ -147,10 +147,28 @@ bool parameter_widget(const EffectParameter& p, glm::dvec3& value) {
   return false;
 }
 
+// One switch per thing the scene can leave out: its medium, each compartment (all its instances),
+// each molecule type wherever it stands; the names render --hide takes.
+void show_section(ViewerState& s, const PanelContext& c) {
+  if (c.hideable.empty() || !ImGui::CollapsingHeader("show")) return;
+  using Kind = placement::HideableName::Kind;
+  for (const placement::HideableName& n : c.hideable) {
+    const bool shared = placement::hideable_matches(c.hideable, n.name) > 1;
+    const std::string name = shared ? std::string(n.kind == Kind::compartment ? "compartment:" : "molecule:") + n.name : n.name;
+    const std::string label = n.kind == Kind::medium        ? "medium (between the compartments)"
+                              : n.kind == Kind::compartment ? "compartment " + n.name + " (every instance)"
+                                                            : "molecule " + n.name;
+    bool on = render::shown(s.settings, name);
+    if (ImGui::Checkbox(label.c_str(), &on)) {
+      render::set_shown(s.settings, name, on);
+      s.touch();
+    }
+  }
+}
+
 void effects_section(ViewerState& s, const PanelContext& c) {
   if (!ImGui::CollapsingHeader("effects")) return;
   render::EffectSettings& e = s.settings.effects;
-  if (c.has_medium && ImGui::Checkbox("medium (the plasma between the cells)", &s.settings.show_medium)) s.touch();
   for (const EffectDeclaration& effect : effect_table())
     if (ImGui::Checkbox(std::string(effect.name).c_str(), &e.flag(effect.id))) s.touch();
   if (ImGui::TreeNode("clipping planes and box")) {
@@ -238,6 +256,7 @@ void draw_panel(ViewerState& s, const PanelContext& c) {
     // A script drives the state; the panel only shows it, so a stray click cannot change a screenshot.
     ImGui::BeginDisabled(c.scripted);
     camera_section(s, c);
+    show_section(s, c);
     effects_section(s, c);
     path_section(s);
     pick_section(s);

@@ -4,6 +4,9 @@
 // camera path (keyframe count, step, add/play/clear, file name, save/load), the last pick, the
 // screenshot button. It only edits ViewerState (touch() on every change that alters a frame; the
 // path's file buttons read and write through path_recording); the main loop decides what to render.
+#include <vector>
+
+#include "runtime/placement/visibility.hpp"
 #include "runtime/render/gpu_scene.hpp"
 #include "runtime/viewer/camera_controller.hpp"
 #include "runtime/viewer/viewer_state.hpp"
@@ -14,7 +17,7 @@ struct PanelContext {
   const render::LoadReport* load = nullptr;  // device memory
   Bounds bounds;                             // slider ranges for planes and the clip box
   bool scripted = false;                     // the script drives the camera; the panel only shows
-  bool has_medium = false;                   // the scene has a medium: a switch to show it or not
+  std::vector<placement::HideableName> hideable;  // the scene's medium, compartments and molecule types: a switch each
 };
 
 // Issues the panel's widgets (between Overlay::begin_frame and end_frame).

@@ -157,9 +157,10 @@ ScriptCommand parse_line(std::string_view line) {
   } else if (word == "show" || word == "hide") {
     std::string_view tail;
     const std::string_view what = next_word(rest, tail);
-    if (what != "medium") throw std::invalid_argument(std::string(word) + " expects medium, got '" + std::string(what) + "'");
-    expect_no_more(tail, std::string(word) + " medium");
-    c.kind = K::show_medium;
+    if (what.empty()) throw std::invalid_argument(std::string(word) + " expects medium or the name of a compartment or molecule type");
+    expect_no_more(tail, std::string(word) + " NAME");
+    c.kind = K::show;
+    c.text = std::string(what);
     c.on = word == "show";
   } else if (word == "time") {
     std::string_view tail;
@@ -244,6 +245,18 @@ Script load_script(const std::filesystem::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return parse_script(text.str(), path.string());
+}
+
+void check_show_names(const Script& script, std::span<const placement::HideableName> names) {
+  for (const ScriptCommand& c : script.commands) {
+    if (c.kind != ScriptCommand::Kind::show) continue;
+    if (placement::hideable_matches(names, c.text) == 1) continue;
+    throw InputError(script.file, "line " + std::to_string(c.line),
+                     std::string(c.on ? "show" : "hide") + " '" + c.text + "': " +
+                         (placement::hideable_matches(names, c.text) == 0 ? "the package has no such name; it has: "
+                                                                           : "ambiguous; qualify it: ") +
+                         placement::hideable_listing(names));
+  }
 }
 
 }  // namespace nano::viewer

@@ -10,7 +10,8 @@
 //   clip box x0,y0,z0,x1,y1,z1                   sets the clip box
 //   clip off                                     removes every plane and the box
 //   effect NAME on|off                           NAME one of the effect table's names (common/effect_table.hpp)
-//   show medium | hide medium                    the scene's medium (its plasma) in the picture or not
+//   show NAME | hide NAME                        NAME: medium (the scene's plasma), a compartment or a molecule
+//                                                type of the package (as render --hide), in the picture or not
 //   time SECONDS                                 animation / jitter time
 //   wait N                                       renders N frames
 //   pick X Y                                     prints the pixel's describe_hit JSON (one line)
@@ -34,6 +35,9 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+#include <span>
+
+#include "runtime/placement/visibility.hpp"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -42,15 +46,15 @@ namespace nano::viewer {
 
 struct ScriptCommand {
   enum class Kind {
-    camera, clip_plane, clip_box, clip_off, effect, show_medium, time, wait, pick, screenshot, size,
+    camera, clip_plane, clip_box, clip_off, effect, show, time, wait, pick, screenshot, size,
     keyframe, path_save, path_load, path_clear, path_frame, path_play, quit
   };
   Kind kind = Kind::quit;
   std::size_t line = 0;        // 1-based line in the script, for errors found while running
-  std::string text;            // camera: the spec; effect: the name; screenshot, path save/load: the file
+  std::string text;            // camera: the spec; effect, show: the name; screenshot, path save/load: the file
   glm::dvec4 plane{0.0};       // clip_plane
   std::pair<glm::dvec3, glm::dvec3> box{};  // clip_box
-  bool on = false;             // effect; show_medium: shown
+  bool on = false;             // effect; show: shown
   double seconds = 0;          // time, keyframe
   std::uint32_t count = 0;     // wait
   std::uint32_t x = 0, y = 0;  // pick: pixel; size: width, height
@@ -66,6 +70,9 @@ struct Script {
 Script parse_script(std::string_view text, const std::string& file);
 // Reads and parses; InputError naming the path when it cannot be read.
 Script load_script(const std::filesystem::path& path);
+// Every show / hide names something of the package (`names`: placement::hideable_names), so a typo
+// fails before the window opens: InputError(file, "line N", the names there are).
+void check_show_names(const Script& script, std::span<const placement::HideableName> names);
 
 
 }  // namespace nano::viewer

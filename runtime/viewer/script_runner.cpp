@@ -44,8 +44,8 @@ void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
       render::set_effect(effects, c.text, c.on);
       s.touch();
       break;
-    case K::show_medium:
-      s.settings.show_medium = c.on;
+    case K::show:
+      render::set_shown(s.settings, c.text, c.on);
       s.touch();
       break;
     case K::time:

@@ -70,6 +70,7 @@ public:
                  session::PresentationOptions{window_.required_instance_extensions(), {VK_KHR_SWAPCHAIN_EXTENSION_NAME},
                                            [this](VkInstance instance) { return window_.create_surface(instance); }}),
         bounds_(scene_bounds(session_.package)),
+        hideable_(placement::hideable_names(session_.package)),
         state_(CameraController(session::camera_option(session_.package, options.camera), bounds_.radius()), settings) {
     settings.effects = options.effects.settings(session_.package);
     state_.settings = settings;
@@ -78,7 +79,10 @@ public:
       state_.path.path = std::move(*path);
       state_.path.file = options.path;  // "Save path" writes the edited path back where it came from
     }
-    if (script_) fixed_size_ = options.size.value_or(kDefaultSize);
+    if (script_) {
+      check_show_names(*script_, hideable_);
+      fixed_size_ = options.size.value_or(kDefaultSize);
+    }
     presenter_ = std::make_unique<Presenter>(session_.device, session_.surface.handle(), window_);
     overlay_ = std::make_unique<Overlay>(window_, session_.instance.handle(), session_.device, *presenter_);
     presenter_->on_recreate = [this](std::uint32_t count) { overlay_->set_min_image_count(count); };
@@ -334,7 +338,7 @@ private:
   }
 
   PanelContext panel_context() const {
-    return PanelContext{&session_.scene->report(), bounds_, fixed_size_.has_value(), session_.scene->has_medium()};
+    return PanelContext{&session_.scene->report(), bounds_, fixed_size_.has_value(), hideable_};
   }
 
   void pick(double x, double y) {
@@ -495,6 +499,7 @@ private:
   Window window_;
   session::RenderSession session_;
   Bounds bounds_;
+  std::vector<placement::HideableName> hideable_;  // what the panel's "show" switches and scripts may name
   ViewerState state_;
   std::unique_ptr<Presenter> presenter_;
   std::unique_ptr<Overlay> overlay_;

@@ -89,12 +89,35 @@ TEST(Script, ParsesKeyframeAndPathCommands) {
   EXPECT_EQ(s.commands[7].line, 8u);
 }
 
-TEST(Script, ShowsAndHidesTheMedium) {
-  const Script s = parse_script("hide medium\nshow medium\n", "s");
-  ASSERT_EQ(s.commands.size(), 2u);
-  EXPECT_EQ(s.commands[0].kind, ScriptCommand::Kind::show_medium);
+TEST(Script, ShowsAndHidesByName) {
+  const Script s = parse_script("hide medium\nshow medium\nhide red_cell\n", "s");
+  ASSERT_EQ(s.commands.size(), 3u);
+  EXPECT_EQ(s.commands[0].kind, ScriptCommand::Kind::show);
+  EXPECT_EQ(s.commands[0].text, "medium");
   EXPECT_FALSE(s.commands[0].on);
   EXPECT_TRUE(s.commands[1].on);
+  EXPECT_EQ(s.commands[2].text, "red_cell");
+  EXPECT_FALSE(s.commands[2].on);
+}
+
+// The names are the package's: checked before the window opens, with the line and the names there are.
+TEST(Script, ShowNamesAreCheckedAgainstThePackage) {
+  using Kind = placement::HideableName::Kind;
+  const std::vector<placement::HideableName> names{
+      {Kind::medium, "medium", {}}, {Kind::compartment, "red_cell", {0}}, {Kind::molecule_type, "POPC", {0, 3}},
+      {Kind::compartment, "band3", {1}}, {Kind::molecule_type, "band3", {2}}};
+  EXPECT_NO_THROW(check_show_names(parse_script("hide medium\nhide red_cell\nshow POPC\nhide molecule:band3\n", "s"), names));
+  try {
+    check_show_names(parse_script("wait 1\nhide red_cells\n", "s.txt"), names);
+    FAIL() << "a misspelt name passed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "s.txt");
+    EXPECT_EQ(e.where(), "line 2");
+    EXPECT_NE(e.rule().find("no such name"), std::string::npos) << e.rule();
+    EXPECT_NE(e.rule().find("compartment:red_cell"), std::string::npos) << e.rule();
+  }
+  EXPECT_THROW(check_show_names(parse_script("hide band3\n", "s"), names), InputError);  // compartment or molecule?
+  EXPECT_THROW(check_show_names(parse_script("hide medium\n", "s"), std::vector<placement::HideableName>{}), InputError);
 }
 
 TEST(Script, PartialCameraSpecIsAccepted) {
@@ -129,7 +152,8 @@ TEST(Script, ErrorsNameFileLineAndProblem) {
   expect_error("effect fog on\n", "line 1", "unknown effect 'fog'");
   expect_error("effect ao maybe\n", "line 1", "on or off");
   expect_error("effect ao\n", "line 1", "on or off");
-  expect_error("hide cells\n", "line 1", "hide expects medium, got 'cells'");
+  expect_error("hide\n", "line 1", "hide expects medium or the name");
+  expect_error("hide red cells\n", "line 1", "unexpected 'cells'");
   expect_error("show medium now\n", "line 1", "unexpected 'now'");
   expect_error("time -1\n", "line 1", "time");
   expect_error("time soon\n", "line 1", "time");
