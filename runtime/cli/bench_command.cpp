@@ -10,6 +10,8 @@
 //               view, with what counting costs
 //   --matrix    every knob of DESIGN.md's accuracy/time table against the default: time ratio and
 //               pixels differing from the CPU oracle (JSON, Markdown table, SVG plot)
+//   --medium    the scene's medium (plasma) on and off at the scene camera and a close-up: frame
+//               times alternately and the work per pixel of all four (bench_medium.hpp)
 //   --compile   every pipeline variant the package's effects and the command-line knobs can select,
 //               built cold (no Mesa shader cache, no pipeline cache of ours): SPIR-V size, traversal
 //               loops, vkCreateComputePipelines and first-dispatch time
@@ -33,6 +35,7 @@
 #include "runtime/session/accuracy_matrix.hpp"
 #include "runtime/bench/frame_stats.hpp"
 #include "runtime/bench/svg_plot.hpp"
+#include "runtime/cli/bench_medium.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/oracle/explicit_scene.hpp"
 #include "runtime/oracle/oracle_render.hpp"
@@ -53,7 +56,8 @@ struct Options {
   std::string package, size, camera, path, json, markdown, plot;
   unsigned frames = 0;
   unsigned matrix_cameras = 4;
-  bool effects = false, matrix = false, explicit_instancing = false, counters = false, compile = false;
+  bool effects = false, matrix = false, explicit_instancing = false, counters = false, compile = false, medium = false;
+  std::string close_up;  // --medium's close-up camera (empty: chosen on the scene camera's axis)
   bool warm = false;  // with --compile: the caches as they are (the rows checked, not measured cold)
   session::VariantOptions variant;
   session::EffectOptions effect_options;
@@ -434,6 +438,17 @@ void run_counters(const Options& o, session::RenderSession& session, nlohmann::o
     std::printf("explicit instancing left out: %s\n", r.explicit_skipped.c_str());
 }
 
+void run_medium(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
+  MediumBenchOptions m;
+  if (!o.size.empty()) m.size = o.size;
+  if (o.frames) m.rounds = o.frames;
+  m.scene_camera = o.camera;
+  m.close_up = o.close_up;
+  m.settings = o.variant.render_settings();
+  m.settings.effects = o.effect_options.settings(session.package);
+  run_medium_bench(m, session, out);
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
@@ -457,6 +472,11 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--warm", o->warm,
                 "with --compile: leave the driver's shader cache and ours as they are (lists and builds the rows; "
                 "the times are then not cold)");
+  cmd->add_flag("--medium", o->medium,
+                "the scene's medium on and off at the scene camera (--camera) and a close-up in it: frame times and the "
+                "work per pixel at every level (default 128x128, 5 rounds)");
+  cmd->add_option("--close-up", o->close_up,
+                  "with --medium: the close-up's camera (default: 600 Å before the first atom on the scene camera's axis)");
   cmd->add_flag("--matrix", o->matrix, "every accuracy knob against the default: time ratio and pixels differing from the oracle");
   cmd->add_option("--matrix-cameras", o->matrix_cameras, "verify views of the matrix")->capture_default_str()->check(CLI::Range(1u, 16u));
   cmd->add_option("--markdown", o->markdown, "with --matrix: write the table as Markdown");
@@ -464,8 +484,9 @@ void add_bench_command(CLI::App& app) {
   add_variant_options(*cmd, o->variant);
   add_effect_options(*cmd, o->effect_options);
   cmd->callback([o] {
-    if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) + int(o->counters) + int(o->compile) > 1)
-      throw InputError("--effects/--matrix/--explicit/--counters/--compile", "", "choose one mode");
+    if (int(o->effects) + int(o->matrix) + int(o->explicit_instancing) + int(o->counters) + int(o->compile) + int(o->medium) > 1)
+      throw InputError("--effects/--matrix/--explicit/--counters/--compile/--medium", "", "choose one mode");
+    if (!o->close_up.empty() && !o->medium) throw InputError("--close-up", "", "needs --medium");
     if ((!o->markdown.empty() || !o->plot.empty()) && !o->matrix) throw InputError("--markdown/--plot", "", "need --matrix");
     session::SessionOptions session_options = o->variant.scene_options();
     if (o->warm && !o->compile) throw InputError("--warm", "", "needs --compile");
@@ -480,13 +501,14 @@ void add_bench_command(CLI::App& app) {
     out["package_bytes"] = session.package.file_size();
     out["device"] = session.device.description();
     out["mode"] = o->effects ? "effects" : o->matrix ? "matrix" : o->explicit_instancing ? "explicit" : o->counters ? "counters"
-                  : o->compile ? "compile" : "frames";
+                  : o->compile ? "compile" : o->medium ? "medium" : "frames";
     std::printf("%s on %s\n", o->package.c_str(), session.device.description().c_str());
     if (o->effects) run_effects(*o, session, out);
     else if (o->matrix) run_matrix(*o, session, out);
     else if (o->explicit_instancing) run_explicit(*o, session, out);
     else if (o->counters) run_counters(*o, session, out);
     else if (o->compile) run_compile(*o, session, out);
+    else if (o->medium) run_medium(*o, session, out);
     else run_frames(*o, session, out);
     out["validation_errors"] = session.validation_errors();
     if (!o->json.empty()) write_text(o->json, out.dump(2) + "\n");
