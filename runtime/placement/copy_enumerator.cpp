@@ -76,6 +76,9 @@ struct CompartmentPlan {
   Aabb cube_reach;            // cube-space bounds of every cube's molecule spheres
   Aabb bound;                 // compartment space: everything any copy can reach
   double tolerance = 0;       // slack for float rounding of the placement, Å
+  // Per local triangle, where the copies it owns can reach (walk_membrane says how): computed once,
+  // so a small query culls a triangle by one box test instead of building its chart.
+  std::vector<Aabb> triangle_reach;
 };
 
 struct InstancePlan {
@@ -254,7 +257,24 @@ struct CopyEnumerator::Impl : format::PackageView {
     // culling only needs to stay conservative, so the slack is generous.
     plan.tolerance = 1e-3 * magnitude;
     plan.bound = plan.bound.grown(plan.tolerance);
+    if (plan.membrane) plan.triangle_reach = triangle_reaches(mesh, plan);
     return plan;
+  }
+
+  // A copy a triangle owns sits over the triangle (its uv_m lies in the UV triangle), lifted off it
+  // by the smooth surface's bulge and at most |z| along the unit normal, its atoms within the type
+  // radius: the triangle's AABB grown by that (and the tolerance).
+  std::vector<Aabb> triangle_reaches(const gpu::Mesh& mesh, const CompartmentPlan& plan) const {
+    std::vector<Aabb> reaches(mesh.triangle_count);
+    for (std::uint32_t tl = 0; tl < mesh.triangle_count; ++tl) {
+      const gpu::Triangle& tri = triangles[mesh.first_triangle + tl];
+      double lift = plan.smooth > 0 ? double(gpu::chart_smooth_bulge(make_chart(mesh, tri), plan.smooth)) : 0.0;
+      if (!std::isfinite(lift)) lift = 0.0;  // a degenerate triangle: owns nothing
+      Aabb reach;
+      for (std::uint32_t v : {tri.v0, tri.v1, tri.v2}) reach.add(dvec3(vertex(mesh.first_vertex, v)));
+      reaches[tl] = reach.grown(plan.membrane_reach + lift + plan.tolerance);
+    }
+    return reaches;
   }
 
   // Rules of docs/placement.md the validator leaves to placement: UVs on the 2^-24 grid with
@@ -361,17 +381,9 @@ struct CopyEnumerator::Impl : format::PackageView {
       const std::uint32_t t = mesh.first_triangle + tl;
       const gpu::Triangle& tri = triangles[t];
       const std::uint32_t f = mesh.first_vertex;
-      // A copy the triangle owns sits over the triangle (its uv_m lies in the UV triangle), lifted off
-      // it by the smooth surface's bulge and at most |z| along the unit normal, its atoms within the
-      // type radius: the triangle's AABB grown by that.
+      const Aabb& reach = plan.triangle_reach[tl];
+      if (!reach.meets(query) || reach.clipped_by_any(emit.local_clip)) continue;
       const gpu::TriangleChart chart = make_chart(mesh, tri);
-      double lift = plan.smooth > 0 ? double(gpu::chart_smooth_bulge(chart, plan.smooth)) : 0.0;
-      if (!std::isfinite(lift)) lift = 0.0;  // a degenerate triangle: owns nothing
-      Aabb reach;
-      for (std::uint32_t v : {tri.v0, tri.v1, tri.v2}) reach.add(dvec3(vertex(f, v)));
-      const double grow = plan.membrane_reach + lift + plan.tolerance;
-      if (!reach.grown(grow).meets(query)) continue;
-      if (reach.grown(grow).clipped_by_any(emit.local_clip)) continue;
       const vec2 t0 = vertex_uvs[f + tri.v0], t1 = vertex_uvs[f + tri.v1], t2 = vertex_uvs[f + tri.v2];
       if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) continue;
       const vec2 uv_min = glm::min(t0, glm::min(t1, t2)), uv_max = glm::max(t0, glm::max(t1, t2));
