@@ -63,6 +63,7 @@ struct VerifyOptions {
   session::VariantOptions variant;
   std::size_t cameras = 8;
   bool json = false;
+  bool oracle_rays = false;
   double require = 0.999;
   std::uint64_t max_unexplained = 0;
   std::string camera, ids;
@@ -91,7 +92,7 @@ void run_verify(const VerifyOptions& o) {
     if (!o.ids.empty()) given = render::read_ids(o.ids, w, h);
   }
 
-  const session::ViewJudge judge(session.package, scene, oracle_view.clip);
+  const session::ViewJudge judge(session.package, scene, oracle_view.clip, o.oracle_rays);
   oracle::CompareResult total;
   std::uint64_t total_unexplained = 0;
   nlohmann::json views = nlohmann::json::array();
@@ -147,6 +148,9 @@ void add_verify_command(CLI::App& app) {
                   "exit 1 when more differing pixels than this are not explained by changing atom radii by a "
                   "relative 1e-3 (all at once, or each on its own along the pixel's ray): grazing touches and float ties")
       ->capture_default_str();
+  cmd->add_flag("--oracle-rays", o->oracle_rays,
+                "the oracle traces each pixel's ray alone (no rounds over the view's pyramid): for a whole scene seen "
+                "from afar or a cut-away, which the rounds cannot hold");
   cmd->add_flag("--json", o->json, "print JSON (key `agreement`) instead of text");
   cmd->add_option("--camera", o->camera, "one view \"position=..;look_at=..;up=..;fov_degrees=..\" (aliases pos, at, fov) instead of the chosen set (keys left out keep the scene's)");
   cmd->add_option("--ids", o->ids, "judge this ids file (render --ids, a viewer screenshot) instead of rendering; needs --camera");

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
+#include <atomic>
 #include <unordered_set>
 
 #include "common/error.hpp"
@@ -388,6 +390,80 @@ std::vector<gpu::PixelHit> trace_medium(const ExplicitScene& scene, const format
   return image;
 }
 
+std::string count(double v);
+
+// Where the ray (t ≥ 0) is inside the box: [entry, exit], or nothing.
+std::optional<std::pair<double, double>> ray_box(const Ray& ray, const WorldBox& b) {
+  double t0 = 0, t1 = kInf;
+  for (int a = 0; a < 3; ++a) {
+    if (ray.d[a] == 0) {
+      if (ray.o[a] < b.min[a] || ray.o[a] > b.max[a]) return std::nullopt;
+      continue;
+    }
+    double ta = (b.min[a] - ray.o[a]) * ray.inv[a], tb = (b.max[a] - ray.o[a]) * ray.inv[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+  }
+  if (!(t0 <= t1)) return std::nullopt;
+  return std::pair(t0, t1);
+}
+
+// Where the ray runs through some compartment instance's reach (boxes holding every atom, grown
+// by `grow`): sorted, overlapping spans merged. Outside them no compartment atom can be hit.
+std::vector<std::pair<double, double>> reach_spans(const Ray& ray, const std::vector<WorldBox>& reach, double grow) {
+  std::vector<std::pair<double, double>> spans;
+  for (const WorldBox& b : reach)
+    if (const auto span = ray_box(ray, WorldBox{b.min - grow, b.max + grow})) spans.push_back(*span);
+  std::sort(spans.begin(), spans.end());
+  std::vector<std::pair<double, double>> merged;
+  for (const auto& span : spans) {
+    if (!merged.empty() && span.first <= merged.back().second) merged.back().second = std::max(merged.back().second, span.second);
+    else merged.push_back(span);
+  }
+  return merged;
+}
+
+constexpr double kTubeSegment = 32.0;  // Å of ray per box query: keeps the boxes tight around the ray
+
+struct TubeHit {
+  double t = kInf;
+  std::uint32_t atom = 0;
+  CopyId id;
+  std::uint64_t number = 0;
+};
+
+// One pixel's compartment hit with t ≤ t_end, its ray alone: segment by segment along the spans,
+// every atom whose centre lies within `grow` of the segment's box. A hit at t ≤ the segment's end is
+// final: an atom hit at t' ≤ that end has its hit point on a segment already queried (within the
+// spans) and its centre within its radius of it. Ties as AtomBvh: lower copy number, then atom.
+TubeHit trace_tube(const ExplicitScene& scene, const format::Package& package, const Ray& ray,
+                   const std::vector<std::pair<double, double>>& spans, double grow, double t_end,
+                   const OracleRenderOptions& options, std::atomic<std::uint64_t>& segments) {
+  TubeHit best;
+  for (const auto& [from, to] : spans)
+    for (double t0 = from; t0 <= std::min({to, t_end, best.t}); t0 += kTubeSegment) {
+      if (++segments > options.max_tube_segments)
+        throw InputError(package.name(), "camera " + options.camera_name,
+                         "the CPU oracle would need more than " + count(double(options.max_tube_segments)) +
+                             " ray segments to resolve the view; choose a camera that sees less (closer, narrower)");
+      const double t1 = std::min(to, t0 + kTubeSegment);
+      const dvec3 a = ray.o + t0 * ray.d, b = ray.o + t1 * ray.d;
+      scene.for_each_compartment_atom(WorldBox{glm::min(a, b) - grow, glm::max(a, b) + grow}, [&](const AtomSample& s) {
+        for (const glm::dvec4& h : options.clip)
+          if (!(glm::dot(dvec3(h), s.position) + h.w >= 0)) return;
+        const double t = sphere_hit(ray, s.position, s.radius * options.radius_scale);
+        if (t > best.t) return;
+        if (t == best.t && !(s.copy->number < best.number || (s.copy->number == best.number && s.atom < best.atom))) return;
+        best = {t, s.atom, s.copy->id, s.copy->number};
+      });
+      if (best.t <= t1) return best;
+    }
+  return best;
+}
+
+// A round's atoms would not fit: its pixels go to ray tubes.
+struct RoundTooLarge {};
+
 std::string count(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", v);
@@ -463,8 +539,32 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
   const auto medium_depth = [&](std::uint32_t p) {
     return medium_hits.empty() || medium_hits[p].atom == gpu::kNoHit ? kInf : double(medium_hits[p].depth);
   };
-  std::vector<std::uint32_t> pending(image.size());
-  std::iota(pending.begin(), pending.end(), 0u);
+  // A ray through no instance's reach meets no compartment atom: its medium hit or nothing, now.
+  std::vector<std::uint32_t> pending;
+  for (std::uint32_t p = 0; p < image.size(); ++p) {
+    if (!reach_spans(rays[p], bounds, grow).empty()) pending.push_back(p);
+    else if (std::isfinite(medium_depth(p))) image[p] = medium_hits[p];
+  }
+  // The pixels left when a round cannot hold their atoms: each through its own ray's tube.
+  const auto trace_tubes = [&] {
+    std::atomic<std::uint64_t> segments{0};
+    const double tube_grow = grow * std::max(1.0, options.radius_scale);
+    constexpr std::size_t kTubeChunk = 8;
+    parallel_for((pending.size() + kTubeChunk - 1) / kTubeChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
+      for (std::size_t i = chunk * kTubeChunk; i < std::min(pending.size(), (chunk + 1) * kTubeChunk); ++i) {
+        const std::uint32_t p = pending[i];
+        const double medium_t = medium_depth(p);
+        const TubeHit hit = trace_tube(scene, package, rays[p], reach_spans(rays[p], bounds, tube_grow), tube_grow, medium_t,
+                                       options, segments);
+        if (hit.t <= medium_t && hit.t != kInf) image[p] = make_hit(hit.t, hit.atom, hit.id, hit.number);
+        else if (std::isfinite(medium_t)) image[p] = medium_hits[p];
+      }
+    });
+    st.tube_rays = pending.size();
+    st.tube_segments = segments;
+    pending.clear();
+  };
+  if (options.tubes_only) trace_tubes();
   std::vector<HeldAtom> atoms;
   std::vector<HeldCopy> copies;
   while (!pending.empty() && farthest > 0) {
@@ -482,6 +582,7 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
     box.min -= grow, box.max += grow;
 
     atoms.clear(), copies.clear();
+    try {
     scene.for_each_compartment_atom(box, [&](const AtomSample& s) {
       // Clipping keeps or removes an atom whole, by its centre (as the renderer).
       for (const glm::dvec4& h : options.clip)
@@ -489,6 +590,7 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
       if (!view.meets_sphere(s.position, s.radius * std::max(1.0, options.radius_scale), depth_bound)) return;
       // A copy's atoms arrive consecutively and copy numbers are unique.
       if (copies.empty() || copies.back().number != s.copy->number) copies.push_back({s.copy->id, s.copy->number});
+      if (atoms.size() >= options.max_atoms && options.ray_tubes) throw RoundTooLarge{};
       if (atoms.size() >= options.max_atoms)
         throw InputError(package.name(), "camera " + options.camera_name,
                          "the CPU oracle would need more than " + count(double(options.max_atoms)) +
@@ -496,6 +598,10 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
                              " Å from the eye; choose a camera that sees less (closer, narrower) or raise the atom cap");
       atoms.push_back({s.position, s.radius * options.radius_scale, s.atom, std::uint32_t(copies.size() - 1)});
     });
+    } catch (const RoundTooLarge&) {
+      trace_tubes();
+      break;
+    }
     st.atoms_last_round = atoms.size();
     st.atoms_total += atoms.size();
     st.final_depth_bound = depth_bound;
@@ -524,7 +630,9 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
       if (!resolved[i]) pending[kept++] = pending[i];
     pending.resize(kept);
     if (depth_bound >= farthest) break;  // nothing lies beyond: the rest is background
-    depth_bound *= 2;
+    // Deeper by twice as much beyond the nearest instance: a far eye does not jump the whole
+    // distance it already stands away (its pyramid would hold every cell in view).
+    depth_bound = (std::isfinite(nearest) ? nearest : 0) + 2 * (depth_bound - (std::isfinite(nearest) ? nearest : 0));
   }
   for (std::uint32_t p : pending)
     if (!medium_hits.empty() && medium_hits[p].atom != gpu::kNoHit) image[p] = medium_hits[p];

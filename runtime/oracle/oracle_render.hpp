@@ -21,9 +21,17 @@
 namespace nano::oracle {
 
 struct OracleRenderOptions {
-  // Atoms held at once (≈ 70 bytes each with the BVH). A view that needs more throws InputError:
-  // a verify camera that sees half a cell is a badly chosen camera, not a reason to swap.
+  // Atoms held at once (≈ 70 bytes each with the BVH). A round that would need more hands its
+  // pixels to ray tubes (below), or throws InputError when they are off.
   std::uint64_t max_atoms = 30'000'000;
+  // Pixels a round cannot hold are traced alone: each ray through its own tube, Å by Å (a whole cell
+  // seen from afar, a cut-away). At most this many tube segments in all, then InputError.
+  bool ray_tubes = true;
+  // Every pixel through its ray's tube from the start, no rounds: for views whose rounds cost more
+  // than they save — a whole scene from afar, a cut-away of a cell (a round's box is the AABB of a
+  // wide pyramid, and a rotated cell's copies are enumerated over its compartment-space bounds).
+  bool tubes_only = false;
+  std::uint64_t max_tube_segments = 3'000'000;
   unsigned threads = 2;
   // First depth bound: the nearest compartment instance's reach plus this many Å.
   double first_margin = 300.0;
@@ -39,6 +47,8 @@ struct OracleRenderOptions {
 // What one render cost; for reports and for choosing cameras.
 struct OracleRenderStats {
   int rounds = 0;
+  std::uint64_t tube_rays = 0;      // pixels traced alone, through their ray's tube
+  std::uint64_t tube_segments = 0;  // the tube segments those took
   std::uint64_t atoms_last_round = 0;  // atoms held by the last (largest) round
   std::uint64_t atoms_total = 0;       // summed over rounds
   double final_depth_bound = 0;        // D of the last round, Å

@@ -7,8 +7,9 @@
 
 namespace nano::session {
 
-ViewJudge::ViewJudge(const format::Package& package, const oracle::ExplicitScene& scene, std::vector<glm::dvec4> clip)
-    : package_(package), scene_(scene), clip_(std::move(clip)), bounds_(oracle::scene_world_bounds(package, &scene)) {
+ViewJudge::ViewJudge(const format::Package& package, const oracle::ExplicitScene& scene, std::vector<glm::dvec4> clip,
+                     bool tubes_only)
+    : package_(package), scene_(scene), clip_(std::move(clip)), tubes_only_(tubes_only), bounds_(oracle::scene_world_bounds(package, &scene)) {
   for (const gpu::Atom& a : package.records<format::SectionKind::atoms>())
     largest_atom_ = std::max(largest_atom_, double(a.centre_radius.w));
   grazing_slack_ = largest_atom_ * std::sqrt(2 * kRadiusEpsilon);
@@ -23,6 +24,7 @@ ViewVerdict ViewJudge::judge(const std::string& view_name, const gpu::Camera& ca
   oracle::OracleRenderOptions options;
   options.camera_name = view_name;
   options.clip = clip_;
+  options.tubes_only = tubes_only_;
   ViewVerdict v;
   const std::vector<gpu::PixelHit> reference = oracle::oracle_render(scene_, package_, camera, options, &v.oracle);
   v.comparison = oracle::compare_images(reference, hits, width, height);

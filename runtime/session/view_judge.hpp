@@ -40,7 +40,9 @@ struct ViewVerdict {
 class ViewJudge {
 public:
   // `clip`: the half-spaces the frame clipped with (empty: none); the scene must outlive the judge.
-  ViewJudge(const format::Package& package, const oracle::ExplicitScene& scene, std::vector<glm::dvec4> clip);
+  // `tubes_only`: the oracle traces every pixel's ray alone (OracleRenderOptions::tubes_only).
+  ViewJudge(const format::Package& package, const oracle::ExplicitScene& scene, std::vector<glm::dvec4> clip,
+            bool tubes_only = false);
 
   // `hits`: width × height pixels as the device rendered `camera`.
   ViewVerdict judge(const std::string& view_name, const gpu::Camera& camera, const std::vector<gpu::PixelHit>& hits,
@@ -54,6 +56,7 @@ private:
   const format::Package& package_;
   const oracle::ExplicitScene& scene_;
   std::vector<glm::dvec4> clip_;
+  bool tubes_only_ = false;
   double largest_atom_ = 0;
   double grazing_slack_ = 0;
   double placement_slack_ = 0;  // kPlacementUlps float steps at the meshes' largest coordinate, Å
