@@ -31,6 +31,8 @@ done
 for scene in virion rbc; do
   "$nanoview" bench "$pkgs/$scene.nup" --effects --size 192x192 --frames 5 --json "$out/effects-$scene.json"
 done
+# The plasma on and off at blood's scene camera and a close-up by a red cell: frames and work per pixel.
+"$nanoview" bench "$pkgs/blood.nup" --medium --json "$out/medium-blood.json" > "$out/medium-blood.md"
 # Explicit instancing needs a TLAS instance per copy: only the virion (12k copies) fits.
 "$nanoview" bench "$pkgs/virion.nup" --explicit --size 128x128 --frames 3 --json "$out/explicit-virion.json"
 python3 "$here/scripts/bench_scale.py" "$build" "$out" --cells 1,4,20,100,1000 --size 128x128 --frames 8
