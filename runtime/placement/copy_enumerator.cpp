@@ -79,6 +79,7 @@ struct CompartmentPlan {
   // Per local triangle, where the copies it owns can reach (walk_membrane says how): computed once,
   // so a small query culls a triangle by one box test instead of building its chart.
   std::vector<Aabb> triangle_reach;
+  glm::dvec2 square_lo{0.0}, square_hi{0.0};  // tile-space xy bounds of every square's molecules, Å
 };
 
 struct InstancePlan {
@@ -204,9 +205,12 @@ struct CopyEnumerator::Impl : format::PackageView {
         if (tile.size.x != S || tile.size.y != S)
           fail(where, "Wang square " + str(t) + " is not " + std::to_string(S) + " Å wide like the compartment (scales.y)");
         plan.square_instances = std::max(plan.square_instances, tile.instance_count);
-        for (std::uint32_t m = tile.first_instance; m < tile.first_instance + tile.instance_count; ++m)
+        for (std::uint32_t m = tile.first_instance; m < tile.first_instance + tile.instance_count; ++m) {
           plan.membrane_reach = std::max(plan.membrane_reach,
                                          std::abs(double(instances[m].position.z)) + type_radius[instances[m].molecule_type]);
+          plan.square_lo = glm::min(plan.square_lo, glm::dvec2(instances[m].position));
+          plan.square_hi = glm::max(plan.square_hi, glm::dvec2(instances[m].position));
+        }
       }
 
       check_chart(ci, plan);
@@ -384,6 +388,9 @@ struct CopyEnumerator::Impl : format::PackageView {
       const Aabb& reach = plan.triangle_reach[tl];
       if (!reach.meets(query) || reach.clipped_by_any(emit.local_clip)) continue;
       const gpu::TriangleChart chart = make_chart(mesh, tri);
+      double lift = plan.smooth > 0 ? double(gpu::chart_smooth_bulge(chart, plan.smooth)) : 0.0;
+      if (!std::isfinite(lift)) lift = 0.0;
+      const double grow = plan.membrane_reach + lift + plan.tolerance;
       const vec2 t0 = vertex_uvs[f + tri.v0], t1 = vertex_uvs[f + tri.v1], t2 = vertex_uvs[f + tri.v2];
       if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) continue;
       const vec2 uv_min = glm::min(t0, glm::min(t1, t2)), uv_max = glm::max(t0, glm::max(t1, t2));
@@ -402,6 +409,16 @@ struct CopyEnumerator::Impl : format::PackageView {
           const std::uint64_t slot = std::uint64_t(sx) + std::uint64_t(c.replication_width) * sy;
           const gpu::Tile2D& tile = tiles2d[recipe_cell(c.membrane_recipe, cell.x, cell.y, 0)];
           const vec2 g = gpu::replication_tile_uv(cell, plan.s);
+          // Where this cell's copies can stand: its molecules' UV box through the facet's affine
+          // chart (a copy sits over its flat point, lifted by at most the bulge and |z|), so a small
+          // query places the copies of the cells it meets, not of the whole triangle.
+          Aabb cell_reach;
+          for (int k = 0; k < 4; ++k) {
+            const glm::dvec2 xy((k & 1) ? plan.square_hi.x : plan.square_lo.x, (k & 2) ? plan.square_hi.y : plan.square_lo.y);
+            cell_reach.add(dvec3(gpu::chart_position(chart, g + vec2(xy) * plan.s_over_S)));
+          }
+          cell_reach = cell_reach.grown(grow);
+          if (!cell_reach.meets(query) || cell_reach.clipped_by_any(emit.local_clip)) continue;
           emit.copy.id.cell = ivec3(cell, 0);
           for (std::uint32_t m = 0; m < tile.instance_count; ++m) {
             const gpu::MoleculeInstance& inst = instances[tile.first_instance + m];

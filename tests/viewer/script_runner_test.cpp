@@ -65,6 +65,20 @@ TEST(ScriptRunner, ChangesStateAndRendersFrames) {
   EXPECT_FALSE(host.state_.settings.effects.clipping.box.has_value());
 }
 
+TEST(ScriptRunner, ShowAndHideSwitchTheMediumAndNamesInTheSettings) {
+  FakeHost host;
+  std::ostringstream out;
+  run("hide medium\nhide rbc\nhide POPC\nhide rbc\n", host, out);
+  const render::RenderSettings& s = host.state_.settings;
+  EXPECT_FALSE(s.show_medium);
+  EXPECT_EQ(s.hidden, (std::vector<std::string>{"POPC", "rbc"}));  // hidden once, however often asked
+  EXPECT_FALSE(render::shown(s, "rbc"));
+  EXPECT_TRUE(render::shown(s, "albumin"));
+  run("show medium\nshow rbc\n", host, out);
+  EXPECT_TRUE(host.state_.settings.show_medium);
+  EXPECT_EQ(host.state_.settings.hidden, std::vector<std::string>{"POPC"});
+}
+
 TEST(ScriptRunner, PickPrintsOneJsonLine) {
   FakeHost host;
   std::ostringstream out;
