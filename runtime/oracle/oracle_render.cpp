@@ -310,14 +310,20 @@ gpu::PixelHit make_hit(double t, std::uint32_t atom, const CopyId& id, std::uint
 gpu::PixelHit background_pixel();
 namespace {
 
-struct MediumHit {
+// The nearest atom a ray meets so far; exact ties go to the lower copy number, then atom (AtomBvh's rule).
+struct NearestHit {
   double t = kInf;
   std::uint32_t atom = 0;
   CopyId id;
   std::uint64_t number = 0;
+  void offer(double t_hit, std::uint32_t atom_hit, const CopyId& copy, std::uint64_t copy_number) {
+    if (t_hit > t) return;
+    if (t_hit == t && !(copy_number < number || (copy_number == number && atom_hit < atom))) return;
+    *this = {t_hit, atom_hit, copy, copy_number};
+  }
 };
 
-MediumHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView& p, const Ray& ray,
+NearestHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView& p, const Ray& ray,
                            const OracleRenderOptions& options) {
   const gpu::Medium& m = p.medium[0];
   const double B = m.region_min.w;
@@ -344,7 +350,7 @@ MediumHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView
     }
   }
   if (!(t0 <= t1)) return {};
-  MediumHit best;
+  NearestHit best;
   std::unordered_set<std::uint64_t> seen;
   const glm::ivec3 boxes(glm::uvec3(m.boxes));
   const auto visit_box = [&](const glm::ivec3& b) {
@@ -359,10 +365,7 @@ MediumHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView
         bool clipped = false;
         for (const glm::dvec4& h : options.clip) clipped = clipped || !(glm::dot(dvec3(h), centre_a) + h.w >= 0);
         if (clipped) continue;
-        const double t = sphere_hit(ray, centre_a, p.atoms[a].centre_radius.w * c.stretch * options.radius_scale);
-        if (t > best.t) continue;
-        if (t == best.t && !(c.number < best.number || (c.number == best.number && a < best.atom))) continue;
-        best = {t, a, c.id, c.number};
+        best.offer(sphere_hit(ray, centre_a, p.atoms[a].centre_radius.w * c.stretch * options.radius_scale), a, c.id, c.number);
       }
     });
   };
@@ -383,7 +386,7 @@ std::vector<gpu::PixelHit> trace_medium(const ExplicitScene& scene, const format
   constexpr std::size_t kChunk = 16;
   parallel_for((rays.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
     for (std::size_t i = chunk * kChunk; i < std::min(rays.size(), (chunk + 1) * kChunk); ++i) {
-      const MediumHit hit = trace_medium_ray(scene, p, rays[i], options);
+      const NearestHit hit = trace_medium_ray(scene, p, rays[i], options);
       if (hit.t != kInf) image[i] = make_hit(hit.t, hit.atom, hit.id, hit.number);
     }
   });
@@ -425,21 +428,14 @@ std::vector<std::pair<double, double>> reach_spans(const Ray& ray, const std::ve
 
 constexpr double kTubeSegment = 32.0;  // Å of ray per box query: keeps the boxes tight around the ray
 
-struct TubeHit {
-  double t = kInf;
-  std::uint32_t atom = 0;
-  CopyId id;
-  std::uint64_t number = 0;
-};
-
 // One pixel's compartment hit with t ≤ t_end, its ray alone: segment by segment along the spans,
 // every atom whose centre lies within `grow` of the segment's box. A hit at t ≤ the segment's end is
 // final: an atom hit at t' ≤ that end has its hit point on a segment already queried (within the
-// spans) and its centre within its radius of it. Ties as AtomBvh: lower copy number, then atom.
-TubeHit trace_tube(const ExplicitScene& scene, const format::Package& package, const Ray& ray,
+// spans) and its centre within its radius of it.
+NearestHit trace_tube(const ExplicitScene& scene, const format::Package& package, const Ray& ray,
                    const std::vector<std::pair<double, double>>& spans, double grow, double t_end,
                    const OracleRenderOptions& options, std::atomic<std::uint64_t>& segments) {
-  TubeHit best;
+  NearestHit best;
   for (const auto& [from, to] : spans)
     for (double t0 = from; t0 <= std::min({to, t_end, best.t}); t0 += kTubeSegment) {
       if (++segments > options.max_tube_segments)
@@ -451,10 +447,7 @@ TubeHit trace_tube(const ExplicitScene& scene, const format::Package& package, c
       scene.for_each_compartment_atom(WorldBox{glm::min(a, b) - grow, glm::max(a, b) + grow}, [&](const AtomSample& s) {
         for (const glm::dvec4& h : options.clip)
           if (!(glm::dot(dvec3(h), s.position) + h.w >= 0)) return;
-        const double t = sphere_hit(ray, s.position, s.radius * options.radius_scale);
-        if (t > best.t) return;
-        if (t == best.t && !(s.copy->number < best.number || (s.copy->number == best.number && s.atom < best.atom))) return;
-        best = {t, s.atom, s.copy->id, s.copy->number};
+        best.offer(sphere_hit(ray, s.position, s.radius * options.radius_scale), s.atom, s.copy->id, s.copy->number);
       });
       if (best.t <= t1) return best;
     }
@@ -554,7 +547,7 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
       for (std::size_t i = chunk * kTubeChunk; i < std::min(pending.size(), (chunk + 1) * kTubeChunk); ++i) {
         const std::uint32_t p = pending[i];
         const double medium_t = medium_depth(p);
-        const TubeHit hit = trace_tube(scene, package, rays[p], reach_spans(rays[p], bounds, tube_grow), tube_grow, medium_t,
+        const NearestHit hit = trace_tube(scene, package, rays[p], reach_spans(rays[p], bounds, tube_grow), tube_grow, medium_t,
                                        options, segments);
         if (hit.t <= medium_t && hit.t != kInf) image[p] = make_hit(hit.t, hit.atom, hit.id, hit.number);
         else if (std::isfinite(medium_t)) image[p] = medium_hits[p];
