@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Checks a `nanoview bench --json` file holds every key docs/benchmarks.md promises for its mode, with
-values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit|counters|compile"""
+values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit|counters|compile|medium"""
 import json, math, sys
 
 path, mode = sys.argv[1], sys.argv[2]
@@ -152,6 +152,23 @@ elif mode == "compile":
         problems.append("animation built a pipeline of its own")
     if "no_effect_code" not in by_what.get("no effect code", {}).get("pipeline", ""):
         problems.append("'no effect code' is not the build without effect code")
+elif mode == "medium":
+    for k in ("scene_camera", "close_up"):
+        need(d, k, "top", str)
+    views = need(d, "views", "top", list) or []
+    names = [v.get("name") for v in views]
+    if names != ["scene camera, plasma", "scene camera, no plasma", "close-up, plasma", "close-up, no plasma"]:
+        problems.append(f"views are {names}, expected each view with and without plasma")
+    for i, v in enumerate(views):
+        where = f"views[{i}]"
+        need(v, "frame_seconds", where, dict)
+        need(v, "ratio_to_without_plasma", where, positive=True)
+        need(v, "hit_pixel_fraction", where)
+        need(v, "work", where, dict)
+    # The plasma costs medium steps where it is shown and none where it is hidden.
+    steps = [(((v.get("work") or {}).get("per_pixel") or {}).get("medium_steps") or {}).get("mean") for v in views]
+    if len(steps) == 4 and not (steps[0] and steps[0] > 0 and steps[1] == 0 and steps[3] == 0):
+        problems.append(f"medium_steps means {steps}: expected > 0 with plasma, 0 without")
 else:
     problems.append(f"unknown mode {mode}")
 if problems:
