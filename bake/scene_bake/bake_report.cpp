@@ -89,7 +89,7 @@ nlohmann::ordered_json medium_json(const MediumSummary& m) {
   for (const MediumMoleculeCount& n : m.counts) counts[n.name] = {{"copies", n.copies}, {"atoms", n.atoms}};
   nlohmann::ordered_json fields = nlohmann::ordered_json::array();
   for (const MediumSummary::Field& f : m.fields)
-    fields.push_back({{"compartment", f.compartment}, {"spacing_A", f.spacing}, {"margin_A", f.margin}, {"shell_reach_A", f.shell_reach},
+    fields.push_back({{"compartment", f.compartment}, {"spacing_A", f.spacing}, {"margin_A", f.margin}, {"reach_A", {f.least_reach, f.largest_reach}},
                       {"measured_excess_A", f.measured_excess}, {"bytes", f.bytes}});
   return {{"soluble", m.soluble},
           {"region", {vec(m.region_min), vec(m.region_max)}},
@@ -116,8 +116,8 @@ void write_medium_summary(std::ostringstream& out, const MediumSummary& m) {
   out << line;
   for (const MediumSummary::Field& f : m.fields) {
     std::snprintf(line, sizeof line,
-                  "  medium keeps clear of %s's shell (%.0f Å beyond its mesh) by a field of %.0f Å spacing, margin %.1f Å, %.2f MB\n",
-                  f.compartment.c_str(), f.shell_reach, f.spacing, f.margin, f.bytes / 1e6);
+                  "  medium keeps clear of %s's membrane (%.0f-%.0f Å from its triangles) by a field of %.0f Å spacing, margin %.1f Å, %.2f MB\n",
+                  f.compartment.c_str(), f.least_reach, f.largest_reach, f.spacing, f.margin, f.bytes / 1e6);
     out << line;
   }
 }

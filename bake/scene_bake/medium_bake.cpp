@@ -62,7 +62,7 @@ BakedMedium bake_medium(const scene::SceneDescription& scene, const scene::Box& 
   for (const MediumCompartment& c : compartments) {
     const grid::MeshSurface surface(*c.mesh, "compartment mesh");
     grid::ExclusionFieldRequest request;
-    request.shell_reach = c.shell_reach;
+    request.reach = c.reach;
     request.medium_reach = largest + soluble.clearance;
     request.threads = threads;
     m.fields.push_back(grid::bake_exclusion_field(surface, request));

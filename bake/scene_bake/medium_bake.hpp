@@ -24,7 +24,7 @@ namespace nano::scene_bake {
 // What the medium must keep clear of in one compartment.
 struct MediumCompartment {
   const mesh::ProxyMesh* mesh = nullptr;  // compartment space, as the package stores it
-  double shell_reach = 0.0;               // how far the membrane's prisms reach beyond the mesh (0: none)
+  std::vector<float> reach;               // per mesh triangle, how far its membrane copies reach (empty: none)
 };
 
 struct MediumMoleculeCount {

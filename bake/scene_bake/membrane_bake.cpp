@@ -142,6 +142,7 @@ void count_by_molecule(const MembraneSurface& m, const shell::ShellResult& shell
 
 void store_shells(const shell::MembraneMapping& mapping, const shell::ShellResult& shells, BakedMembrane& baked) {
   baked.shells.resize(mapping.triangle_count());
+  baked.reach = shells.reach;
   for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
     const shell::TriangleMapping& tm = mapping.triangle(t);
     gpu::TriangleShell& s = baked.shells[t];

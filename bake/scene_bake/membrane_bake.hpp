@@ -27,6 +27,7 @@ struct BakedMembrane {
   double tile_size = 0.0;  // S, Å
   std::uint32_t replication_width = 0, replication_height = 0;
   std::vector<gpu::TriangleShell> shells;         // one per mesh triangle
+  std::vector<float> reach;                       // per mesh triangle: shell::ShellResult::reach
   std::vector<std::vector<std::uint32_t>> dropped;  // per mesh triangle: keys of the copies it drops and alternates it shows
   std::vector<std::uint64_t> copies_by_molecule;  // kept copies, indexed like the molecule library
   std::vector<std::uint64_t> dropped_by_molecule;  // copies dropped because they clash on the surface

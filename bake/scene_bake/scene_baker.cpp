@@ -434,7 +434,7 @@ BakedMedium bake_scene_medium(const BakeInputs& in, const Molecules& molecules, 
   std::vector<MediumCompartment> walls;
   for (std::size_t c = 0; c < compartments.size(); ++c) {
     radii.push_back(measured.radii[c] + compartments[c].shell_margin);
-    walls.push_back({&compartments[c].mesh.mesh, compartments[c].shell_margin});
+    walls.push_back({&compartments[c].mesh.mesh, compartments[c].membrane ? compartments[c].membrane->reach : std::vector<float>{}});
   }
   const scene::Box region = scene::medium_region(scene, scene::instance_spheres(placed, radii));
   return bake_medium(scene, region, sets.soluble[scene.medium->soluble.index], molecules.library, walls, placed,
@@ -451,7 +451,7 @@ MediumSummary medium_summary(const scene::SceneDescription& scene, const BakedMe
   for (const MediumMoleculeCount& n : m.counts) s.counts.push_back(n);
   for (std::size_t c = 0; c < m.fields.size(); ++c)
     s.fields.push_back({scene.compartments[c].name, m.fields[c].spacing, m.fields[c].margin, m.fields[c].measured_excess,
-                        m.fields[c].shell_reach, m.fields[c].values.size() * sizeof(float) + sizeof(gpu::ExclusionField)});
+                        m.fields[c].least_reach, m.fields[c].largest_reach, m.fields[c].values.size() * sizeof(float) + sizeof(gpu::ExclusionField)});
   return s;
 }
 

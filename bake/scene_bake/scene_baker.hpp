@@ -106,7 +106,7 @@ struct MediumSummary {
   struct Field {
     std::string compartment;
     double spacing = 0.0, margin = 0.0, measured_excess = 0.0;
-    double shell_reach = 0.0;  // how far its membrane's prisms reach beyond the mesh
+    double least_reach = 0.0, largest_reach = 0.0;  // how far its membrane's copies reach from their triangles
     std::size_t bytes = 0;
   };
   std::vector<Field> fields;

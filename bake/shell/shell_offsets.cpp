@@ -6,6 +6,7 @@
 #include <exception>
 #include <string>
 
+#include "bake/grid/triangle_distance.hpp"
 #include "common/error.hpp"
 #include "common/parallel_for.hpp"
 
@@ -190,10 +191,26 @@ PrismFit fit_without_unfit(const MembraneMapping& mapping, std::size_t t, std::v
   }
 }
 
-// Triangles [begin, end): their offsets into `offsets`, the rest into `totals`.
+// How far the spheres not in `dropped` (ascending keys) reach from triangle t (see ShellResult::reach).
+float kept_reach(const MembraneMapping& mapping, std::size_t t, const std::vector<Sphere>& spheres,
+                 const std::vector<std::uint32_t>& dropped) {
+  const TriangleMapping& tm = mapping.triangle(t);
+  const glm::dvec3 p0(tm.position[0]), p1(tm.position[1]), p2(tm.position[2]);
+  double reach = 0.0;
+  bool any = false;
+  for (const Sphere& s : spheres) {
+    if (!s.alternate && std::binary_search(dropped.begin(), dropped.end(), s.key)) continue;
+    reach = std::max(reach, std::sqrt(grid::squared_distance_to_triangle(s.centre, p0, p1, p2)) + s.radius);
+    any = true;
+  }
+  return any ? static_cast<float>(reach + kShellContainmentMargin) : 0.f;
+}
+
+// Triangles [begin, end): their offsets and reach into `out`, the rest into `totals`.
 void shell_block(const MembraneMapping& mapping, const std::vector<double>& radius, const std::vector<bool>& droppable,
-                 std::size_t begin, std::size_t end, std::vector<gpu::ShellOffsets>& offsets,
-                 std::vector<std::vector<std::uint32_t>>& dropped, BlockTotals& totals) {
+                 std::size_t begin, std::size_t end, ShellResult& out, BlockTotals& totals) {
+  std::vector<gpu::ShellOffsets>& offsets = out.offsets;
+  std::vector<std::vector<std::uint32_t>>& dropped = out.dropped;
   const std::size_t type_count = radius.size();
   ShellStats& stats = totals.stats;
   totals.owned_by_type.assign(type_count, 0);
@@ -259,6 +276,7 @@ void shell_block(const MembraneMapping& mapping, const std::vector<double>& radi
     const glm::dvec3 nt = glm::cross(glm::dvec3(pr.v[4] - pr.v[3]), glm::dvec3(pr.v[5] - pr.v[3]));
     if (!(glm::dot(nb, face) > 0.0) || !(glm::dot(nt, face) > 0.0)) stats.inverted_caps += 1;
     offsets[t] = fit.offsets;
+    out.reach[t] = kept_reach(mapping, t, spheres, dropped[t]);
   }
 }
 
@@ -273,12 +291,13 @@ ShellResult compute_shell_offsets(const MembraneMapping& mapping, const std::vec
   const std::size_t n = mapping.triangle_count();
   out.offsets.assign(n, gpu::ShellOffsets{0.f, 0.f, 0.f});
   out.dropped.assign(n, {});
+  out.reach.assign(n, 0.f);
   const std::size_t blocks =
       std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), 1, std::max<std::size_t>(n, 1));
   std::vector<BlockTotals> totals(blocks);
   // A block stops at its first failing triangle; parallel_for rethrows the lowest block's error.
   parallel_for(blocks, threads, [&](std::size_t b) {
-    shell_block(mapping, radius, droppable, n * b / blocks, n * (b + 1) / blocks, out.offsets, out.dropped, totals[b]);
+    shell_block(mapping, radius, droppable, n * b / blocks, n * (b + 1) / blocks, out, totals[b]);
   });
   out.owned_by_type.assign(types.size(), 0);
   out.dropped_by_type.assign(types.size(), 0);

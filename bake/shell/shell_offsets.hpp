@@ -34,6 +34,11 @@ struct ShellStats {
 
 struct ShellResult {
   std::vector<gpu::ShellOffsets> offsets;  // per triangle; zero for triangles owning nothing
+  // Per triangle: how far the copies it keeps reach from it, the most over them of the distance
+  // from the centre to the triangle plus the radius, rounded up by kShellContainmentMargin (Å; 0
+  // for none). Every atom the triangle draws lies within it of the triangle: what the medium's
+  // exclusion field keeps clear, triangle by triangle (a spike's reach stays on its own triangles).
+  std::vector<float> reach;
   gpu::ShellOffsets fixed{0.f, 0.f, 0.f};  // fixed_offsets(offsets)
   ShellStats stats;
   // Per molecule type (index into `types`): owned molecules summed over triangles, alternates not

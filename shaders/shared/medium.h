@@ -10,9 +10,10 @@
 NANO_BEGIN
 
 // Section "exclusion_fields": one record per compartment (parallel to "compartments"). A grid of
-// nodes in compartment space holding, per node, the signed distance to the compartment's mesh
-// (negative inside) minus the outer reach of its membrane shell, clamped to ±limits.y: how far a
-// point stands clear of everything the compartment draws. Between nodes the field is trilinear;
+// nodes in compartment space holding, per node, how far it stands clear of everything the
+// compartment draws, clamped to ±limits.y: outside the mesh the least, over its triangles, of the
+// distance to the triangle less how far that triangle's membrane copies reach from it; inside,
+// minus the distance less the largest reach. Between nodes the field is trilinear;
 // limits.x, measured by the baker where the field matters, covers what interpolation overstates.
 // A point beyond the grid is clear: the grid spans the mesh grown by every reach the medium needs.
 struct ExclusionField {

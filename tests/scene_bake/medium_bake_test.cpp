@@ -61,7 +61,7 @@ struct Fixture {
   }
 
   BakedMedium bake(const scene::Box& region) {
-    const std::vector<MediumCompartment> walls{{&sphere, kShell}};
+    const std::vector<MediumCompartment> walls{{&sphere, std::vector<float>(sphere.triangles.size(), float(kShell))}};
     return bake_medium(scene, region, cubes, library, walls, placed, 5, 2);
   }
 };

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bake/grid/triangle_distance.hpp"
 #include "common/error.hpp"
 #include "shell_test_support.hpp"
 
@@ -18,6 +19,34 @@ namespace {
 struct Tally {
   size_t atoms = 0, failures = 0;
 };
+
+// Every atom of every owned molecule against its triangle's reach: its distance to the triangle
+// (double, by the grid's closest point) plus its radius never exceeds it. Returns the least slack
+// left over a triangle's atoms, the most over triangles (how loose the per-copy sphere bound is).
+Tally check_reach(const Scene& sc, const std::vector<float>& reach, double& loosest) {
+  const auto& map = *sc.mapping;
+  Tally tally;
+  loosest = 0;
+  for (size_t t = 0; t < map.triangle_count(); ++t) {
+    const auto& tm = map.triangle(t);
+    const dvec3 p0(tm.position[0]), p1(tm.position[1]), p2(tm.position[2]);
+    double farthest = 0;
+    bool any = false;
+    map.for_each_owned_membrane_molecule(t, [&](const OwnedMolecule& m) {
+      const glm::dmat3 lin(m.transform.linear);
+      const dvec3 tr(m.transform.translation);
+      for (const auto& atom : sc.types[m.type].atoms) {
+        ++tally.atoms;
+        const double d = std::sqrt(nano::grid::squared_distance_to_triangle(lin * dvec3(atom.centre) + tr, p0, p1, p2)) + atom.radius;
+        farthest = std::max(farthest, d), any = true;
+        if (d > reach[t]) ++tally.failures;
+      }
+    });
+    if (any) loosest = std::max(loosest, reach[t] - farthest);
+    else if (reach[t] != 0.f) ++tally.failures;
+  }
+  return tally;
+}
 
 // Every `stride`-th triangle (the variants need not revisit every atom to make their point).
 Tally check_atoms(const Scene& sc, const std::vector<g::ShellOffsets>& offsets, size_t stride = 1) {
@@ -60,6 +89,13 @@ void check_scene(const Scene& sc, const char* name) {
 
   const Tally adaptive = check_atoms(sc, r.offsets);
   EXPECT_EQ(adaptive.failures, 0u) << "of " << adaptive.atoms << " atoms";
+  ASSERT_EQ(r.reach.size(), r.offsets.size());
+  double loosest = 0;
+  const Tally within = check_reach(sc, r.reach, loosest);
+  std::printf("%s: every atom within its triangle's reach (%zu failures); the bound is at most %.1f Å loose\n", name,
+              within.failures, loosest);
+  EXPECT_EQ(within.failures, 0u) << "of " << within.atoms << " atoms";
+  EXPECT_LT(loosest, 10.0);  // a triangle's reach is its farthest atom, give or take a bounding sphere's slack
 
   // Fixed shells (the maxima) contain at least as much.
   const std::vector<g::ShellOffsets> fixed(r.offsets.size(), r.fixed);
@@ -126,6 +162,7 @@ TEST(ShellOffsets, ThreadCountDoesNotChangeTheResult) {
     EXPECT_EQ(one.offsets[t].h_minus, three.offsets[t].h_minus) << "triangle " << t;
     EXPECT_EQ(one.offsets[t].side, three.offsets[t].side) << "triangle " << t;
   }
+  EXPECT_EQ(one.reach, three.reach);
   EXPECT_EQ(one.fixed.h_plus, three.fixed.h_plus);
   EXPECT_EQ(one.fixed.side, three.fixed.side);
   EXPECT_EQ(one.stats.owned_molecules, three.stats.owned_molecules);
