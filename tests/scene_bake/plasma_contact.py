@@ -1,4 +1,4 @@
-"""plasma_contact.py NANOVIEW BOX_CLASHES PKG INSTANCE HALF WORKDIR [--json OUT]
+"""plasma_contact.py NANOVIEW BOX_CLASHES PKG INSTANCE HALF WORKDIR [--json OUT] [--surface-rind]
 
 Where a compartment instance's membrane meets the scene's medium, read as a structural biologist
 would: the box of half-size HALF around the instance's first mesh vertex (box_clashes ... where)
@@ -9,6 +9,11 @@ medium atom and a membrane atom (lipid or membrane protein) whose van der Waals 
 membrane (the least distance between its atoms' and membrane atoms' spheres). The nearest copy must
 come within the medium's clearance plus one molecule (the largest medium copy's diameter) of the
 membrane: a wider empty rind would be plasma kept away from the cell. Prints the gap distribution.
+And the rind along the surface, as one would look at it: the membrane atoms that face the plasma
+(the nearest membrane atom of some medium atom, both sampled), binned in 20 Å cells; per cell, the
+least gap to a medium atom, counted where the box decides it (no atom outside could be nearer).
+With --surface-rind, at least 90 % of those cells must have plasma within the clearance plus one
+molecule (a red cell's needs a box of half-size 400 Å: minutes; a virion's 300 Å).
 """
 import argparse
 import csv
@@ -23,11 +28,47 @@ import numpy
 CLASH_OVERLAP = 0.4  # Å, as MolProbity counts a serious clash
 
 
+def nearest(points, targets, chunk=2048):
+    """For each point, the index into targets of its nearest target (numpy, in chunks)."""
+    found = numpy.empty(len(points), dtype=numpy.int64)
+    t2 = (targets ** 2).sum(axis=1)
+    for start in range(0, len(points), chunk):
+        p = points[start:start + chunk]
+        d2 = t2[None, :] - 2.0 * p @ targets.T
+        found[start:start + chunk] = d2.argmin(axis=1)
+    return found
+
+
+def surface_rind(xyz, radius, wall, medium, lo, hi, cell=20.0):
+    """Per 20 Å cell of plasma-facing membrane: its least gap to the plasma, and whether the box
+    decides it (no atom outside the box could be nearer: the gap is within the cell's atom's
+    distance to the box's faces)."""
+    wall, medium = numpy.array(wall), numpy.array(medium)
+    # The membrane atoms facing the plasma: each the nearest (of every 4th) to some medium atom (of every 8th).
+    probe = medium[::8]
+    facing = numpy.unique(wall[::4][nearest(xyz[probe], xyz[wall[::4]])])
+    m = medium[nearest(xyz[facing], xyz[medium])]
+    gaps = numpy.linalg.norm(xyz[facing] - xyz[m], axis=1) - radius[facing] - radius[m]
+    room = numpy.minimum(xyz[facing] - numpy.array(lo), numpy.array(hi) - xyz[facing]).min(axis=1)
+    per_cell = {}
+    for key, gap, inside in zip(map(tuple, numpy.floor(xyz[facing] / cell).astype(int)), gaps, room):
+        best = per_cell.get(key)
+        if best is None or gap < best[0]:
+            per_cell[key] = (float(gap), bool(gap <= inside))
+    return sorted(per_cell.values())
+
+
+def percentiles(values):
+    return {p: round(values[min(len(values) - 1, int(p / 100 * len(values)))], 1) for p in (10, 50, 90)} if values else {}
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser()
     for name in ("nanoview", "box_clashes", "package", "instance", "half", "workdir"):
         parser.add_argument(name)
     parser.add_argument("--json")
+    parser.add_argument("--surface-rind", action="store_true",
+                        help="require the rind along the surface (the box must hold 20 decided cells)")
     parser.add_argument("--clearance", type=float, default=5.0, help="the medium's clearance (Å)")
     parser.add_argument("--molecule-diameter", type=float, default=0.0,
                         help="one molecule of the medium (Å); default: the largest copy in the box")
@@ -109,9 +150,17 @@ def main(argv=None):
     clearance = args.clearance
     diameter = max(diameter, args.molecule_diameter)
     nearest = gaps[0] if gaps else math.inf
+    corners = [float(v) for v in box.replace(",", " ").split()]
+    cells = surface_rind(xyz, radius, wall, medium, corners[:3], corners[3:]) if medium and wall else []
+    decided = [gap for gap, sure in cells if sure]
+    reach = clearance + diameter
+    covered = sum(1 for gap in decided if gap <= reach)
     summary = {"box": box, "atoms": len(rows), "medium_atoms": len(medium), "membrane_atoms": len(wall),
                "medium_copies": len(by_copy), "clashes": len(clashes), "nearest_gap_A": nearest,
-               "gap_percentiles_A": {p: gaps[min(len(gaps) - 1, int(p / 100 * len(gaps)))] for p in (10, 50, 90)} if gaps else {},
+               "copy_gap_percentiles_A": percentiles(gaps),
+               "surface_cells": len(cells), "surface_cells_decided": len(decided),
+               "surface_rind_percentiles_A": percentiles(decided),
+               "surface_within_reach": covered / len(decided) if decided else None,
                "largest_medium_copy_A": diameter}
     print(json.dumps(summary, indent=1))
     if clashes:
@@ -119,6 +168,13 @@ def main(argv=None):
     if gaps and nearest > clearance + diameter:
         problems.append(f"the nearest medium copy stands {nearest:.1f} Å from the membrane, more than the clearance "
                         f"plus one molecule ({clearance + diameter:.1f} Å): an empty rind")
+    if not args.surface_rind:
+        pass
+    elif medium and wall and len(decided) < 20:
+        problems.append(f"only {len(decided)} cells of plasma-facing membrane are decided within the box: make it larger")
+    elif decided and covered < 0.9 * len(decided):
+        problems.append(f"along the surface only {covered} of {len(decided)} cells have plasma within the clearance plus "
+                        f"one molecule ({reach:.1f} Å; median gap {decided[len(decided) // 2]:.1f} Å): plasma kept away")
     if args.json:
         json.dump(summary, open(args.json, "w"), indent=1)
     for p in problems:
