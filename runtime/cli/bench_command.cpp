@@ -22,7 +22,6 @@
 #include <cstdlib>
 #include <map>
 #include <memory>
-#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,6 +33,7 @@
 #include "common/error.hpp"
 #include "runtime/session/accuracy_matrix.hpp"
 #include "runtime/bench/frame_stats.hpp"
+#include "runtime/bench/on_screen.hpp"
 #include "runtime/bench/svg_plot.hpp"
 #include "runtime/cli/bench_medium.hpp"
 #include "runtime/cli/commands.hpp"
@@ -89,28 +89,6 @@ std::vector<Camera> frame_cameras(const Options& o, const Camera& start, unsigne
   return cameras;
 }
 
-// Molecule copies on screen and the atoms they are made of (what the frame represents).
-struct OnScreen {
-  std::uint64_t copies = 0;
-  std::uint64_t atoms = 0;      // of those copies' molecule types
-  std::uint64_t hit_pixels = 0;  // pixels that show an atom (the frame's screen coverage)
-};
-
-OnScreen on_screen(const format::Package& package, const std::vector<gpu::PixelHit>& hits) {
-  const auto molecules = package.records<format::SectionKind::molecules>();
-  std::set<std::uint64_t> copies;
-  std::uint64_t atoms = 0, hit_pixels = 0;
-  for (const gpu::PixelHit& h : hits) {
-    if (h.atom == gpu::kNoHit) continue;
-    ++hit_pixels;
-    const std::uint64_t number = std::uint64_t(h.copy_number_lo) | (std::uint64_t(h.copy_number_hi) << 32);
-    if (!copies.insert(number).second) continue;
-    for (const gpu::MoleculeType& m : molecules)
-      if (h.atom >= m.first_atom && h.atom - m.first_atom < m.atom_count) atoms += m.atom_count;
-  }
-  return {copies.size(), atoms, hit_pixels};
-}
-
 nlohmann::ordered_json memory_json(const render::MemoryReport& m) {
   return {{"package_data", m.package_data}, {"derived", m.derived}, {"nlas", m.nlas}, {"mlas", m.mlas},
           {"ulas", m.ulas}, {"flat", m.flat}, {"package_imported_in_place", m.package_imported}, {"build_scratch_peak", m.scratch_peak}};
@@ -134,7 +112,7 @@ void run_frames(const Options& o, session::RenderSession& session, nlohmann::ord
   for (const Camera& c : cameras) {
     const render::Frame f = renderer.render(c.to_gpu(w, h));
     seconds.push_back(f.seconds);
-    const OnScreen seen = on_screen(session.package, f.hits);
+    const bench::OnScreen seen = bench::on_screen(session.package.records<format::SectionKind::molecules>(), f.hits);
     molecules += seen.copies, atoms += seen.atoms, hit_pixels += seen.hit_pixels;
   }
   const bench::FrameStats stats = bench::frame_stats(seconds);

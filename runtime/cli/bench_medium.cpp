@@ -8,6 +8,7 @@
 #include "common/error.hpp"
 #include "format/package_view.hpp"
 #include "runtime/bench/frame_stats.hpp"
+#include "runtime/bench/on_screen.hpp"
 #include "runtime/bench/ray_counters.hpp"
 #include "runtime/cli/commands.hpp"
 
@@ -74,9 +75,8 @@ void run_medium_bench(const MediumBenchOptions& o, session::RenderSession& sessi
       const render::Frame f = renderer.render(c.camera);
       if (round == 0) continue;
       c.seconds.push_back(f.seconds);
-      std::uint64_t hit = 0;
-      for (const gpu::PixelHit& p : f.hits) hit += p.atom != gpu::kNoHit;
-      c.hit_fraction = double(hit) / double(f.hits.size());
+      const bench::OnScreen seen = bench::on_screen(session.package.records<format::SectionKind::molecules>(), f.hits);
+      c.hit_fraction = double(seen.hit_pixels) / double(f.hits.size());
     }
   std::vector<std::pair<std::string, bench::CounterSummary>> work;
   for (const Column& c : columns) {

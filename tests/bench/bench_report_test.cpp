@@ -1,17 +1,40 @@
-// The bench report helpers: nearest-rank statistics against hand-computed values, and the SVG
-// plot's structure (every drawable point placed inside the frame, log axes refusing what they cannot show).
+// The bench report helpers: nearest-rank statistics against hand-computed values, what a frame
+// shows counted by hand, and the SVG plot's structure (every drawable point placed inside the frame, log axes refusing what they cannot show).
+#include <cstdint>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "runtime/bench/frame_stats.hpp"
+#include "runtime/bench/on_screen.hpp"
 #include "runtime/bench/ray_counters.hpp"
 #include "runtime/bench/svg_plot.hpp"
 
 namespace {
 
 using namespace nano::bench;
+
+// Two types (atoms [0, 10) and [10, 15)); five pixels: two of one copy of the first, one of a copy
+// of the second, one background, one of another copy of the first.
+TEST(OnScreen, CopiesAtomsAndPixelsCountedByHand) {
+  std::vector<nano::gpu::MoleculeType> types(2);
+  types[0].first_atom = 0, types[0].atom_count = 10;
+  types[1].first_atom = 10, types[1].atom_count = 5;
+  const auto hit = [](std::uint32_t atom, std::uint64_t copy) {
+    nano::gpu::PixelHit h{};
+    h.atom = atom;
+    h.copy_number_lo = std::uint32_t(copy), h.copy_number_hi = std::uint32_t(copy >> 32);
+    return h;
+  };
+  const std::vector<nano::gpu::PixelHit> hits{hit(3, 7), hit(4, 7), hit(12, 1ull << 33), hit(nano::gpu::kNoHit, 0), hit(9, 8)};
+  const OnScreen seen = on_screen(types, hits);
+  EXPECT_EQ(seen.hit_pixels, 4u);
+  EXPECT_EQ(seen.copies, 3u);
+  EXPECT_EQ(seen.atoms, 10u + 5u + 10u);
+  EXPECT_EQ(on_screen(types, {}).hit_pixels, 0u);
+}
 
 TEST(FrameStats, NearestRankPercentiles) {
   std::vector<double> s;
