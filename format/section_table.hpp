@@ -141,5 +141,6 @@
     "nodes per axis ≥ 2 (xyz) and the first value (w) of x·y·z in exclusion_values; margin (limits.x ≥ 0) and " \
     "clamp (limits.y > margin), 1 / spacing (limits.z, as a float division gives it), w reserved")                                                                  \
   X(exclusion_values, 33, float, required, 8, zstd, check_medium, (),                                           \
-    "f32 node values of all exclusion fields: signed distance to the mesh less the shell's reach (Å), within "  \
-    "± their field's clamp")
+    "f32 node values of all exclusion fields: how far the node stands clear of what the membrane draws: "       \
+    "outside, the least over triangles of the distance less the triangle's reach; inside, that less twice the " \
+    "distance (Å), within ± their field's clamp")
