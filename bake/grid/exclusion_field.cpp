@@ -51,7 +51,6 @@ DrawnClearance::DrawnClearance(const MeshSurface& surface, std::vector<float> re
     if (!(r >= 0.f && std::isfinite(r))) throw InputError("", "exclusion field", "a triangle's reach is " + std::to_string(r));
     least_ = std::min(least_, double(r)), largest_ = std::max(largest_, double(r));
   }
-  if (reach_.empty()) least_ = 0.0;
   // At most 1 % of the triangles (or 32) are tall.
   std::vector<float> sorted = reach_;
   std::sort(sorted.begin(), sorted.end());
@@ -74,8 +73,9 @@ double DrawnClearance::at(const glm::dvec3& p, double enough) const {
 }
 
 double DrawnClearance::inside(const glm::dvec3& p, double distance, double enough) const {
-  if (-distance - least_ >= -enough && distance < enough) return outside(p, distance, enough) - 2.0 * distance;
-  return -enough;
+  // The value is at most −(distance + least): at or below −enough it is clamped there unsearched.
+  if (distance + least_ >= enough) return -enough;
+  return outside(p, distance, enough) - 2.0 * distance;
 }
 
 // A triangle t lowers the value below best only when nearer than best + reach[t]: the tall ones are
