@@ -13,6 +13,8 @@
 
 #include <unistd.h>
 
+#include <glm/gtc/matrix_access.hpp>
+
 #include "common/error.hpp"
 #include "common/singular_value.hpp"
 #include "format/core_skip.hpp"
@@ -923,7 +925,7 @@ struct GpuScene::Impl : format::PackageView {
     for (std::uint32_t i = 0; i < compartment_instances.size(); ++i) {
       const gpu::CompartmentInstance& ci = compartment_instances[i];
       render_instances.push_back(
-          {glm::uvec4(std::uint32_t(base), std::uint32_t(base >> 32), ci.compartment, flat->first_bit(i)), {}, {}});
+          {glm::uvec4(std::uint32_t(base), std::uint32_t(base >> 32), ci.compartment, flat->first_bit(i)), {}, {}, {}});
       const gpu::RenderCompartment& rc = render_compartments[ci.compartment];
       const gpu::Compartment& c = compartments[ci.compartment];
       const std::uint64_t core_span =
@@ -962,11 +964,13 @@ struct GpuScene::Impl : format::PackageView {
       if (!(std::abs(glm::determinant(t.linear)) > 1e-12)) throw std::invalid_argument("set_eye: singular instance transform");
       glm::dmat4 m(t.linear);
       m[3] = glm::dvec4(t.translation - eye, 1.0);
-      // The eye in compartment space, L⁻¹(eye − T), in double, split into two floats.
-      const dvec3 eye_c = glm::inverse(glm::dmat3(m)) * -dvec3(m[3]);
+      // The eye in compartment space, L⁻¹(eye − T), in double, split into two floats; L⁻¹ by rows.
+      const glm::dmat3 from_world = glm::inverse(glm::dmat3(m));
+      const dvec3 eye_c = from_world * -dvec3(m[3]);
       const vec3 hi(eye_c);
       render_instances[i].eye_hi = glm::vec4(hi, 0.f);
       render_instances[i].eye_lo = glm::vec4(vec3(eye_c - dvec3(hi)), 0.f);
+      for (int r = 0; r < 3; ++r) render_instances[i].from_world[r] = glm::vec4(vec3(glm::row(from_world, r)), 0.f);
       const std::uint8_t mask = visibility.compartment_hidden(ci.compartment) ? 0x00 : 0xFF;  // rays query with 0xFF
       unsorted.push_back(vk::make_instance(compartment_blas[ci.compartment], m, i, mask));
       const auto& [lo, hi_c] = compartment_bounds[ci.compartment];

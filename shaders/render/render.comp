@@ -54,9 +54,10 @@ const bool kRepLasWalk = kReplicationLas && kLargeAreas;
 // 1: the paper's two-level membrane: every atom of a Wang square in one BLAS, placed in tile space by
 // the affine M1 (an approximation of the true placement that verify measures); 0: mLAS → nLAS.
 layout(constant_id = NANO_SPEC_TWO_LEVEL) const bool kTwoLevel = false;
-// Precision knob (bench): 7: the primary ray's compartment-space eye from the host's double
-// computation as a two-float sum (RenderInstance) — false: the hardware's float transform of the ray
-// origin; 8: the µLAS in world coordinates with the ray from the world eye — false: camera-relative.
+// Precision knob (bench): 7: every ray enters compartment space through the host's double
+// computation (RenderInstance: the eye as a two-float sum, the inverse linear part) — false: the
+// driver's float WorldToObject; 8: the µLAS in world coordinates with the ray from the world eye —
+// false: camera-relative.
 layout(constant_id = NANO_SPEC_EYE_FROM_HOST) const bool kEyeFromHost = true;
 layout(constant_id = NANO_SPEC_WORLD_SPACE_ULAS) const bool kWorldSpaceUlas = false;
 // Scene effects (runtime/render/effects.hpp), each compiled in only when on: a specialization
@@ -710,9 +711,9 @@ void trace_medium(vec3 origin, vec3 d) {
 }
 
 // Traces one ray through the whole scene: origin camera-relative world, unit direction d, hits in
-// [0, t_max]. Primary rays take each instance's eye from the host's double computation
-// (RenderInstance), not the hardware's float transform of the origin; secondary rays (AO, shadows)
-// start elsewhere and take the transformed origin. Leaves the hit in best*.
+// [0, t_max]. kEyeFromHost: the ray enters each instance's compartment space through the host's
+// double computation (RenderInstance), not the driver's float WorldToObject: the eye as a two-float
+// sum, a secondary ray's (AO, shadows) origin as the eye plus L⁻¹·origin. Leaves the hit in best*.
 bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
   best_t = t_max;
   best.depth = placement_inf();
@@ -757,14 +758,18 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
     uint inst = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(q, false));
     uint prim = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     vec3 o;
-    if (primary && kEyeFromHost) {
-      o = render_instances[inst].eye_hi.xyz;
-      eye_lo = render_instances[inst].eye_lo.xyz;
+    vec3 od;
+    if (kEyeFromHost) {
+      RenderInstance ri = render_instances[inst];
+      mat3 from_world = transpose(mat3(ri.from_world[0].xyz, ri.from_world[1].xyz, ri.from_world[2].xyz));
+      od = from_world * d;
+      o = primary ? ri.eye_hi.xyz : ri.eye_hi.xyz + from_world * origin;
+      eye_lo = ri.eye_lo.xyz;
     } else {
       o = rayQueryGetIntersectionObjectRayOriginEXT(q, false);
+      od = rayQueryGetIntersectionObjectRayDirectionEXT(q, false);
       eye_lo = vec3(0.0);
     }
-    vec3 od = rayQueryGetIntersectionObjectRayDirectionEXT(q, false);
     if (kClipping) load_clip_half_spaces(rayQueryGetIntersectionObjectToWorldEXT(q, false));
     uint ci = render_instances[inst].base.z;
     RenderCompartment rc = render_compartments[ci];

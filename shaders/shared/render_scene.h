@@ -41,11 +41,15 @@ NANO_CONST float NANO_TYPICAL_ATOM_DIAMETER = 3.4f;  // Å: carbon's van der Waa
 // The eye in compartment space as an unevaluated sum hi + lo of floats (computed in double on the
 // host): compartment coordinates of a cell reach 4·10^4 Å, where one float ulp is 0.004 Å, so the
 // molecule-space ray origin is formed as (hi − T) + lo to keep the hit depth to ~1e-5 Å.
+// Directions enter compartment space through the host's double inverse of the instance's linear
+// part too, not the driver's WorldToObject: Mesa's lavapipe inverts the whole 4×4 in float, and at a
+// camera-relative translation of 5·10^4 Å its linear part is off by 1e-4 (5 Å at that distance).
 struct RenderInstance {
-  uvec4 base;    // xy: first copy number (lo, hi); z: compartment; w: the flat level's bit of its
-                 // triangle 0 (NANO_B_FLAT_TRIANGLES; triangle tl is bit w + tl)
-  vec4 eye_hi;   // xyz: float(eye_c); w: reserved
-  vec4 eye_lo;   // xyz: float(eye_c − eye_hi); w: reserved
+  uvec4 base;            // xy: first copy number (lo, hi); z: compartment; w: the flat level's bit of
+                         // its triangle 0 (NANO_B_FLAT_TRIANGLES; triangle tl is bit w + tl)
+  vec4 eye_hi;           // xyz: float(eye_c); w: reserved
+  vec4 eye_lo;           // xyz: float(eye_c − eye_hi); w: reserved
+  vec4 from_world[3];    // rows of float(L⁻¹): a camera-relative world vector → compartment space; w: reserved
 };
 
 // One nested acceleration structure (an nLAS per molecule type, an mLAS per Wang square and cube, a
@@ -122,7 +126,7 @@ NANO_END
 #ifdef __cplusplus
 #include <cstddef>
 static_assert(sizeof(nano::gpu::RenderCompartment) == 128 && offsetof(nano::gpu::RenderCompartment, core_skip) == 112);
-static_assert(sizeof(nano::gpu::RenderInstance) == 48);
+static_assert(sizeof(nano::gpu::RenderInstance) == 96 && offsetof(nano::gpu::RenderInstance, from_world) == 48);
 static_assert(sizeof(nano::gpu::RenderLevel) == 16);
 static_assert(sizeof(nano::gpu::Camera) == 80);
 static_assert(sizeof(nano::gpu::RenderFrame) == 672);
