@@ -3,6 +3,8 @@
 # bounded time, starting from the checked-in seeds (docs/tests.md, "Fuzzing"):
 #   package  the package reader + validator       (seeds tests/fuzz/corpus/, 35 s by default)
 #   scene    the scene reader + feasibility       (seeds tests/fuzz/scene_corpus/, 25 s)
+#   recipe   the cellPACK recipe reader           (seeds tests/fuzz/recipe_corpus/ and the
+#            recipes of tests/cellpack/data/, 10 s)
 #   obj off ply stl draco
 #            one mesh reader each (parse_proxy_mesh; seeds tests/fuzz/mesh_corpus/FORMAT/, 10 s)
 #   pdb mmcif
@@ -16,7 +18,7 @@ set -euo pipefail
 src=$1
 build=$2
 shift 2
-sessions=(package scene obj off ply stl draco pdb mmcif gzip)
+sessions=(package scene recipe obj off ply stl draco pdb mmcif gzip)
 
 build_fuzzers() {
   CC=clang-14 CXX=clang++-14 cmake -S "$src" -B "$build" -G Ninja -DNANO_FUZZ_ONLY=ON \
@@ -24,16 +26,18 @@ build_fuzzers() {
   cmake --build "$build" --target "${sessions[@]/%/_fuzzer}" -j2
 }
 
-# fuzz NAME SECONDS MAX_LEN SEEDS [libFuzzer options...]
+# fuzz NAME SECONDS MAX_LEN SEEDS [libFuzzer options...]   (SEEDS: folders joined by ':')
 fuzz() {
-  local name=$1 seconds=${NANO_FUZZ_SECONDS:-$2} max_len=$3 seeds=$4
+  local name=$1 seconds=${NANO_FUZZ_SECONDS:-$2} max_len=$3
+  local -a seeds
+  IFS=: read -r -a seeds <<< "$4"
   shift 4
   local prefix=$([ "$name" = package ] || echo "$name-")
   local work=$build/${prefix}corpus findings=$build/${prefix}findings
   mkdir -p "$work" "$findings"
   # libFuzzer adds new inputs to the first corpus directory; the checked-in seeds are only read.
   "$build/tests/fuzz/${name}_fuzzer" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
-    -max_len="$max_len" -artifact_prefix="$findings/" -print_final_stats=1 "$@" "${extra[@]}" "$work" "$seeds"
+    -max_len="$max_len" -artifact_prefix="$findings/" -print_final_stats=1 "$@" "${extra[@]}" "$work" "${seeds[@]}"
 }
 
 session() {
@@ -41,6 +45,7 @@ session() {
   case $1 in
     package) fuzz package 35 16384 "$fuzz_dir/corpus" ;;
     scene) fuzz scene 25 65536 "$fuzz_dir/scene_corpus" -dict="$fuzz_dir/scene.dict" ;;
+    recipe) fuzz recipe 10 65536 "$fuzz_dir/recipe_corpus:$src/tests/cellpack/data" -dict="$fuzz_dir/recipe.dict" ;;
     obj | off | ply | stl) fuzz "$1" 10 16384 "$fuzz_dir/mesh_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
     draco) fuzz draco 10 16384 "$fuzz_dir/mesh_corpus/draco" ;;
     pdb | mmcif) fuzz "$1" 10 32768 "$fuzz_dir/structure_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
