@@ -2,6 +2,7 @@
 // The two recipe formats' readers behind read_recipe (recipe_reader.cpp), which parses the file and
 // tells the formats apart; what they share about reading other files lives in RecipeFiles.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,8 +12,8 @@
 
 namespace nano::cellpack {
 
-// The files one read_recipe call opens: the include chain (for cycles and depth) and a count of
-// every file read, both bounded; included documents stay alive as long as the cursors into them.
+// The files one read_recipe call opens, counted and bounded; included documents stay alive as long
+// as the cursors into them.
 class RecipeFiles {
 public:
   RecipeFiles(std::filesystem::path recipe, const RecipeReadOptions& options);
@@ -21,12 +22,11 @@ public:
   // The document an `include` names, read from the first candidate that exists; `from` is the
   // cursor holding the include's file name (for errors naming what was tried).
   const Json& include(const JsonCursor& from, std::string& file_for_messages);
-  void leave_include() { chain_.pop_back(); }
 
 private:
   std::filesystem::path folder_;
   RecipeReadOptions options_;
-  std::vector<std::filesystem::path> chain_;
+  std::filesystem::path recipe_;  // canonical: an include naming it is a cycle
   std::vector<std::unique_ptr<Json>> documents_;
   std::vector<std::unique_ptr<std::string>> names_;
   std::size_t files_read_ = 1;

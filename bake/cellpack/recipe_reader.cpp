@@ -41,14 +41,13 @@ std::vector<fs::path> recipe_file_candidates(const std::string& written, const f
 RecipeFiles::RecipeFiles(fs::path recipe, const RecipeReadOptions& options)
     : folder_(recipe.parent_path()), options_(options) {
   std::error_code ec;
-  chain_.push_back(fs::weakly_canonical(recipe, ec));
+  recipe_ = fs::weakly_canonical(recipe, ec);
 }
 
 const Json& RecipeFiles::include(const JsonCursor& from, std::string& file_for_messages) {
   if (!from.json().is_string()) from.fail("expected an include file name, got " + from.shown());
   const std::string written = from.string();
-  const fs::path folder = chain_.size() > 1 ? chain_.back().parent_path() : folder_;
-  const std::vector<fs::path> candidates = recipe_file_candidates(written, folder, options_);
+  const std::vector<fs::path> candidates = recipe_file_candidates(written, folder_, options_);
   const auto found = std::find_if(candidates.begin(), candidates.end(), [](const fs::path& p) {
     std::error_code ec;
     return fs::is_regular_file(p, ec);
@@ -58,11 +57,8 @@ const Json& RecipeFiles::include(const JsonCursor& from, std::string& file_for_m
               (server_relative(written) && options_.server_folder.empty() ? "; --server FOLDER names a local copy of cellPACK's database" : ""));
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(*found, ec);
-  if (std::find(chain_.begin(), chain_.end(), canonical) != chain_.end())
-    from.fail("include '" + written + "' includes itself (a cycle through " + found->string() + ")");
-  if (chain_.size() > kMaxIncludeDepth) from.fail("includes nest more than " + std::to_string(kMaxIncludeDepth) + " deep");
+  if (canonical == recipe_) from.fail("include '" + written + "' includes itself (a cycle through " + found->string() + ")");
   if (++files_read_ > kMaxRecipeFiles) from.fail("a recipe reads at most " + std::to_string(kMaxRecipeFiles) + " files");
-  chain_.push_back(canonical);
   names_.push_back(std::make_unique<std::string>(found->string()));
   documents_.push_back(std::make_unique<Json>(read_json_file(*found)));
   file_for_messages = *names_.back();

@@ -2,10 +2,11 @@
 // Reads a cellPACK recipe file (v1 or v2, told apart by `format_version`) into cellpack::Recipe.
 // Recipes are foreign files: keys cellPACK's packer alone uses are passed over, but every value the
 // model takes is checked (type, range) and a broken one is an InputError naming the file and key.
-// v1 `include` files are read from the including file's folder, or — for cellPACK's server paths
+// v1 `include` files are read from the recipe's folder, or — for cellPACK's server paths
 // (`autoPACKserver/recipes/X.json`, `github:recipes/X.json`) — from `server_folder`/recipes/X.json
-// and then beside the recipe; a cycle, a depth past kMaxIncludeDepth or more than kMaxRecipeFiles
-// files is refused.
+// and then beside the recipe. An included file is one ingredient's definition: it includes nothing
+// further (one that tries is refused), so the only cycle is the recipe including itself, refused too,
+// as is a recipe reading more than kMaxRecipeFiles files.
 #include <cstddef>
 #include <filesystem>
 
@@ -14,7 +15,6 @@
 
 namespace nano::cellpack {
 
-inline constexpr std::size_t kMaxIncludeDepth = 16;
 inline constexpr std::size_t kMaxRecipeFiles = 10000;
 // Far above any recipe (cellPACK's largest list a few thousand ingredients, counts up to ~10^7)
 // and far below what would make later arithmetic overflow.

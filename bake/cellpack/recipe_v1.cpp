@@ -55,9 +55,11 @@ Ingredient read_entry(const JsonCursor& c, const std::string& id, RecipeFiles& f
   if (const auto over = c.optional("overwrite"); over && over->json().is_object())
     for (const auto& [key, value] : over->json().items()) merged[key] = value;
   const std::string name = c.has("overwrite") ? file + " (with " + c.file() + ":" + c.path() + ".overwrite)" : file;
-  Ingredient in = read_fields(JsonCursor(merged, name), id);
-  files.leave_include();
-  return in;
+  const JsonCursor definition(merged, name);
+  if (!merged.is_object()) definition.fail("expected an ingredient object, got " + definition.shown());
+  // An ingredient file defines one ingredient; following its own include would make chains and cycles.
+  if (merged.contains("include")) definition.required("include").fail("an included ingredient file includes nothing further");
+  return read_fields(definition, id);
 }
 
 // An ingredient list: {"KEY": ingredient-or-stub, …} under `ingredients` (a list of them is read too).

@@ -195,8 +195,11 @@ TEST_F(RecipeFolder, BadRecipesAreRefusedWithFileAndKey) {
   EXPECT_NE(error_of(v1("frac.json", R"({"nbMol": 2.5})")).find("whole number"), std::string::npos);
   EXPECT_NE(error_of(v1("nan.json", R"({"principalVector": [0, "x", 1]})")).find("principalVector[1]: expected a number"),
             std::string::npos);
-  // An include file is itself an ingredient: its own `include` is not followed, so a cycle can only
+  // An include file is itself an ingredient: one that includes again is refused, so a cycle can only
   // run through the recipe itself.
+  write("chained.json", R"({"include": "other.json"})");
+  EXPECT_NE(error_of(v1("chain.json", R"({"include": "chained.json"})")).find("chained.json:include: an included ingredient file includes nothing further"),
+            std::string::npos) << error_of(dir_ / "chain.json");
   const fs::path self = v1("self.json", R"({"include": "self.json"})");
   EXPECT_NE(error_of(self).find("includes itself"), std::string::npos) << error_of(self);
   write("v3.json", R"({"format_version": "3.0", "name": "x", "composition": {}})");
