@@ -28,7 +28,7 @@ public:
     const JsonCursor composition = root_.required("composition");
     for (const auto& [name, c] : composition.members()) entries_.emplace(name, c);
     const std::string root_name = find_root(composition);
-    walk(root_name, nullptr, 0);
+    walk(root_name, kOutside, 0);
   }
 
 private:
@@ -69,7 +69,10 @@ private:
     return regions->members();
   }
 
-  void walk(const std::string& name, Compartment* container, int depth) {
+  // Containers by their index in recipe_.compartments (the list grows while they are walked).
+  static constexpr std::size_t kOutside = std::size_t(-1);
+
+  void walk(const std::string& name, std::size_t container, int depth) {
     const JsonCursor& entry = entries_.at(name);
     if (depth > 16) entry.fail("containers nested more than 16 deep");
     for (const auto& [region, items] : regions_of(entry)) {
@@ -79,28 +82,29 @@ private:
     }
   }
 
-  void place(const JsonCursor& item, const std::string& region, Compartment* container, int depth) {
-    std::vector<Ingredient>& list = !container ? recipe_.outside : region == "interior" ? container->interior : container->surface;
-    if (item.json().is_string()) {
-      const std::string name = item.string();
-      const JsonCursor& entry = entries_.at(name);
-      if (!regions_of(entry).empty()) {
-        add_container(name, entry, container, depth);
-        return;
-      }
-      list.push_back(ingredient(entry, name));
-    } else {
-      list.push_back(ingredient(item, read_name(item.optional("object"))));
+  void place(const JsonCursor& item, const std::string& region, std::size_t container, int depth) {
+    if (item.json().is_string() && !regions_of(entries_.at(item.string())).empty()) {
+      add_container(item.string(), entries_.at(item.string()), container, depth);
+      return;
     }
-    if (container && region != "interior" && region != "surface")
+    Ingredient in = item.json().is_string() ? ingredient(entries_.at(item.string()), item.string())
+                                            : ingredient(item, read_name(item.optional("object")));
+    if (container == kOutside) {
+      recipe_.outside.push_back(std::move(in));
+      return;
+    }
+    Compartment& c = recipe_.compartments[container];
+    std::vector<Ingredient>& list = region == "interior" ? c.interior : c.surface;
+    list.push_back(std::move(in));
+    if (region != "interior" && region != "surface")
       list.back().not_carried.push_back("region " + region + " (read as the surface: cellPACK packs neither leaflet)");
   }
 
-  void add_container(const std::string& name, const JsonCursor& entry, Compartment* parent, int depth) {
+  void add_container(const std::string& name, const JsonCursor& entry, std::size_t parent, int depth) {
     Compartment comp;
     comp.id = name;
     comp.where = entry.file() + ":" + entry.path();
-    comp.parent = parent ? parent->id : "";
+    comp.parent = parent == kOutside ? "" : recipe_.compartments[parent].id;
     if (const auto object_name = entry.optional("object")) {
       std::set<std::string> seen;
       const Json merged = object(object_name->string(), *object_name, seen);
@@ -121,11 +125,7 @@ private:
       }
     }
     recipe_.compartments.push_back(std::move(comp));
-    const std::size_t index = recipe_.compartments.size() - 1;
-    Compartment copy = recipe_.compartments[index];
-    walk(name, &copy, depth + 1);
-    recipe_.compartments[index].surface = std::move(copy.surface);
-    recipe_.compartments[index].interior = std::move(copy.interior);
+    walk(name, recipe_.compartments.size() - 1, depth + 1);
   }
 
   // A composition entry or item over its object: the item's own values win.
