@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   nano::bake::add_check_mesh_command(app);
   nano::bake::add_make_mesh_command(app);
   nano::bake::add_bake_command(app);
+  nano::bake::add_import_cellpack_command(app);
   // `nanobake SCENE.json -o PKG` is short for `nanobake bake SCENE.json -o PKG`.
   std::vector<char*> args(argv, argv + argc);
   static char bake[] = "bake";

@@ -1,0 +1,48 @@
+#pragma once
+// A cellPACK recipe (cellpack::Recipe) as a Nanouniverse scene (docs/scene.md): each ingredient a
+// molecule with an amount, each region a fill — the outside the scene's medium, a compartment's
+// interior its soluble, its surface its membrane's proteins on a bilayer — and a report, one line
+// per ingredient: what it asked for, what the scene holds and the volume or area that implies, and
+// what was not carried over.
+// Amounts: a molarity M is M·1000 mM; cellPACK adds nbMol/count to the molarity's copies, so a count
+// becomes the concentration it makes in its region (copies / (N_A · volume)); on a surface cellPACK
+// reads the molarity per Å² (M · 6.022e-4 copies / Å²), here copies / µm², and a count per the
+// surface's area. A principal vector becomes the molecule's `up`; an offset along it its depth.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bake/cellpack/recipe.hpp"
+#include "bake/cellpack/recipe_reader.hpp"
+#include "common/json_document.hpp"
+
+namespace nano::cellpack {
+
+struct ImportOptions {
+  std::filesystem::path structures;    // where ingredient structures are found (StructureFolder)
+  RecipeReadOptions read;              // --server: the local copy of cellPACK's database
+  std::filesystem::path lipid_patch;   // the bilayer every membrane is laid on ("" : surfaces are refused)
+  std::filesystem::path scene_folder;  // where the scene is written: its file paths are relative to it
+};
+
+struct ImportLine {
+  std::string ingredient;  // the recipe's id
+  std::string region;      // "outside", "COMPARTMENT interior", "COMPARTMENT surface"
+  std::string asked;       // the recipe's amounts
+  std::string held;        // the scene's amount and what it implies
+  std::vector<std::string> not_carried;
+};
+
+struct ImportResult {
+  Json scene;
+  std::vector<ImportLine> report;
+};
+
+// Throws InputError naming the recipe, the ingredient and what is missing (every missing structure
+// at once, with the file names tried).
+ImportResult scene_from_recipe(const Recipe& recipe, const ImportOptions& options);
+
+// The report as text, one line per ingredient.
+std::string report_text(const Recipe& recipe, const ImportResult& result);
+
+}  // namespace nano::cellpack
