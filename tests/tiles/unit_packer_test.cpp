@@ -49,6 +49,37 @@ TEST(UnitPacker, SpheresIn2DAnd3DAreClearInEveryTilingAndCountedRight) {
   }
 }
 
+// A rare molecule (0.63 copies per cube of 250 Å, an IgG's size) is packed as asked, not rounded up
+// to a whole copy in a unit every cube holds (which made it 1 per cube, +59 %); the explicit tiling
+// counts it.
+TEST(UnitPacker, ARareMoleculeIsNotRoundedUpInASharedUnit) {
+  const std::vector<MoleculeType> types{{"igg", {{{0, 0, 0}, 75.f}}, 75.f, {0, 0, 1}}};
+  const std::vector<CollisionShape> shapes{CollisionShape(types[0])};
+  const float edge = 250.f;
+  const double measure = edge * edge * edge;
+  for (const double per_cube : {0.63, 0.2, 1.4}) {
+    std::vector<PlacementSpec> specs(1);
+    specs[0].type = 0;
+    specs[0].copies_per_volume = per_cube / measure;
+    specs[0].band = 75.01f;
+    specs[0].uniform_rotation = true;
+    const WangColouring colouring = make_complete_colouring(3, 2);
+    PackerSettings settings;
+    settings.edge = edge;
+    settings.clearance = 1.f;
+    settings.seed = 5;
+    settings.relaxation_rounds = 300;  // as the baker packs (wang_sets.hpp)
+    const PackedUnits packed = pack_wang_units(shapes, specs, colouring, settings);
+    WangSet set{3, edge, colouring, packed.tiles, {}};
+    const TilingRecipe big = make_tiling_recipe(colouring, {16, 16, 16}, 6, false);
+    const test::ExplicitTiling counts = test::instantiate(set, big, types, false);
+    const double explicit_per_cube = counts.copies_per_type[0] / static_cast<double>(big.cells.size());
+    // Whole copies over 64 cubes: within one copy of the set (1/64 per cube) and the tiling's sampling.
+    EXPECT_NEAR(explicit_per_cube, per_cube, 0.05 * per_cube + 1.0 / 64) << per_cube;
+    EXPECT_NEAR(packed.achieved_per_volume[0] * measure, per_cube, 1.0 / 64 + 1e-9) << per_cube;
+  }
+}
+
 TEST(UnitPacker, ComputeAtomBoundsCoversEveryAtom) {
   const std::vector<MoleculeType> types{test::make_lipid()};
   const std::vector<CollisionShape> shapes{CollisionShape(types[0])};
