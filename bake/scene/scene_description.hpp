@@ -35,14 +35,21 @@ struct Box {
   bool operator==(const Box&) const = default;
 };
 
+inline constexpr std::size_t kMaxStandInSpheres = 100'000;
+
 struct MoleculeDescription {
   std::string name;
-  std::filesystem::path file;          // resolved against the scene file's folder
+  std::filesystem::path file;          // resolved against the scene file's folder; empty for a stand-in
   std::optional<glm::dvec3> colour;    // sRGB components in [0, 1]; absent: the baker picks one
   std::optional<glm::dvec3> up_axis;   // unit vector; absent ("principal"): from the structure
   bool all_models = false;
   bool keep_water = false;
   bool keep_hydrogens = true;
+  // A stand-in has no structure: the molecule is drawn as these spheres (centre xyz and radius w, Å,
+  // in the molecule's own frame), e.g. the packing spheres of a cellPACK ingredient whose structure
+  // is missing. `stand_in_from` says where they came from; both are shown wherever the molecule is.
+  std::vector<glm::dvec4> stand_in_spheres;
+  std::string stand_in_from;
   bool operator==(const MoleculeDescription&) const = default;
 };
 

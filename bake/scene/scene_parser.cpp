@@ -100,11 +100,31 @@ glm::dvec3 parse_colour(const JsonCursor& c) {
   return {e[0].number_between(0.0, 1.0), e[1].number_between(0.0, 1.0), e[2].number_between(0.0, 1.0)};
 }
 
+// "stand_in": {"spheres": [[x, y, z, r], ...], "from": "..."}: a molecule drawn as spheres, no structure.
+void parse_stand_in(const JsonCursor& c, MoleculeDescription& m) {
+  c.only_keys({"spheres", "from"});
+  m.stand_in_from = c.required("from").non_empty_string();
+  const JsonCursor spheres = c.required("spheres");
+  const auto list = spheres.elements(1);
+  if (list.size() > kMaxStandInSpheres)
+    spheres.fail("a stand-in has at most " + std::to_string(kMaxStandInSpheres) + " spheres, got " + std::to_string(list.size()));
+  for (const JsonCursor& sphere : list) {
+    const glm::dvec4 v = sphere.vec4();
+    if (!(v.w > 0.0) || v.w > 1000.0) sphere.fail("a sphere's radius must be in (0, 1000] Å, got " + sphere.shown());
+    if (glm::length(glm::dvec3(v)) > 1e4) sphere.fail("a stand-in's sphere lies more than 10⁴ Å from its molecule's origin: " + sphere.shown());
+    m.stand_in_spheres.push_back(v);
+  }
+}
+
 MoleculeDescription parse_molecule(const std::string& name, const JsonCursor& c, const std::filesystem::path& folder) {
-  c.only_keys({"file", "colour", "up", "all_models", "keep_water", "hydrogens"});
+  c.only_keys({"file", "stand_in", "colour", "up", "all_models", "keep_water", "hydrogens"});
   MoleculeDescription m;
   m.name = name;
-  m.file = resolve_path(c.required("file"), folder);
+  if (c.has("file") == c.has("stand_in"))
+    c.fail("a molecule has either a structure \"file\" or a \"stand_in\" (spheres standing in for a missing structure), "
+           "exactly one of them");
+  if (const auto stand_in = c.optional("stand_in")) parse_stand_in(*stand_in, m);
+  else m.file = resolve_path(c.required("file"), folder);
   if (const auto colour = c.optional("colour")) m.colour = parse_colour(*colour);
   if (const auto up = c.optional("up")) {
     if (up->json().is_string()) {

@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <sstream>
 
+#include "bake/scene_bake/molecule_library.hpp"
 #include "format/draco_mesh_sections.hpp"
 #include "format/section_kind.hpp"
 #include "format/writer.hpp"
@@ -17,6 +19,17 @@ std::uint64_t total(const std::vector<std::pair<std::string, std::uint64_t>>& li
   std::uint64_t n = 0;
   for (const auto& e : list) n += e.second;
   return n;
+}
+
+// The package's stand-in molecule types (name → source), by their source (molecule_library.hpp).
+std::map<std::string, std::string> stand_ins(const format::Package& package) {
+  std::map<std::string, std::string> found;
+  const auto strings = package.records<format::SectionKind::strings>();
+  for (const gpu::MoleculeType& m : package.records<format::SectionKind::molecules>()) {
+    const std::string source(strings.data() + m.source_offset, m.source_length);
+    if (is_stand_in_source(source)) found[std::string(strings.data() + m.name_offset, m.name_length)] = source;
+  }
+  return found;
 }
 
 nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
@@ -179,6 +192,8 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
     entry["atoms"] = entry["atoms"].get<std::uint64_t>() + m.atom_count;
     entry["beads"] = entry["beads"].get<std::uint64_t>() + ranges[t].count;
   }
+  auto& stand_in_types = j["stand_ins"] = nlohmann::ordered_json::object();
+  for (const auto& [name, source] : stand_ins(package)) stand_in_types[name] = source;
   j["mesh_sections"] = mesh_section_sizes(package);
   auto& sections = j["sections"] = nlohmann::ordered_json::object();
   for (const format::SectionEntry& e : package.entries())
@@ -211,6 +226,8 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
                 package.name().c_str(), scene.compartments.size(), scene.instances.size(),
                 static_cast<double>(scene.represented_atoms), package.file_size() / 1e6);
   out << line;
+  for (const auto& [name, source] : stand_ins(package))
+    out << "  " << name << " is a STAND-IN, no structure: " << source.substr(kStandInSourcePrefix.size() - 1) << "\n";
   for (const CompartmentSummary& c : scene.compartments) {
     std::snprintf(line, sizeof line, "  %s: %.3g atoms per copy", c.name.c_str(), static_cast<double>(c.represented_atoms));
     out << line;

@@ -63,16 +63,44 @@ std::pair<double, double> patch_period(std::string_view text, const std::string&
 
 }  // namespace
 
-BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description, std::size_t index) {
-  structure::SelectionOptions options;
-  options.all_models = description.all_models;
-  options.keep_water = description.keep_water;
-  options.keep_hydrogens = description.keep_hydrogens;
-  structure::Molecule molecule = structure::read_molecule(description.file, options);
+std::string stand_in_source(const std::string& from, std::size_t spheres) {
+  return std::string(kStandInSourcePrefix) + from + ", " + std::to_string(spheres) + (spheres == 1 ? " sphere)" : " spheres)");
+}
 
+bool is_stand_in_source(std::string_view source) { return source.starts_with(kStandInSourcePrefix); }
+
+namespace {
+
+// A stand-in's spheres as the molecule's atoms: one pseudo-atom per sphere (no element, atom name SPH).
+std::vector<structure::Atom> stand_in_atoms(const std::vector<glm::dvec4>& spheres) {
+  std::vector<structure::Atom> atoms(spheres.size());
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    atoms[i].position = glm::dvec3(spheres[i]);
+    atoms[i].radius = spheres[i].w;
+    atoms[i].residue_name = "SPH";
+    atoms[i].atom_name = "SPH";
+    atoms[i].residue_number = static_cast<int>(i + 1);
+  }
+  return atoms;
+}
+
+}  // namespace
+
+BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description, std::size_t index) {
   BakedMolecule baked;
   baked.name = description.name;
-  baked.source = description.file.filename().string();
+  structure::Molecule molecule;
+  if (description.stand_in_spheres.empty()) {
+    structure::SelectionOptions options;
+    options.all_models = description.all_models;
+    options.keep_water = description.keep_water;
+    options.keep_hydrogens = description.keep_hydrogens;
+    molecule = structure::read_molecule(description.file, options);
+    baked.source = description.file.filename().string();
+  } else {
+    molecule.atoms = stand_in_atoms(description.stand_in_spheres);
+    baked.source = stand_in_source(description.stand_in_from, description.stand_in_spheres.size());
+  }
   const structure::MoleculeProperties file_space =
       structure::compute_molecule_properties(molecule.atoms, description.up_axis);
   baked.atoms = std::move(molecule.atoms);

@@ -4,6 +4,7 @@
 // bounding radius about the origin is the tight one the tile packer and the shell sizes need.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -51,7 +52,14 @@ struct BakedLipidPatch {
 BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& patch, std::size_t colour_index,
                                  std::vector<BakedMolecule>& library);
 
-// One molecule from its description (exposed for tests).
+// A stand-in's source, as the package stores it for pick and the bake summary:
+// "stand-in (FROM, N spheres)"; is_stand_in_source tells one from a structure file's name.
+inline constexpr std::string_view kStandInSourcePrefix = "stand-in (";
+std::string stand_in_source(const std::string& from, std::size_t spheres);
+bool is_stand_in_source(std::string_view source);
+
+// One molecule from its description (exposed for tests): its structure file read, or its stand-in's
+// spheres as pseudo-atoms.
 BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description, std::size_t index);
 
 // The bilayer's thickness (Å): from its lowest to its highest atom surface across the patch and its

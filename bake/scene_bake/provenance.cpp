@@ -47,8 +47,12 @@ std::string provenance_json(const scene::SceneDescription& scene, std::uint64_t 
   j["scene"] = {{"file", scene.source.filename().string()}, {"xxh3", file_hash(scene.source)}};
   j["seed"] = seed;
   nlohmann::ordered_json inputs = nlohmann::ordered_json::array();
-  for (const scene::MoleculeDescription& m : scene.molecules)
-    inputs.push_back({{"molecule", m.name}, {"file", relative_to_scene(m.file, scene)}, {"xxh3", file_hash(m.file)}});
+  for (const scene::MoleculeDescription& m : scene.molecules) {
+    if (!m.stand_in_spheres.empty())  // its spheres are in the scene file, hashed above
+      inputs.push_back({{"molecule", m.name}, {"stand_in", m.stand_in_from}, {"spheres", m.stand_in_spheres.size()}});
+    else
+      inputs.push_back({{"molecule", m.name}, {"file", relative_to_scene(m.file, scene)}, {"xxh3", file_hash(m.file)}});
+  }
   for (const scene::CompartmentDescription& c : scene.compartments)
     if (c.mesh.kind == scene::MeshSource::Kind::file)
       inputs.push_back({{"mesh", c.name}, {"file", relative_to_scene(c.mesh.file, scene)}, {"xxh3", file_hash(c.mesh.file)}});

@@ -269,5 +269,31 @@ TEST(SceneErrors, MalformedJsonNamesLineAndColumn) {
   EXPECT_INPUT_ERROR(parse_json_text(text, "scene.json"), "3:16", "invalid JSON");
 }
 
+// A stand-in (spheres instead of a structure file) is either/or with "file", and each sphere checked.
+TEST(SceneErrors, StandInsAreSpheresInsteadOfAFile) {
+  const Json spheres = Json{{"from", "its encapsulating radius"}, {"spheres", Json::array({Json::array({0, 0, 0, 40})})}};
+  Json doc = valid_scene();
+  doc["molecules"]["hb"] = Json{{"stand_in", spheres}};
+  const SceneDescription s = parse_scene_description(doc, "scene.json");
+  const MoleculeDescription& hb = s.molecules[2];
+  EXPECT_TRUE(hb.file.empty());
+  EXPECT_EQ(hb.stand_in_spheres, (std::vector<glm::dvec4>{{0, 0, 0, 40}}));
+  EXPECT_EQ(hb.stand_in_from, "its encapsulating radius");
+  EXPECT_INPUT_ERROR(parse_modified([&](Json& d) { d["molecules"]["hb"]["stand_in"] = spheres; }), "molecules.hb",
+                     "either a structure \"file\" or a \"stand_in\"");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["hb"] = Json::object(); }), "molecules.hb", "exactly one of them");
+  const auto with_spheres = [](Json list) {
+    return [list](Json& d) { d["molecules"]["hb"] = Json{{"stand_in", {{"from", "x.sph"}, {"spheres", list}}}}; };
+  };
+  EXPECT_INPUT_ERROR(parse_modified(with_spheres(Json::array())), "molecules.hb.stand_in.spheres", "at least 1");
+  EXPECT_INPUT_ERROR(parse_modified(with_spheres(Json::array({Json::array({0, 0, 0, 0})}))), "molecules.hb.stand_in.spheres[0]",
+                     "radius must be in (0, 1000]");
+  EXPECT_INPUT_ERROR(parse_modified(with_spheres(Json::array({Json::array({2e4, 0, 0, 5})}))), "molecules.hb.stand_in.spheres[0]",
+                     "more than 10⁴ Å");
+  EXPECT_INPUT_ERROR(parse_modified(with_spheres(Json::array({Json::array({0, 0, 5})}))), "molecules.hb.stand_in.spheres[0]", "");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["hb"] = Json{{"stand_in", {{"spheres", Json::array({Json::array({0, 0, 0, 1})})}}}}; }),
+                     "molecules.hb.stand_in.from", "");
+}
+
 }  // namespace
 }  // namespace nano::scene

@@ -203,4 +203,21 @@ TEST(LipidPatch, BoxAndFormatErrorsNameTheFile) {
   EXPECT_TRUE(library.empty());
 }
 
+// A stand-in is its spheres as pseudo-atoms, centred like any molecule, and says what it is.
+TEST(MoleculeLibrary, AStandInIsItsSpheresAndSaysSo) {
+  nano::scene::MoleculeDescription description;
+  description.name = "protease";
+  description.stand_in_spheres = {{-10, 4, 0, 12}, {10, 4, 0, 8}};
+  description.stand_in_from = "HIV1_PR.sph";
+  const auto molecule = load_baked_molecule(description, 0);
+  ASSERT_EQ(molecule.atoms.size(), 2u);
+  EXPECT_DOUBLE_EQ(molecule.atoms[0].radius, 12.0);
+  EXPECT_DOUBLE_EQ(molecule.atoms[1].position.x, 10.0);  // centroid (0, 4, 0) taken off
+  EXPECT_DOUBLE_EQ(molecule.atoms[1].position.y, 0.0);
+  EXPECT_NEAR(molecule.properties.bounding_radius, 22.0, 1e-12);
+  EXPECT_EQ(molecule.source, "stand-in (HIV1_PR.sph, 2 spheres)");
+  EXPECT_TRUE(nano::scene_bake::is_stand_in_source(molecule.source));
+  EXPECT_FALSE(nano::scene_bake::is_stand_in_source("4hhb.pdb"));
+}
+
 }  // namespace
