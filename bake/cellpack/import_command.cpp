@@ -1,11 +1,11 @@
 // nanobake import-cellpack RECIPE.json --structures DIR [--server DIR] [--lipid-patch FILE]
-//   -o SCENE.json [--report FILE]: a cellPACK recipe as a Nanouniverse scene, and the report of
-// what each ingredient asked for and what the scene holds.
+//   [--stand-ins] -o SCENE.json [--report FILE]: a cellPACK recipe as a Nanouniverse scene, and the
+// report of what each ingredient asked for and what the scene holds.
 #include <cstdio>
 #include <memory>
 #include <string>
 
-#include "bake/cellpack/scene_from_recipe.hpp"
+#include "bake/cellpack/import_options.hpp"
 #include "bake/commands.hpp"
 #include "common/atomic_file.hpp"
 
@@ -13,7 +13,8 @@ namespace nano::bake {
 
 void add_import_cellpack_command(CLI::App& app) {
   struct Arguments {
-    std::string recipe, structures, server, lipid_patch, output, report;
+    std::string recipe, output, report;
+    cellpack::ImportArguments import;
   };
   auto args = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
@@ -21,17 +22,12 @@ void add_import_cellpack_command(CLI::App& app) {
       "Write a Nanouniverse scene from a cellPACK recipe (v1 recipe versions 1.0-1.1, v2 format 2.0-2.1), with a "
       "report of what each ingredient asked for and what the scene holds (docs/scenes.md, cellPACK recipes)");
   command->add_option("recipe", args->recipe, "cellPACK recipe (.json)")->required();
-  command->add_option("--structures", args->structures, "folder of the ingredients' structures (PDB id or file name, any case, .pdb/.cif/.ent, gzipped or not)")->required();
-  command->add_option("--server", args->server, "local copy of cellPACK's database folder, for autoPACKserver/ and github: paths");
-  command->add_option("--lipid-patch", args->lipid_patch, "bilayer patch every compartment's membrane is laid on (e.g. data/structures/popc_bilayer.pdb.gz)");
+  cellpack::add_import_options(*command, args->import, true);
   command->add_option("-o,--output", args->output, "scene file to write (.json, written atomically)")->required();
   command->add_option("--report", args->report, "also write the report to this file");
   command->callback([args] {
-    cellpack::ImportOptions options;
-    options.structures = args->structures;
-    options.read.server_folder = args->server;
-    options.lipid_patch = args->lipid_patch;
-    options.scene_folder = std::filesystem::path(args->output).parent_path();
+    const cellpack::ImportOptions options =
+        cellpack::import_options(args->import, args->recipe, std::filesystem::path(args->output).parent_path());
     const cellpack::Recipe recipe = cellpack::read_recipe(args->recipe, options.read);
     const cellpack::ImportResult result = cellpack::scene_from_recipe(recipe, options);
     const auto write = [](const std::string& path, const std::string& text) {

@@ -21,6 +21,7 @@ enum class RecipeFormat { v1, v2 };
 struct Ingredient {
   std::string id;                 // v1: its key in the ingredient list; v2: the composition name or object
   std::string where;              // "FILE:KEY.PATH" of its definition, for reports and errors
+  std::string file;               // FILE: the recipe or the include that defines it (its own files are beside it)
   std::string structure;          // PDB id or structure file name as written ("" when the recipe gives none)
   double molarity = 0;            // mol/L; on a surface cellPACK reads it per Å² (molarity · 6.022e-4 per Å²)
   std::uint64_t count = 0;        // v1 nbMol, v2 count: copies added to what the molarity asks for

@@ -75,6 +75,10 @@ void note_not_carried(Ingredient& in, const std::string& type, const std::string
     in.not_carried.push_back("packing mode " + packing_mode + ": packed at random");
 }
 
+bool is_cellpack_recipe(const Json& doc) {
+  return doc.is_object() && !doc.contains("format") && (doc.contains("format_version") || doc.contains("recipe"));
+}
+
 Recipe read_recipe(const fs::path& file, const RecipeReadOptions& options) { return parse_recipe(read_json_file(file), file, options); }
 
 Recipe parse_recipe(const Json& doc, const fs::path& file, const RecipeReadOptions& options) {

@@ -24,6 +24,10 @@ struct RecipeReadOptions {
   std::filesystem::path server_folder;  // local copy of cellPACK's database folder ("" none)
 };
 
+// A document that is a cellPACK recipe rather than one of our scenes (which carry "format"): it
+// has `format_version` (v2) or `recipe` (v1). What `nanobake FILE.json` tells them apart by.
+bool is_cellpack_recipe(const Json& doc);
+
 Recipe read_recipe(const std::filesystem::path& file, const RecipeReadOptions& options = {});
 // The same for a document already parsed (the fuzzer's entry): `file` names it in errors and is
 // where v1 includes are looked for.

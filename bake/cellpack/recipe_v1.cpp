@@ -23,6 +23,7 @@ Ingredient read_fields(const JsonCursor& c, std::string id) {
   Ingredient in;
   in.id = std::move(id);
   in.where = c.file() + ":" + c.path();
+  in.file = c.file();
   in.structure = read_name(nested(c, {"source", "pdb"}));
   if (in.structure.empty()) in.structure = read_name(c.optional("pdb"));
   in.molarity = read_molarity(c.optional("molarity"));

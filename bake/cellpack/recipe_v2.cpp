@@ -140,6 +140,7 @@ private:
     Ingredient in;
     in.id = id;
     in.where = item.file() + ":" + item.path();
+    in.file = item.file();
     const std::optional<JsonCursor> atomic = c.has("representations") ? c.required("representations").optional("atomic") : std::nullopt;
     if (atomic) in.structure = atomic->has("id") ? read_name(atomic->optional("id")) : read_name(atomic->optional("name"));
     in.molarity = read_molarity(c.optional("molarity"));

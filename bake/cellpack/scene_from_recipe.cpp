@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
+#include "bake/cellpack/sphere_tree.hpp"
 #include "bake/cellpack/structure_files.hpp"
 #include "bake/mesh/mesh_reader.hpp"
 #include "common/error.hpp"
@@ -23,10 +25,21 @@ constexpr double kA2PerUm2 = 1e8;
 constexpr double kTileSize = 191.1;    // 3 periods of the bundled POPC patch (docs/scene.md)
 constexpr double kSmallestCube = 250;  // Å: the bundled scenes' cube edge
 constexpr double kClearance = 5;       // Å, as the bundled solubles
+// How far a bundled bilayer and its proteins reach into the volume beside it (Å): the bake measures
+// 41-58 Å for the POPC patch; a soluble's centre stays this, the clearance and its radius away.
+constexpr double kMembraneReach = 50;
+constexpr double kTypicalRadius = 30;  // Å, a soluble whose recipe gives no radius (a haemoglobin)
+constexpr std::size_t kStandInSpheres = 4096;  // a stand-in is coarse: its sphere tree's finest level up to this
 
 std::string shown(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
+std::string percent(double fraction) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%+.1f %%", 100.0 * fraction);
   return b;
 }
 
@@ -119,13 +132,18 @@ private:
     if (molecules.contains(name)) return name;
     Json m = Json::object();
     const StructureFolder::Lookup found = structures_.find(in.structure.empty() ? in.id : in.structure);
-    if (!found.found) {
+    if (found.found) {
+      m["file"] = relative_to(*found.found, options_.scene_folder);
+    } else if (std::optional<Json> stand_in = options_.stand_ins ? stand_in_for(in) : std::nullopt) {
+      m["stand_in"] = std::move(*stand_in);
+      const std::size_t spheres = m["stand_in"]["spheres"].size();
+      stand_ins_[name] = m["stand_in"]["from"].get<std::string>() + ", " + std::to_string(spheres) + (spheres == 1 ? " sphere" : " spheres");
+    } else {
       std::string tried;
       for (std::size_t k = 0; k < found.tried.size() && k < 4; ++k) tried += (k ? ", " : "") + found.tried[k];
       if (found.tried.size() > 4) tried += ", … (" + std::to_string(found.tried.size()) + " names)";
-      missing_.push_back(in.id + " (" + (in.structure.empty() ? "no structure named; by its id" : in.structure) + "; tried " + tried + ")");
-    } else {
-      m["file"] = relative_to(*found.found, options_.scene_folder);
+      missing_.push_back(in.id + " (" + (in.structure.empty() ? "no structure named; by its id" : in.structure) + "; tried " + tried +
+                         (options_.stand_ins ? "; no packing spheres or encapsulating radius to stand in either" : "") + ")");
     }
     if (in.colour) m["colour"] = {in.colour->x, in.colour->y, in.colour->z};
     if (on_surface && in.principal_vector && glm::length(*in.principal_vector) > 0) {
@@ -136,21 +154,73 @@ private:
     return name;
   }
 
-  // The soluble for `ingredients` filling `volume` Å³, named `name`; its report lines.
-  Json soluble(const std::vector<Ingredient>& ingredients, double volume, const std::string& region, int cubes) {
+  // A stand-in for `in`'s missing structure, from its packing representation: the finest level of
+  // its .sph sphere tree, else its inline spheres, else one sphere of its encapsulating radius.
+  std::optional<Json> stand_in_for(const Ingredient& in) const {
+    std::vector<glm::dvec4> spheres;
+    std::string from;
+    if (!in.sphere_file.empty()) {
+      const fs::path folder = fs::path(in.file.empty() ? recipe_.file : in.file).parent_path();
+      for (const fs::path& p : recipe_file_candidates(in.sphere_file, folder, options_.read)) {
+        if (std::error_code ec; !fs::is_regular_file(p, ec)) continue;
+        const SphereTree tree = read_sphere_tree(p);
+        // The finest level a coarse stand-in needs: at most kStandInSpheres spheres.
+        for (const std::vector<glm::dvec4>& level : tree.levels)
+          if (level.size() <= kStandInSpheres) spheres = level;
+        from = p.filename().string();
+        break;
+      }
+    }
+    if (spheres.empty() && !in.spheres.empty()) {
+      spheres = in.spheres;
+      from = "the recipe's packing spheres";
+    }
+    if (spheres.empty() && in.encapsulating_radius > 0) {
+      spheres = {glm::dvec4(0.0, 0.0, 0.0, in.encapsulating_radius)};
+      from = "its encapsulating radius";
+    }
+    if (spheres.empty()) return std::nullopt;
+    Json list = Json::array();
+    for (const glm::dvec4& v : spheres) list.push_back({v.x, v.y, v.z, v.w});
+    return Json{{"spheres", list}, {"from", from}};
+  }
+
+  // The soluble for `ingredients` filling `volume` Å³ bounded by `membrane_area` Å² of membranes,
+  // the scene's `scene_region`; its report lines. The recipe's copies are those of the whole volume
+  // (cellPACK's count), but the bake keeps solubles clear of each membrane: they are packed denser
+  // in what is left (free_volume), so that the region holds the copies the recipe asked for.
+  Json soluble(const std::vector<Ingredient>& ingredients, double volume, double membrane_area, const std::string& region,
+               const std::string& scene_region, int cubes) {
     Json list = Json::array();
     double largest = 0;
     for (const Ingredient& in : ingredients) {
-      const double from_count = in.count > 0 && volume > 0 ? double(in.count) / (kAvogadro * volume * kLitresPerA3) * 1000.0 : 0.0;
-      const double mM = in.molarity * 1000.0 + from_count;
-      list.push_back({{"molecule", molecule(in, false)}, {"concentration_mM", mM}});
+      const double copies = in.molarity * kAvogadro * volume * kLitresPerA3 + static_cast<double>(in.count);
+      const double free = free_volume(volume, membrane_area, in.encapsulating_radius);
+      const double mM = volume > 0 ? copies / (kAvogadro * free * kLitresPerA3) * 1000.0 : in.molarity * 1000.0;
+      const std::string name = molecule(in, false);
+      list.push_back({{"molecule", name}, {"concentration_mM", mM}});
       largest = std::max(largest, in.encapsulating_radius);
-      ImportLine line{in.id, region, asked(in), shown(mM) + " mM", in.not_carried};
-      if (volume > 0) line.held += " (" + shown(mM * 1e-3 * kAvogadro * volume * kLitresPerA3) + " copies in " + shown(volume * 1e-12) + " µm³)";
+      ImportLine line{in.id, region, asked(in), shown(mM) + " mM", stand_in_of(name), in.not_carried, scene_region, name, copies,
+                      volume * 1e-12, false};
+      if (volume > 0)
+        line.held += " in the " + shown(free * 1e-12) + " µm³ clear of membranes (" + shown(copies) + " copies in " +
+                     shown(volume * 1e-12) + " µm³: " + shown(copies / (volume * 1e-12)) + " /µm³)";
       if (in.count > 0 && volume <= 0) line.not_carried.push_back("nbMol " + std::to_string(in.count) + ": the region's volume is unknown");
       result_.report.push_back(std::move(line));
     }
     return {{"cube_size", std::max(kSmallestCube, std::ceil(2.2 * largest))}, {"cubes", cubes}, {"molecules", list}, {"clearance", kClearance}};
+  }
+
+  // The part of `volume` a soluble of this radius reaches: each membrane keeps it kMembraneReach
+  // plus the clearance and its radius from its triangles (a first-order shell, area × depth).
+  static double free_volume(double volume, double membrane_area, double radius) {
+    const double depth = kMembraneReach + kClearance + (radius > 0 ? radius : kTypicalRadius);
+    return std::max(volume - membrane_area * depth, 0.25 * volume);
+  }
+
+  std::string stand_in_of(const std::string& molecule) const {
+    const auto it = stand_ins_.find(molecule);
+    return it == stand_ins_.end() ? "" : it->second;
   }
 
   static std::string asked(const Ingredient& in) {
@@ -169,8 +239,10 @@ private:
       double depth = 0;
       if (in.offset && in.principal_vector && glm::length(*in.principal_vector) > 0)
         depth = glm::dot(*in.offset, glm::normalize(*in.principal_vector));
-      proteins.push_back({{"molecule", molecule(in, true)}, {"density_per_um2", per_um2}, {"depth", depth}});
-      ImportLine line{in.id, c.id + " surface", asked(in), shown(per_um2) + " /µm²", in.not_carried};
+      const std::string name = molecule(in, true);
+      proteins.push_back({{"molecule", name}, {"density_per_um2", per_um2}, {"depth", depth}});
+      ImportLine line{in.id, c.id + " surface", asked(in), shown(per_um2) + " /µm²", stand_in_of(name), in.not_carried,
+                      scene_name(c.id), name, per_um2 * area / kA2PerUm2, area / kA2PerUm2, true};
       line.held += " (" + shown(per_um2 * area / kA2PerUm2) + " copies on " + shown(area / kA2PerUm2) + " µm²; depth " + shown(depth) + " Å)";
       result_.report.push_back(std::move(line));
     }
@@ -187,6 +259,7 @@ private:
     Json mesh;
     const Measure m = measure(c, mesh);
     outside_volume -= m.volume;
+    if (!options_.lipid_patch.empty()) membrane_area_ += m.area;
     const std::string name = scene_name(c.id);
     Json comp = {{"mesh", mesh}};
     if (!c.surface.empty() && options_.lipid_patch.empty())
@@ -197,7 +270,8 @@ private:
       comp["membrane"] = name;
     }
     if (!c.interior.empty()) {
-      result_.scene["solubles"][name] = soluble(c.interior, m.volume, c.id + " interior", 16);
+      result_.scene["solubles"][name] = soluble(c.interior, m.volume, options_.lipid_patch.empty() ? 0.0 : m.area,
+                                                c.id + " interior", name, 16);
       comp["soluble"] = name;
     }
     if (!comp.contains("membrane") && !comp.contains("soluble"))
@@ -211,7 +285,7 @@ private:
 
   void add_medium(double volume) {
     // The medium's cube set must be complete: 2 face colours, 2⁶ cubes.
-    result_.scene["solubles"]["outside"] = soluble(recipe_.outside, volume, "outside", 64);
+    result_.scene["solubles"]["outside"] = soluble(recipe_.outside, volume, membrane_area_, "outside", "medium", 64);
     Json medium = {{"soluble", "outside"}};
     if (recipe_.box_min && recipe_.box_max)
       medium["region"] = {{recipe_.box_min->x, recipe_.box_min->y, recipe_.box_min->z},
@@ -222,6 +296,7 @@ private:
   std::string missing_text() const {
     std::string s = std::to_string(missing_.size()) + " ingredient structure(s) not found in " + options_.structures.string() + ":";
     for (const std::string& m : missing_) s += "\n  " + m;
+    if (!options_.stand_ins) s += "\n(--stand-ins draws each from its packing spheres until its structure is at hand)";
     return s;
   }
 
@@ -230,6 +305,8 @@ private:
   StructureFolder structures_;
   ImportResult result_;
   std::vector<std::string> missing_;
+  double membrane_area_ = 0;  // Å², every compartment's membrane (the medium keeps clear of them)
+  std::map<std::string, std::string> stand_ins_;  // scene molecule → what it stands in with
 };
 
 }  // namespace
@@ -241,7 +318,34 @@ std::string report_text(const Recipe& recipe, const ImportResult& result) {
   for (const std::string& n : recipe.not_carried) s += "not carried over: " + n + "\n";
   for (const ImportLine& l : result.report) {
     s += l.ingredient + " [" + l.region + "]: asked " + l.asked + "; holds " + l.held + "\n";
+    if (!l.stand_in.empty()) s += "  STAND-IN (structure missing): drawn as " + l.stand_in + "\n";
     for (const std::string& n : l.not_carried) s += "  not carried over: " + n + "\n";
+  }
+  return s;
+}
+
+std::string copy_number_check(const ImportResult& result, const HeldCopies& held, int& off) {
+  off = 0;
+  std::string s = "copy numbers against the recipe (within 10 %):\n";
+  for (const ImportLine& l : result.report) {
+    if (!(l.expected_copies > 0) || !(l.measure > 0)) continue;
+    const auto it = held.find({l.scene_region, l.molecule});
+    const double copies = it == held.end() ? 0.0 : it->second;
+    const double ratio = copies / l.expected_copies;
+    const bool within = std::abs(ratio - 1.0) <= 0.1;
+    // A whole set of tiles holds whole copies: a handful asked cannot come closer than one copy.
+    const bool one_copy = std::abs(copies - l.expected_copies) <= 1.0;
+    s += "  " + l.ingredient + " [" + l.region + "]: " + shown(copies) + " of " + shown(l.expected_copies) + " copies, " +
+         shown(copies / l.measure) + " of " + shown(l.expected_copies / l.measure) + (l.surface ? " /µm²" : " /µm³") + " (" +
+         percent(ratio - 1.0) + ")";
+    if (within || one_copy) {
+      s += " ok\n";
+      continue;
+    }
+    ++off;
+    s += l.surface ? " OFF: the membrane's tiles could not hold more without clashes (see the densities above)\n"
+                   : " OFF: the cube set packs only so densely without clashes, or the region is too thin for it beside its "
+                     "membranes (see the densities above)\n";
   }
   return s;
 }

@@ -9,7 +9,9 @@
 // reads the molarity per Å² (M · 6.022e-4 copies / Å²), here copies / µm², and a count per the
 // surface's area. A principal vector becomes the molecule's `up`; an offset along it its depth.
 #include <filesystem>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bake/cellpack/recipe.hpp"
@@ -23,6 +25,7 @@ struct ImportOptions {
   RecipeReadOptions read;              // --server: the local copy of cellPACK's database
   std::filesystem::path lipid_patch;   // the bilayer every membrane is laid on ("" : surfaces are refused)
   std::filesystem::path scene_folder;  // where the scene is written: its file paths are relative to it
+  bool stand_ins = false;              // a missing structure becomes a stand-in from its packing spheres
 };
 
 struct ImportLine {
@@ -30,7 +33,14 @@ struct ImportLine {
   std::string region;      // "outside", "COMPARTMENT interior", "COMPARTMENT surface"
   std::string asked;       // the recipe's amounts
   std::string held;        // the scene's amount and what it implies
+  std::string stand_in;    // "" or what stands in for its missing structure (--stand-ins)
   std::vector<std::string> not_carried;
+  // What the bake is checked against (copy_number_check): the scene's compartment ("medium" for the
+  // outside) and molecule, the copies the recipe asks there (one compartment), and its volume (µm³)
+  // or area (µm², surface).
+  std::string scene_region, molecule;
+  double expected_copies = 0, measure = 0;
+  bool surface = false;
 };
 
 struct ImportResult {
@@ -44,5 +54,11 @@ ImportResult scene_from_recipe(const Recipe& recipe, const ImportOptions& option
 
 // The report as text, one line per ingredient.
 std::string report_text(const Recipe& recipe, const ImportResult& result);
+
+// After the bake: the copies the bake placed per (scene region, molecule) — a compartment's for one
+// copy of it, the medium's estimated — against what each ingredient asked, per µm³ or µm². One line
+// per ingredient; `off` counts those more than 10 % away, each with what the scene could not hold.
+using HeldCopies = std::map<std::pair<std::string, std::string>, double>;
+std::string copy_number_check(const ImportResult& result, const HeldCopies& held, int& off);
 
 }  // namespace nano::cellpack

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include "bake/cellpack/import_options.hpp"
+#include "bake/cellpack/recipe_reader.hpp"
 #include "bake/commands.hpp"
 #include "bake/scene/scene_parser.hpp"
 #include "bake/scene_bake/bake_estimate.hpp"
@@ -10,11 +12,48 @@
 #include "bake/scene_bake/bake_report.hpp"
 #include "bake/scene_bake/scene_baker.hpp"
 #include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "common/json_document.hpp"
 #include "format/validator.hpp"
 
 namespace nano::bake {
 // The command drives the pipeline of bake/scene_bake.
 using namespace nano::scene_bake;
+
+namespace {
+
+struct SceneToBake {
+  scene::SceneDescription scene;
+  std::optional<cellpack::ImportResult> imported;  // the scene came from a cellPACK recipe
+};
+
+// The scene in `file`, or — for a cellPACK recipe — the scene it imports to, its paths relative to
+// the recipe's folder, after printing the import's report.
+SceneToBake scene_to_bake(const std::string& file, const cellpack::ImportArguments& recipe_arguments) {
+  const Json document = read_json_file(file);
+  if (!cellpack::is_cellpack_recipe(document)) {
+    if (cellpack::any_import_option(recipe_arguments))
+      throw InputError(file, "", "--structures, --server, --lipid-patch and --stand-ins are for cellPACK recipes; this is a scene");
+    return {scene::parse_scene_description(document, file), std::nullopt};
+  }
+  const cellpack::ImportOptions import = cellpack::import_options(recipe_arguments, file, std::filesystem::path(file).parent_path());
+  const cellpack::Recipe recipe = cellpack::parse_recipe(document, file, import.read);
+  cellpack::ImportResult imported = cellpack::scene_from_recipe(recipe, import);
+  std::fputs(cellpack::report_text(recipe, imported).c_str(), stdout);
+  return {scene::parse_scene_description(imported.scene, file), std::move(imported)};
+}
+
+// What the bake placed, as the recipe check reads it: each compartment's copies, the medium's estimate.
+cellpack::HeldCopies held_copies(const BakedScene& baked) {
+  cellpack::HeldCopies held;
+  for (const CompartmentSummary& c : baked.compartments)
+    for (const auto& [molecule, copies] : c.copies) held[{c.name, molecule}] += static_cast<double>(copies);
+  if (baked.medium)
+    for (const MediumMoleculeCount& m : baked.medium->counts) held[{"medium", m.name}] += m.copies;
+  return held;
+}
+
+}  // namespace
 
 void add_bake_command(CLI::App& app) {
   struct Options {
@@ -24,10 +63,13 @@ void add_bake_command(CLI::App& app) {
     std::string max_memory;
     bool dry_run = false, quiet = false;
     MeshCodec mesh_codec = MeshCodec::automatic;
+    cellpack::ImportArguments recipe;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("bake", "Bake a scene description into a package (also: nanobake SCENE.json -o PKG)");
-  cmd->add_option("scene", options->scene, "scene description (scene.json)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("scene", options->scene, "scene description (scene.json), or a cellPACK recipe imported on the way")
+      ->required()
+      ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", options->output, "package to write (.nup)")->required();
   CLI::Option* seed = cmd->add_option("--seed", options->seed, "overrides the scene's seed");
   cmd->add_option("--jobs", options->jobs, "worker threads")->check(CLI::Range(1, 256));
@@ -42,9 +84,11 @@ void add_bake_command(CLI::App& app) {
                   "(meshes exactly as read)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, MeshCodec>{
           {"auto", MeshCodec::automatic}, {"draco", MeshCodec::draco}, {"zstd", MeshCodec::zstd}}));
+  cellpack::add_import_options(*cmd, options->recipe, false, "cellPACK recipes (docs/scenes.md)");
   cmd->callback([options, seed] {
     remove_temporaries_on_interrupt();
-    const scene::SceneDescription scene = scene::load_scene_description(options->scene);
+    const SceneToBake to_bake = scene_to_bake(options->scene, options->recipe);
+    const scene::SceneDescription& scene = to_bake.scene;
     BakeOptions bake_options;
     if (seed->count() > 0) bake_options.seed = options->seed;
     bake_options.jobs = options->jobs;
@@ -76,6 +120,10 @@ void add_bake_command(CLI::App& app) {
     write_file_atomically(options->output, bytes);
     display.end("writing the package", std::chrono::duration<double>(std::chrono::steady_clock::now() - written).count());
     std::fputs(bake_summary(baked, package).c_str(), stdout);
+    if (to_bake.imported) {
+      int off = 0;
+      std::fputs(cellpack::copy_number_check(*to_bake.imported, held_copies(baked), off).c_str(), stdout);
+    }
     if (!options->report.empty()) {
       const std::string text = bake_report(baked, package).dump(2) + "\n";
       write_file_atomically(options->report, std::as_bytes(std::span(text.data(), text.size())));

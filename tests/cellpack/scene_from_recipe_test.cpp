@@ -15,6 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kSource(NANO_SOURCE_DIR);
+constexpr double kAvogadro = 6.02214076e23;
 
 ImportOptions bundled_options() {
   ImportOptions o;
@@ -34,16 +35,33 @@ TEST(SceneFromRecipe, VesicleInPlasmaAmountsAsCellpackCountsThem) {
   // Outside: the medium over the recipe's box, molarity in mM.
   EXPECT_EQ(s["medium"]["soluble"], "outside");
   EXPECT_EQ(s["medium"]["region"][1], Json::array({4000.0, 4000.0, 4000.0}));
-  EXPECT_DOUBLE_EQ(s["solubles"]["outside"]["molecules"][0]["concentration_mM"].get<double>(), 0.6);
+  // The recipe's copies are those of the whole region; the scene packs them into what its membranes
+  // leave clear: 50 Å of membrane reach, 5 Å of clearance and the molecule's radius from the surface.
+  const double area = 4.0 * std::numbers::pi * 1500.0 * 1500.0, sphere = 4.0 / 3.0 * std::numbers::pi * std::pow(1500.0, 3);
+  const double outside = 8000.0 * 8000.0 * 8000.0 - sphere;
+  const double albumin_copies = 0.0006 * kAvogadro * outside * 1e-27;
+  EXPECT_NEAR(s["solubles"]["outside"]["molecules"][0]["concentration_mM"].get<double>(),
+              albumin_copies / (kAvogadro * (outside - area * (50 + 5 + 45)) * 1e-27) * 1000.0, 1e-12);
   EXPECT_EQ(s["solubles"]["outside"]["cubes"], 64);  // a medium's cube set is complete
-  EXPECT_DOUBLE_EQ(s["solubles"]["vesicle"]["molecules"][0]["concentration_mM"].get<double>(), 5.0);
+  const double haemoglobin_copies = 0.005 * kAvogadro * sphere * 1e-27;
+  EXPECT_NEAR(s["solubles"]["vesicle"]["molecules"][0]["concentration_mM"].get<double>(),
+              haemoglobin_copies / (kAvogadro * (sphere - area * (50 + 5 + 35)) * 1e-27) * 1000.0, 1e-12);
+  // What the bake is checked against: the copies of the whole region, per µm³ of it.
+  ASSERT_EQ(out.report.size(), 4u);
+  EXPECT_EQ(out.report[1].molecule, "haemoglobin");
+  EXPECT_EQ(out.report[1].scene_region, "vesicle");
+  EXPECT_NEAR(out.report[1].expected_copies, haemoglobin_copies, 1e-6);
+  EXPECT_NEAR(out.report[1].measure, sphere * 1e-12, 1e-15);
+  EXPECT_EQ(out.report[2].scene_region, "medium");
+  EXPECT_NEAR(out.report[2].expected_copies, albumin_copies, 1e-6);
   // Surface: 100 copies over the sphere's 4π·1500² Å².
-  const double area_um2 = 4.0 * std::numbers::pi * 1500.0 * 1500.0 * 1e-8;
+  const double area_um2 = area * 1e-8;
   EXPECT_NEAR(s["membranes"]["vesicle"]["proteins"][0]["density_per_um2"].get<double>(), 100.0 / area_um2, 1e-9);
   EXPECT_EQ(s["compartments"]["vesicle"]["mesh"]["generate"], "sphere");
   EXPECT_EQ(s["compartments"]["vesicle"]["mesh"]["radius"], 1500.0);
-  ASSERT_EQ(out.report.size(), 4u);
   EXPECT_EQ(out.report[0].ingredient, "aquaporin");
+  EXPECT_TRUE(out.report[0].surface);
+  EXPECT_NEAR(out.report[0].expected_copies, 100.0, 1e-9);
   EXPECT_NE(out.report[0].held.find("100 copies on 0.2827 µm²"), std::string::npos) << out.report[0].held;
 }
 
@@ -73,9 +91,13 @@ TEST(SceneFromRecipe, SurfaceMolarityIsPerSquareAngstromAndNbMolIsAdded) {
   EXPECT_NEAR(per_um2 * area_um2, 0.0031 * 6.02214076e-4 * 4.0 * std::numbers::pi * 725.0 * 725.0, 1e-9);
   EXPECT_NEAR(per_um2 * area_um2, 12.3, 0.1);
   EXPECT_DOUBLE_EQ(out.scene["membranes"]["envelope"]["proteins"][0]["depth"].get<double>(), 73.0);
-  const double volume_l = 4.0 / 3.0 * std::numbers::pi * std::pow(725.0, 3) * 1e-27;
+  // Inside: molarity's copies plus nbMol, in the volume the membrane leaves (no radius given: 30 Å).
+  const double volume = 4.0 / 3.0 * std::numbers::pi * std::pow(725.0, 3);
+  const double free = volume - 4.0 * std::numbers::pi * 725.0 * 725.0 * (50 + 5 + 30);
+  const double copies = 0.001 * kAvogadro * volume * 1e-27 + 1000.0;
+  EXPECT_NEAR(out.report[1].expected_copies, copies, 1e-9);
   EXPECT_NEAR(out.scene["solubles"]["envelope"]["molecules"][0]["concentration_mM"].get<double>(),
-              1.0 + 1000.0 / (6.02214076e23 * volume_l) * 1000.0, 1e-9);
+              copies / (kAvogadro * free * 1e-27) * 1000.0, 1e-9);
 }
 
 TEST(SceneFromRecipe, MissingStructuresAreNamedAtOnceAndRefusalsSayWhy) {
@@ -109,6 +131,87 @@ TEST(SceneFromRecipe, MissingStructuresAreNamedAtOnceAndRefusalsSayWhy) {
   c.surface.push_back(Ingredient{.id = "p", .structure = "4hhb"});
   surface_only.compartments.push_back(c);
   EXPECT_THROW(scene_from_recipe(surface_only, no_bilayer), InputError);
+}
+
+// A recipe whose ball holds `ingredients` inside, its structures looked for where there are none.
+Recipe ball_holding(std::vector<Ingredient> ingredients) {
+  Recipe r;
+  r.file = (kSource / "tests/cellpack/data/ball.json").string();
+  Compartment c;
+  c.id = "ball";
+  c.geometry = Compartment::Geometry::sphere;
+  c.radius = 600;
+  c.interior = std::move(ingredients);
+  r.compartments.push_back(c);
+  return r;
+}
+
+TEST(SceneFromRecipe, StandInsComeFromTheSphereTreeTheInlineSpheresOrTheEncapsulatingRadius) {
+  Ingredient from_tree{.id = "protease", .structure = "7hvp", .molarity = 0.001};
+  from_tree.file = (kSource / "tests/cellpack/data/ball.json").string();
+  from_tree.sphere_file = "HIV1_PR_7hvp_0_1_0.sph";  // beside the file that names it
+  Ingredient inline_spheres{.id = "pair", .molarity = 0.001};
+  inline_spheres.spheres = {{-10, 0, 0, 12}, {10, 0, 0, 8}};
+  Ingredient radius_only{.id = "ball_protein", .molarity = 0.001, .encapsulating_radius = 40};
+  ImportOptions o = bundled_options();
+  o.structures = kSource / "tests/cellpack";  // holds no structure
+  o.stand_ins = true;
+  const ImportResult out = scene_from_recipe(ball_holding({from_tree, inline_spheres, radius_only}), o);
+  const Json& m = out.scene["molecules"];
+  EXPECT_FALSE(m["protease"].contains("file"));
+  // The .sph file's six spheres, read here from its text.
+  ASSERT_EQ(m["protease"]["stand_in"]["spheres"].size(), 6u);
+  EXPECT_EQ(m["protease"]["stand_in"]["spheres"][0], Json::array({-16.01, 2.88, 3.47, 15.61}));
+  EXPECT_EQ(m["protease"]["stand_in"]["from"], "HIV1_PR_7hvp_0_1_0.sph");
+  EXPECT_EQ(m["pair"]["stand_in"]["spheres"][1], Json::array({10.0, 0.0, 0.0, 8.0}));
+  EXPECT_EQ(m["ball_protein"]["stand_in"]["spheres"], Json::array({Json::array({0.0, 0.0, 0.0, 40.0})}));
+  EXPECT_EQ(out.report[0].stand_in, "HIV1_PR_7hvp_0_1_0.sph, 6 spheres");
+  EXPECT_EQ(out.report[2].stand_in, "its encapsulating radius, 1 sphere");
+  EXPECT_NE(report_text(ball_holding({}), out).find("STAND-IN (structure missing): drawn as the recipe's packing spheres, 2 spheres"),
+            std::string::npos);
+  // Nothing to draw a stand-in from: still named as missing, saying so.
+  Ingredient shapeless{.id = "shapeless", .molarity = 0.001};
+  try {
+    scene_from_recipe(ball_holding({shapeless}), o);
+    FAIL() << "an ingredient with neither structure nor shape was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("shapeless (no structure named; by its id; tried shapeless"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no packing spheres or encapsulating radius to stand in either"), std::string::npos);
+  }
+  // Without --stand-ins the same recipe is refused, pointing at the option.
+  o.stand_ins = false;
+  try {
+    scene_from_recipe(ball_holding({radius_only}), o);
+    FAIL() << "a missing structure was accepted without --stand-ins";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--stand-ins"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneFromRecipe, CopyNumberCheckNamesWhatIsMoreThanTenPercentOff) {
+  ImportResult imported;
+  imported.report.push_back({.ingredient = "hb", .region = "cell interior", .scene_region = "cell", .molecule = "hb",
+                             .expected_copies = 1000, .measure = 0.5});
+  imported.report.push_back({.ingredient = "igg", .region = "outside", .scene_region = "medium", .molecule = "igg",
+                             .expected_copies = 200, .measure = 2.0});
+  imported.report.push_back({.ingredient = "rare", .region = "cell surface", .scene_region = "cell", .molecule = "rare",
+                             .expected_copies = 3, .measure = 0.1, .surface = true});
+  int off = -1;
+  std::string text = copy_number_check(imported, {{{"cell", "hb"}, 950.0}, {{"medium", "igg"}, 221.0}, {{"cell", "rare"}, 4.0}}, off);
+  EXPECT_EQ(off, 1) << text;
+  EXPECT_NE(text.find("hb [cell interior]: 950 of 1000 copies, 1900 of 2000 /µm³ (-5.0 %) ok"), std::string::npos) << text;
+  EXPECT_NE(text.find("igg [outside]: 221 of 200 copies, 110.5 of 100 /µm³ (+10.5 %) OFF"), std::string::npos) << text;
+  EXPECT_NE(text.find("rare [cell surface]: 4 of 3 copies, 40 of 30 /µm² (+33.3 %) ok"), std::string::npos) << text;  // one copy
+  text = copy_number_check(imported, {}, off);  // nothing placed: every line off
+  EXPECT_EQ(off, 3) << text;
+}
+
+TEST(SceneFromRecipe, RecipesAreToldFromScenes) {
+  EXPECT_TRUE(is_cellpack_recipe(Json{{"recipe", {{"name", "x"}}}}));
+  EXPECT_TRUE(is_cellpack_recipe(Json{{"format_version", "2.1"}}));
+  EXPECT_FALSE(is_cellpack_recipe(Json{{"format", "nanouniverse-scene"}, {"recipe", 1}}));
+  EXPECT_FALSE(is_cellpack_recipe(Json{{"molecules", Json::object()}}));
+  EXPECT_FALSE(is_cellpack_recipe(Json::array({1, 2})));
 }
 
 }  // namespace
