@@ -29,7 +29,9 @@ constexpr double kClearance = 5;       // Å, as the bundled solubles
 // 41-58 Å for the POPC patch; a soluble's centre stays this, the clearance and its radius away.
 constexpr double kMembraneReach = 50;
 constexpr double kTypicalRadius = 30;  // Å, a soluble whose recipe gives no radius (a haemoglobin)
-constexpr std::size_t kStandInSpheres = 4096;  // a stand-in is coarse: its sphere tree's finest level up to this
+constexpr std::size_t kStandInSpheres = 4096;
+constexpr double kMostCountedSurfaceCopies = 20000;  // per compartment: kept exactly (per_compartment) up to this
+constexpr double kSurfaceOverpacking = 1.3;          // tiles packed this much denser than the count they keep  // a stand-in is coarse: its sphere tree's finest level up to this
 
 std::string shown(double v) {
   char b[32];
@@ -240,10 +242,23 @@ private:
       if (in.offset && in.principal_vector && glm::length(*in.principal_vector) > 0)
         depth = glm::dot(*in.offset, glm::normalize(*in.principal_vector));
       const std::string name = molecule(in, true);
-      proteins.push_back({{"molecule", name}, {"density_per_um2", per_um2}, {"depth", depth}});
+      const double copies = per_um2 * area / kA2PerUm2;
+      Json protein = {{"molecule", name}, {"density_per_um2", per_um2}, {"depth", depth}};
       ImportLine line{in.id, c.id + " surface", asked(in), shown(per_um2) + " /µm²", stand_in_of(name), in.not_carried,
-                      scene_name(c.id), name, per_um2 * area / kA2PerUm2, area / kA2PerUm2, true};
-      line.held += " (" + shown(per_um2 * area / kA2PerUm2) + " copies on " + shown(area / kA2PerUm2) + " µm²; depth " + shown(depth) + " Å)";
+                      scene_name(c.id), name, copies, area / kA2PerUm2, true};
+      // A chart's compression puts more tiles, so more copies, on some of the surface than its area
+      // holds (+15-20 % on a small sphere): a count the farthest-point sampling can keep is kept
+      // exactly, from tiles packed a little denser than it.
+      if (copies >= 0.5 && copies <= kMostCountedSurfaceCopies) {
+        protein["per_compartment"] = std::llround(copies);
+        protein["density_per_um2"] = per_um2 * kSurfaceOverpacking;
+        line.held = shown(per_um2) + " /µm²: " + std::to_string(std::llround(copies)) + " copies kept on " + shown(area / kA2PerUm2) +
+                    " µm² (per_compartment), from tiles packed at " + shown(per_um2 * kSurfaceOverpacking) + " /µm²";
+      } else {
+        line.held += " (" + shown(copies) + " copies on " + shown(area / kA2PerUm2) + " µm²)";
+      }
+      line.held += "; depth " + shown(depth) + " Å";
+      proteins.push_back(std::move(protein));
       result_.report.push_back(std::move(line));
     }
     Json m = {{"tile_size", kTileSize}, {"proteins", proteins}};

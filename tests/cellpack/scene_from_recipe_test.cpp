@@ -54,15 +54,16 @@ TEST(SceneFromRecipe, VesicleInPlasmaAmountsAsCellpackCountsThem) {
   EXPECT_NEAR(out.report[1].measure, sphere * 1e-12, 1e-15);
   EXPECT_EQ(out.report[2].scene_region, "medium");
   EXPECT_NEAR(out.report[2].expected_copies, albumin_copies, 1e-6);
-  // Surface: 100 copies over the sphere's 4π·1500² Å².
+  // Surface: 100 copies over the sphere's 4π·1500² Å², kept exactly from tiles packed 1.3 × denser.
   const double area_um2 = area * 1e-8;
-  EXPECT_NEAR(s["membranes"]["vesicle"]["proteins"][0]["density_per_um2"].get<double>(), 100.0 / area_um2, 1e-9);
+  EXPECT_NEAR(s["membranes"]["vesicle"]["proteins"][0]["density_per_um2"].get<double>(), 1.3 * 100.0 / area_um2, 1e-9);
+  EXPECT_EQ(s["membranes"]["vesicle"]["proteins"][0]["per_compartment"], 100);
   EXPECT_EQ(s["compartments"]["vesicle"]["mesh"]["generate"], "sphere");
   EXPECT_EQ(s["compartments"]["vesicle"]["mesh"]["radius"], 1500.0);
   EXPECT_EQ(out.report[0].ingredient, "aquaporin");
   EXPECT_TRUE(out.report[0].surface);
   EXPECT_NEAR(out.report[0].expected_copies, 100.0, 1e-9);
-  EXPECT_NE(out.report[0].held.find("100 copies on 0.2827 µm²"), std::string::npos) << out.report[0].held;
+  EXPECT_NE(out.report[0].held.find("100 copies kept on 0.2827 µm²"), std::string::npos) << out.report[0].held;
 }
 
 TEST(SceneFromRecipe, SurfaceMolarityIsPerSquareAngstromAndNbMolIsAdded) {
@@ -86,10 +87,13 @@ TEST(SceneFromRecipe, SurfaceMolarityIsPerSquareAngstromAndNbMolIsAdded) {
   c.interior.push_back(inside);
   r.compartments.push_back(c);
   const ImportResult out = scene_from_recipe(r, bundled_options());
-  const double per_um2 = out.scene["membranes"]["envelope"]["proteins"][0]["density_per_um2"].get<double>();
+  const Json& protein = out.scene["membranes"]["envelope"]["proteins"][0];
   const double area_um2 = 4.0 * std::numbers::pi * 725.0 * 725.0 * 1e-8;
-  EXPECT_NEAR(per_um2 * area_um2, 0.0031 * 6.02214076e-4 * 4.0 * std::numbers::pi * 725.0 * 725.0, 1e-9);
-  EXPECT_NEAR(per_um2 * area_um2, 12.3, 0.1);
+  const double env_copies = 0.0031 * 6.02214076e-4 * 4.0 * std::numbers::pi * 725.0 * 725.0;
+  EXPECT_NEAR(out.report[0].expected_copies, env_copies, 1e-9);
+  EXPECT_NEAR(env_copies, 12.3, 0.1);
+  EXPECT_EQ(protein["per_compartment"], 12);
+  EXPECT_NEAR(protein["density_per_um2"].get<double>() * area_um2, 1.3 * env_copies, 1e-9);
   EXPECT_DOUBLE_EQ(out.scene["membranes"]["envelope"]["proteins"][0]["depth"].get<double>(), 73.0);
   // Inside: molarity's copies plus nbMol, in the volume the membrane leaves (no radius given: 30 Å).
   const double volume = 4.0 / 3.0 * std::numbers::pi * std::pow(725.0, 3);
