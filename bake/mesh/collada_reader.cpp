@@ -125,7 +125,9 @@ public:
       if (tag->name == "input") whole_number(*tag, "offset", kMaxColladaInputOffset);
       if (tag->name == "triangles") corners += 3 * whole_number(*tag, "count", text_.size());
       if (tag->name == "lines") corners += 2 * whole_number(*tag, "count", text_.size());
-      if (tag->name == "vcount") corners += vcount_sum(tag->end);
+      if (tag->name == "vcount") corners += vcount_sum(*tag);
+      if (tag->name == "p") index_list(*tag);
+      if (tag->name == "triangles" || tag->name == "polylist" || tag->name == "polygons") index_lists_match_count(*tag);
       if (corners > kMaxColladaCorners)
         fail(element_place(*tag), "the primitives declare more than " + std::to_string(kMaxColladaCorners) +
                                       " corners (" + std::to_string(kMaxColladaFaces) + " triangles), more than this reader takes");
@@ -156,19 +158,58 @@ private:
     return n;
   }
 
-  // The corners a <vcount> declares (its text runs to the next '<').
-  std::uint64_t vcount_sum(std::size_t from) const {
-    const std::size_t to = std::min(text_.find('<', from), text_.size());
+  // The text of a <vcount> or <p>, to its end tag. Only digits, signs and blanks: Assimp 5.2
+  // reads a <p> until its end and never gets past any other character (a loop that grows its index
+  // list until memory runs out), and reads the text of a CDATA section or an entity as well.
+  std::string_view index_list(const Tag& tag) const {
+    const std::size_t to = std::min(text_.find("</", tag.end), text_.size());
+    const std::string_view list = text_.substr(tag.end, to - tag.end);
+    if (const std::size_t bad = list.find_first_not_of("0123456789+- \t\r\n"); bad != std::string_view::npos)
+      fail(element_place(tag), "holds '" + std::string(1, list[bad]) + "' (an index list holds decimal whole numbers only)");
+    return list;
+  }
+
+  // Debian's Assimp 5.2 is built with its assertions on, and aborts the process unless a
+  // <triangles> or <polylist> of count > 0 has one <p> (none for count 0) and a <polygons> one <p>
+  // per polygon: refused here instead.
+  void index_lists_match_count(const Tag& tag) const {
+    const std::uint64_t count = whole_number(tag, "count", text_.size());
+    const bool closed = tag.end >= 2 && text_[tag.end - 2] == '/';
+    std::size_t end = closed ? tag.end : text_.size();
+    for (std::size_t at = text_.find("</", tag.end); !closed && at != std::string_view::npos; at = text_.find("</", at + 2)) {
+      std::string_view name = text_.substr(at + 2, std::min(text_.find('>', at), text_.size()) - at - 2);
+      if (const std::size_t colon = name.rfind(':'); colon != std::string_view::npos) name.remove_prefix(colon + 1);
+      if (name.substr(0, name.find_first_of(" \t\r\n")) == tag.name) {
+        end = at;
+        break;
+      }
+    }
+    std::uint64_t lists = 0;
+    for (std::size_t at = text_.find('<', tag.end), next = 0; at < end; at = text_.find('<', next)) {
+      const std::optional<Tag> inner = start_tag(text_, at, next);
+      if (inner && inner->name == "p") {
+        ++lists;
+        next = std::max(next, std::min(text_.find("</", inner->end) + 1, text_.size()));  // past its text
+      }
+    }
+    const std::uint64_t expected = tag.name == "polygons" ? count : std::min<std::uint64_t>(count, 1);
+    if (lists != expected)
+      fail(element_place(tag), "count=\"" + std::to_string(count) + "\" with " + std::to_string(lists) + " <p> (" +
+                                   std::to_string(expected) + " expected)");
+  }
+
+  // The corners a <vcount> declares.
+  std::uint64_t vcount_sum(const Tag& tag) const {
+    const std::string_view list = index_list(tag);
     std::uint64_t sum = 0;
-    for (std::size_t k = text_.find_first_not_of(" \t\r\n", from); k < to; k = text_.find_first_not_of(" \t\r\n", k)) {
+    for (std::size_t k = list.find_first_not_of(" \t\r\n"); k < list.size(); k = list.find_first_not_of(" \t\r\n", k)) {
       std::uint64_t n = 0;
-      const auto [end, error] = std::from_chars(text_.data() + k, text_.data() + to, n);
-      if (error != std::errc() || (end != text_.data() + to && !std::isspace(static_cast<unsigned char>(*end))))
-        fail("line " + std::to_string(1 + std::count(text_.begin(), text_.begin() + k, '\n')) + ", <vcount>",
-             "holds something that is not a decimal whole number");
+      const auto [end, error] = std::from_chars(list.data() + k, list.data() + list.size(), n);
+      if (error != std::errc() || (end != list.data() + list.size() && !std::isspace(static_cast<unsigned char>(*end))))
+        fail(element_place(tag), "holds something that is not a decimal whole number");
       sum += std::min(n, kMaxColladaCorners + 1);
       if (sum > kMaxColladaCorners) return sum;
-      k = static_cast<std::size_t>(end - text_.data());
+      k = static_cast<std::size_t>(end - list.data());
     }
     return sum;
   }

@@ -13,15 +13,20 @@
 // the nodes. Lines and points are skipped. Coordinates are Assimp's single-precision floats
 // (the nearest float to what is written), transformed in double. <unit meter="..."> and <up_axis>
 // are ignored: coordinates are taken as written, in the scene's "units" (Å by default), never
-// rescaled or rotated. cellPACK's database files all declare <unit meter="0.01"
-// name="centimeter"/> and <up_axis>Y_UP</up_axis> (Cinema 4D's and pycollada's defaults) while
-// their coordinates are Å (HIV1_envelope_Pack_145_0_2_0.dae: a radius of 725, the 145 nm
+// rescaled or rotated. The cellPACK database files looked at (HIV envelope and capsid, an Env
+// ingredient, a pycollada-written surface) declare <unit meter="0.01" name="centimeter"/> and
+// <up_axis>Y_UP</up_axis> (Cinema 4D's and pycollada's defaults) while their coordinates are Å (HIV1_envelope_Pack_145_0_2_0.dae: a radius of 725, the 145 nm
 // envelope), and cellPACK itself reads them with pycollada, which applies neither.
 // Assimp never prints (no logger); its error message goes into the InputError. A .dae is refused
 // before Assimp reads it when it is not XML text (a zipped .zae included), has more than 512 MiB,
 // declares a count, offset or stride that is not a decimal whole number or exceeds the file's
-// size, an <input> offset above 31, or primitives of more than 12,582,912 corners; and after it,
-// when the nodes place more than 4,194,304 faces. Assimp reads a negative index in <p> as 0.
+// size, an <input> offset above 31, a <p> or <vcount> holding other than digits, signs and blanks
+// (Assimp 5.2 loops on any other character in <p>), a <triangles>, <polylist> or <polygons> whose
+// count disagrees with its <p> elements (Debian's Assimp aborts on an assertion), or primitives of
+// more than 12,582,912 corners; and after it, when the nodes place more than 4,194,304 faces.
+// Assimp reads a negative index in <p> as 0. A malformed .dae can still crash Assimp itself (a
+// misspelt <float_array> count: a null dereference, found by fuzzing, docs/tests.md): Collada is
+// trusted input, and not in the fuzzed set.
 #include <cstddef>
 #include <filesystem>
 #include <optional>

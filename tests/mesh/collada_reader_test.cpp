@@ -241,6 +241,15 @@ TEST(ColladaReader, HostileFilesAreInputErrorsAndNothingIsPrinted) {
   std::string wide = good;
   wide.replace(wide.find("offset=\"0\""), 10, "offset=\"40\"");
   expect_input_error(dir.write("offset.dae", wide), "line 9, <input>", "at most 31");
+  // Assimp 5.2 would loop on "1!2" (growing its index list until memory runs out): found by the fuzzer.
+  expect_input_error(dir.write("bang.dae", collada(triangle_geometry("t", "0 0 0 1 0 0 0 1 0", 3, "0 1!2", 1), node)),
+                     "line 9, <p>", "holds '!'");
+  expect_input_error(dir.write("cdata.dae", collada(triangle_geometry("t", "0 0 0 1 0 0 0 1 0", 3, "<![CDATA[0 1 2]]>", 1), node)),
+                     "line 9, <p>", "holds '<'");
+  // Debian's Assimp aborts (an assertion) on primitives whose count disagrees with their <p>s: found by the fuzzer.
+  std::string no_p = good;
+  no_p.replace(no_p.find("<p>0 1 2</p>"), 12, "");
+  expect_input_error(dir.write("no-p.dae", no_p), "line 9, <triangles>", "count=\"1\" with 0 <p>");
   expect_input_error(dir.write("zip.dae", std::string("PK\x03\x04", 4) + good), "byte 2", "not XML text");
   EXPECT_EQ(::testing::internal::GetCapturedStdout(), "");
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
