@@ -10,7 +10,7 @@ build_type=${NANO_BUILD_TYPE:-Release}
 packages=(
   build-essential cmake ninja-build pkg-config clang-14 libclang-rt-14-dev lld-14
   libzstd-dev libxxhash-dev libglm-dev libpng-dev zlib1g-dev
-  libcgal-dev libcgal-demo libeigen3-dev libdraco-dev libgmp-dev libmpfr-dev
+  libcgal-dev libcgal-demo libeigen3-dev libdraco-dev libassimp-dev libgmp-dev libmpfr-dev
   glslang-tools glslang-dev spirv-tools
   libvulkan-dev vulkan-validationlayers
   libglfw3-dev libimgui-dev

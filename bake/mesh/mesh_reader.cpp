@@ -1,6 +1,6 @@
 // Picks the reader by extension, then parses the bytes (parse_proxy_mesh). Each format's reader
-// (obj_reader.cpp, off_reader.cpp, ply_reader.cpp, stl_reader.cpp) turns the whole file into a
-// polygon soup; one assembly (polygon_soup.cpp) checks and triangulates every soup alike.
+// (obj_reader.cpp, off_reader.cpp, ply_reader.cpp, stl_reader.cpp, and collada_reader.cpp through
+// Assimp) turns the whole file into a polygon soup; one assembly (polygon_soup.cpp) checks and triangulates every soup alike.
 #include "bake/mesh/mesh_reader.hpp"
 
 #include <algorithm>
@@ -24,6 +24,7 @@ std::optional<MeshFormat> mesh_format_of(const std::filesystem::path& path) {
   if (extension == ".ply") return MeshFormat::ply;
   if (extension == ".stl") return MeshFormat::stl;
   if (extension == ".drc") return MeshFormat::draco;
+  if (extension == ".dae") return MeshFormat::collada;
   return std::nullopt;
 }
 
@@ -35,6 +36,7 @@ ProxyMesh parse_proxy_mesh(std::span<const std::byte> bytes, MeshFormat format, 
     case MeshFormat::ply: return assemble_proxy_mesh(read_ply_soup(text, file), file);
     case MeshFormat::stl: return assemble_proxy_mesh(read_stl_soup(text, file), file);
     case MeshFormat::draco: return decode_draco_mesh(bytes, file);
+    case MeshFormat::collada: return assemble_proxy_mesh(read_collada_soup(text, file), file);
   }
   throw InputError(file, "", "unknown mesh format");
 }
@@ -48,7 +50,7 @@ ProxyMesh read_proxy_mesh(const std::filesystem::path& path) {
   const std::optional<MeshFormat> format = mesh_format_of(path);
   if (!format)
     throw InputError(file, "", "unsupported mesh format '" + path.extension().string() +
-                                   "' (use .obj, .ply, .off, .stl or .drc)");
+                                   "' (use .obj, .ply, .off, .stl, .drc or .dae)");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(file, "", "cannot read the file");
   return parse_proxy_mesh(std::as_bytes(std::span(bytes.data(), bytes.size())), *format, file);

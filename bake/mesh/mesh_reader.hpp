@@ -1,10 +1,32 @@
 #pragma once
-// Loads a proxy mesh from OBJ, PLY, OFF, STL or Draco .drc. The four text-or-binary formats have
-// readers of our own (one file each, sharing polygon_soup.hpp), written to accept what the
-// formats allow (comments anywhere, every PLY encoding and type, n-gons, negative OBJ indices)
+// Loads a proxy mesh from OBJ, PLY, OFF, STL, Draco .drc or Collada .dae. The four text-or-binary
+// formats have readers of our own (one file each, sharing polygon_soup.hpp), written to accept what
+// the formats allow (comments anywhere, every PLY encoding and type, n-gons, negative OBJ indices)
 // and to keep the face list as written: check-mesh then sees every defect (non-manifold edges,
 // degenerate triangles) at the face index of the file, where a half-edge builder would quietly
-// repair it. Draco goes through libdraco (draco_codec.hpp).
+// repair it. Draco goes through libdraco (draco_codec.hpp), Collada through Assimp
+// (collada_reader.cpp), whose scene becomes a polygon soup checked by the same rules.
+//
+// Collada (cellPACK's geometry format): every mesh every node of the <visual_scene> places, with
+// the nodes' transforms applied (a mirroring one reverses the faces' corners, so what faced out
+// still does; a mesh two nodes instance comes twice); faces in that order, depth first through
+// the nodes. Lines and points are skipped. Coordinates are Assimp's single-precision floats
+// (the nearest float to what is written), transformed in double. <unit meter="..."> and <up_axis>
+// are ignored: coordinates are taken as written, in the scene's "units" (Å by default), never
+// rescaled or rotated. The cellPACK database files looked at (HIV envelope and capsid, an Env
+// ingredient, a pycollada-written surface) declare <unit meter="0.01" name="centimeter"/> and
+// <up_axis>Y_UP</up_axis> (Cinema 4D's and pycollada's defaults) while their coordinates are Å (HIV1_envelope_Pack_145_0_2_0.dae: a radius of 725, the 145 nm
+// envelope), and cellPACK itself reads them with pycollada, which applies neither.
+// Assimp never prints (no logger); its error message goes into the InputError. A .dae is refused
+// before Assimp reads it when it is not XML text (a zipped .zae included), has more than 512 MiB,
+// declares a count, offset or stride that is not a decimal whole number or exceeds the file's
+// size, an <input> offset above 31, a <p> or <vcount> holding other than digits, signs and blanks
+// (Assimp 5.2 loops on any other character in <p>), a <triangles>, <polylist> or <polygons> whose
+// count disagrees with its <p> elements (Debian's Assimp aborts on an assertion), or primitives of
+// more than 12,582,912 corners; and after it, when the nodes place more than 4,194,304 faces.
+// Assimp reads a negative index in <p> as 0. A malformed .dae can still crash Assimp itself (a
+// misspelt <float_array> count: a null dereference, found by fuzzing, docs/tests.md): Collada is
+// trusted input, and not in the fuzzed set.
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -15,9 +37,9 @@
 
 namespace nano::mesh {
 
-enum class MeshFormat { obj, off, ply, stl, draco };
+enum class MeshFormat { obj, off, ply, stl, draco, collada };
 
-// The format a file name's extension names (.obj, .off, .ply, .stl, .drc, in any case), or nullopt.
+// The format a file name's extension names (.obj, .off, .ply, .stl, .drc, .dae, in any case), or nullopt.
 std::optional<MeshFormat> mesh_format_of(const std::filesystem::path& path);
 
 // Faces are triangulated in file order, so triangle i of an all-triangle file is face i (0-based).

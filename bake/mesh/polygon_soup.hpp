@@ -52,5 +52,7 @@ PolygonSoup read_obj_soup(std::string_view bytes, const std::string& file);
 PolygonSoup read_off_soup(std::string_view bytes, const std::string& file);
 PolygonSoup read_ply_soup(std::string_view bytes, const std::string& file);
 PolygonSoup read_stl_soup(std::string_view bytes, const std::string& file);
+// Collada through Assimp (collada_reader.cpp): no lines to name, so errors name the face or vertex.
+PolygonSoup read_collada_soup(std::string_view bytes, const std::string& file);
 
 }  // namespace nano::mesh

@@ -148,11 +148,11 @@ void add_check_mesh_command(CLI::App& app) {
   auto args = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
       "check-mesh",
-      "Check that a proxy mesh (OBJ/PLY/OFF/STL/Draco) is usable for the membrane shell: closed, manifold, outward, "
+      "Check that a proxy mesh (OBJ/PLY/OFF/STL/Draco/Collada) is usable for the membrane shell: closed, manifold, outward, "
       "no degenerate or sliver triangles, UVs in [0,1] without zero-area or flipped triangles; reports seams, "
       "UV distortion, the UV scale k and the replication area. Face indices are 0-based triangles in file "
       "order. Exit 0 when usable, 1 with the list of every problem.");
-  command->add_option("mesh", args->mesh, "mesh file (.obj, .ply, .off, .stl, .drc); not with --scene");
+  command->add_option("mesh", args->mesh, "mesh file (.obj, .ply, .off, .stl, .drc, .dae); not with --scene");
   command->add_option("--make-uvs", args->make_uvs,
                       "replace the mesh's UVs by the charts the baker makes, check that, and write it as OBJ");
   command->add_flag("--json", args->json, "print the report as JSON");

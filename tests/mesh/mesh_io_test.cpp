@@ -117,7 +117,7 @@ TEST(MeshReader, BadInputNamesFileAndRule) {
   ply.append(reinterpret_cast<const char*>(indices), sizeof indices);
   expect_input_error(dir.write("nan.ply", ply), "vertex 1", "finite");
   expect_input_error(dir.write("mesh.stl", "solid x\nendsolid x\n"), "", "");
-  expect_input_error(dir.write("mesh.dae", "<COLLADA/>\n"), "", "unsupported mesh format");
+  expect_input_error(dir.write("mesh.3ds", "MM\n"), "", "unsupported mesh format");
   expect_input_error(dir.write("garbage.drc", "DRACO but not really a Draco file at all"), "", "Draco");
   expect_input_error(dir.write("empty.drc", ""), "", "Draco");
   expect_input_error(dir.write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n"), "line 3",
@@ -194,7 +194,8 @@ TEST(MeshReader, FormatFromTheExtension) {
   EXPECT_EQ(mesh_format_of("c.Ply"), MeshFormat::ply);
   EXPECT_EQ(mesh_format_of("d.stl"), MeshFormat::stl);
   EXPECT_EQ(mesh_format_of("e.drc"), MeshFormat::draco);
-  EXPECT_EQ(mesh_format_of("f.dae"), std::nullopt);
+  EXPECT_EQ(mesh_format_of("f.DAE"), MeshFormat::collada);
+  EXPECT_EQ(mesh_format_of("f.zae"), std::nullopt);
   EXPECT_EQ(mesh_format_of("obj"), std::nullopt);
   EXPECT_EQ(mesh_format_of("g.obj.gz"), std::nullopt);
 }
