@@ -8,6 +8,7 @@
 #include <optional>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "bake/cellpack/sphere_tree.hpp"
 #include "bake/cellpack/structure_files.hpp"
@@ -63,7 +64,17 @@ std::string relative_to(const fs::path& file, const fs::path& folder) {
 struct Measure {
   double volume = 0;
   double area = 0;
+  glm::dvec3 box_min{0.0}, box_max{0.0};  // where it stands (Å)
 };
+
+// v1 recipes nest by geometry alone (HIV-1's capsid inside its envelope): a compartment whose box
+// lies inside another's, or two that overlap, would be instanced through each other.
+std::string placement_conflict(const Measure& a, const Measure& b) {
+  const bool inside = glm::all(glm::greaterThanEqual(b.box_min, a.box_min)) && glm::all(glm::lessThanEqual(b.box_max, a.box_max));
+  if (inside) return "inside";
+  const bool overlap = glm::all(glm::lessThan(a.box_min, b.box_max)) && glm::all(glm::lessThan(b.box_min, a.box_max));
+  return overlap ? "overlapping" : "";
+}
 
 class Importer {
 public:
@@ -100,6 +111,8 @@ private:
       // About one triangle per (tile edge)² of surface, at least a few hundred for a round proxy.
       const double triangles = std::clamp(m.area / (kTileSize * kTileSize), 320.0, 200000.0);
       mesh = {{"generate", "sphere"}, {"radius", c.radius}, {"triangles", int(triangles)}};
+      m.box_min = c.centre - c.radius;
+      m.box_max = c.centre + c.radius;
       return m;
     }
     const fs::path file = mesh_file(c);
@@ -110,14 +123,16 @@ private:
       m.volume += glm::dot(a, glm::cross(b, d)) / 6.0;
     }
     m.volume = std::abs(m.volume);
+    m.box_min = m.box_max = proxy.positions.front();
+    for (const glm::dvec3& p : proxy.positions) {
+      m.box_min = glm::min(m.box_min, p);
+      m.box_max = glm::max(m.box_max, p);
+    }
     mesh = {{"file", relative_to(file, options_.scene_folder)}};
     return m;
   }
 
   fs::path mesh_file(const Compartment& c) const {
-    const std::string ext = fs::path(c.mesh_file).extension().string();
-    if (ext == ".dae" || ext == ".DAE")
-      throw InputError(c.where, "geom", "Collada mesh '" + c.mesh_file + "' is not read yet: convert it to .obj, .ply, .off or .stl");
     const std::vector<fs::path> candidates =
         recipe_file_candidates(c.mesh_file, fs::path(recipe_.file).parent_path(), options_.read);
     for (const fs::path& p : candidates)
@@ -196,6 +211,7 @@ private:
     Json list = Json::array();
     double largest = 0;
     for (const Ingredient& in : ingredients) {
+      if (asks_for_none(in, region)) continue;
       const double copies = in.molarity * kAvogadro * volume * kLitresPerA3 + static_cast<double>(in.count);
       const double free = free_volume(volume, membrane_area, in.encapsulating_radius);
       const double mM = volume > 0 ? copies / (kAvogadro * free * kLitresPerA3) * 1000.0 : in.molarity * 1000.0;
@@ -220,21 +236,35 @@ private:
     return std::max(volume - membrane_area * depth, 0.25 * volume);
   }
 
+  // An ingredient at molarity 0 and nbMol 0 (recipes keep switched-off ingredients so) is left out,
+  // and the report says so; its structure is not looked for.
+  bool asks_for_none(const Ingredient& in, const std::string& region) {
+    if (in.molarity > 0 || in.count > 0) return false;
+    result_.report.push_back({in.id, region, asked(in), "nothing: left out", "", in.not_carried});
+    return true;
+  }
+
   std::string stand_in_of(const std::string& molecule) const {
     const auto it = stand_ins_.find(molecule);
     return it == stand_ins_.end() ? "" : it->second;
   }
 
+  // Both amounts given: cellPACK places their sum, which some recipes (BloodPlasma 1.0) did not mean —
+  // their nbMol is the molarity's count written out — so the report says so and shows both.
   static std::string asked(const Ingredient& in) {
     std::string s;
     if (in.molarity > 0) s += "molarity " + shown(in.molarity) + " M";
     if (in.count > 0) s += (s.empty() ? "" : " + ") + std::string("nbMol ") + std::to_string(in.count);
+    if (in.molarity > 0 && in.count > 0)
+      s += " (both given: cellPACK places the sum, and so does this scene; if the recipe's nbMol is its molarity's count "
+           "written out, that is twice what it means)";
     return s.empty() ? "nothing (molarity 0, nbMol 0)" : s;
   }
 
   Json membrane(const Compartment& c, double area) {
     Json proteins = Json::array();
     for (const Ingredient& in : c.surface) {
+      if (asks_for_none(in, c.id + " surface")) continue;
       // cellPACK reads a surface molarity per Å² as it reads one per Å³: M · N_A · 10⁻²⁷ copies.
       const double per_um2 = in.molarity * kAvogadro * kLitresPerA3 * kA2PerUm2 +
                              (in.count > 0 && area > 0 ? double(in.count) / (area / kA2PerUm2) : 0.0);
@@ -273,6 +303,15 @@ private:
     if (c.geometry == Compartment::Geometry::none) throw InputError(c.where, "geom", "compartment '" + c.id + "' has no geometry");
     Json mesh;
     const Measure m = measure(c, mesh);
+    for (const auto& [other, placed] : placed_) {
+      std::string conflict = placement_conflict(placed, m);
+      if (conflict.empty()) conflict = placement_conflict(m, placed);
+      if (!conflict.empty())
+        throw InputError(c.where, "", "compartment '" + c.id + "' and '" + other + "' are " +
+                                          (conflict == "inside" ? "nested (one's bounds lie inside the other's)" : "overlapping") +
+                                          ": Nanouniverse's compartment instances do not nest or overlap yet");
+    }
+    placed_.emplace_back(c.id, m);
     outside_volume -= m.volume;
     if (!options_.lipid_patch.empty()) membrane_area_ += m.area;
     const std::string name = scene_name(c.id);
@@ -284,9 +323,9 @@ private:
       result_.scene["membranes"][name] = membrane(c, m.area);
       comp["membrane"] = name;
     }
-    if (!c.interior.empty()) {
-      result_.scene["solubles"][name] = soluble(c.interior, m.volume, options_.lipid_patch.empty() ? 0.0 : m.area,
-                                                c.id + " interior", name, 16);
+    if (Json interior = soluble(c.interior, m.volume, options_.lipid_patch.empty() ? 0.0 : m.area, c.id + " interior", name, 16);
+        !interior["molecules"].empty()) {
+      result_.scene["solubles"][name] = std::move(interior);
       comp["soluble"] = name;
     }
     if (!comp.contains("membrane") && !comp.contains("soluble"))
@@ -300,7 +339,9 @@ private:
 
   void add_medium(double volume) {
     // The medium's cube set must be complete: 2 face colours, 2⁶ cubes.
-    result_.scene["solubles"]["outside"] = soluble(recipe_.outside, volume, membrane_area_, "outside", "medium", 64);
+    Json outside = soluble(recipe_.outside, volume, membrane_area_, "outside", "medium", 64);
+    if (outside["molecules"].empty()) return;
+    result_.scene["solubles"]["outside"] = std::move(outside);
     Json medium = {{"soluble", "outside"}};
     if (recipe_.box_min && recipe_.box_max)
       medium["region"] = {{recipe_.box_min->x, recipe_.box_min->y, recipe_.box_min->z},
@@ -320,6 +361,7 @@ private:
   StructureFolder structures_;
   ImportResult result_;
   std::vector<std::string> missing_;
+  std::vector<std::pair<std::string, Measure>> placed_;  // compartments placed so far
   double membrane_area_ = 0;  // Å², every compartment's membrane (the medium keeps clear of them)
   std::map<std::string, std::string> stand_ins_;  // scene molecule → what it stands in with
 };

@@ -192,6 +192,46 @@ TEST(SceneFromRecipe, StandInsComeFromTheSphereTreeTheInlineSpheresOrTheEncapsul
   }
 }
 
+// v1 recipes nest by geometry alone (HIV-1's capsid in its envelope): refused by name, as v2's
+// explicit nesting is; compartments apart are fine.
+TEST(SceneFromRecipe, CompartmentsNestedOrOverlappingByGeometryAreRefused) {
+  Recipe r = ball_holding({Ingredient{.id = "hb", .structure = "4hhb", .molarity = 0.001}});
+  Compartment capsid = r.compartments[0];
+  capsid.id = "capsid";
+  capsid.radius = 300;
+  capsid.centre = {100, 0, 0};
+  r.compartments.push_back(capsid);
+  try {
+    scene_from_recipe(r, bundled_options());
+    FAIL() << "a ball inside a ball was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'capsid' and 'ball' are nested"), std::string::npos) << e.what();
+  }
+  r.compartments[1].centre = {800, 0, 0};
+  EXPECT_THROW(scene_from_recipe(r, bundled_options()), InputError);  // overlapping
+  r.compartments[1].centre = {1000, 0, 0};
+  EXPECT_EQ(scene_from_recipe(r, bundled_options()).scene["instances"].size(), 2u);  // apart
+}
+
+// A switched-off ingredient (molarity 0, nbMol 0) is left out, said so; both amounts are summed, said so.
+TEST(SceneFromRecipe, NothingAskedIsLeftOutAndBothAmountsAreSummedAloud) {
+  Ingredient off{.id = "off", .structure = "no_such_file"};
+  Ingredient both{.id = "hb", .structure = "4hhb", .molarity = 0.001, .count = 500};
+  const Recipe r = ball_holding({off, both});
+  const ImportResult out = scene_from_recipe(r, bundled_options());
+  EXPECT_FALSE(out.scene["molecules"].contains("off"));
+  ASSERT_EQ(out.scene["solubles"]["ball"]["molecules"].size(), 1u);
+  EXPECT_EQ(out.report[0].held, "nothing: left out");
+  EXPECT_NE(out.report[1].asked.find("molarity 0.001 M + nbMol 500 (both given: cellPACK places the sum"), std::string::npos);
+  const double volume = 4.0 / 3.0 * std::numbers::pi * std::pow(600.0, 3);
+  EXPECT_NEAR(out.report[1].expected_copies, 0.001 * kAvogadro * volume * 1e-27 + 500, 1e-9);
+  // Only switched-off ingredients: the ball has no soluble; with no bilayer either it holds nothing.
+  ImportOptions no_bilayer = bundled_options();
+  no_bilayer.lipid_patch.clear();
+  EXPECT_THROW(scene_from_recipe(ball_holding({off}), no_bilayer), InputError);
+  EXPECT_FALSE(scene_from_recipe(ball_holding({off}), bundled_options()).scene["compartments"]["ball"].contains("soluble"));
+}
+
 TEST(SceneFromRecipe, CopyNumberCheckNamesWhatIsMoreThanTenPercentOff) {
   ImportResult imported;
   imported.report.push_back({.ingredient = "hb", .region = "cell interior", .scene_region = "cell", .molecule = "hb",
