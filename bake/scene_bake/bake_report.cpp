@@ -32,6 +32,11 @@ std::map<std::string, std::string> stand_ins(const format::Package& package) {
   return found;
 }
 
+void write_stand_ins(std::ostream& out, const format::Package& package) {
+  for (const auto& [name, source] : stand_ins(package))
+    out << "  " << name << " is a STAND-IN, no structure: " << source.substr(kStandInSourcePrefix.size() - 1) << "\n";
+}
+
 nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
   nlohmann::ordered_json per_species = nlohmann::ordered_json::object(), dropped = nlohmann::ordered_json::object();
   for (const auto& [name, n] : m.lipids) per_species[name] = n / m.area_um2;
@@ -192,8 +197,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
     entry["atoms"] = entry["atoms"].get<std::uint64_t>() + m.atom_count;
     entry["beads"] = entry["beads"].get<std::uint64_t>() + ranges[t].count;
   }
-  auto& stand_in_types = j["stand_ins"] = nlohmann::ordered_json::object();
-  for (const auto& [name, source] : stand_ins(package)) stand_in_types[name] = source;
+  j["stand_ins"] = stand_ins(package);
   j["mesh_sections"] = mesh_section_sizes(package);
   auto& sections = j["sections"] = nlohmann::ordered_json::object();
   for (const format::SectionEntry& e : package.entries())
@@ -226,8 +230,7 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
                 package.name().c_str(), scene.compartments.size(), scene.instances.size(),
                 static_cast<double>(scene.represented_atoms), package.file_size() / 1e6);
   out << line;
-  for (const auto& [name, source] : stand_ins(package))
-    out << "  " << name << " is a STAND-IN, no structure: " << source.substr(kStandInSourcePrefix.size() - 1) << "\n";
+  write_stand_ins(out, package);
   for (const CompartmentSummary& c : scene.compartments) {
     std::snprintf(line, sizeof line, "  %s: %.3g atoms per copy", c.name.c_str(), static_cast<double>(c.represented_atoms));
     out << line;
