@@ -292,7 +292,8 @@ private:
       result_.report.push_back(std::move(line));
     }
     Json m = {{"tile_size", kTileSize}, {"proteins", proteins}};
-    m["lipid_patch"] = {{"file", relative_to(options_.lipid_patch, options_.scene_folder)}, {"name", "lipid"}};
+    // Lipids in a neutral grey, so that the recipe's colours stand out against the bilayer.
+    m["lipid_patch"] = {{"file", relative_to(options_.lipid_patch, options_.scene_folder)}, {"name", "lipid"}, {"colour", "#c4c4bc"}};
     return m;
   }
 
