@@ -138,7 +138,7 @@ struct MediumDescription {
 };
 
 struct MeshSource {
-  enum class Kind { file, sphere, rbc };
+  enum class Kind { file, sphere, rbc, box };
   // UVs: kept when the mesh has usable ones, made by the baker otherwise (automatic); or always
   // kept (a mesh without usable UVs is refused); or always made (bake/mesh/uv_charts.hpp).
   enum class Uv { automatic, keep, generate };
@@ -157,6 +157,7 @@ struct MeshSource {
   enum class Remesh { automatic, off, edge };
   Remesh remesh = Remesh::automatic;
   double remesh_edge = 0.0;  // Remesh::edge
+  glm::dvec3 box_size{0.0};  // Kind::box: its sides, Å (centred on the compartment's origin)
   bool operator==(const MeshSource&) const = default;
 };
 

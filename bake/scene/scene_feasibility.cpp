@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "common/error.hpp"
 
 namespace nano::scene {
@@ -210,6 +212,7 @@ void check_scene_amounts(const SceneDescription& scene) {
     if (c.mesh.diameter) reach = 0.5 * *c.mesh.diameter;
     else if (c.mesh.volume) reach = std::cbrt(*c.mesh.volume * 3.0 / (4.0 * std::numbers::pi));
     else if (c.mesh.kind == MeshSource::Kind::sphere) reach = c.mesh.radius * c.scale;
+    else if (c.mesh.kind == MeshSource::Kind::box) reach = 0.5 * glm::length(c.mesh.box_size) * c.scale;
     if (reach > kMaxCompartmentExtent) refuse_extent(scene, c, reach);
     if (c.mesh.kind != MeshSource::Kind::file && c.mesh.triangles > kMaxMeshTriangles)
       refuse(scene, "compartments." + c.name + ".mesh.triangles", too_many_triangles(c.mesh.triangles));

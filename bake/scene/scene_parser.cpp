@@ -316,8 +316,18 @@ MeshSource parse_mesh(const JsonCursor& c, const std::filesystem::path& folder) 
   } else if (name == "rbc") {
     c.only_keys({"generate", "triangles", "diameter", "volume", "uv", "repair", "remesh"});
     mesh.kind = MeshSource::Kind::rbc;
+  } else if (name == "box") {
+    // A box is its 12 triangles: no count to choose.
+    c.only_keys({"generate", "size", "uv", "repair", "remesh"});
+    mesh.kind = MeshSource::Kind::box;
+    const JsonCursor size = c.required("size");
+    mesh.box_size = size.vec3();
+    for (int a = 0; a < 3; ++a)
+      if (!(mesh.box_size[a] > 0.0)) size.fail("each side must be > 0 Å, got " + size.shown());
+    parse_mesh_size_and_uvs(c, mesh);
+    return mesh;
   } else {
-    kind.fail("expected \"sphere\" or \"rbc\", got " + kind.shown());
+    kind.fail("expected \"sphere\", \"rbc\" or \"box\", got " + kind.shown());
   }
   mesh.triangles = static_cast<int>(c.required("triangles").integer_between(1, max_triangles));
   parse_mesh_size_and_uvs(c, mesh);

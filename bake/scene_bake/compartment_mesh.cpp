@@ -10,6 +10,7 @@
 
 #include "bake/mesh/mesh_reader.hpp"
 #include "bake/mesh/rbc_mesh.hpp"
+#include "bake/mesh/box_mesh.hpp"
 #include "bake/mesh/sphere_mesh.hpp"
 #include "bake/mesh/uv_distortion.hpp"
 #include "bake/scene_bake/mesh_packing.hpp"
@@ -32,6 +33,11 @@ CompartmentMesh read_or_generate(const scene::MeshSource& source) {
       const int n = source.triangles > 0 ? source.triangles : kDefaultSphereTriangles;
       result.mesh = mesh::make_sphere_mesh(n, source.radius);
       result.origin = "generated sphere (" + std::to_string(n) + " triangles)";
+      break;
+    }
+    case scene::MeshSource::Kind::box: {
+      result.mesh = mesh::make_box_mesh(source.box_size);
+      result.origin = "generated box";
       break;
     }
     case scene::MeshSource::Kind::rbc: {

@@ -8,6 +8,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "bake/mesh/box_mesh.hpp"
 #include "bake/mesh/mesh_check.hpp"
 #include "bake/mesh/mesh_reader.hpp"
 #include "bake/mesh/obj_writer.hpp"
@@ -143,6 +144,24 @@ void expect_usable_after_round_trip(const ProxyMesh& mesh, const char* name, dou
   EXPECT_TRUE(r.warnings.empty()) << report_to_text(r, name);
   EXPECT_EQ(r.mirrored_triangles, 0u);
   EXPECT_LT(r.sigma_max / r.sigma_min, max_sigma_ratio);
+}
+
+// The box a cytoplasm-only recipe fills: closed, outward, its volume and area the box's, six charts
+// of one stretch each (σ ratio: the cells are square, the faces not).
+TEST(BoxMesh, IsTheBoxClosedOutwardWithSixCharts) {
+  const ProxyMesh mesh = make_box_mesh({700.0, 1200.0, 2200.0});
+  ASSERT_EQ(mesh.triangles.size(), 12u);
+  expect_usable_after_round_trip(mesh, "box.obj", 2200.0 / 700.0 + 1e-6);
+  testing::TempDir dir;
+  write_obj(dir.path() / "b.obj", mesh);
+  const MeshReport r = check_mesh(read_proxy_mesh(dir.path() / "b.obj"), CheckOptions{});
+  EXPECT_EQ(r.uv_charts, 6u);
+  ASSERT_TRUE(r.volume.has_value());
+  EXPECT_NEAR(*r.volume, 700.0 * 1200.0 * 2200.0, 1e-3);
+  EXPECT_NEAR(r.area, 2.0 * (700.0 * 1200.0 + 1200.0 * 2200.0 + 2200.0 * 700.0), 1e-3);
+  for (const glm::dvec3& p : mesh.positions) EXPECT_EQ(glm::abs(p), glm::dvec3(350.0, 600.0, 1100.0));
+  EXPECT_THROW(make_box_mesh({700.0, 0.0, 1.0}), InputError);
+  EXPECT_THROW(make_box_mesh({700.0, NAN, 1.0}), InputError);
 }
 
 TEST(SphereMesh, PassesCheckMeshWithSixChartsAndLowDistortion) {

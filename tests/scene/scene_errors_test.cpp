@@ -261,7 +261,7 @@ TEST(SceneErrors, StructuralRules) {
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["a.b"] = Json{{"file", "x.pdb"}}; }), "molecules.a.b",
                      "only letters, digits");
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["mesh"]["generate"] = "cube"; }),
-                     "compartments.virion.mesh.generate", "expected \"sphere\" or \"rbc\"");
+                     "compartments.virion.mesh.generate", "expected \"sphere\", \"rbc\" or \"box\"");
 }
 
 TEST(SceneErrors, MalformedJsonNamesLineAndColumn) {
@@ -293,6 +293,23 @@ TEST(SceneErrors, StandInsAreSpheresInsteadOfAFile) {
   EXPECT_INPUT_ERROR(parse_modified(with_spheres(Json::array({Json::array({0, 0, 5})}))), "molecules.hb.stand_in.spheres[0]", "");
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["molecules"]["hb"] = Json{{"stand_in", {{"spheres", Json::array({Json::array({0, 0, 0, 1})})}}}}; }),
                      "molecules.hb.stand_in.from", "");
+}
+
+// A generated box: its three sides, each > 0; no triangle count to give.
+TEST(SceneErrors, AGeneratedBoxIsItsSides) {
+  Json doc = valid_scene();
+  doc["compartments"]["virion"]["mesh"] = Json{{"generate", "box"}, {"size", {700, 1200, 2200}}};
+  const SceneDescription s = parse_scene_description(doc, "scene.json");
+  EXPECT_EQ(s.compartments[0].mesh.kind, MeshSource::Kind::box);
+  EXPECT_EQ(s.compartments[0].mesh.box_size, glm::dvec3(700, 1200, 2200));
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["mesh"] = Json{{"generate", "box"}, {"size", {700, 0, 1}}}; }),
+                     "compartments.virion.mesh.size", "each side must be > 0");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) {
+                       d["compartments"]["virion"]["mesh"] = Json{{"generate", "box"}, {"size", {1, 1, 1}}, {"triangles", 12}};
+                     }),
+                     "compartments.virion.mesh.triangles", "unknown key");
+  EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["compartments"]["virion"]["mesh"] = Json{{"generate", "cube"}, {"size", {1, 1, 1}}}; }),
+                     "compartments.virion.mesh.generate", "\"sphere\", \"rbc\" or \"box\"");
 }
 
 }  // namespace
