@@ -57,7 +57,7 @@ TEST(UnitPacker, ARareMoleculeIsNotRoundedUpInASharedUnit) {
   const std::vector<CollisionShape> shapes{CollisionShape(types[0])};
   const float edge = 250.f;
   const double measure = edge * edge * edge;
-  for (const double per_cube : {0.63, 0.2, 1.4}) {
+  for (const double per_cube : {0.63, 0.2, 1.4, 0.46}) {
     std::vector<PlacementSpec> specs(1);
     specs[0].type = 0;
     specs[0].copies_per_volume = per_cube / measure;
@@ -74,10 +74,32 @@ TEST(UnitPacker, ARareMoleculeIsNotRoundedUpInASharedUnit) {
     const TilingRecipe big = make_tiling_recipe(colouring, {16, 16, 16}, 6, false);
     const test::ExplicitTiling counts = test::instantiate(set, big, types, false);
     const double explicit_per_cube = counts.copies_per_type[0] / static_cast<double>(big.cells.size());
-    // Whole copies over 64 cubes: within one copy of the set (1/64 per cube) and the tiling's sampling.
-    EXPECT_NEAR(explicit_per_cube, per_cube, 0.05 * per_cube + 1.0 / 64) << per_cube;
-    EXPECT_NEAR(packed.achieved_per_volume[0] * measure, per_cube, 1.0 / 64 + 1e-9) << per_cube;
+    // Within the 10 % a shared unit may overshoot, or one copy of the set (1/64 per cube), and the
+    // tiling's sampling.
+    EXPECT_NEAR(explicit_per_cube, per_cube, 0.12 * per_cube + 1.0 / 64) << per_cube;
+    EXPECT_NEAR(packed.achieved_per_volume[0] * measure, per_cube, 0.1 * per_cube + 1.0 / 64 + 1e-9) << per_cube;
   }
+}
+
+// A molecule nearly as large as the cube's interior (a 108 Å sphere in 452 Å cubes) at 0.46 a cube:
+// the interiors cannot hold it all, so a face copy (0.5 a cube, +9 %) must be allowed.
+TEST(UnitPacker, ALargeRareMoleculeStillReachesItsDensity) {
+  const std::vector<MoleculeType> types{{"ldl", {{{0, 0, 0}, 108.f}}, 108.f, {0, 0, 1}}};
+  const std::vector<CollisionShape> shapes{CollisionShape(types[0])};
+  const float edge = 452.f;
+  const double measure = double(edge) * edge * edge;
+  std::vector<PlacementSpec> specs(1);
+  specs[0].type = 0;
+  specs[0].copies_per_volume = 0.46 / measure;
+  specs[0].band = 108.01f;
+  specs[0].uniform_rotation = true;
+  PackerSettings settings;
+  settings.edge = edge;
+  settings.clearance = 1.f;
+  settings.seed = 9;
+  settings.relaxation_rounds = 300;
+  const PackedUnits packed = pack_wang_units(shapes, specs, make_complete_colouring(3, 2), settings);
+  EXPECT_NEAR(packed.achieved_per_volume[0] * measure, 0.46, 0.1 * 0.46) << packed.achieved_per_volume[0] * measure;
 }
 
 TEST(UnitPacker, ComputeAtomBoundsCoversEveryAtom) {
