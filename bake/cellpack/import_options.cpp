@@ -18,8 +18,12 @@ void add_import_options(CLI::App& command, ImportArguments& arguments, bool stru
       "--stand-ins", arguments.stand_ins,
       "draw an ingredient whose structure is missing from its packing spheres (.sph, inline spheres, else its "
       "encapsulating radius), marked STAND-IN in the report, the bake summary and pick");
+  CLI::Option* fewest = command.add_option(
+      "--fewest-copies", arguments.fewest_copies,
+      "leave out (listed in the report) a soluble ingredient asking fewer copies than this in its region: a tiled soluble "
+      "may place none of a handful, and the bake then refuses it")->check(CLI::NonNegativeNumber);
   if (!group.empty())
-    for (CLI::Option* o : {structures, server, patch, stand_ins}) o->group(group);
+    for (CLI::Option* o : {structures, server, patch, stand_ins, fewest}) o->group(group);
 }
 
 ImportOptions import_options(const ImportArguments& arguments, const std::filesystem::path& recipe_file,
@@ -31,11 +35,13 @@ ImportOptions import_options(const ImportArguments& arguments, const std::filesy
   options.lipid_patch = arguments.lipid_patch;
   options.scene_folder = scene_folder;
   options.stand_ins = arguments.stand_ins;
+  options.fewest_copies = arguments.fewest_copies;
   return options;
 }
 
 bool any_import_option(const ImportArguments& arguments) {
-  return !arguments.structures.empty() || !arguments.server.empty() || !arguments.lipid_patch.empty() || arguments.stand_ins;
+  return !arguments.structures.empty() || !arguments.server.empty() || !arguments.lipid_patch.empty() || arguments.stand_ins ||
+         arguments.fewest_copies > 0;
 }
 
 }  // namespace nano::cellpack

@@ -14,9 +14,10 @@ namespace nano::cellpack {
 struct ImportArguments {
   std::string structures, server, lipid_patch;
   bool stand_ins = false;
+  double fewest_copies = 0;
 };
 
-// Adds --structures, --server, --lipid-patch and --stand-ins to `command` (in a group of their own
+// Adds --structures, --server, --lipid-patch, --stand-ins and --fewest-copies to `command` (in a group of their own
 // when the command bakes scenes too).
 void add_import_options(CLI::App& command, ImportArguments& arguments, bool structures_required, const std::string& group = "");
 

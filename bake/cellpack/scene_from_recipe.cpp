@@ -1,8 +1,10 @@
 #include "bake/cellpack/scene_from_recipe.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -25,6 +27,10 @@ constexpr double kLitresPerA3 = 1e-27;
 constexpr double kA2PerUm2 = 1e8;
 constexpr double kTileSize = 191.1;    // 3 periods of the bundled POPC patch (docs/scene.md)
 constexpr double kSmallestCube = 250;  // Å: the bundled scenes' cube edge
+constexpr double kLargestCube = 1000;  // Å: a set of 64 is then 0.064 µm³ (packing time grows with it)
+constexpr double kFewCopiesInARegion = 20;  // below, a count off by more than 10 % is the tiling's lumps
+constexpr double kFewCopies = 3;       // in a region: below, the report warns that the bake may place none
+constexpr double kCopiesPerSet = 5;    // of the rarest ingredient, where the cubes can grow to hold them
 constexpr double kClearance = 5;       // Å, as the bundled solubles
 // How far a bundled bilayer and its proteins reach into the volume beside it (Å): the bake measures
 // 41-58 Å for the POPC patch; a soluble's centre stays this, the clearance and its radius away.
@@ -61,6 +67,12 @@ std::string relative_to(const fs::path& file, const fs::path& folder) {
 }
 
 // A compartment's size as the amounts need it: volume (Å³) and area (Å²).
+// What bounds a region (Å²): membranes, which reach into it, and bare meshes, which do not.
+struct Walls {
+  double membrane_area = 0;
+  double bare_area = 0;
+};
+
 struct Measure {
   double volume = 0;
   double area = 0;
@@ -90,7 +102,8 @@ public:
     s["molecules"] = Json::object();
     double outside_volume = box_volume();
     for (const Compartment& c : recipe_.compartments) add_compartment(c, outside_volume);
-    if (!recipe_.outside.empty()) add_medium(outside_volume);
+    if (recipe_.compartments.empty()) add_box_of_cytoplasm();
+    else if (!recipe_.outside.empty()) add_medium(outside_volume);
     if (!missing_.empty()) throw InputError(recipe_.file, "", missing_text());
     if (s["instances"].empty()) throw InputError(recipe_.file, "compartments", "the recipe has no compartment to place; a scene needs one");
     return std::move(result_);
@@ -202,45 +215,83 @@ private:
     return Json{{"spheres", list}, {"from", from}};
   }
 
-  // The soluble for `ingredients` filling `volume` Å³ bounded by `membrane_area` Å² of membranes,
-  // the scene's `scene_region`; its report lines. The recipe's copies are those of the whole volume
-  // (cellPACK's count), but the bake keeps solubles clear of each membrane: they are packed denser
-  // in what is left (free_volume), so that the region holds the copies the recipe asked for.
-  Json soluble(const std::vector<Ingredient>& ingredients, double volume, double membrane_area, const std::string& region,
+  // The soluble for `ingredients` filling `volume` Å³ within `walls`, the scene's `scene_region`;
+  // its report lines. The recipe's copies are those of the whole volume (cellPACK's count), but the
+  // bake keeps solubles clear of every wall: they are packed denser in what is left (free_volume),
+  // so that the region holds the copies the recipe asked for.
+  Json soluble(const std::vector<Ingredient>& ingredients, double volume, const Walls& walls, const std::string& region,
                const std::string& scene_region, int cubes) {
     Json list = Json::array();
-    double largest = 0;
+    std::vector<std::pair<double, double>> packed;  // per ingredient: radius (Å), copies per Å³
     for (const Ingredient& in : ingredients) {
       if (asks_for_none(in, region)) continue;
       const double copies = in.molarity * kAvogadro * volume * kLitresPerA3 + static_cast<double>(in.count);
-      const double free = free_volume(volume, membrane_area, in.encapsulating_radius);
+      if (volume > 0 && copies < options_.fewest_copies) {
+        result_.report.push_back({in.id, region, asked(in), "nothing: left out, " + shown(copies) + " copies in " +
+                                  shown(volume * 1e-12) + " µm³ (--fewest-copies " + shown(options_.fewest_copies) + ")", "",
+                                  in.not_carried});
+        continue;
+      }
+      const double free = free_volume(volume, walls, in.encapsulating_radius);
       const double mM = volume > 0 ? copies / (kAvogadro * free * kLitresPerA3) * 1000.0 : in.molarity * 1000.0;
       const std::string name = molecule(in, false);
       list.push_back({{"molecule", name}, {"concentration_mM", mM}});
-      largest = std::max(largest, in.encapsulating_radius);
+      packed.emplace_back(in.encapsulating_radius, mM * 1e-3 * kAvogadro * kLitresPerA3);
       ImportLine line{in.id, region, asked(in), shown(mM) + " mM", stand_in_of(name), in.not_carried, scene_region, name, copies,
                       volume * 1e-12, false};
       if (volume > 0)
-        line.held += " in the " + shown(free * 1e-12) + " µm³ clear of membranes (" + shown(copies) + " copies in " +
+        line.held += " in the " + shown(free * 1e-12) + " µm³ clear of its walls (" + shown(copies) + " copies in " +
                      shown(volume * 1e-12) + " µm³: " + shown(copies / (volume * 1e-12)) + " /µm³)";
       if (in.count > 0 && volume <= 0) line.not_carried.push_back("nbMol " + std::to_string(in.count) + ": the region's volume is unknown");
+      // A tiled soluble holds whole copies per cube set; a region that asks for a handful may get
+      // none where its boxes sample the set, and the bake then refuses the molecule by name.
+      if (volume > 0 && copies < kFewCopies)
+        line.note = "only " + shown(copies) + " copies in the region: the bake may place none of it and then refuses it by name "
+                    "(--fewest-copies " + shown(kFewCopies) + " leaves such ingredients out, listed)";
       result_.report.push_back(std::move(line));
     }
-    return {{"cube_size", std::max(kSmallestCube, std::ceil(2.2 * largest))}, {"cubes", cubes}, {"molecules", list}, {"clearance", kClearance}};
+    const auto [edge, set] = cube_set(packed, cubes);
+    return {{"cube_size", edge}, {"cubes", set}, {"molecules", list}, {"clearance", kClearance}};
   }
 
-  // The part of `volume` a soluble of this radius reaches: each membrane keeps it kMembraneReach
-  // plus the clearance and its radius from its triangles (a first-order shell, area × depth).
-  static double free_volume(double volume, double membrane_area, double radius) {
-    const double depth = kMembraneReach + kClearance + (radius > 0 ? radius : kTypicalRadius);
-    return std::max(volume - membrane_area * depth, 0.25 * volume);
+  // The cube edge and count for ingredients of these radii and densities: 2.2 × the largest radius,
+  // at least 250 Å; large enough that one set holds kCopiesPerSet of the rarest (a set holds whole
+  // copies: ± ½ copy is ± 10 % at 5), the complete 2-colour set of 64 cubes first, then larger cubes
+  // up to kLargestCube (beyond, the bake refuses the ingredient by name: it would place no copy); and
+  // 4 × the radius of one that comes less than once a cube, which only a cube's interior can hold
+  // then (a 108 Å sphere at 0.08 a cube of 251 Å placed none).
+  static std::pair<double, int> cube_set(const std::vector<std::pair<double, double>>& packed, int cubes) {
+    double edge = kSmallestCube, rarest = std::numeric_limits<double>::infinity();
+    for (const auto& [radius, per_a3] : packed) {
+      edge = std::max(edge, std::ceil(2.2 * radius));
+      if (per_a3 > 0) rarest = std::min(rarest, per_a3);
+    }
+    if (std::isfinite(rarest) && cubes * edge * edge * edge < kCopiesPerSet / rarest) {
+      cubes = 64;
+      edge = std::clamp(std::ceil(std::cbrt(kCopiesPerSet / rarest / cubes)), edge, std::max(edge, kLargestCube));
+    }
+    for (const auto& [radius, per_a3] : packed)
+      if (per_a3 * edge * edge * edge < 1.0) edge = std::max(edge, std::ceil(4.0 * radius));
+    return {edge, cubes};
   }
 
-  // An ingredient at molarity 0 and nbMol 0 (recipes keep switched-off ingredients so) is left out,
-  // and the report says so; its structure is not looked for.
+  // The part of `volume` a soluble of this radius reaches: each wall keeps it its reach (a
+  // membrane's kMembraneReach, a bare mesh's none) plus the clearance and its radius from its
+  // triangles (a first-order shell, area × depth).
+  static double free_volume(double volume, const Walls& walls, double radius) {
+    const double molecule = kClearance + (radius > 0 ? radius : kTypicalRadius);
+    return std::max(volume - walls.membrane_area * (kMembraneReach + molecule) - walls.bare_area * molecule, 0.25 * volume);
+  }
+
+  // Left out, and the report says so (its structure is not looked for): an ingredient at molarity
+  // 0 and nbMol 0 (recipes keep switched-off ingredients so), and a fibre, which is grown along a
+  // path rather than placed as copies (its not-carried note says so).
   bool asks_for_none(const Ingredient& in, const std::string& region) {
-    if (in.molarity > 0 || in.count > 0) return false;
-    result_.report.push_back({in.id, region, asked(in), "nothing: left out", "", in.not_carried});
+    std::string type = in.type;
+    std::transform(type.begin(), type.end(), type.begin(), [](unsigned char c) { return std::tolower(c); });
+    const bool fibre = type == "grow" || type == "actine" || type == "fiber" || type == "fibre";
+    if (!fibre && (in.molarity > 0 || in.count > 0)) return false;
+    result_.report.push_back({in.id, region, asked(in), fibre ? "nothing: a fibre is not placed" : "nothing: left out", "", in.not_carried});
     return true;
   }
 
@@ -255,9 +306,7 @@ private:
     std::string s;
     if (in.molarity > 0) s += "molarity " + shown(in.molarity) + " M";
     if (in.count > 0) s += (s.empty() ? "" : " + ") + std::string("nbMol ") + std::to_string(in.count);
-    if (in.molarity > 0 && in.count > 0)
-      s += " (both given: cellPACK places the sum, and so does this scene; if the recipe's nbMol is its molarity's count "
-           "written out, that is twice what it means)";
+    if (in.molarity > 0 && in.count > 0) s += " (both given: their sum, as cellPACK places it)";
     return s.empty() ? "nothing (molarity 0, nbMol 0)" : s;
   }
 
@@ -314,7 +363,7 @@ private:
     }
     placed_.emplace_back(c.id, m);
     outside_volume -= m.volume;
-    if (!options_.lipid_patch.empty()) membrane_area_ += m.area;
+    (options_.lipid_patch.empty() ? walls_.bare_area : walls_.membrane_area) += m.area;
     const std::string name = scene_name(c.id);
     Json comp = {{"mesh", mesh}};
     if (!c.surface.empty() && options_.lipid_patch.empty())
@@ -324,7 +373,8 @@ private:
       result_.scene["membranes"][name] = membrane(c, m.area);
       comp["membrane"] = name;
     }
-    if (Json interior = soluble(c.interior, m.volume, options_.lipid_patch.empty() ? 0.0 : m.area, c.id + " interior", name, 16);
+    const Walls walls = options_.lipid_patch.empty() ? Walls{0.0, m.area} : Walls{m.area, 0.0};
+    if (Json interior = soluble(c.interior, m.volume, walls, c.id + " interior", name, 16);
         !interior["molecules"].empty()) {
       result_.scene["solubles"][name] = std::move(interior);
       comp["soluble"] = name;
@@ -338,9 +388,26 @@ private:
     result_.scene["instances"].push_back(instance);
   }
 
+  // A recipe of its cytoplasm alone (BloodPlasma) fills its bounding box: a box compartment whose
+  // interior is the cytoplasm, kept clear of the box's faces like any bare wall.
+  void add_box_of_cytoplasm() {
+    if (!recipe_.box_min || !recipe_.box_max || !(box_volume() > 0))
+      throw InputError(recipe_.file, "", "the recipe has no compartment and no bounding box: nothing gives its cytoplasm a size");
+    const glm::dvec3 size = *recipe_.box_max - *recipe_.box_min, centre = 0.5 * (*recipe_.box_max + *recipe_.box_min);
+    const Walls walls{0.0, 2.0 * (size.x * size.y + size.y * size.z + size.z * size.x)};
+    Json cytoplasm = soluble(recipe_.outside, box_volume(), walls, "cytoplasm (the recipe's box)", "cytoplasm", 16);
+    if (cytoplasm["molecules"].empty()) throw InputError(recipe_.file, "", "the recipe asks for no molecule anywhere");
+    result_.scene["solubles"]["cytoplasm"] = std::move(cytoplasm);
+    result_.scene["compartments"]["cytoplasm"] = {{"mesh", {{"generate", "box"}, {"size", {size.x, size.y, size.z}}}},
+                                                  {"soluble", "cytoplasm"}};
+    Json instance = {{"compartment", "cytoplasm"}};
+    if (glm::length(centre) > 0) instance["transform"] = {{"translate", {centre.x, centre.y, centre.z}}};
+    result_.scene["instances"].push_back(instance);
+  }
+
   void add_medium(double volume) {
     // The medium's cube set must be complete: 2 face colours, 2⁶ cubes.
-    Json outside = soluble(recipe_.outside, volume, membrane_area_, "outside", "medium", 64);
+    Json outside = soluble(recipe_.outside, volume, walls_, "outside", "medium", 64);
     if (outside["molecules"].empty()) return;
     result_.scene["solubles"]["outside"] = std::move(outside);
     Json medium = {{"soluble", "outside"}};
@@ -363,7 +430,7 @@ private:
   ImportResult result_;
   std::vector<std::string> missing_;
   std::vector<std::pair<std::string, Measure>> placed_;  // compartments placed so far
-  double membrane_area_ = 0;  // Å², every compartment's membrane (the medium keeps clear of them)
+  Walls walls_;  // every compartment's surface (the medium keeps clear of them)
   std::map<std::string, std::string> stand_ins_;  // scene molecule → what it stands in with
 };
 
@@ -374,9 +441,18 @@ ImportResult scene_from_recipe(const Recipe& recipe, const ImportOptions& option
 std::string report_text(const Recipe& recipe, const ImportResult& result) {
   std::string s = "cellPACK recipe " + recipe.name + " (" + (recipe.format == RecipeFormat::v1 ? "v1" : "v2") + " " + recipe.version + ")\n";
   for (const std::string& n : recipe.not_carried) s += "not carried over: " + n + "\n";
+  const auto both = [](const std::vector<Ingredient>& list) {
+    return std::any_of(list.begin(), list.end(), [](const Ingredient& in) { return in.molarity > 0 && in.count > 0; });
+  };
+  bool any_both = both(recipe.outside);
+  for (const Compartment& c : recipe.compartments) any_both = any_both || both(c.surface) || both(c.interior);
+  if (any_both)
+    s += "note: ingredients below give both a molarity and an nbMol; cellPACK places their sum, and so does this scene. Where a "
+         "recipe's nbMol is its molarity's count written out (BloodPlasma 1.0 does so), that is twice what it means: set one to 0\n";
   for (const ImportLine& l : result.report) {
     s += l.ingredient + " [" + l.region + "]: asked " + l.asked + "; holds " + l.held + "\n";
     if (!l.stand_in.empty()) s += "  STAND-IN (structure missing): drawn as " + l.stand_in + "\n";
+    if (!l.note.empty()) s += "  note: " + l.note + "\n";
     for (const std::string& n : l.not_carried) s += "  not carried over: " + n + "\n";
   }
   return s;
@@ -401,9 +477,14 @@ std::string copy_number_check(const ImportResult& result, const HeldCopies& held
       continue;
     }
     ++off;
-    s += l.surface ? " OFF: the membrane's tiles could not hold more without clashes (see the densities above)\n"
-                   : " OFF: the cube set packs only so densely without clashes, or the region is too thin for it beside its "
-                     "membranes (see the densities above)\n";
+    if (l.surface)
+      s += " OFF: the membrane's tiles could not hold more without clashes (see the densities above)\n";
+    else if (l.expected_copies < kFewCopiesInARegion)
+      s += " OFF: a handful in this region: a tiled soluble holds whole copies in each cube and the region holds parts of "
+           "only some cubes of the set, so a rare ingredient comes in lumps (a larger region averages them out)\n";
+    else
+      s += " OFF: the cube set packs only so densely without clashes, or the region is too thin for it beside its walls "
+           "(see the densities above)\n";
   }
   return s;
 }

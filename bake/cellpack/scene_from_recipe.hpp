@@ -26,6 +26,7 @@ struct ImportOptions {
   std::filesystem::path lipid_patch;   // the bilayer every membrane is laid on ("" : surfaces are refused)
   std::filesystem::path scene_folder;  // where the scene is written: its file paths are relative to it
   bool stand_ins = false;              // a missing structure becomes a stand-in from its packing spheres
+  double fewest_copies = 0;            // a soluble asking fewer copies in its region is left out, by name
 };
 
 struct ImportLine {
@@ -41,6 +42,7 @@ struct ImportLine {
   std::string scene_region, molecule;
   double expected_copies = 0, measure = 0;
   bool surface = false;
+  std::string note;  // what the user should know before the bake ("" none)
 };
 
 struct ImportResult {

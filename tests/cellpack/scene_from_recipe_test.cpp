@@ -216,13 +216,18 @@ TEST(SceneFromRecipe, CompartmentsNestedOrOverlappingByGeometryAreRefused) {
 // A switched-off ingredient (molarity 0, nbMol 0) is left out, said so; both amounts are summed, said so.
 TEST(SceneFromRecipe, NothingAskedIsLeftOutAndBothAmountsAreSummedAloud) {
   Ingredient off{.id = "off", .structure = "no_such_file"};
+  Ingredient fibre{.id = "snake", .molarity = 1e-6, .encapsulating_radius = 75};
+  fibre.type = "Grow";
   Ingredient both{.id = "hb", .structure = "4hhb", .molarity = 0.001, .count = 500};
-  const Recipe r = ball_holding({off, both});
+  const Recipe r = ball_holding({off, both, fibre});
   const ImportResult out = scene_from_recipe(r, bundled_options());
   EXPECT_FALSE(out.scene["molecules"].contains("off"));
+  EXPECT_FALSE(out.scene["molecules"].contains("snake"));
+  EXPECT_EQ(out.report[2].held, "nothing: a fibre is not placed");
   ASSERT_EQ(out.scene["solubles"]["ball"]["molecules"].size(), 1u);
   EXPECT_EQ(out.report[0].held, "nothing: left out");
-  EXPECT_NE(out.report[1].asked.find("molarity 0.001 M + nbMol 500 (both given: cellPACK places the sum"), std::string::npos);
+  EXPECT_EQ(out.report[1].asked, "molarity 0.001 M + nbMol 500 (both given: their sum, as cellPACK places it)");
+  EXPECT_NE(report_text(r, out).find("note: ingredients below give both a molarity and an nbMol"), std::string::npos);
   const double volume = 4.0 / 3.0 * std::numbers::pi * std::pow(600.0, 3);
   EXPECT_NEAR(out.report[1].expected_copies, 0.001 * kAvogadro * volume * 1e-27 + 500, 1e-9);
   // Only switched-off ingredients: the ball has no soluble; with no bilayer either it holds nothing.
@@ -230,6 +235,29 @@ TEST(SceneFromRecipe, NothingAskedIsLeftOutAndBothAmountsAreSummedAloud) {
   no_bilayer.lipid_patch.clear();
   EXPECT_THROW(scene_from_recipe(ball_holding({off}), no_bilayer), InputError);
   EXPECT_FALSE(scene_from_recipe(ball_holding({off}), bundled_options()).scene["compartments"]["ball"].contains("soluble"));
+}
+
+// A recipe of its cytoplasm alone (BloodPlasma) fills its bounding box: a box compartment holding
+// the recipe's copies of the box's volume, packed into what its faces leave (clearance and radius).
+TEST(SceneFromRecipe, ACytoplasmAloneFillsTheRecipesBox) {
+  Recipe r;
+  r.file = "plasma.json";
+  r.box_min = glm::dvec3(-350, -600, -1100);
+  r.box_max = glm::dvec3(350, 600, 900);
+  r.outside.push_back(Ingredient{.id = "albumin", .structure = "1ao6_a.pdb", .molarity = 0.0006, .encapsulating_radius = 45});
+  const ImportResult out = scene_from_recipe(r, bundled_options());
+  const Json& s = out.scene;
+  EXPECT_FALSE(s.contains("medium"));
+  EXPECT_EQ(s["compartments"]["cytoplasm"]["mesh"], (Json{{"generate", "box"}, {"size", {700.0, 1200.0, 2000.0}}}));
+  EXPECT_EQ(s["instances"][0]["transform"]["translate"], Json::array({0.0, 0.0, -100.0}));
+  const double volume = 700.0 * 1200.0 * 2000.0, faces = 2.0 * (700.0 * 1200.0 + 1200.0 * 2000.0 + 2000.0 * 700.0);
+  const double copies = 0.0006 * kAvogadro * volume * 1e-27;
+  EXPECT_NEAR(out.report[0].expected_copies, copies, 1e-9);
+  EXPECT_EQ(out.report[0].scene_region, "cytoplasm");
+  EXPECT_NEAR(s["solubles"]["cytoplasm"]["molecules"][0]["concentration_mM"].get<double>(),
+              copies / (kAvogadro * (volume - faces * (5 + 45)) * 1e-27) * 1000.0, 1e-12);
+  r.box_min.reset();
+  EXPECT_THROW(scene_from_recipe(r, bundled_options()), InputError);  // nothing gives it a size
 }
 
 TEST(SceneFromRecipe, CopyNumberCheckNamesWhatIsMoreThanTenPercentOff) {
