@@ -4,6 +4,10 @@
 // format's, so polygon_soup.cpp checks, triangulates and welds it by mesh_reader.hpp's rules.
 //
 // What Assimp is allowed to do is kept narrow:
+// - it runs in a process of its own (this executable started again, see "the import process and
+//   the reader" below), with a time limit and a bounded address space; what it hands back crosses
+//   a pipe as one record the reader checks, and a crash, a hang or a runaway allocation there is
+//   an InputError here;
 // - only its Collada importer runs (the ".dae" hint names it; no other importer is asked), with
 //   no post-processing steps (our soup triangulates and welds) and no logger (it prints nothing);
 // - the bytes are checked first (check_collada_declarations): Assimp sizes its arrays by the
@@ -17,16 +21,32 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <chrono>
+#include <csignal>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 #include <vector>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <spawn.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -218,7 +238,7 @@ private:
   const std::string& file_;
 };
 
-// ---- the scene Assimp builds, as a polygon soup ----
+// ---- the scene Assimp builds, as a polygon soup (in the import process) ----
 
 glm::dmat4 to_glm(const aiMatrix4x4& m) {
   glm::dmat4 g(1.0);
@@ -253,7 +273,7 @@ private:
 
 class SceneSoup {
 public:
-  SceneSoup(const aiScene& scene, const std::string& file) : scene_(scene), file_(file) {}
+  explicit SceneSoup(const aiScene& scene) : scene_(scene) {}
 
   // Every mesh every node places, depth first in the order of the file's nodes; the root's own
   // transform (Assimp's unit scale and up-axis rotation, see the top) is left out.
@@ -274,9 +294,12 @@ public:
   }
 
 private:
+  // The file is named by the reader, which passes on `where` and `rule` (this runs in the import process).
+  [[noreturn]] static void fail(const std::string& where, const std::string& rule) { throw InputError("", where, rule); }
+
   void add_meshes(const aiNode& node, const glm::dmat4& placed) {
     for (unsigned k = 0; k < node.mNumMeshes; ++k) {
-      if (node.mMeshes[k] >= scene_.mNumMeshes) throw InputError(file_, "", "a node places a mesh that does not exist");
+      if (node.mMeshes[k] >= scene_.mNumMeshes) fail("", "a node places a mesh that does not exist");
       add_mesh(*scene_.mMeshes[node.mMeshes[k]], placed);
     }
   }
@@ -293,12 +316,15 @@ private:
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices < 3) continue;  // points and lines say nothing about the surface (as OBJ's p and l)
       if ((faces_ += 1) > kMaxColladaFaces)
-        throw InputError(file_, "", "the scene places more than " + std::to_string(kMaxColladaFaces) +
-                                        " faces (its nodes instance its meshes), more than this reader takes");
+        fail("", "the scene places more than " + std::to_string(kMaxColladaFaces) +
+                     " faces (its nodes instance its meshes), more than this reader takes");
+      // Instancing multiplies corners as well as faces: bounded as the file's own are.
+      if (soup_.corners.size() + face.mNumIndices > kMaxColladaCorners)
+        fail("", "the scene places more than " + std::to_string(kMaxColladaCorners) +
+                     " face corners (its nodes instance its meshes), more than this reader takes");
       for (unsigned i = 0; i < face.mNumIndices; ++i) {
         const unsigned v = face.mIndices[mirrored ? face.mNumIndices - 1 - i : i];
-        if (v >= mesh.mNumVertices)
-          throw InputError(file_, "face " + std::to_string(faces_ - 1), "references a vertex that does not exist");
+        if (v >= mesh.mNumVertices) fail("face " + std::to_string(faces_ - 1), "references a vertex that does not exist");
         const aiVector3D& p = mesh.mVertices[v];
         PolygonSoup::Corner corner{.position = positions_.of(glm::dvec3(placed * glm::dvec4(p.x, p.y, p.z, 1.0)), soup_)};
         if (has_normals) {
@@ -318,35 +344,543 @@ private:
   }
 
   const aiScene& scene_;
-  const std::string& file_;
   PolygonSoup soup_;
   PositionIndex positions_;
   std::uint64_t faces_ = 0;
 };
 
-}  // namespace
+// ---- the import process and the reader: who runs Assimp, and why apart ----
+//
+// Fuzzing showed that Assimp itself does not survive every malformed file: a misspelt <float_array>
+// count makes it dereference null, Debian builds it with assertions that abort, and it leaks when
+// it throws. Bad input must end as an error naming the file, never as a crash, so Assimp runs in a
+// process of its own, with a time limit and a bounded address space, and only its result comes
+// back: one record through a pipe, which the reader checks as it would a file.
+//
+// That process is this same executable, started afresh (posix_spawn of /proc/self/exe), not a
+// fork() of the reader. Meshes are read while another thread may run: on a terminal, nanobake's
+// progress display (bake_progress.cpp) redraws from a thread of its own during the "meshes" stage,
+// holding its mutex and stdio's locks as it prints. A forked child of a threaded process may only
+// call async-signal-safe functions until it execs, since a lock another thread held at fork()
+// stays held in the child for good; Assimp allocates and builds strings throughout. A process that
+// execs starts with one thread and no held locks, whatever the reader's process was doing, and
+// glibc's posix_spawn (vfork-like, nothing run between the clone and the exec but dup2 and open)
+// is safe to call from a threaded process. The switch into the import role is kImportProcessRole
+// below, run while the executable's static objects are constructed, before main(): so every
+// program linking this reader (nanobake, the tests, the fuzzers) is its own import helper, without
+// a subcommand or a helper binary to find.
+//
+// The import process gets the file's bytes on standard input (a memfd: the reader never writes to
+// a pipe the child could close, so SIGPIPE cannot reach it), writes its record to descriptor
+// kRecordFd, and its standard output goes to /dev/null (Assimp has no logger and prints nothing;
+// standard error is kept, where a sanitizer build would report). The protocol's variable holds
+// the address space it may add to what it has on starting.
+constexpr const char* kImportProcessVariable = "NANO_COLLADA_IMPORT_PROCESS";
+constexpr int kRecordFd = 3;
+// The import process's exit statuses other than 0 (its record written).
+constexpr int kExitCannotReadInput = 120;
+constexpr int kExitCannotWriteRecord = 121;
 
-PolygonSoup read_collada_soup(std::string_view bytes, const std::string& file) {
-  ColladaDeclarations(bytes, file).check();
-  Assimp::Importer importer;  // no DefaultLogger is created: Assimp's log goes nowhere
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  // A scene without meshes would otherwise get a stand-in: little pyramids at its nodes.
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-  const aiScene* scene = nullptr;
+// The record, in this machine's byte order (both ends are one executable):
+//   u32 kRecordStart, u8 RecordKind
+//   refusal: u32 length and the text of `where`, the same for the rule (each at most kMaxMessageBytes)
+//   soup: u64 counts of positions, normals, UVs, corners and faces; then the positions and normals
+//         (3 doubles each), UVs (2 doubles), corners (3 int32 each: position, UV, normal, -1 for
+//         none) and faces (u32 each: the end of its corners)
+//   u32 kRecordEnd
+// The reader trusts none of it: every count is bounded (by the limits check() and SceneSoup
+// enforce) before anything is sized by it, the faces' ends must rise to the corner count, and
+// polygon_soup.cpp checks every index as for any file.
+enum class RecordKind : std::uint8_t { soup = 1, refusal = 2 };
+constexpr std::uint32_t kRecordStart = 0x41444e4e;  // "NNDA"
+constexpr std::uint32_t kRecordEnd = 0x444e4521;    // "!END"
+constexpr std::uint32_t kMaxMessageBytes = 1 << 16;
+static_assert(sizeof(glm::dvec3) == 3 * sizeof(double) && sizeof(glm::dvec2) == 2 * sizeof(double));
+
+// ---- in the import process ----
+
+class RecordWriter {
+public:
+  explicit RecordWriter(int fd) : fd_(fd) {}
+  bool ok() const { return ok_; }
+
+  template <typename Value> void value(const Value& v) { bytes(&v, sizeof v); }
+  template <typename Value> void values(const std::vector<Value>& vs) { bytes(vs.data(), vs.size() * sizeof(Value)); }
+  void text(std::string_view s) {
+    s = s.substr(0, kMaxMessageBytes);
+    value(static_cast<std::uint32_t>(s.size()));
+    bytes(s.data(), s.size());
+  }
+
+private:
+  // A failed write (the reader gone) stops the record; the exit status says so.
+  void bytes(const void* data, std::size_t size) {
+    const char* at = static_cast<const char*>(data);
+    while (ok_ && size > 0) {
+      const ssize_t written = ::write(fd_, at, std::min<std::size_t>(size, std::size_t{1} << 20));
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) ok_ = false;
+      if (written <= 0) break;
+      at += written;
+      size -= static_cast<std::size_t>(written);
+    }
+  }
+
+  int fd_;
+  bool ok_ = true;
+};
+
+void write_refusal(RecordWriter& out, std::string_view where, std::string_view rule) {
+  out.value(kRecordStart);
+  out.value(RecordKind::refusal);
+  out.text(where);
+  out.text(rule);
+  out.value(kRecordEnd);
+}
+
+void write_soup(RecordWriter& out, const PolygonSoup& soup) {
+  // Converted before the first byte goes out, so that memory running out here still leaves a
+  // refusal, not half a record. SceneSoup bounds every index below 2^31.
+  std::vector<std::int32_t> corners;
+  corners.reserve(3 * soup.corners.size());
+  for (const PolygonSoup::Corner& c : soup.corners)
+    for (const std::int64_t index : {c.position, c.uv, c.normal}) corners.push_back(static_cast<std::int32_t>(index));
+  const std::vector<std::uint32_t> face_ends(soup.face_ends.begin(), soup.face_ends.end());
+  out.value(kRecordStart);
+  out.value(RecordKind::soup);
+  for (const std::size_t count : {soup.positions.size(), soup.normals.size(), soup.uvs.size(), soup.corners.size(), face_ends.size()})
+    out.value(static_cast<std::uint64_t>(count));
+  out.values(soup.positions);
+  out.values(soup.normals);
+  out.values(soup.uvs);
+  out.values(corners);
+  out.values(face_ends);
+  out.value(kRecordEnd);
+}
+
+// The most address space this process has had, in bytes (0 if /proc cannot say).
+std::uint64_t peak_address_space() {
+  const int fd = ::open("/proc/self/status", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return 0;
+  std::array<char, 4096> text{};
+  ssize_t got = -1;
+  do got = ::read(fd, text.data(), text.size() - 1); while (got < 0 && errno == EINTR);
+  ::close(fd);
+  const std::string_view status(text.data(), static_cast<std::size_t>(std::max<ssize_t>(got, 0)));
+  const std::size_t at = status.find("VmPeak:");
+  if (at == std::string_view::npos) return 0;
+  const std::size_t digits = status.find_first_of("0123456789", at);
+  std::uint64_t kib = 0;
+  if (digits != std::string_view::npos) std::from_chars(status.data() + digits, status.data() + status.size(), kib);
+  return kib << 10;
+}
+
+// The address space the import may use: what the process had on starting, and what it may add.
+struct AddressSpaceAllowance {
+  std::uint64_t at_start = 0;
+  std::uint64_t budget = 0;
+};
+
+// Assimp reports an allocation that failed as whatever it was doing (pugixml's out-of-memory
+// becomes "malformed XML"), so a refusal says when the process had used much of its allowance.
+std::string with_memory_note(std::string rule, const AddressSpaceAllowance& allowance) {
+  const std::uint64_t peak = peak_address_space();
+  if (peak > allowance.at_start && peak - allowance.at_start > allowance.budget / 2)
+    rule += " (its process had used " + std::to_string((peak - allowance.at_start) >> 20) + " MiB of the " +
+            std::to_string(allowance.budget >> 20) + " MiB of address space it may add: the failure may be an allocation that did not fit)";
+  return rule;
+}
+
+void import_and_write(std::string_view bytes, RecordWriter& out, const AddressSpaceAllowance& allowance) {
+  const auto refuse = [&](std::string_view where, const std::string& rule) {
+    write_refusal(out, where, with_memory_note(rule, allowance));
+  };
   try {
+    Assimp::Importer importer;  // no DefaultLogger is created: Assimp's log goes nowhere
+    importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+    // A scene without meshes would otherwise get a stand-in: little pyramids at its nodes.
+    importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
     // The hint "dae" is the only extension Assimp's Collada importer claims, so no other
     // importer looks at the bytes. No post-processing: the soup triangulates and welds.
-    scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, "dae");
-  } catch (const std::bad_alloc&) {  // what the checks above leave: Assimp's sizes are its own
-    throw InputError(file, "", "Assimp cannot read it: it asks for more memory than there is");
+    const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, "dae");
+    if (!scene) {
+      const std::string why = importer.GetErrorString();
+      return refuse("", "not a Collada file Assimp can read: " + (why.empty() ? std::string("no reason given") : why));
+    }
+    write_soup(out, SceneSoup(*scene).build());
+  } catch (const InputError& e) {
+    write_refusal(out, e.where(), e.rule());  // our own limits, not memory
+  } catch (const std::bad_alloc&) {
+    refuse("", "Assimp cannot read it: it asks for more memory than it may have");
   } catch (const std::length_error&) {
-    throw InputError(file, "", "Assimp cannot read it: it asks for more memory than there is");
+    refuse("", "Assimp cannot read it: it asks for more memory than it may have");
+  } catch (const std::exception& e) {
+    refuse("", std::string("Assimp cannot read it: ") + e.what());
   }
-  if (!scene) {
-    const std::string why = importer.GetErrorString();
-    throw InputError(file, "", "not a Collada file Assimp can read: " + (why.empty() ? std::string("no reason given") : why));
+}
+
+// The address space this process has now, in bytes (0 if /proc cannot say).
+std::uint64_t current_address_space() {
+  const int fd = ::open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return 0;
+  char text[64] = {};
+  ssize_t got = -1;
+  do got = ::read(fd, text, sizeof text - 1); while (got < 0 && errno == EINTR);
+  ::close(fd);
+  std::uint64_t pages = 0;
+  std::from_chars(text, text + std::max<ssize_t>(got, 0), pages);
+  return pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+}
+
+std::string read_all_input() {
+  std::string bytes;
+  struct stat input {};
+  if (::fstat(STDIN_FILENO, &input) != 0) ::_exit(kExitCannotReadInput);
+  bytes.resize(static_cast<std::size_t>(input.st_size));
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t got = ::read(STDIN_FILENO, bytes.data() + done, bytes.size() - done);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) ::_exit(kExitCannotReadInput);
+    done += static_cast<std::size_t>(got);
   }
-  return SceneSoup(*scene, file).build();
+  return bytes;
+}
+
+// The import process, from its start to its _exit (which also skips LeakSanitizer's check at exit:
+// what Assimp leaks on a throw goes with the process).
+[[noreturn]] void serve_as_import_process(const char* address_space_budget) {
+  // A crash must end this process by its signal, for the reader to name it; a sanitizer's handler
+  // (the fuzz build) would print a report and exit 1 instead. No core file either.
+  struct sigaction default_action {};
+  default_action.sa_handler = SIG_DFL;
+  for (const int crash : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::sigaction(crash, &default_action, nullptr);
+  const rlimit no_core{0, 0};
+  ::setrlimit(RLIMIT_CORE, &no_core);
+  // A runaway allocation then fails (bad_alloc, or a crash) instead of swapping the machine. Added
+  // to what the process has: a sanitizer build reserves terabytes of shadow before main.
+  AddressSpaceAllowance allowance{.at_start = current_address_space()};
+  std::from_chars(address_space_budget, address_space_budget + std::strlen(address_space_budget), allowance.budget);
+  const rlimit address_space{allowance.at_start + allowance.budget, allowance.at_start + allowance.budget};
+  ::setrlimit(RLIMIT_AS, &address_space);
+  const std::string bytes = read_all_input();
+  RecordWriter out(kRecordFd);
+  import_and_write(bytes, out, allowance);
+  ::_exit(out.ok() ? 0 : kExitCannotWriteRecord);
+}
+
+// In the import process (kImportProcessVariable set by the reader that started it) this never
+// returns; in every other process it does nothing. See "the import process and the reader".
+[[maybe_unused]] const bool kImportProcessRole = [] {
+  if (const char* budget = std::getenv(kImportProcessVariable)) serve_as_import_process(budget);
+  return false;
+}();
+
+// ---- in the reader ----
+
+using Clock = std::chrono::steady_clock;
+
+class FileDescriptor {
+public:
+  FileDescriptor() = default;
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  FileDescriptor(FileDescriptor&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+  FileDescriptor& operator=(FileDescriptor&& other) noexcept {
+    reset(std::exchange(other.fd_, -1));
+    return *this;
+  }
+  ~FileDescriptor() { reset(); }
+  int get() const { return fd_; }
+  void reset(int fd = -1) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = fd;
+  }
+
+private:
+  int fd_ = -1;
+};
+
+[[noreturn]] void system_failure(const std::string& file, const std::string& what) {
+  throw std::runtime_error(file + ": cannot start the process that reads Collada (" + what + ": " + std::strerror(errno) + ")");
+}
+
+// `fd` moved to a number of 10 or more, close-on-exec: the spawn's dup2s onto 0, 1 and 3 then
+// cannot overwrite one another's sources, whatever the reader's process has open.
+FileDescriptor high_descriptor(FileDescriptor original, const std::string& file) {
+  if (original.get() < 0) system_failure(file, "memfd_create or pipe2");
+  const int high = ::fcntl(original.get(), F_DUPFD_CLOEXEC, 10);
+  if (high < 0) system_failure(file, "fcntl");
+  return FileDescriptor(high);
+}
+
+FileDescriptor input_holding(std::string_view bytes, const std::string& file) {
+  FileDescriptor input = high_descriptor(FileDescriptor(::memfd_create("nano-collada-input", MFD_CLOEXEC)), file);
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t written = ::write(input.get(), bytes.data() + done, bytes.size() - done);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) system_failure(file, "writing the file's bytes to a memfd");
+    done += static_cast<std::size_t>(written);
+  }
+  if (::lseek(input.get(), 0, SEEK_SET) != 0) system_failure(file, "lseek");
+  return input;
+}
+
+// The reader's environment with the import process's variable set.
+std::vector<std::string> import_environment(std::uint64_t address_space_budget) {
+  const std::string prefix = std::string(kImportProcessVariable) + "=";
+  std::vector<std::string> environment;
+  for (char** entry = environ; *entry; ++entry)
+    if (!std::string_view(*entry).starts_with(prefix)) environment.emplace_back(*entry);
+  environment.push_back(prefix + std::to_string(address_space_budget));
+  return environment;
+}
+
+pid_t spawn_import_process(int input, int record, std::uint64_t address_space_budget, const std::string& file) {
+  posix_spawn_file_actions_t actions;
+  posix_spawnattr_t attributes;
+  ::posix_spawn_file_actions_init(&actions);
+  ::posix_spawn_file_actions_adddup2(&actions, input, STDIN_FILENO);
+  ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  ::posix_spawn_file_actions_adddup2(&actions, record, kRecordFd);
+  // No signal blocked, and SIGPIPE at its default even if the reader's process ignores it (an
+  // ignored signal stays ignored across exec): a reader gone ends the import process.
+  ::posix_spawnattr_init(&attributes);
+  sigset_t signals;
+  ::sigemptyset(&signals);
+  ::posix_spawnattr_setsigmask(&attributes, &signals);
+  ::sigaddset(&signals, SIGPIPE);
+  ::posix_spawnattr_setsigdefault(&attributes, &signals);
+  ::posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  std::vector<std::string> environment = import_environment(address_space_budget);
+  std::vector<char*> environment_pointers;
+  for (std::string& entry : environment) environment_pointers.push_back(entry.data());
+  environment_pointers.push_back(nullptr);
+  char name[] = "nano-collada-import";
+  char* arguments[] = {name, nullptr};
+  pid_t pid = -1;
+  const int error = ::posix_spawn(&pid, "/proc/self/exe", &actions, &attributes, arguments, environment_pointers.data());
+  ::posix_spawn_file_actions_destroy(&actions);
+  ::posix_spawnattr_destroy(&attributes);
+  if (error != 0) {
+    errno = error;
+    system_failure(file, "posix_spawn /proc/self/exe");
+  }
+  return pid;
+}
+
+// The import process, from its spawn to its end: killed and waited for by the destructor if it
+// still runs, so it never outlives the reader and never stays a zombie.
+class ImportProcess {
+public:
+  ImportProcess(std::string_view bytes, std::uint64_t address_space_budget, const std::string& file) {
+    const FileDescriptor input = input_holding(bytes, file);
+    // Both ends close-on-exec: the import process gets the write end as kRecordFd only, never the
+    // read end; the reader closes its write end once the process has its own, so the record ends
+    // (end of file) when the process's copy closes.
+    int ends[2] = {-1, -1};
+    if (::pipe2(ends, O_CLOEXEC) != 0) system_failure(file, "pipe2");
+    FileDescriptor low_read_end(ends[0]), low_write_end(ends[1]);
+    FileDescriptor read_end = high_descriptor(std::move(low_read_end), file);
+    const FileDescriptor write_end = high_descriptor(std::move(low_write_end), file);
+    pid_ = spawn_import_process(input.get(), write_end.get(), address_space_budget, file);
+    record_ = std::move(read_end);
+  }
+  ImportProcess(const ImportProcess&) = delete;
+  ImportProcess& operator=(const ImportProcess&) = delete;
+  ~ImportProcess() {
+    if (pid_ > 0) kill_and_wait();
+  }
+
+  int record() const { return record_.get(); }
+
+  // Its wait status once it has ended, or nullopt if it still runs at `deadline`.
+  std::optional<int> wait_until(Clock::time_point deadline) {
+    for (auto pause = std::chrono::microseconds(100);; pause = std::min(2 * pause, std::chrono::microseconds(20'000))) {
+      int status = 0;
+      const pid_t ended = ::waitpid(pid_, &status, WNOHANG);
+      if (ended == pid_ || (ended < 0 && errno == ECHILD)) {  // ECHILD: reaped already (SIGCHLD ignored)
+        pid_ = -1;
+        return ended > 0 ? status : 0;
+      }
+      if (ended < 0 && errno != EINTR) return std::nullopt;
+      if (Clock::now() >= deadline) return std::nullopt;
+      std::this_thread::sleep_for(pause);
+    }
+  }
+
+  void kill_and_wait() {
+    ::kill(pid_, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
+  }
+
+private:
+  pid_t pid_ = -1;
+  FileDescriptor record_;
+};
+
+// Why the record could not be read: cut short, malformed, or the time limit reached first.
+struct BrokenRecord {
+  std::string why;
+};
+struct TimeLimitReached {};
+
+class RecordReader {
+public:
+  RecordReader(int fd, Clock::time_point deadline) : fd_(fd), deadline_(deadline) {}
+
+  template <typename Value> Value value() {
+    Value v;
+    bytes(&v, sizeof v);
+    return v;
+  }
+  template <typename Value> void values(std::vector<Value>& vs, std::uint64_t count) {
+    vs.resize(count);
+    bytes(vs.data(), count * sizeof(Value));
+  }
+  std::string text() {
+    const auto size = value<std::uint32_t>();
+    if (size > kMaxMessageBytes) throw BrokenRecord{"a message of " + std::to_string(size) + " bytes"};
+    std::string s(size, '\0');
+    bytes(s.data(), size);
+    return s;
+  }
+  // Whether the process closed its end without writing more (within the time limit).
+  bool at_end() {
+    char extra = 0;
+    return read_some(&extra, 1) == 0;
+  }
+
+private:
+  void bytes(void* data, std::size_t size) {
+    for (char* at = static_cast<char*>(data); size > 0;) {
+      const std::size_t got = read_some(at, std::min<std::size_t>(size, std::size_t{1} << 20));
+      if (got == 0) throw BrokenRecord{"it ends early"};
+      at += got;
+      size -= got;
+    }
+  }
+
+  std::size_t read_some(char* at, std::size_t size) {
+    for (;;) {
+      const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline_ - Clock::now());
+      if (left.count() <= 0) throw TimeLimitReached{};
+      pollfd readable{.fd = fd_, .events = POLLIN, .revents = 0};
+      const int ready = ::poll(&readable, 1, static_cast<int>(std::min<std::int64_t>(left.count(), 1'000'000)));
+      if (ready == 0 || (ready < 0 && errno == EINTR)) continue;
+      if (ready < 0) throw BrokenRecord{std::string("poll: ") + std::strerror(errno)};
+      const ssize_t got = ::read(fd_, at, size);
+      if (got < 0 && errno == EINTR) continue;
+      if (got < 0) throw BrokenRecord{std::string("read: ") + std::strerror(errno)};
+      return static_cast<std::size_t>(got);
+    }
+  }
+
+  int fd_;
+  Clock::time_point deadline_;
+};
+
+// What the import process answered: a soup, or why the file is refused.
+struct ImportAnswer {
+  std::optional<PolygonSoup> soup;
+  std::string where, rule;
+};
+
+PolygonSoup read_soup(RecordReader& in) {
+  std::array<std::uint64_t, 5> counts;  // positions, normals, UVs, corners, faces
+  for (std::uint64_t& count : counts) count = in.value<std::uint64_t>();
+  const auto [positions, normals, uvs, corners, faces] = counts;
+  // Each corner adds at most one position (welded), one normal and one UV.
+  if (faces > kMaxColladaFaces || corners > kMaxColladaCorners || positions > corners || normals > corners || uvs > corners)
+    throw BrokenRecord{"counts beyond this reader's limits"};
+  PolygonSoup soup;
+  in.values(soup.positions, positions);
+  soup.position_lines.assign(positions, 0);
+  in.values(soup.normals, normals);
+  in.values(soup.uvs, uvs);
+  std::vector<std::int32_t> indices;
+  in.values(indices, 3 * corners);
+  soup.corners.reserve(corners);
+  for (std::size_t c = 0; c < corners; ++c)
+    soup.corners.push_back({.position = indices[3 * c], .uv = indices[3 * c + 1], .normal = indices[3 * c + 2]});
+  std::vector<std::uint32_t> face_ends;
+  in.values(face_ends, faces);
+  std::uint64_t previous = 0;
+  for (const std::uint32_t end : face_ends) {
+    if (end < previous || end > corners) throw BrokenRecord{"a face's corners out of order"};
+    previous = end;
+  }
+  if (previous != corners) throw BrokenRecord{"corners after the last face"};
+  soup.face_ends.assign(face_ends.begin(), face_ends.end());
+  soup.face_lines.assign(faces, 0);
+  return soup;
+}
+
+ImportAnswer read_answer(RecordReader& in) {
+  if (in.value<std::uint32_t>() != kRecordStart) throw BrokenRecord{"it does not start as a record"};
+  ImportAnswer answer;
+  const auto kind = in.value<RecordKind>();
+  if (kind == RecordKind::soup) {
+    answer.soup = read_soup(in);
+  } else if (kind == RecordKind::refusal) {
+    answer.where = in.text();
+    answer.rule = in.text();
+  } else {
+    throw BrokenRecord{"an unknown kind of record"};
+  }
+  if (in.value<std::uint32_t>() != kRecordEnd || !in.at_end()) throw BrokenRecord{"it does not end as a record"};
+  return answer;
+}
+
+std::string seconds_text(std::chrono::milliseconds time) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g s", static_cast<double>(time.count()) / 1000.0);
+  return text;
+}
+
+// How the import process ended, when that is why there is no answer: nullopt for a clean exit.
+std::optional<std::string> abnormal_end(int status) {
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    const char* abbreviation = ::sigabbrev_np(signal);
+    const char* description = ::sigdescr_np(signal);
+    return "Assimp stopped on this file (signal " + std::to_string(signal) + ": SIG" +
+           (abbreviation ? abbreviation : "?") + ", " + (description ? description : "unknown signal") +
+           ") while reading it in a process of its own: the file is malformed in a way Assimp does not survive";
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+    return "the process that reads Collada through Assimp ended with exit status " + std::to_string(WEXITSTATUS(status)) +
+           " without an answer";
+  return std::nullopt;
+}
+
+}  // namespace
+
+PolygonSoup read_collada_soup(std::string_view bytes, const std::string& file, const ColladaImportLimits& limits) {
+  ColladaDeclarations(bytes, file).check();
+  const std::uint64_t budget = std::max(limits.address_space, limits.address_space_per_byte * bytes.size());
+  const Clock::time_point deadline = Clock::now() + limits.time;
+  ImportProcess process(bytes, budget, file);
+  const std::string out_of_time = "Assimp did not finish reading this file within " + seconds_text(limits.time) +
+                                  " (the time limit); its process was stopped (SIGKILL)";
+  ImportAnswer answer;
+  std::optional<std::string> broken;
+  try {
+    RecordReader in(process.record(), deadline);
+    answer = read_answer(in);
+  } catch (const BrokenRecord& e) {
+    broken = e.why;
+  } catch (const TimeLimitReached&) {
+    throw InputError(file, "", out_of_time);  // ~ImportProcess kills and waits
+  }
+  // How the process ended comes first: a record cut short by a crash is reported as the crash.
+  const std::optional<int> status = process.wait_until(deadline);
+  if (!status) throw InputError(file, "", out_of_time);
+  if (std::optional<std::string> why = abnormal_end(*status)) throw InputError(file, "", *why);
+  if (broken) throw InputError(file, "", "the process that reads Collada through Assimp gave a broken answer (" + *broken + ")");
+  if (!answer.soup) throw InputError(file, answer.where, answer.rule);
+  return std::move(*answer.soup);
 }
 
 }  // namespace nano::mesh

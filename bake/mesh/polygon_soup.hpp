@@ -3,6 +3,7 @@
 // triangulation, indices not yet checked), with the line each vertex and face came from. One
 // assembly step turns every format's soup into a ProxyMesh, so the rules of mesh_reader.hpp are
 // checked, and worded, in one place.
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -53,6 +54,16 @@ PolygonSoup read_off_soup(std::string_view bytes, const std::string& file);
 PolygonSoup read_ply_soup(std::string_view bytes, const std::string& file);
 PolygonSoup read_stl_soup(std::string_view bytes, const std::string& file);
 // Collada through Assimp (collada_reader.cpp): no lines to name, so errors name the face or vertex.
-PolygonSoup read_collada_soup(std::string_view bytes, const std::string& file);
+// Assimp runs in a process of its own, held to these limits; a crash, a failed allocation past the
+// address space or the time running out there is an InputError here. The defaults are what
+// nanobake uses; tests and the fuzzer shorten them.
+struct ColladaImportLimits {
+  std::chrono::milliseconds time{60'000};
+  // Address space the import may add to what the process has when it starts: this many bytes, or
+  // per_byte times the file's size when that is more.
+  std::uint64_t address_space = std::uint64_t{4} << 30;
+  std::uint64_t address_space_per_byte = 16;
+};
+PolygonSoup read_collada_soup(std::string_view bytes, const std::string& file, const ColladaImportLimits& limits = {});
 
 }  // namespace nano::mesh

@@ -4,7 +4,7 @@
 # prints a Markdown table: executions, executions per second, coverage (edges), features, corpus
 # entries and findings per target (docs/tests.md, "Fuzzing").
 #   usage: campaign.sh BUILD_DIR MINUTES [TARGET...]
-#   TARGET: package scene obj off ply stl draco pdb mmcif gzip (default: all of them, in that order)
+#   TARGET: package scene obj off ply stl draco collada pdb mmcif gzip (default: all of them, in that order)
 # Each target's libFuzzer output, ending in its final stats, goes to BUILD_DIR/campaign/TARGET.log;
 # the table to BUILD_DIR/campaign/summary.md too. Corpora grow in BUILD_DIR/TARGET-corpus (the
 # package reader's in BUILD_DIR/corpus) across campaigns; findings (crash-, leak-, timeout-, oom-
@@ -23,11 +23,11 @@ build=$(cd "$1" && pwd)
 minutes=$2
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(package scene obj off ply stl draco pdb mmcif gzip)
+[ ${#targets[@]} -gt 0 ] || targets=(package scene obj off ply stl draco collada pdb mmcif gzip)
 for t in "${targets[@]}"; do
   case $t in
-    package | scene | obj | off | ply | stl | draco | pdb | mmcif | gzip) ;;
-    *) echo "campaign.sh: unknown target '$t' (package scene obj off ply stl draco pdb mmcif gzip)" >&2; exit 2 ;;
+    package | scene | obj | off | ply | stl | draco | collada | pdb | mmcif | gzip) ;;
+    *) echo "campaign.sh: unknown target '$t' (package scene obj off ply stl draco collada pdb mmcif gzip)" >&2; exit 2 ;;
   esac
 done
 

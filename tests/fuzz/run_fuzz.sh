@@ -5,8 +5,10 @@
 #   scene    the scene reader + feasibility       (seeds tests/fuzz/scene_corpus/, 25 s)
 #   recipe   the cellPACK recipe reader           (seeds tests/fuzz/recipe_corpus/ and the
 #            recipes of tests/cellpack/data/, 10 s)
-#   obj off ply stl draco
-#            one mesh reader each (parse_proxy_mesh; seeds tests/fuzz/mesh_corpus/FORMAT/, 10 s)
+#   obj off ply stl draco collada
+#            one mesh reader each (parse_proxy_mesh; seeds tests/fuzz/mesh_corpus/FORMAT/, 10 s;
+#            Collada's Assimp runs in a process of its own, started once per input that passes
+#            collada_reader.cpp's checks: far fewer inputs a second)
 #   pdb mmcif
 #            parse_pdb / parse_mmcif and molecule_from_text (seeds tests/fuzz/structure_corpus/, 10 s)
 #   gzip     structure_text_from_bytes (gzip, binary rejection), then molecule_from_text (10 s)
@@ -18,7 +20,7 @@ set -euo pipefail
 src=$1
 build=$2
 shift 2
-sessions=(package scene recipe obj off ply stl draco pdb mmcif gzip)
+sessions=(package scene recipe obj off ply stl draco collada pdb mmcif gzip)
 
 build_fuzzers() {
   CC=clang-14 CXX=clang++-14 cmake -S "$src" -B "$build" -G Ninja -DNANO_FUZZ_ONLY=ON \
@@ -46,7 +48,7 @@ session() {
     package) fuzz package 35 16384 "$fuzz_dir/corpus" ;;
     scene) fuzz scene 25 65536 "$fuzz_dir/scene_corpus" -dict="$fuzz_dir/scene.dict" ;;
     recipe) fuzz recipe 10 65536 "$fuzz_dir/recipe_corpus:$src/tests/cellpack/data" -dict="$fuzz_dir/recipe.dict" ;;
-    obj | off | ply | stl) fuzz "$1" 10 16384 "$fuzz_dir/mesh_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
+    obj | off | ply | stl | collada) fuzz "$1" 10 16384 "$fuzz_dir/mesh_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
     draco) fuzz draco 10 16384 "$fuzz_dir/mesh_corpus/draco" ;;
     pdb | mmcif) fuzz "$1" 10 32768 "$fuzz_dir/structure_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
     gzip) fuzz gzip 10 32768 "$fuzz_dir/structure_corpus/gzip" ;;
