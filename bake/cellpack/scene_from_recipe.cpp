@@ -36,9 +36,9 @@ constexpr double kClearance = 5;       // Å, as the bundled solubles
 // 41-58 Å for the POPC patch; a soluble's centre stays this, the clearance and its radius away.
 constexpr double kMembraneReach = 50;
 constexpr double kTypicalRadius = 30;  // Å, a soluble whose recipe gives no radius (a haemoglobin)
-constexpr std::size_t kStandInSpheres = 4096;
+constexpr std::size_t kStandInSpheres = 4096;         // a stand-in is coarse: its sphere tree's finest level up to this
 constexpr double kMostCountedSurfaceCopies = 20000;  // per compartment: kept exactly (per_compartment) up to this
-constexpr double kSurfaceOverpacking = 1.3;          // tiles packed this much denser than the count they keep  // a stand-in is coarse: its sphere tree's finest level up to this
+constexpr double kSurfaceOverpacking = 1.3;          // tiles packed this much denser than the count they keep
 
 std::string shown(double v) {
   char b[32];
