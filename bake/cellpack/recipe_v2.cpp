@@ -151,7 +151,11 @@ private:
     if (const auto r = c.optional("radius"); r && !r->json().is_null()) in.encapsulating_radius = lenient_number(*r);
     const std::optional<JsonCursor> packing = c.has("representations") ? c.required("representations").optional("packing") : std::nullopt;
     if (packing) {
+      // {"path": "github:collisionTrees", "name": "X.sph"}: a file of cellPACK's database, found like
+      // an include (--server); "default" or no path: beside the recipe.
       in.sphere_file = read_name(packing->optional("name"));
+      const std::string path = read_name(packing->optional("path"));
+      if (!in.sphere_file.empty() && !path.empty() && path != "default") in.sphere_file = path + "/" + in.sphere_file;
       in.spheres = read_inline_spheres(packing->optional("radii"), packing->optional("positions"));
     }
     in.type = read_name(c.optional("type"));

@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <numbers>
 
+#include <glm/geometric.hpp>
+
 #include "bake/cellpack/scene_from_recipe.hpp"
+#include "bake/structure/structure_reader.hpp"
 #include "common/error.hpp"
 
 namespace nano::cellpack {
@@ -16,6 +19,17 @@ namespace fs = std::filesystem;
 
 const fs::path kSource(NANO_SOURCE_DIR);
 constexpr double kAvogadro = 6.02214076e23;
+
+// How far a bundled structure reaches from its centroid (atom centres plus radii), from the
+// structure reader (checked against gemmi in tests/structure).
+double reach(const char* file) {
+  const std::vector<structure::Atom> atoms = structure::read_molecule(kSource / "data/structures" / file, {}).atoms;
+  glm::dvec3 centroid(0.0);
+  for (const structure::Atom& a : atoms) centroid += a.position / static_cast<double>(atoms.size());
+  double r = 0;
+  for (const structure::Atom& a : atoms) r = std::max(r, glm::length(a.position - centroid) + a.radius);
+  return r;
+}
 
 ImportOptions bundled_options() {
   ImportOptions o;
@@ -36,16 +50,19 @@ TEST(SceneFromRecipe, VesicleInPlasmaAmountsAsCellpackCountsThem) {
   EXPECT_EQ(s["medium"]["soluble"], "outside");
   EXPECT_EQ(s["medium"]["region"][1], Json::array({4000.0, 4000.0, 4000.0}));
   // The recipe's copies are those of the whole region; the scene packs them into what its membranes
-  // leave clear: 50 Å of membrane reach, 5 Å of clearance and the molecule's radius from the surface.
+  // leave clear: 50 Å of membrane reach, 5 Å of clearance and the molecule's radius (its structure's
+  // reach, not the recipe's encapsulating radius) from the surface.
   const double area = 4.0 * std::numbers::pi * 1500.0 * 1500.0, sphere = 4.0 / 3.0 * std::numbers::pi * std::pow(1500.0, 3);
   const double outside = 8000.0 * 8000.0 * 8000.0 - sphere;
   const double albumin_copies = 0.0006 * kAvogadro * outside * 1e-27;
   EXPECT_NEAR(s["solubles"]["outside"]["molecules"][0]["concentration_mM"].get<double>(),
-              albumin_copies / (kAvogadro * (outside - area * (50 + 5 + 45)) * 1e-27) * 1000.0, 1e-12);
+              albumin_copies / (kAvogadro * (outside - area * (50 + 5 + reach("1ao6_a.pdb"))) * 1e-27) * 1000.0, 1e-12);
   EXPECT_EQ(s["solubles"]["outside"]["cubes"], 64);  // a medium's cube set is complete
   const double haemoglobin_copies = 0.005 * kAvogadro * sphere * 1e-27;
+  // Inside the sphere, exactly: the ball of radius 1500 less that depth.
+  const double inside = 4.0 / 3.0 * std::numbers::pi * std::pow(1500.0 - (50 + 5 + reach("4hhb.pdb")), 3);
   EXPECT_NEAR(s["solubles"]["vesicle"]["molecules"][0]["concentration_mM"].get<double>(),
-              haemoglobin_copies / (kAvogadro * (sphere - area * (50 + 5 + 35)) * 1e-27) * 1000.0, 1e-12);
+              haemoglobin_copies / (kAvogadro * inside * 1e-27) * 1000.0, 1e-12);
   // What the bake is checked against: the copies of the whole region, per µm³ of it.
   ASSERT_EQ(out.report.size(), 4u);
   EXPECT_EQ(out.report[1].molecule, "haemoglobin");
@@ -95,9 +112,9 @@ TEST(SceneFromRecipe, SurfaceMolarityIsPerSquareAngstromAndNbMolIsAdded) {
   EXPECT_EQ(protein["per_compartment"], 12);
   EXPECT_NEAR(protein["density_per_um2"].get<double>() * area_um2, 1.3 * env_copies, 1e-9);
   EXPECT_DOUBLE_EQ(out.scene["membranes"]["envelope"]["proteins"][0]["depth"].get<double>(), 73.0);
-  // Inside: molarity's copies plus nbMol, in the volume the membrane leaves (no radius given: 30 Å).
+  // Inside: molarity's copies plus nbMol, in the volume the membrane leaves.
   const double volume = 4.0 / 3.0 * std::numbers::pi * std::pow(725.0, 3);
-  const double free = volume - 4.0 * std::numbers::pi * 725.0 * 725.0 * (50 + 5 + 30);
+  const double free = 4.0 / 3.0 * std::numbers::pi * std::pow(725.0 - (50 + 5 + reach("1ao6_a.pdb")), 3);
   const double copies = 0.001 * kAvogadro * volume * 1e-27 + 1000.0;
   EXPECT_NEAR(out.report[1].expected_copies, copies, 1e-9);
   EXPECT_NEAR(out.scene["solubles"]["envelope"]["molecules"][0]["concentration_mM"].get<double>(),
@@ -250,12 +267,12 @@ TEST(SceneFromRecipe, ACytoplasmAloneFillsTheRecipesBox) {
   EXPECT_FALSE(s.contains("medium"));
   EXPECT_EQ(s["compartments"]["cytoplasm"]["mesh"], (Json{{"generate", "box"}, {"size", {700.0, 1200.0, 2000.0}}}));
   EXPECT_EQ(s["instances"][0]["transform"]["translate"], Json::array({0.0, 0.0, -100.0}));
-  const double volume = 700.0 * 1200.0 * 2000.0, faces = 2.0 * (700.0 * 1200.0 + 1200.0 * 2000.0 + 2000.0 * 700.0);
+  const double volume = 700.0 * 1200.0 * 2000.0, d = 2.0 * (5 + reach("1ao6_a.pdb"));
   const double copies = 0.0006 * kAvogadro * volume * 1e-27;
   EXPECT_NEAR(out.report[0].expected_copies, copies, 1e-9);
   EXPECT_EQ(out.report[0].scene_region, "cytoplasm");
   EXPECT_NEAR(s["solubles"]["cytoplasm"]["molecules"][0]["concentration_mM"].get<double>(),
-              copies / (kAvogadro * (volume - faces * (5 + 45)) * 1e-27) * 1000.0, 1e-12);
+              copies / (kAvogadro * (700.0 - d) * (1200.0 - d) * (2000.0 - d) * 1e-27) * 1000.0, 1e-12);
   r.box_min.reset();
   EXPECT_THROW(scene_from_recipe(r, bundled_options()), InputError);  // nothing gives it a size
 }
