@@ -11,6 +11,8 @@ Cases:
                         baking it (dry run) works
   missing_structures    every missing structure named with the names tried, --stand-ins suggested,
                         nothing written; with --stand-ins the recipe bakes (dry run), marked STAND-IN
+  cytoplasm_alone       a recipe of its cytoplasm alone (BloodPlasma's form) bakes in its box, within
+                        10 % of its copies; a fibre is left out, said so
   refusals              a scene given recipe options, a hostile recipe (negative molarity, 10^13
                         molecules, an include cycle): refused in seconds naming file and key,
                         nothing written
@@ -108,6 +110,25 @@ def missing_structures(nanobake, source, work):
         sys.exit(f"files left behind: {os.listdir(work)}")
 
 
+def cytoplasm_alone(nanobake, source, work):
+    """A v1 recipe of plasma alone (as cellPACK's BloodPlasma is): it fills its bounding box."""
+    recipe = os.path.join(work, "plasma.json")
+    json.dump({"recipe": {"name": "plasma", "version": "1.0"},
+               "options": {"boundingBox": [[-1500, -1000, -1200], [1500, 1000, 1200]]},
+               "cytoplasme": {"ingredients": {
+                   "albumin": {"molarity": 0.0006, "pdb": "1ao6_a.pdb", "encapsulatingRadius": 45},
+                   "igg": {"molarity": 0.000067, "pdb": "1IGT", "encapsulatingRadius": 80},
+                   "snake": {"Type": "Grow", "molarity": 1e-6, "radii": [[25]], "encapsulatingRadius": 75}}}},
+              open(recipe, "w"))
+    p, _ = run(nanobake, recipe, "--structures", os.path.join(source, "data/structures"), "-o", os.path.join(work, "plasma.nup"))
+    expect(p.stdout, "snake [cytoplasm (the recipe's box)]: asked molarity 1e-06 M; holds nothing: a fibre is not placed")
+    expect(p.stdout, "cytoplasm: ")
+    for name in ("albumin", "igg"):
+        line = next((l for l in p.stdout.splitlines() if l.startswith(f"  {name} [cytoplasm")), "")
+        if not line.endswith(" ok"):
+            sys.exit(f"{name} not within 10 % of the recipe:\n{p.stdout}")
+
+
 def refusals(nanobake, source, work):
     out = os.path.join(work, "out.nup")
     p, _ = run(nanobake, os.path.join(source, "data/virion.json"), "--stand-ins", "-o", out, expect_ok=False)
@@ -148,7 +169,8 @@ def main():
         return
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    {"import_then_bake": import_then_bake, "missing_structures": missing_structures, "refusals": refusals}[case](nanobake, source, work)
+    {"import_then_bake": import_then_bake, "missing_structures": missing_structures, "cytoplasm_alone": cytoplasm_alone,
+     "refusals": refusals}[case](nanobake, source, work)
 
 
 if __name__ == "__main__":
