@@ -523,6 +523,27 @@ std::string report_text(const Recipe& recipe, const ImportResult& result) {
   return s;
 }
 
+Json report_json(const ImportResult& result, const HeldCopies* held) {
+  Json list = Json::array();
+  for (const ImportLine& l : result.report) {
+    Json j = {{"ingredient", l.ingredient}, {"region", l.region}, {"asked", l.asked}, {"holds", l.held},
+              {"not_carried", l.not_carried}};
+    if (!l.stand_in.empty()) j["stand_in"] = l.stand_in;
+    if (!l.note.empty()) j["note"] = l.note;
+    if (l.expected_copies > 0) {
+      j["scene"] = {{"region", l.scene_region}, {"molecule", l.molecule}};
+      j["copies_asked"] = l.expected_copies;
+      j[l.surface ? "area_um2" : "volume_um3"] = l.measure;
+      if (held) {
+        const auto it = held->find({l.scene_region, l.molecule});
+        j["copies_placed"] = it == held->end() ? 0.0 : it->second;
+      }
+    }
+    list.push_back(std::move(j));
+  }
+  return list;
+}
+
 std::string copy_number_check(const ImportResult& result, const HeldCopies& held, int& off) {
   off = 0;
   std::string s = "copy numbers against the recipe (within 10 %):\n";

@@ -63,4 +63,8 @@ std::string report_text(const Recipe& recipe, const ImportResult& result);
 using HeldCopies = std::map<std::pair<std::string, std::string>, double>;
 std::string copy_number_check(const ImportResult& result, const HeldCopies& held, int& off);
 
+// The report as JSON (one object per ingredient) for the bake's --report, with the copies placed
+// beside those asked where `held` is given.
+Json report_json(const ImportResult& result, const HeldCopies* held);
+
 }  // namespace nano::cellpack

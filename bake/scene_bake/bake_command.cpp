@@ -120,12 +120,15 @@ void add_bake_command(CLI::App& app) {
     write_file_atomically(options->output, bytes);
     display.end("writing the package", std::chrono::duration<double>(std::chrono::steady_clock::now() - written).count());
     std::fputs(bake_summary(baked, package).c_str(), stdout);
+    const cellpack::HeldCopies held = held_copies(baked);
     if (to_bake.imported) {
       int off = 0;
-      std::fputs(cellpack::copy_number_check(*to_bake.imported, held_copies(baked), off).c_str(), stdout);
+      std::fputs(cellpack::copy_number_check(*to_bake.imported, held, off).c_str(), stdout);
     }
     if (!options->report.empty()) {
-      const std::string text = bake_report(baked, package).dump(2) + "\n";
+      nlohmann::ordered_json report = bake_report(baked, package);
+      if (to_bake.imported) report["cellpack_recipe"] = cellpack::report_json(*to_bake.imported, &held);
+      const std::string text = report.dump(2) + "\n";
       write_file_atomically(options->report, std::as_bytes(std::span(text.data(), text.size())));
     }
   });

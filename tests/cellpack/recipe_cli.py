@@ -62,6 +62,12 @@ def copy_numbers(source, report_file):
     (cell,) = report["compartments"]
     held = {("vesicle", name): n for name, n in cell["copies"].items()}
     held.update({("medium", name): e["copies"] for name, e in report["medium"]["estimated"].items()})
+    # The importer's own arithmetic, as the bake report carries it, against the copies computed here.
+    asked = {(e["scene"]["region"], e["scene"]["molecule"]): e for e in report["cellpack_recipe"] if "scene" in e}
+    for key, want in expected.items():
+        entry = asked.get(("medium" if key[0] == "medium" else "vesicle", key[1]))
+        if entry is None or abs(entry["copies_asked"] / want - 1) > 1e-9 or entry["copies_placed"] != held.get(key, 0):
+            sys.exit(f"{key}: the report's recipe entry {entry} disagrees with {want} asked, {held.get(key, 0)} placed")
     bad = []
     for key, want in expected.items():
         got = held.get(key, 0)

@@ -293,6 +293,16 @@ TEST(SceneFromRecipe, CopyNumberCheckNamesWhatIsMoreThanTenPercentOff) {
   EXPECT_NE(text.find("rare [cell surface]: 4 of 3 copies, 40 of 30 /µm² (+33.3 %) ok"), std::string::npos) << text;  // one copy
   text = copy_number_check(imported, {}, off);  // nothing placed: every line off
   EXPECT_EQ(off, 3) << text;
+  // The same for the bake's --report: asked and placed side by side.
+  const HeldCopies held{{{"cell", "hb"}, 950.0}};
+  const Json j = report_json(imported, &held);
+  ASSERT_EQ(j.size(), 3u);
+  EXPECT_EQ(j[0]["copies_asked"], 1000.0);
+  EXPECT_EQ(j[0]["copies_placed"], 950.0);
+  EXPECT_EQ(j[0]["volume_um3"], 0.5);
+  EXPECT_EQ(j[2]["area_um2"], 0.1);
+  EXPECT_EQ(j[1]["copies_placed"], 0.0);
+  EXPECT_FALSE(report_json(imported, nullptr)[0].contains("copies_placed"));
 }
 
 TEST(SceneFromRecipe, RecipesAreToldFromScenes) {
