@@ -33,6 +33,7 @@ constexpr double kFewCopiesInARegion = 20;  // below, a count off by more than 1
 constexpr double kFewCopies = 3;       // in a region: below, the report warns that the bake may place none
 constexpr double kCopiesPerSet = 5;    // of the rarest ingredient, where the cubes can grow to hold them
 constexpr double kClearance = 5;       // Å, as the bundled solubles
+constexpr double kSmallestCompartment = 100;  // Å across: below, no protein fits (a mesh in other units)
 // How far a bundled bilayer and its proteins reach into the volume beside it (Å): the bake measures
 // 41-58 Å for the POPC patch; a soluble's centre stays this, the clearance and its radius away.
 constexpr double kMembraneReach = 50;
@@ -414,6 +415,12 @@ private:
     if (c.geometry == Compartment::Geometry::none) throw InputError(c.where, "geom", "compartment '" + c.id + "' has no geometry");
     Json mesh;
     const Measure m = measure(c, mesh);
+    // cellPACK meshes are in Å; a mesh written in other units (nm, µm, a modeller's 1) arrives far
+    // too small to hold a protein, and the bake would only say that nothing fits inside.
+    if (const glm::dvec3 extent = m.box_max - m.box_min; std::max({extent.x, extent.y, extent.z}) < kSmallestCompartment)
+      throw InputError(c.where, "geom", "compartment '" + c.id + "' is " + shown(std::max({extent.x, extent.y, extent.z})) +
+                                            " Å across, too small to hold a protein: cellPACK's meshes are in Å; is this one in nm or "
+                                            "µm? (import-cellpack writes a scene whose mesh \"units\" can be set)");
     for (const auto& [other, placed] : placed_) {
       std::string conflict = placement_conflict(placed, m);
       if (conflict.empty()) conflict = placement_conflict(m, placed);

@@ -228,6 +228,14 @@ TEST(SceneFromRecipe, CompartmentsNestedOrOverlappingByGeometryAreRefused) {
   EXPECT_THROW(scene_from_recipe(r, bundled_options()), InputError);  // overlapping
   r.compartments[1].centre = {1000, 0, 0};
   EXPECT_EQ(scene_from_recipe(r, bundled_options()).scene["instances"].size(), 2u);  // apart
+  // A compartment in other units than Å (a modeller's 1, nm) is named as such, not baked empty.
+  r.compartments[1].radius = 0.8;
+  try {
+    scene_from_recipe(r, bundled_options());
+    FAIL() << "a 1.6 Å compartment was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'capsid' is 1.6 Å across, too small to hold a protein"), std::string::npos) << e.what();
+  }
 }
 
 // A switched-off ingredient (molarity 0, nbMol 0) is left out, said so; both amounts are summed, said so.
