@@ -15,24 +15,43 @@ namespace {
 
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 
+// Slots by member name: the record's layout is gpu::SceneEffects's, nowhere typed twice.
+#define NANO_SLOT(member) std::uint32_t(offsetof(gpu::SceneEffects, member))
+#define NANO_SLOT_AFTER(member, words) std::uint32_t(offsetof(gpu::SceneEffects, member) + 4 * (words))
+
 constexpr EffectParameter kJitter[] = {
-    {"amplitude_degrees", "°", ParameterKind::number, 0, 180, false, true, {5, 0, 0}, 192, PanelWidget::slider, 0, 45},
-    {"frequency_hz", "Hz", ParameterKind::number, 0, kNoLimit, true, true, {1, 0, 0}, 196, PanelWidget::log_slider, 0.01, 100},
+    {"amplitude_degrees", "°", ParameterKind::number, 0, 180, false, true, {5, 0, 0}, NANO_SLOT(jitter), PanelWidget::slider, 0, 45},
+    {"frequency_hz", "Hz", ParameterKind::number, 0, kNoLimit, true, true, {1, 0, 0}, NANO_SLOT_AFTER(jitter, 1), PanelWidget::log_slider, 0.01, 100},
 };
+// radius_pixels keeps the occlusion visible from afar: the rays reach at least that many pixels'
+// footprint at the hit, so a cell seen whole darkens its folds as a protein seen close does its clefts.
 constexpr EffectParameter kAmbientOcclusion[] = {
-    {"rays", "", ParameterKind::whole_number, 1, 1024, false, true, {8, 0, 0}, 208, PanelWidget::slider, 1, 64},
-    {"radius", "Å", ParameterKind::number, 0, kNoLimit, true, true, {40, 0, 0}, 212, PanelWidget::log_slider, 1, 2000},
+    {"rays", "", ParameterKind::whole_number, 1, 1024, false, true, {8, 0, 0}, NANO_SLOT(ambient_occlusion), PanelWidget::slider, 1, 64},
+    {"radius", "Å", ParameterKind::number, 0, kNoLimit, true, true, {40, 0, 0}, NANO_SLOT_AFTER(ambient_occlusion, 1), PanelWidget::log_slider, 1, 2000},
+    {"radius_pixels", "px", ParameterKind::number, 0, 256, false, false, {0, 0, 0}, NANO_SLOT(ao_radius_pixels), PanelWidget::slider, 0, 64},
 };
 constexpr EffectParameter kShadows[] = {
-    {"light_direction", "", ParameterKind::unit_vector, 0, 0, false, true, {0.3, 0.5, 0.8}, 224, PanelWidget::direction, -1, 1},
+    {"light_direction", "", ParameterKind::unit_vector, 0, 0, false, true, {0.3, 0.5, 0.8}, NANO_SLOT(shadow_light), PanelWidget::direction, -1, 1},
 };
 // Goodsell's and Mol*'s illustrative contours: silhouettes where the molecule copy changes, creases
-// where one copy folds over itself by more than crease_depth.
+// where one copy folds over itself by more than crease_depth; both fade out as the copy shrinks below
+// fade_pixels on screen (0: never), so a membrane seen whole is not drawn as a mesh of lines.
 constexpr EffectParameter kOutlines[] = {
-    {"width_pixels", "px", ParameterKind::whole_number, 1, 8, false, false, {1, 0, 0}, 244, PanelWidget::slider, 1, 8},
-    {"crease_depth", "Å", ParameterKind::number, 0, kNoLimit, true, false, {5, 0, 0}, 248, PanelWidget::log_slider, 0.5, 100},
-    {"colour", "", ParameterKind::colour, 0, 1, false, false, {0, 0, 0}, 252, PanelWidget::colour_picker, 0, 1},
+    {"width_pixels", "px", ParameterKind::whole_number, 1, 8, false, false, {1, 0, 0}, NANO_SLOT(outline_width_pixels), PanelWidget::slider, 1, 8},
+    {"crease_depth", "Å", ParameterKind::number, 0, kNoLimit, true, false, {5, 0, 0}, NANO_SLOT(outline_crease_depth), PanelWidget::log_slider, 0.5, 100},
+    {"colour", "", ParameterKind::colour, 0, 1, false, false, {0, 0, 0}, NANO_SLOT(outline_colour), PanelWidget::colour_picker, 0, 1},
+    {"fade_pixels", "px", ParameterKind::number, 0, 256, false, false, {12, 0, 0}, NANO_SLOT(outline_fade_pixels), PanelWidget::slider, 0, 32},
 };
+// Depth cueing relative to the focus (the distance from the eye to the camera's look-at point), so it
+// reads the same from a whole cell down to one protein: colour fades towards the background from
+// start × focus over span × focus, at most by strength.
+constexpr EffectParameter kFog[] = {
+    {"start", "× focus", ParameterKind::number, 0, 100, false, false, {0.8, 0, 0}, NANO_SLOT(fog_range), PanelWidget::slider, 0, 4},
+    {"span", "× focus", ParameterKind::number, 0, 100, true, false, {0.8, 0, 0}, NANO_SLOT_AFTER(fog_range, 1), PanelWidget::log_slider, 0.05, 10},
+    {"strength", "", ParameterKind::number, 0, 1, false, false, {0.7, 0, 0}, NANO_SLOT(fog_strength), PanelWidget::slider, 0, 1},
+};
+#undef NANO_SLOT
+#undef NANO_SLOT_AFTER
 
 constexpr EffectDeclaration kEffects[] = {
     {EffectId::clipping, "clipping", "clipping", "", "keep what lies inside up to 8 planes and a box (an atom whole, by its centre)",
@@ -45,9 +64,23 @@ constexpr EffectDeclaration kEffects[] = {
      8u, gpu::NANO_SPEC_AMBIENT_OCCLUSION, kAmbientOcclusion, "", "none: colour only (render.effects.shading checks it)", false},
     {EffectId::shadows, "shadows", "shadows", "shadows", "one ray a pixel towards the light",
      16u, gpu::NANO_SPEC_SHADOWS, kShadows, "", "none: colour only (render.effects.shading checks it)", false},
-    {EffectId::outlines, "outlines", "outlines", "outlines", "dark contours where the molecule or the depth changes between pixels",
+    {EffectId::outlines, "outlines", "outlines", "outlines", "contours where the molecule or the depth changes between pixels, fading with the copy's size on screen",
      32u, gpu::NANO_SPEC_OUTLINES, kOutlines, "", "none: colour only (render.effects.outlines checks it against the ids image)", true},
+    {EffectId::fog, "fog", "fog", "fog", "depth cueing: what lies beyond the focus fades towards the background",
+     64u, gpu::NANO_SPEC_FOG, kFog, "", "none: colour only (render.effects.fog checks it against the depths)", false},
 };
+// Goodsell's plates: contours that fade with a copy's size on screen, depth cueing from the focus on,
+// occlusion that reaches 8 pixels whatever the distance (chosen on the virion, the red blood cell and
+// blood at four distances each: docs/effects.md).
+constexpr PresetEffect kIllustrative[] = {
+    {EffectId::outlines, {glm::dvec3(1, 0, 0), glm::dvec3(5, 0, 0), glm::dvec3(0, 0, 0), glm::dvec3(12, 0, 0)}},
+    {EffectId::fog, {glm::dvec3(0.8, 0, 0), glm::dvec3(0.8, 0, 0), glm::dvec3(0.7, 0, 0), glm::dvec3(0)}},
+    {EffectId::ambient_occlusion, {glm::dvec3(8, 0, 0), glm::dvec3(40, 0, 0), glm::dvec3(8, 0, 0), glm::dvec3(0)}},
+};
+constexpr EffectPreset kPresets[] = {
+    {"illustrative", "outlines that fade with a copy's size, fog beyond the focus, occlusion at every scale", kIllustrative},
+};
+
 static_assert(std::size(kEffects) == kEffectCount, "one row per EffectId");
 
 constexpr bool rows_in_id_order() {
@@ -89,6 +122,20 @@ const EffectDeclaration* find_effect(std::string_view name) {
   for (const EffectDeclaration& e : kEffects)
     if (e.name == name) return &e;
   return nullptr;
+}
+
+std::span<const EffectPreset> effect_presets() { return kPresets; }
+
+const EffectPreset* find_preset(std::string_view name) {
+  for (const EffectPreset& p : kPresets)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+std::string preset_names() {
+  std::string names;
+  for (const EffectPreset& p : kPresets) names += (names.empty() ? "" : ", ") + std::string(p.name);
+  return names;
 }
 
 std::string effect_names() {

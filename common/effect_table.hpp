@@ -22,9 +22,9 @@
 
 namespace nano {
 
-enum class EffectId : std::uint8_t { clipping, animation, jitter, ambient_occlusion, shadows, outlines };
-inline constexpr std::size_t kEffectCount = 6;
-inline constexpr std::size_t kMaxEffectParameters = 3;
+enum class EffectId : std::uint8_t { clipping, animation, jitter, ambient_occlusion, shadows, outlines, fog };
+inline constexpr std::size_t kEffectCount = 7;
+inline constexpr std::size_t kMaxEffectParameters = 4;
 
 enum class ParameterKind : std::uint8_t {
   number,        // one float
@@ -36,7 +36,7 @@ enum class PanelWidget : std::uint8_t { slider, log_slider, direction, colour_pi
 
 struct EffectParameter {
   std::string_view key;   // in the effect's scene object; the option is --<cli_prefix>-<key, '_' → '-'>
-  std::string_view unit;  // "Å", "px", "°", "Hz" or "" (shown by --help and the panel)
+  std::string_view unit;  // "Å", "px", "°", "Hz", "× focus" or "" (shown by --help and the panel)
   ParameterKind kind;
   double min, max;        // numbers: the accepted range; min is excluded when min_exclusive
   bool min_exclusive;
@@ -66,7 +66,7 @@ const EffectDeclaration& effect_declaration(EffectId id);
 inline std::uint32_t package_flag(EffectId id) { return effect_declaration(id).package_flag; }
 // By name (as --effect spells it); nullptr for another name.
 const EffectDeclaration* find_effect(std::string_view name);
-// "clipping, animation, jitter, ao, shadows, outlines": the choices an error message lists.
+// "clipping, animation, jitter, ao, shadows, outlines, fog": the choices an error message lists.
 std::string effect_names();
 // Index of the parameter `key` of effect `id`; throws std::logic_error for a key it does not have.
 std::size_t parameter_index(EffectId id, std::string_view key);
@@ -93,5 +93,22 @@ glm::dvec3 unpack_colour(std::uint32_t rgba);
 using ParameterValues = std::array<glm::dvec3, kMaxEffectParameters>;
 void store_parameters(gpu::SceneEffects& record, EffectId id, const ParameterValues& values);
 ParameterValues load_parameters(const gpu::SceneEffects& record, EffectId id);
+
+// A named combination of effects with parameters chosen by looking at every bundled scene from afar
+// and close (docs/effects.md): the scene's "effects": {"preset": NAME}, --preset NAME, the viewer's
+// panel and its script's `preset NAME`. A preset turns its effects on with its values; what the scene
+// or the options set explicitly wins.
+struct PresetEffect {
+  EffectId id;
+  ParameterValues values;  // every parameter of the effect, in table order
+};
+struct EffectPreset {
+  std::string_view name;
+  std::string_view summary;
+  std::span<const PresetEffect> effects;
+};
+std::span<const EffectPreset> effect_presets();
+const EffectPreset* find_preset(std::string_view name);  // nullptr for another name
+std::string preset_names();                               // "illustrative": the choices a message lists
 
 }  // namespace nano

@@ -10,7 +10,7 @@ namespace nano::format {
 
 inline constexpr std::array<unsigned char, 8> kMagic = {0x89, 'N', 'U', 'P', '\r', '\n', 0x1a, '\n'};
 inline constexpr std::uint16_t kVersionMajor = 2;
-inline constexpr std::uint16_t kVersionMinor = 8;
+inline constexpr std::uint16_t kVersionMinor = 9;
 // Written little-endian it reads 04 03 02 01; a big-endian writer would produce 01 02 03 04.
 inline constexpr std::uint32_t kEndianMark = 0x01020304u;
 inline constexpr std::uint64_t kHeaderSize = 64;

@@ -83,17 +83,17 @@ std::vector<InstanceKeyframes> parse_keyframes(const JsonCursor& c, std::size_t 
   return all;
 }
 
-// A plain effect (common/effect_table.hpp): each parameter by its kind and range; absent optional
-// ones take the table's fallback.
-ParameterValues parse_plain_effect(const JsonCursor& c, const EffectDeclaration& effect) {
+// A plain effect (common/effect_table.hpp): each parameter by its kind and range; absent ones take
+// `base` (a preset's values: then none is required), else the table's fallback.
+ParameterValues parse_plain_effect(const JsonCursor& c, const EffectDeclaration& effect, const ParameterValues* base = nullptr) {
   std::array<std::string_view, kMaxEffectParameters> keys{};
   for (std::size_t i = 0; i < effect.parameters.size(); ++i) keys[i] = effect.parameters[i].key;
   c.only_keys(std::span<const std::string_view>(keys.data(), effect.parameters.size()));
   ParameterValues values{};
   for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
     const EffectParameter& p = effect.parameters[i];
-    values[i] = p.fallback;
-    const std::optional<JsonCursor> field = p.required ? std::optional(c.required(p.key)) : c.optional(p.key);
+    values[i] = base ? (*base)[i] : p.fallback;
+    const std::optional<JsonCursor> field = p.required && !base ? std::optional(c.required(p.key)) : c.optional(p.key);
     if (!field) continue;
     switch (p.kind) {
       case ParameterKind::whole_number:
@@ -151,17 +151,29 @@ Box parse_box(const JsonCursor& c) {
 
 Effects parse_effects(const JsonCursor& c, std::size_t instance_count) {
   // The keys directly under "effects": every table row whose key is not nested in another's.
-  std::array<std::string_view, kEffectCount> keys{};
+  std::array<std::string_view, kEffectCount + 1> keys{};
   std::size_t key_count = 0;
   for (const EffectDeclaration& effect : effect_table())
     if (effect.scene_key.find('.') == std::string_view::npos) keys[key_count++] = effect.scene_key;
+  keys[key_count++] = "preset";
   c.only_keys(std::span<const std::string_view>(keys.data(), key_count));
   Effects e;
+  // A preset's effects first; an effect the scene also writes keeps the preset's values for the keys
+  // it leaves out.
+  if (const auto preset = c.optional("preset")) {
+    const std::string name = preset->string();
+    const EffectPreset* found = find_preset(name);
+    if (!found) preset->fail("unknown preset \"" + name + "\" (" + preset_names() + ")");
+    for (const PresetEffect& effect : found->effects) e[effect.id] = effect.values;
+  }
   if (const auto clipping = c.optional("clipping")) e.clipping = parse_clipping(*clipping);
   if (const auto animation = c.optional("animation")) e.animation = parse_animation(*animation, instance_count, e);
   for (const EffectDeclaration& effect : effect_table()) {
     if (!effect.structured.empty() || effect.scene_key.find('.') != std::string_view::npos) continue;
-    if (const auto object = c.optional(effect.scene_key)) e[effect.id] = parse_plain_effect(*object, effect);
+    if (const auto object = c.optional(effect.scene_key)) {
+      const std::optional<ParameterValues> base = e[effect.id];
+      e[effect.id] = parse_plain_effect(*object, effect, base ? &*base : nullptr);
+    }
   }
   return e;
 }

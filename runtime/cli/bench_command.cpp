@@ -99,7 +99,7 @@ void run_frames(const Options& o, session::RenderSession& session, nlohmann::ord
   const Camera start = session::camera_option(session.package, o.camera);
   render::RenderSettings settings = o.variant.render_settings();
   settings.effects = o.effect_options.settings(session.package);
-  settings.depth_cue = render::depth_cue_for(start);
+  settings.focus_distance = render::focus_distance_for(start);
   render::Renderer renderer(session.device, *session.scene, settings);
   const std::vector<Camera> cameras = frame_cameras(o, start, o.frames ? o.frames : 24);
   // Open → first image: what the viewer shows first (a frame at 1/kFirstFrameScale, pipeline
@@ -250,7 +250,7 @@ void run_compile(const Options& o, session::RenderSession& session, nlohmann::or
   const Camera camera = session::camera_option(session.package, o.camera);
   render::RenderSettings command = o.variant.render_settings();
   command.effects = o.effect_options.settings(session.package);
-  command.depth_cue = render::depth_cue_for(camera);
+  command.focus_distance = render::focus_distance_for(camera);
   const gpu::Camera tile = camera.to_gpu(gpu::NANO_WORKGROUP_SIZE, gpu::NANO_WORKGROUP_SIZE);
   std::map<std::string, std::size_t> built;  // variant name → its row
   std::printf("%-28s %9s %6s %9s %9s %9s  %s\n", "selected by", "SPIR-V kB", "loops", "create s", "dispatch s", "total s",
@@ -295,7 +295,7 @@ void run_effects(const Options& o, session::RenderSession& session, nlohmann::or
   const unsigned rounds = o.frames ? o.frames : 5;
   const Camera camera = session::camera_option(session.package, o.camera);
   render::RenderSettings base = o.variant.render_settings();
-  base.depth_cue = render::depth_cue_for(camera);
+  base.focus_distance = render::focus_distance_for(camera);
   // Each effect's cost on the virtual traversal: jitter turns the flat level off, which would
   // otherwise be counted against it.
   base.flatten_bytes = 0;

@@ -41,6 +41,10 @@ void add_effect_options(CLI::App& command, session::EffectOptions& o) {
   command.add_option("--effect", o.on, "turn an effect on: " + effect_names() + " (repeatable)");
   command.add_option("--no-effect", o.off, "turn an effect off (repeatable)");
   command.add_flag("--no-scene-effects", o.no_scene_effects, "start with every effect off instead of the scene's");
+  std::string presets;
+  for (const EffectPreset& p : effect_presets()) presets += "; " + std::string(p.name) + ": " + std::string(p.summary);
+  command.add_option("--preset", o.preset, "turn on a combination of effects with its parameters (" + preset_names() + presets +
+                                               "); --effect, --no-effect and parameter options still apply over it");
   for (const EffectDeclaration& effect : effect_table())
     for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
       const EffectParameter& p = effect.parameters[i];

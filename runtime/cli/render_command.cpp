@@ -91,7 +91,7 @@ void render_movie(const RenderOptions& o, const render::CameraPath& path, std::p
     const Camera frame_camera = render::camera_at(path, time);
     // Exactly what `render --camera <frame_camera> --time <time>` would use, so a movie frame can be
     // re-rendered alone; neither changes the compiled pipeline.
-    settings.depth_cue = render::depth_cue_for(frame_camera);
+    settings.focus_distance = render::focus_distance_for(frame_camera);
     settings.effects.time = time;
     renderer.set_settings(settings);
     const render::Frame frame = renderer.render(frame_camera.to_gpu(w, h));
@@ -170,7 +170,7 @@ void add_render_command(CLI::App& app) {
     settings.effects = o->effects.settings(session.package);
     Camera camera = session::camera_option(session.package, o->camera);
     if (path) camera = render::camera_at(*path, settings.effects.time);
-    settings.depth_cue = render::depth_cue_for(camera);
+    settings.focus_distance = render::focus_distance_for(camera);
     render::Renderer renderer(session.device, *session.scene, settings);
     if (movie) render_movie(*o, *path, frames, renderer, settings, w, h);
     else render_still(*o, camera, renderer, w, h);

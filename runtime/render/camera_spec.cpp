@@ -23,7 +23,7 @@ glm::dvec3 parse_vector(std::string_view key, std::string_view value) {
 
 }  // namespace
 
-float depth_cue_for(const Camera& camera) { return float(4 * glm::length(camera.look_at - camera.position)); }
+float focus_distance_for(const Camera& camera) { return float(glm::length(camera.look_at - camera.position)); }
 
 Camera parse_camera(std::string_view text, const Camera& base) {
   // The scene file's words, and the short aliases older command lines and scripts use.

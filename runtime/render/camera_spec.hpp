@@ -13,9 +13,10 @@
 
 namespace nano::render {
 
-// The depth cue `render`, `bench` and the viewer shade with: colour fades over four times the
-// distance to the target (RenderSettings::depth_cue). One rule, so their frames stay identical.
-float depth_cue_for(const Camera& camera);
+// The focus distance `render`, `bench` and the viewer shade with: from the eye to the look-at point
+// (RenderSettings::focus_distance: the depth cue and fog are measured in it). One rule, so their
+// frames stay identical.
+float focus_distance_for(const Camera& camera);
 
 // Keys may come in any order and any may be left out (they keep `base`'s value); a key given twice
 // (also once by its alias) is an error. Throws std::invalid_argument naming the part that does not parse.

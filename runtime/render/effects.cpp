@@ -59,6 +59,15 @@ bool& effect_flag(EffectSettings& effects, std::string_view name) {
   throw std::invalid_argument("unknown effect '" + std::string(name) + "' (" + effect_names() + ")");
 }
 
+void apply_preset(EffectSettings& effects, std::string_view name) {
+  const EffectPreset* preset = find_preset(name);
+  if (!preset) throw std::invalid_argument("unknown preset '" + std::string(name) + "' (" + preset_names() + ")");
+  for (const PresetEffect& effect : preset->effects) {
+    effects.flag(effect.id) = true;
+    effects.parameters(effect.id) = effect.values;
+  }
+}
+
 gpu::SceneEffects effect_record(const EffectSettings& effects) {
   gpu::SceneEffects record{};
   for (const EffectDeclaration& effect : effect_table())

@@ -59,6 +59,9 @@ EffectSettings package_effects(const format::Package& package);
 // throws std::invalid_argument naming the choices for another name.
 bool& effect_flag(EffectSettings& effects, std::string_view name);
 inline void set_effect(EffectSettings& effects, std::string_view name, bool on) { effect_flag(effects, name) = on; }
+// Turns on the effects of preset `name` (common/effect_table.hpp) with its values; throws
+// std::invalid_argument naming the choices for another name.
+void apply_preset(EffectSettings& effects, std::string_view name);
 // The on effects' parameters in the package's record layout, as the shader reads them
 // (RenderFrame::effect_record).
 gpu::SceneEffects effect_record(const EffectSettings& effects);

@@ -271,7 +271,7 @@ struct Renderer::Impl {
     frame.levels = glm::uvec4(scene.first_square_level(), scene.first_cube_level(), scene.molecule_type_count(),
                               scene.first_atom_square_level());
     const glm::vec3 light = e.flag(EffectId::shadows) ? glm::vec3(e.light_direction()) : settings.light;
-    frame.light = glm::vec4(glm::normalize(light), settings.depth_cue);
+    frame.light = glm::vec4(glm::normalize(light), 4 * settings.focus_distance);
     if (e.flag(EffectId::clipping)) {
       // In the µLAS's frame: camera-relative, n·(x' + eye) + d = n·x' + (d + n·eye), in double.
       const glm::dvec3 eye = ulas_origin(camera);
@@ -284,7 +284,8 @@ struct Renderer::Impl {
     frame.effects.z = e.sample_index;
     frame.effects.w = scene.first_bead_level();
     frame.flat_eye = variant(settings).flat ? scene.flat_eye(ulas_origin(camera)) : glm::vec4(0.f);
-    frame.lod = glm::vec4(2.0f * camera.forward.w / float(camera.size.y), float(settings.lod_pixels), gpu::NANO_TYPICAL_ATOM_DIAMETER, 0.f);
+    frame.lod = glm::vec4(2.0f * camera.forward.w / float(camera.size.y), float(settings.lod_pixels), gpu::NANO_TYPICAL_ATOM_DIAMETER,
+                           settings.focus_distance > 0 ? settings.focus_distance : 1.f);
     const glm::vec3 jitter = jitter_frame_parameters(e);
     frame.effect_parameters = glm::vec4(e.ao_radius(), jitter.x, jitter.y, jitter.z);
     frame.effect_record = effect_record(e);

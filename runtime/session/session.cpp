@@ -82,6 +82,7 @@ render::EffectSettings EffectOptions::settings(const format::Package& package) c
     throw InputError("--clip-plane", "", "at most " + std::to_string(render::kMaxClipPlanes) + " planes in all (the scene's included)");
   if (!clip_box.empty()) parse("--clip-box", [&] { e.clipping.box = render::parse_clip_box(clip_box); });
   if (!clip_planes.empty() || !clip_box.empty()) e.flag(EffectId::clipping) = true;
+  if (!preset.empty()) parse("--preset", [&] { render::apply_preset(e, preset); });
   for (const std::string& name : on) parse("--effect", [&] { render::set_effect(e, name, true); });
   for (const std::string& name : off) parse("--no-effect", [&] { render::set_effect(e, name, false); });
   for (const EffectDeclaration& effect : effect_table())

@@ -68,6 +68,7 @@ struct EffectOptions {
   std::string clip_box;
   double time = 0;
   bool no_scene_effects = false;
+  std::string preset;  // --preset: applied over the scene's effects, under the options that follow
   // --<prefix>-<parameter> of every effect of common/effect_table.hpp, as typed; empty: the scene's
   // value (or the table's fallback).
   std::array<std::array<std::string, kMaxEffectParameters>, kEffectCount> parameters;

@@ -169,6 +169,15 @@ void show_section(ViewerState& s, const PanelContext& c) {
 void effects_section(ViewerState& s, const PanelContext& c) {
   if (!ImGui::CollapsingHeader("effects")) return;
   render::EffectSettings& e = s.settings.effects;
+  for (const EffectPreset& preset : effect_presets()) {
+    if (ImGui::Button(std::string(preset.name).c_str())) {
+      render::apply_preset(e, preset.name);
+      s.touch();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(preset.summary).c_str());
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
   for (const EffectDeclaration& effect : effect_table())
     if (ImGui::Checkbox(std::string(effect.name).c_str(), &e.flag(effect.id))) s.touch();
   if (ImGui::TreeNode("clipping planes and box")) {

@@ -154,6 +154,14 @@ ScriptCommand parse_line(std::string_view line) {
     c.kind = K::effect;
     c.text = std::string(name);
     c.on = state == "on";
+  } else if (word == "preset") {
+    std::string_view tail;
+    const std::string_view name = next_word(rest, tail);
+    render::EffectSettings scratch;
+    render::apply_preset(scratch, name);  // throws for an unknown name
+    expect_no_more(tail, "preset NAME");
+    c.kind = K::preset;
+    c.text = std::string(name);
   } else if (word == "show" || word == "hide") {
     std::string_view tail;
     const std::string_view what = next_word(rest, tail);

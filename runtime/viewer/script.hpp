@@ -10,6 +10,7 @@
 //   clip box x0,y0,z0,x1,y1,z1                   sets the clip box
 //   clip off                                     removes every plane and the box
 //   effect NAME on|off                           NAME one of the effect table's names (common/effect_table.hpp)
+//   preset NAME                                  turns on a preset's effects with its values (illustrative)
 //   show NAME | hide NAME                        NAME: medium (the scene's plasma), a compartment or a molecule
 //                                                type of the package (as render --hide), in the picture or not
 //   time SECONDS                                 animation / jitter time
@@ -46,12 +47,12 @@ namespace nano::viewer {
 
 struct ScriptCommand {
   enum class Kind {
-    camera, clip_plane, clip_box, clip_off, effect, show, time, wait, pick, screenshot, size,
+    camera, clip_plane, clip_box, clip_off, effect, preset, show, time, wait, pick, screenshot, size,
     keyframe, path_save, path_load, path_clear, path_frame, path_play, quit
   };
   Kind kind = Kind::quit;
   std::size_t line = 0;        // 1-based line in the script, for errors found while running
-  std::string text;            // camera: the spec; effect, show: the name; screenshot, path save/load: the file
+  std::string text;            // camera: the spec; effect, preset, show: the name; screenshot, path save/load: the file
   glm::dvec4 plane{0.0};       // clip_plane
   std::pair<glm::dvec3, glm::dvec3> box{};  // clip_box
   bool on = false;             // effect; show: shown

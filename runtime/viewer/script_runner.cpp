@@ -44,6 +44,10 @@ void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
       render::set_effect(effects, c.text, c.on);
       s.touch();
       break;
+    case K::preset:
+      render::apply_preset(effects, c.text);
+      s.touch();
+      break;
     case K::show:
       render::set_shown(s.settings, c.text, c.on);
       s.touch();

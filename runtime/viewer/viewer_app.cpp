@@ -183,7 +183,7 @@ private:
     job.version = state_.version;
     if (scale == 1) job.sample = full_is_current() && state_.settings.effects.flag(EffectId::ambient_occlusion) ? accumulator_.count() : 0;
     job.settings = state_.settings;
-    job.settings.depth_cue = render::depth_cue_for(state_.camera.camera());
+    job.settings.focus_distance = render::focus_distance_for(state_.camera.camera());
     job.settings.effects.sample_index = job.sample;
     // While the view moves, the flat level grows by at most 4,000 new copies a frame (~30 ms of
     // enumeration on the CPU); the full frame at rest takes the whole choice, so it is the frame

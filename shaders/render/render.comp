@@ -78,6 +78,7 @@ const bool kJitter = false;
 const bool kAmbientOcclusion = false;
 const bool kShadows = false;
 const bool kOutlines = false;
+const bool kFog = false;
 const bool kCounters = false;
 const bool kLod = false;
 #else
@@ -86,6 +87,7 @@ layout(constant_id = NANO_SPEC_JITTER) const bool kJitter = false;           // 
 layout(constant_id = NANO_SPEC_AMBIENT_OCCLUSION) const bool kAmbientOcclusion = false; // frame.effects.y short rays per pixel
 layout(constant_id = NANO_SPEC_SHADOWS) const bool kShadows = false;          // one shadow ray towards frame.light
 layout(constant_id = NANO_SPEC_OUTLINES) const bool kOutlines = false;        // contours, in the image pass
+layout(constant_id = NANO_SPEC_FOG) const bool kFog = false;                  // depth cueing from the focus (frame.lod.w)
 // Work counters per pixel (shared/ray_counters.h, `nanoview bench --counters`).
 layout(constant_id = NANO_SPEC_COUNTERS) const bool kCounters = false;
 // Level of detail: copies whose atoms span less than frame.lod.y pixels are drawn as their beads.
@@ -132,7 +134,7 @@ layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_FRAME, std430) readonly buffe
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) writeonly buffer Hits { PixelHit hits[]; };
 // The same buffer as the image pass reads it; the tracing code keeps its write-only view.
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_HITS, std430) readonly buffer FinishedHits { PixelHit finished_hits[]; };
-layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) writeonly buffer Colours { uint colours[]; };  // RGBA8, sRGB
+layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COLOURS, std430) buffer Colours { uint colours[]; };  // RGBA8, sRGB (the image pass reads and mixes)
 layout(set = NANO_DESCRIPTOR_SET, binding = NANO_B_COUNTERS, std430) writeonly buffer Counters { uint counters[]; };
 
 // The frame may be traced in parts (a viewer interleaves them with input): this dispatch's first pixel.
@@ -920,34 +922,82 @@ vec3 srgb_from_linear(vec3 c) {
 // The image pass (frame.pass.x = 1, after every pixel is traced): effects that read the finished
 // hits of a pixel's neighbours (EffectDeclaration::image_pass in common/effect_table.hpp).
 
-// Outlines (Goodsell's illustrations; Mol*'s illustrative style): a pixel takes the outline colour when
-// a pixel within `width` (Chebyshev distance) is nearer and shows another molecule copy — the
-// silhouette, drawn just outside the nearer copy — or the same copy nearer by more than the crease
-// depth, where a copy folds over itself. The background is a copy of its own at infinite depth.
-bool outline_pixel(uvec2 px, uint index) {
+// Outlines (Goodsell's illustrations; Mol*'s illustrative style), legible at every distance: a pixel
+// darkens towards the outline colour where a pixel within `width` (Chebyshev distance) is nearer and
+// shows another molecule copy — the silhouette, drawn just outside the nearer copy — or the same copy
+// nearer by more than the crease depth, where a copy folds over itself. The background is a copy of
+// its own at infinite depth. Thresholds are measured on screen, at the nearer pixel's footprint:
+// - a copy's contours ramp in as its bounding radius grows from fade/2 to fade pixels (fade 0: always
+//   full), so a membrane seen whole is not a mesh of lines;
+// - where copies meet at a depth step of 2 to 8 pixel footprints and more (NANO_OUTLINE_STEP_PIXELS),
+//   the contour ramps in whatever their size: the silhouettes of what is large on screen (a spike
+//   standing off the membrane, the limb of a cell) stay; sub-pixel bumps draw nothing;
+// - a crease ramps in from crease to 2 × crease Å, scaled by the copy's own fade.
+// The strength in [0, 1] mixes the pixel's colour towards the outline colour: a grey ramp, not a switch.
+const float NANO_OUTLINE_STEP_PIXELS = 8.0;
+
+float smooth_ramp(float lo, float hi, float x) {
+  float u = clamp((x - lo) / (hi - lo), 0.0, 1.0);
+  return u * u * (3.0 - 2.0 * u);
+}
+
+// The bounding radius about the origin of the molecule type of `atom` (copies turn about it).
+float reach_of_atom(uint atom) {
+  for (uint m = 0u; m < frame.levels.z; ++m)
+    if (atom >= molecules[m].first_atom && atom - molecules[m].first_atom < molecules[m].atom_count) return molecules[m].aabb_min.w;
+  return 0.0;
+}
+
+float outline_strength(uvec2 px, uint index) {
   int width = int(frame.effect_record.outline_width_pixels);
   float crease = frame.effect_record.outline_crease_depth;
+  float fade = frame.effect_record.outline_fade_pixels;
   PixelHit here = finished_hits[index];
   bool here_hit = here.atom != kNoHit;
   float here_depth = here_hit ? here.depth : placement_inf();
   ivec2 size = ivec2(frame.camera.size.xy);
+  float strength = 0.0;
   for (int dy = -width; dy <= width; ++dy)
     for (int dx = -width; dx <= width; ++dx) {
       ivec2 q = ivec2(px) + ivec2(dx, dy);
       if (q.x < 0 || q.y < 0 || q.x >= size.x || q.y >= size.y) continue;
       PixelHit there = finished_hits[uint(q.y) * uint(size.x) + uint(q.x)];
       if (there.atom == kNoHit || !(there.depth < here_depth)) continue;  // only a nearer neighbour draws here
+      float pixel = max(there.depth * frame.lod.x, 1e-30);  // Å one pixel spans at the nearer hit
+      float shown = fade > 0.0 ? smooth_ramp(0.5 * fade, fade, reach_of_atom(there.atom) / pixel) : 1.0;
+      float gap = here_depth - there.depth;
       bool same = here_hit && there.copy_number_lo == here.copy_number_lo && there.copy_number_hi == here.copy_number_hi;
-      if (!same || here_depth - there.depth > crease) return true;
+      float edge = same ? shown * smooth_ramp(crease, 2.0 * crease, gap)
+                        : max(shown, smooth_ramp(NANO_OUTLINE_STEP_PIXELS, 4.0 * NANO_OUTLINE_STEP_PIXELS, gap / pixel));
+      strength = max(strength, edge);
     }
-  return false;
+  return strength;
+}
+
+uint mix_rgba8(uint a, uint b, float s) {
+  vec3 x = vec3(uvec3(a, a >> 8, a >> 16) & uvec3(255u));
+  vec3 y = vec3(uvec3(b, b >> 8, b >> 16) & uvec3(255u));
+  uvec3 m = uvec3(round(mix(x, y, s)));
+  return m.r | (m.g << 8) | (m.b << 16) | (255u << 24);
+}
+
+// Fog: colour fades towards the background (white) as the depth t passes from start to start + span
+// focus distances (smoothly), at most by `strength`. The focus (frame.lod.w > 0) is the distance from
+// the eye to the camera's look-at point, so the cue reads alike at every scale.
+float fog_amount(float t) {
+  float focus = frame.lod.w;
+  float start = frame.effect_record.fog_range.x * focus;
+  return frame.effect_record.fog_strength * smooth_ramp(start, start + frame.effect_record.fog_range.y * focus, t);
 }
 
 // Any image-pass effect compiled in: without one, the pass test below is not in the code at all.
 const bool kImagePass = kOutlines;
 
 void image_pass(uvec2 px, uint index) {
-  if (kOutlines && outline_pixel(px, index)) colours[index] = frame.effect_record.outline_colour;
+  if (kOutlines) {
+    float s = outline_strength(px, index);
+    if (s > 0.0) colours[index] = mix_rgba8(colours[index], frame.effect_record.outline_colour, s);
+  }
 }
 
 void main() {
@@ -989,7 +1039,7 @@ void main() {
     } else if (r > 0u) {
       uint h = effect_hash(ao_seed + 2u * (r - 1u - shadow_rays));
       ray_direction = cosine_hemisphere(n_view, effect_unit(h), effect_unit(effect_hash(h + 1u)));
-      t_max = frame.effect_parameters.x;
+      t_max = max(frame.effect_parameters.x, frame.effect_record.ao_radius_pixels * frame.lod.x * t);
     }
     bool blocked = trace_scene(ray_origin, ray_direction, t_max, r == 0u);
     if (r == 0u) {
@@ -1019,6 +1069,7 @@ void main() {
     vec3 lit = base * ((0.25 + 0.2 * facing) * ambient + 0.55 * lambert);
     float cue = frame.light.w > 0.0 ? exp(-t / frame.light.w) : 1.0;
     colour = mix(vec3(1.0), lit, 0.35 + 0.65 * cue);
+    if (kFog) colour = mix(colour, vec3(1.0), fog_amount(t));
   }
   hits[index] = hit;
   vec3 srgb = srgb_from_linear(colour);

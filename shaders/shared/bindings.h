@@ -81,6 +81,8 @@ NANO_CONST int NANO_SPEC_MEDIUM = 14;
 // Some molecule type is hidden (--hide; its levels have count 0): candidates of a hidden type are
 // dropped before their placement, ownership or keep query is computed.
 NANO_CONST int NANO_SPEC_HIDDEN_TYPES = 15;
+// Fog (depth cueing relative to the focus distance, RenderFrame.lod.w).
+NANO_CONST int NANO_SPEC_FOG = 16;
 
 // shaders/explicit_instancing/instanced.comp, set 0 (explicit instancing: runtime/explicit_instancing/).
 NANO_CONST uint NANO_IB_TLAS = 0u;  // one instance per copy; every other binding is a storage buffer

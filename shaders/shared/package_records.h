@@ -195,9 +195,13 @@ struct SceneEffects {
   vec4 clip_box_max;       // xyz: world maximum; w: reserved
   vec4 spin;               // steady proxy motion (no keyframes): xyz unit axis, w degrees per second
   vec4 velocity;           // xyz: Å per second; w: reserved
-  vec4 jitter;             // x: amplitude (degrees), y: frequency (Hz); zw: reserved
-  vec4 ambient_occlusion;  // x: rays per pixel, y: radius (Å); zw: reserved
-  vec4 shadow_light;       // xyz: unit direction towards the light (world); w: reserved
+  vec2 jitter;             // x: amplitude (degrees), y: frequency (Hz)
+  vec2 fog_range;          // x: start, y: span, as multiples of the focus distance (format ≤ 2.8: reserved zeros)
+  vec2 ambient_occlusion;  // x: rays per pixel, y: radius (Å)
+  float ao_radius_pixels;  // the radius at least this many pixels at the hit (format ≤ 2.8: reserved zero)
+  float fog_strength;      // in [0, 1] (format ≤ 2.8: reserved zero)
+  vec3 shadow_light;       // unit direction towards the light (world)
+  float outline_fade_pixels;   // a copy's contours are full from this radius on screen (format ≤ 2.8: reserved zero)
   uint clip_plane_count;   // ≤ NANO_MAX_CLIP_PLANES
   float outline_width_pixels;  // format 2.1 readers saw these three as reserved zeros; outlines off keeps them zero
   float outline_crease_depth;  // Å
@@ -251,7 +255,9 @@ NANO_END
 #define NANO_PIN(T, size) static_assert(sizeof(nano::gpu::T) == (size), #T " size");
 #define NANO_AT(T, m, off) static_assert(offsetof(nano::gpu::T, m) == (off), #T "." #m " offset");
 NANO_PIN(SceneEffects, 256)
-NANO_AT(SceneEffects, clip_box_min, 128) NANO_AT(SceneEffects, shadow_light, 224)
+NANO_AT(SceneEffects, clip_box_min, 128) NANO_AT(SceneEffects, jitter, 192) NANO_AT(SceneEffects, fog_range, 200)
+NANO_AT(SceneEffects, ambient_occlusion, 208) NANO_AT(SceneEffects, fog_strength, 220) NANO_AT(SceneEffects, shadow_light, 224)
+NANO_AT(SceneEffects, outline_fade_pixels, 236)
 NANO_AT(SceneEffects, clip_plane_count, 240)
 NANO_PIN(InstanceKeyframe, 64)
 NANO_AT(InstanceKeyframe, time, 48) NANO_AT(InstanceKeyframe, instance, 52)

@@ -25,7 +25,7 @@ TEST(EffectTable, NamesFlagsAndConstantsAreDistinct) {
     EXPECT_EQ(&effect_declaration(e.id), &e);
   }
   EXPECT_EQ(find_effect("bloom"), nullptr);
-  EXPECT_EQ(effect_names(), "clipping, animation, jitter, ao, shadows, outlines");
+  EXPECT_EQ(effect_names(), "clipping, animation, jitter, ao, shadows, outlines, fog");
 }
 
 TEST(EffectTable, OptionNamesFollowPrefixAndKey) {
@@ -64,7 +64,7 @@ TEST(EffectTable, ColoursPackToRgba8) {
 TEST(EffectTable, ParametersRoundTripThroughTheRecordAtTheirSlots) {
   gpu::SceneEffects record{};
   store_parameters(record, EffectId::ambient_occlusion, {glm::dvec3(16, 0, 0), glm::dvec3(12.5, 0, 0)});
-  EXPECT_EQ(record.ambient_occlusion, glm::vec4(16, 12.5, 0, 0));  // the slots the 2.1 format documents
+  EXPECT_EQ(record.ambient_occlusion, glm::vec2(16, 12.5));  // the slots the 2.1 format documents
   store_parameters(record, EffectId::outlines, {glm::dvec3(3, 0, 0), glm::dvec3(2.5, 0, 0), glm::dvec3(1, 0, 0)});
   EXPECT_EQ(record.outline_width_pixels, 3.f);
   EXPECT_EQ(record.outline_crease_depth, 2.5f);
@@ -73,10 +73,45 @@ TEST(EffectTable, ParametersRoundTripThroughTheRecordAtTheirSlots) {
   EXPECT_EQ(back[0].x, 3.0);
   EXPECT_EQ(back[1].x, 2.5);
   EXPECT_EQ(back[2], glm::dvec3(1, 0, 0));
-  EXPECT_EQ(record.jitter, glm::vec4(0.f));  // nothing else written
+  EXPECT_EQ(record.jitter, glm::vec2(0.f));  // nothing else written
+  EXPECT_EQ(record.ao_radius_pixels, 0.f);
+  EXPECT_EQ(record.fog_range, glm::vec2(0.f));
   const EffectValues fallbacks = fallback_effect_values();
   EXPECT_EQ(fallbacks[std::size_t(EffectId::ambient_occlusion)][0].x, 8.0);
   EXPECT_EQ(fallbacks[std::size_t(EffectId::outlines)][0].x, 1.0);
+}
+
+// Every preset names distinct effects that take parameters, each value accepted by the table's range.
+TEST(EffectTable, PresetsHoldValuesTheTableAccepts) {
+  ASSERT_FALSE(effect_presets().empty());
+  for (const EffectPreset& preset : effect_presets()) {
+    EXPECT_EQ(find_preset(preset.name), &preset);
+    std::array<bool, kEffectCount> seen{};
+    for (const PresetEffect& effect : preset.effects) {
+      const EffectDeclaration& declaration = effect_declaration(effect.id);
+      EXPECT_FALSE(seen[std::size_t(effect.id)]) << preset.name << " names " << declaration.name << " twice";
+      seen[std::size_t(effect.id)] = true;
+      EXPECT_FALSE(declaration.parameters.empty());
+      for (std::size_t i = 0; i < declaration.parameters.size(); ++i)
+        EXPECT_EQ(parameter_problem(declaration.parameters[i], effect.values[i]), "") << preset.name << " " << declaration.name;
+      for (std::size_t i = declaration.parameters.size(); i < kMaxEffectParameters; ++i) EXPECT_EQ(effect.values[i], glm::dvec3(0));
+    }
+  }
+  EXPECT_EQ(find_preset("goodsell"), nullptr);
+  EXPECT_EQ(preset_names(), "illustrative");
+}
+
+// The new parameters sit in words older formats kept zero: each at its member of gpu::SceneEffects.
+TEST(EffectTable, FogAndScaleParametersAtTheirMembers) {
+  gpu::SceneEffects record{};
+  store_parameters(record, EffectId::fog, {glm::dvec3(0.5, 0, 0), glm::dvec3(2, 0, 0), glm::dvec3(0.25, 0, 0)});
+  EXPECT_EQ(record.fog_range, glm::vec2(0.5, 2));
+  EXPECT_EQ(record.fog_strength, 0.25f);
+  store_parameters(record, EffectId::ambient_occlusion, {glm::dvec3(8, 0, 0), glm::dvec3(40, 0, 0), glm::dvec3(6, 0, 0)});
+  EXPECT_EQ(record.ao_radius_pixels, 6.f);
+  store_parameters(record, EffectId::outlines, {glm::dvec3(1, 0, 0), glm::dvec3(5, 0, 0), glm::dvec3(0), glm::dvec3(9, 0, 0)});
+  EXPECT_EQ(record.outline_fade_pixels, 9.f);
+  EXPECT_EQ(load_parameters(record, EffectId::fog)[1].x, 2.0);
 }
 
 }  // namespace

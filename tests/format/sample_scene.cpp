@@ -102,8 +102,8 @@ SampleScene make_sample_scene() {
   e.clip_plane_count = 1;
   e.clip_box_min = vec4(-10, -10, -10, 1);
   e.clip_box_max = vec4(60, 10, 10, 0);
-  e.ambient_occlusion = vec4(8, 40, 0, 0);
-  e.shadow_light = vec4(0, 0.6f, 0.8f, 0);
+  e.ambient_occlusion = glm::vec2(8, 40);
+  e.shadow_light = glm::vec3(0, 0.6f, 0.8f);
   s.effects = {e};
   s.keyframes = {{{vec4(0, -1, 0, 50), vec4(1, 0, 0, 0), vec4(0, 0, 1, -5)}, 0.0f, 1, 0, 0},
                  {{vec4(-1, 0, 0, 50), vec4(0, -1, 0, 10), vec4(0, 0, 1, -5)}, 2.0f, 1, 0, 0}};

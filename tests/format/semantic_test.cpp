@@ -228,17 +228,18 @@ const Case kCases[] = {
     {"AO rays 0", [](SampleScene& s) { s.effects[0].ambient_occlusion.x = 0; }, Rule::bad_value, SectionKind::effects, 208},
     {"AO rays 2.5", [](SampleScene& s) { s.effects[0].ambient_occlusion.x = 2.5f; }, Rule::bad_value, SectionKind::effects, 208},
     {"AO radius negative", [](SampleScene& s) { s.effects[0].ambient_occlusion.y = -1; }, Rule::bad_value, SectionKind::effects, 212},
-    {"jitter without the flag", [](SampleScene& s) { s.effects[0].jitter = vec4(5, 1, 0, 0); }, Rule::nonzero_reserved,
+    {"jitter without the flag", [](SampleScene& s) { s.effects[0].jitter = glm::vec2(5, 1); }, Rule::nonzero_reserved,
      SectionKind::effects, 192},
     {"jitter amplitude 200",
      [](SampleScene& s) {
        s.scene[0].effect_flags |= package_flag(EffectId::jitter);
-       s.effects[0].jitter = vec4(200, 1, 0, 0);
+       s.effects[0].jitter = glm::vec2(200, 1);
      },
      Rule::bad_value, SectionKind::effects, 192},
-    {"shadow light zero", [](SampleScene& s) { s.effects[0].shadow_light = vec4(0); }, Rule::bad_value, SectionKind::effects, 224},
+    {"shadow light zero", [](SampleScene& s) { s.effects[0].shadow_light = glm::vec3(0); }, Rule::bad_value, SectionKind::effects, 224},
     {"outline parameter while outlines are off", [](SampleScene& s) { s.effects[0].outline_crease_depth = 1; }, Rule::nonzero_reserved, SectionKind::effects, 248},
-    {"effects reserved", [](SampleScene& s) { s.effects[0].jitter.w = 1; }, Rule::nonzero_reserved, SectionKind::effects, 204},
+    {"effects reserved", [](SampleScene& s) { s.effects[0].clip_box_max.w = 1; }, Rule::nonzero_reserved, SectionKind::effects, 156},
+    {"fog set while off", [](SampleScene& s) { s.effects[0].fog_strength = 0.5f; }, Rule::nonzero_reserved, SectionKind::effects, 220},
     {"outline width beyond 8 px",
      [](SampleScene& s) {
        s.scene[0].effect_flags |= package_flag(EffectId::outlines);

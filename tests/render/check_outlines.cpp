@@ -1,88 +1,203 @@
-// Outlines lie exactly on the discontinuities of the ids image. With the same camera, a frame with
-// outlines must show the outline colour on every pixel the rule below selects from its own ids and
-// depths, and exactly the plain frame's colour everywhere else; the hits must not change.
-// The rule, written here from docs/effects.md and not from the shader: a pixel is outlined when a
-// pixel within WIDTH (Chebyshev distance, inside the image) was hit, is nearer, and shows another
-// molecule copy, or the same copy nearer by more than CREASE Å; the background is infinitely far.
-// Usage: check_outlines PLAIN.png PLAIN.ids OUTLINED.png OUTLINED.ids WIDTH CREASE RGBA_HEX
+// Outlines are exactly what the rule of docs/effects.md makes of the ids image. With the same camera,
+// a frame with outlines must show, on every pixel, the plain frame's colour mixed towards the outline
+// colour by the strength the rule computes from the ids and depths around it (±1 per channel for
+// rounding); the hits must not change.
+// The rule, written here from docs/effects.md and not from the shader: for each pixel q within WIDTH
+// (Chebyshev distance, inside the image) that was hit and is nearer than the pixel p (the background
+// is infinitely far), with f = depth(q)·2·tan(fov/2)/height the Å one pixel spans at q:
+//   shown = ramp(FADE/2, FADE, R/f), R the bounding radius of q's molecule type (1 when FADE is 0);
+//   same copy:    shown · ramp(CREASE, 2·CREASE, depth(p) − depth(q));
+//   another copy: max(shown, ramp(2, 8, (depth(p) − depth(q)) / f));
+// p's strength is the largest over its q, ramp the smoothstep from 0 to 1.
+// It also reports, for the measures: the share of hit pixels outlines change, and for a named
+// molecule type, every copy of it that covers MIN_PIXELS must have ≥ 90 % of the pixels around it (just
+// outside, farther) darkened at least half-way.
+// Usage: check_outlines PKG PLAIN.png PLAIN.ids OUTLINED.png OUTLINED.ids WIDTH CREASE FADE RGBA_HEX FOV_DEGREES
+//        [MAX_CHANGED_SHARE [TYPE MIN_PIXELS]]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <map>
+#include <string>
 #include <vector>
 
+#include "format/package_view.hpp"
+#include "format/validator.hpp"
 #include "tests/render/rendered_frame.hpp"
 
 namespace {
 
 using nano::gpu::PixelHit;
+constexpr std::uint32_t kNoHit = nano::gpu::kNoHit;
 
-bool same_hit(const PixelHit& a, const PixelHit& b) {
-  return a.atom == b.atom && a.copy_number_lo == b.copy_number_lo && a.copy_number_hi == b.copy_number_hi &&
-         (a.depth == b.depth || (std::isinf(a.depth) && std::isinf(b.depth)));
+struct Rule {
+  int width;
+  double crease, fade, pixel_per_depth;  // pixel_per_depth: Å a pixel spans per Å of depth
+  std::vector<double> reach;             // per molecule type
+  const nano::format::PackageView* view;
+
+  std::uint32_t type_of(std::uint32_t atom) const {
+    for (std::uint32_t t = 0; t < view->molecules.size(); ++t)
+      if (atom >= view->molecules[t].first_atom && atom - view->molecules[t].first_atom < view->molecules[t].atom_count) return t;
+    return ~0u;
+  }
+};
+
+double ramp(double lo, double hi, double x) {
+  const double u = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+  return u * u * (3 - 2 * u);
 }
 
-std::vector<bool> expected_outline(const std::vector<PixelHit>& ids, int w, int h, int width, float crease) {
-  const auto depth = [&](const PixelHit& p) {
-    return p.atom == nano::gpu::kNoHit ? std::numeric_limits<float>::infinity() : p.depth;
-  };
-  std::vector<bool> out(ids.size(), false);
+double depth_of(const PixelHit& p) { return p.atom == kNoHit ? std::numeric_limits<double>::infinity() : double(p.depth); }
+
+bool same_copy(const PixelHit& a, const PixelHit& b) {
+  return a.atom != kNoHit && a.copy_number_lo == b.copy_number_lo && a.copy_number_hi == b.copy_number_hi;
+}
+
+std::vector<double> expected_strength(const std::vector<PixelHit>& ids, int w, int h, const Rule& rule) {
+  std::vector<double> out(ids.size(), 0.0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const PixelHit& here = ids[std::size_t(y) * w + x];
-      for (int qy = std::max(0, y - width); qy <= std::min(h - 1, y + width) && !out[std::size_t(y) * w + x]; ++qy)
-        for (int qx = std::max(0, x - width); qx <= std::min(w - 1, x + width); ++qx) {
+      double strength = 0;
+      for (int qy = std::max(0, y - rule.width); qy <= std::min(h - 1, y + rule.width); ++qy)
+        for (int qx = std::max(0, x - rule.width); qx <= std::min(w - 1, x + rule.width); ++qx) {
           const PixelHit& there = ids[std::size_t(qy) * w + qx];
-          if (there.atom == nano::gpu::kNoHit || !(depth(there) < depth(here))) continue;
-          const bool same_copy = here.atom != nano::gpu::kNoHit && here.copy_number_lo == there.copy_number_lo &&
-                                 here.copy_number_hi == there.copy_number_hi;
-          if (!same_copy || depth(here) - depth(there) > crease) {
-            out[std::size_t(y) * w + x] = true;
-            break;
-          }
+          if (there.atom == kNoHit || !(depth_of(there) < depth_of(here))) continue;
+          const double pixel = std::max(depth_of(there) * rule.pixel_per_depth, 1e-30);
+          const std::uint32_t type = rule.type_of(there.atom);
+          const double reach = type < rule.reach.size() ? rule.reach[type] : 0.0;
+          const double shown = rule.fade > 0 ? ramp(rule.fade / 2, rule.fade, reach / pixel) : 1.0;
+          const double gap = depth_of(here) - depth_of(there);
+          const double edge = same_copy(here, there) ? shown * ramp(rule.crease, 2 * rule.crease, gap)
+                                                     : std::max(shown, ramp(8, 32, gap / pixel));
+          strength = std::max(strength, edge);
         }
+      out[std::size_t(y) * w + x] = strength;
     }
   return out;
+}
+
+int channel(std::uint32_t rgba, int c) { return int((rgba >> (8 * c)) & 255u); }
+
+std::uint32_t mixed(std::uint32_t a, std::uint32_t b, double s) {
+  std::uint32_t out = 255u << 24;
+  for (int c = 0; c < 3; ++c) out |= std::uint32_t(std::lround(channel(a, c) + s * (channel(b, c) - channel(a, c)))) << (8 * c);
+  return out;
+}
+
+bool close(std::uint32_t a, std::uint32_t b) {
+  for (int c = 0; c < 4; ++c)
+    if (std::abs(channel(a, c) - channel(b, c)) > 1) return false;
+  return true;
+}
+
+// Copies of `type` covering at least `min_pixels`, and how many of them have ≥ 90 % of their outer
+// ring (8-neighbours of their pixels that show something farther) darkened half-way or more.
+std::pair<std::size_t, std::size_t> outlined_copies(const std::vector<PixelHit>& ids, const std::vector<double>& strength, int w, int h,
+                                                    const Rule& rule, std::uint32_t type, std::size_t min_pixels) {
+  struct Count {
+    std::size_t pixels = 0, ring = 0, dark = 0;
+  };
+  std::map<std::uint64_t, Count> copies;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const PixelHit& p = ids[std::size_t(y) * w + x];
+      if (p.atom == kNoHit || rule.type_of(p.atom) != type) continue;
+      const std::uint64_t key = (std::uint64_t(p.copy_number_hi) << 32) | p.copy_number_lo;
+      ++copies[key].pixels;
+    }
+  for (auto& [key, count] : copies) {
+    std::vector<bool> ring(ids.size(), false);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const PixelHit& p = ids[std::size_t(y) * w + x];
+        if (p.atom == kNoHit || ((std::uint64_t(p.copy_number_hi) << 32) | p.copy_number_lo) != key) continue;
+        for (int qy = std::max(0, y - 1); qy <= std::min(h - 1, y + 1); ++qy)
+          for (int qx = std::max(0, x - 1); qx <= std::min(w - 1, x + 1); ++qx) {
+            const std::size_t q = std::size_t(qy) * w + qx;
+            if (!ring[q] && !same_copy(ids[q], p) && depth_of(ids[q]) > depth_of(p)) ring[q] = true;
+          }
+      }
+    for (std::size_t q = 0; q < ring.size(); ++q)
+      if (ring[q]) {
+        ++count.ring;
+        count.dark += strength[q] >= 0.5;
+      }
+  }
+  std::size_t large = 0, outlined = 0;
+  for (const auto& [key, count] : copies) {
+    if (count.pixels < min_pixels) continue;
+    ++large;
+    outlined += count.ring > 0 && 10 * count.dark >= 9 * count.ring;
+  }
+  return {large, outlined};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 8)
-    return std::fprintf(stderr, "usage: check_outlines PLAIN.png PLAIN.ids OUTLINED.png OUTLINED.ids WIDTH CREASE RGBA_HEX\n"), 2;
+  if (argc != 11 && argc != 12 && argc != 14)
+    return std::fprintf(stderr, "usage: check_outlines PKG PLAIN.png PLAIN.ids OUTLINED.png OUTLINED.ids WIDTH CREASE FADE RGBA_HEX "
+                                "FOV_DEGREES [MAX_CHANGED_SHARE [TYPE MIN_PIXELS]]\n"),
+           2;
   try {
+    const nano::format::Package package = nano::format::open_validated(argv[1]);
+    const nano::format::PackageView view(package);
     using nano::render::test::read_rendered_frame;
-    const auto plain_frame = read_rendered_frame(argv[1], argv[2]);
-    const auto outlined_frame = read_rendered_frame(argv[3], argv[4]);
+    const auto plain_frame = read_rendered_frame(argv[2], argv[3]);
+    const auto outlined_frame = read_rendered_frame(argv[4], argv[5]);
     if (!plain_frame.same_size(outlined_frame)) return std::fprintf(stderr, "sizes differ\n"), 1;
     const std::uint32_t w = plain_frame.width, h = plain_frame.height;
     const auto& plain = plain_frame.rgba;
-    const auto& plain_ids = plain_frame.ids;
     const auto& outlined = outlined_frame.rgba;
     const auto& ids = outlined_frame.ids;
-    const int width = std::atoi(argv[5]);
-    const float crease = float(std::atof(argv[6]));
-    const std::uint32_t colour = std::uint32_t(std::strtoul(argv[7], nullptr, 16));
-    const std::vector<bool> mask = expected_outline(ids, int(w), int(h), width, crease);
-    std::size_t outline = 0, hits = 0, wrong_outline = 0, wrong_rest = 0, other_hit = 0, outline_on_copies = 0;
-    for (std::size_t i = 0; i < mask.size(); ++i) {
-      if (!same_hit(plain_ids[i], ids[i])) ++other_hit;
-      if (ids[i].atom != nano::gpu::kNoHit) ++hits;
-      if (mask[i]) {
-        ++outline;
-        if (ids[i].atom != nano::gpu::kNoHit) ++outline_on_copies;
-        if (outlined[i] != colour) ++wrong_outline;
-      } else if (outlined[i] != plain[i]) {
-        ++wrong_rest;
+    Rule rule{std::atoi(argv[6]), std::atof(argv[7]), std::atof(argv[8]), 0, {}, &view};
+    const std::uint32_t colour = std::uint32_t(std::strtoul(argv[9], nullptr, 16));
+    const double fov = std::atof(argv[10]) * M_PI / 180;
+    rule.pixel_per_depth = 2 * std::tan(fov / 2) / h;
+    for (const auto& m : view.molecules) rule.reach.push_back(m.aabb_min.w);
+    const std::vector<double> strength = expected_strength(ids, int(w), int(h), rule);
+    std::size_t hits = 0, changed_hits = 0, outline = 0, full = 0, wrong = 0, other_hit = 0;
+    for (std::size_t i = 0; i < strength.size(); ++i) {
+      const PixelHit& a = plain_frame.ids[i];
+      const PixelHit& b = ids[i];
+      if (a.atom != b.atom || a.copy_number_lo != b.copy_number_lo || a.copy_number_hi != b.copy_number_hi ||
+          !(a.depth == b.depth || (std::isinf(a.depth) && std::isinf(b.depth))))
+        ++other_hit;
+      const bool hit = b.atom != kNoHit;
+      hits += hit;
+      changed_hits += hit && outlined[i] != plain[i];
+      outline += strength[i] > 0;
+      full += strength[i] >= 1;
+      if (!close(outlined[i], mixed(plain[i], colour, strength[i]))) {
+        if (wrong < 5)
+          std::printf("pixel (%zu, %zu): expected %08x (strength %.4f over %08x), got %08x\n", i % w, i / w,
+                      mixed(plain[i], colour, strength[i]), strength[i], plain[i], outlined[i]);
+        ++wrong;
       }
     }
-    std::printf("%ux%u: %zu hit pixels, %zu outline pixels (%zu of them on a molecule: creases and copies behind others); "
-                "%zu outline pixels without the colour, %zu other pixels changed, %zu with another hit\n",
-                w, h, hits, outline, outline_on_copies, wrong_outline, wrong_rest, other_hit);
-    // Not vacuous: the view must have outlines on copies behind others and a tenth of its hit pixels
-    // left plain (a view where every pixel is another copy would outline everything).
-    if (outline_on_copies == 0 || 10 * (hits - outline_on_copies) < hits) return 1;
-    return wrong_outline == 0 && wrong_rest == 0 && other_hit == 0 ? 0 : 1;
+    const double share = hits ? double(changed_hits) / double(hits) : 0.0;
+    std::printf("%ux%u: %zu hit pixels, %zu changed by outlines (%.3f); %zu pixels with strength > 0, %zu at full strength; "
+                "%zu pixels not as the rule says, %zu with another hit\n",
+                w, h, hits, changed_hits, share, outline, full, wrong, other_hit);
+    bool ok = wrong == 0 && other_hit == 0 && full > 0;  // not vacuous: some contour at full strength
+    if (argc >= 12 && !(share <= std::atof(argv[11]))) {
+      std::printf("outlines change %.3f of the hit pixels, more than %s\n", share, argv[11]);
+      ok = false;
+    }
+    if (argc == 14) {
+      std::uint32_t type = ~0u;
+      for (std::uint32_t t = 0; t < view.molecules.size(); ++t)
+        if (std::string(view.strings.data() + view.molecules[t].name_offset, view.molecules[t].name_length) == argv[12]) type = t;
+      if (type == ~0u) return std::fprintf(stderr, "the package has no molecule type %s\n", argv[12]), 1;
+      const auto [large, outlined_count] = outlined_copies(ids, strength, int(w), int(h), rule, type, std::size_t(std::atoi(argv[13])));
+      std::printf("%s: %zu copies of at least %s pixels, %zu of them outlined\n", argv[12], large, argv[13], outlined_count);
+      if (large == 0 || outlined_count != large) ok = false;
+    }
+    return ok ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;

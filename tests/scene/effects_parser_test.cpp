@@ -103,7 +103,39 @@ TEST(EffectsParser, ClippingAmbientOcclusionShadows) {
                      "missing required key");
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"shadows": {"light_direction": [0, 0, 0]}}})"),
                      "effects.shadows.light_direction", "non-zero");
-  EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"fog": {}}})"), "effects.fog", "unknown key");
+  EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"bloom": {}}})"), "effects.bloom", "unknown key");
+}
+
+TEST(EffectsParser, FogTakesTheTableFallbacksAndRanges) {
+  const Effects e = effects_from(R"({"effects": {"fog": {"strength": 0.5}}})");
+  ASSERT_TRUE(e[EffectId::fog].has_value());
+  EXPECT_EQ((*e[EffectId::fog])[0].x, 0.8);  // start
+  EXPECT_EQ((*e[EffectId::fog])[1].x, 0.8);  // span
+  EXPECT_EQ((*e[EffectId::fog])[2].x, 0.5);
+  EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"fog": {"span": 0}}})"), "effects.fog.span", "> 0");
+  EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"fog": {"strength": 1.5}}})"), "effects.fog.strength", "[0, 1]");
+}
+
+// The preset turns its effects on with its values; what the scene writes beside it wins, key by key,
+// and an effect's required keys are no longer required under a preset.
+TEST(EffectsParser, PresetThenTheScenesOwnKeys) {
+  const Effects plain = effects_from(R"({"effects": {"preset": "illustrative"}})");
+  const EffectPreset& preset = *find_preset("illustrative");
+  for (const PresetEffect& effect : preset.effects) {
+    ASSERT_TRUE(plain[effect.id].has_value()) << effect_declaration(effect.id).name;
+    EXPECT_EQ(*plain[effect.id], effect.values);
+  }
+  EXPECT_FALSE(plain[EffectId::shadows].has_value());
+  const Effects tuned = effects_from(R"({"effects": {"preset": "illustrative", "outlines": {"width_pixels": 2},
+                                                     "ambient_occlusion": {"rays": 4}, "shadows": {"light_direction": [0, 1, 0]}}})");
+  ParameterValues outlines = *plain[EffectId::outlines];
+  outlines[0].x = 2;
+  EXPECT_EQ(*tuned[EffectId::outlines], outlines);
+  EXPECT_EQ((*tuned[EffectId::ambient_occlusion])[0].x, 4.0);
+  EXPECT_EQ((*tuned[EffectId::ambient_occlusion])[1], (*plain[EffectId::ambient_occlusion])[1]);
+  EXPECT_TRUE(tuned[EffectId::shadows].has_value());
+  EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"preset": "ilustrative"}})"), "effects.preset", "unknown preset \"ilustrative\" (illustrative)");
+  EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"preset": 3}})"), "effects.preset", "string");
 }
 
 TEST(EffectsParser, Box) {
