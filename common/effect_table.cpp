@@ -42,13 +42,13 @@ constexpr EffectParameter kOutlines[] = {
     {"colour", "", ParameterKind::colour, 0, 1, false, false, {0, 0, 0}, NANO_SLOT(outline_colour), PanelWidget::colour_picker, 0, 1},
     {"fade_pixels", "px", ParameterKind::number, 0, 256, false, false, {12, 0, 0}, NANO_SLOT(outline_fade_pixels), PanelWidget::slider, 0, 32},
 };
-// Depth cueing relative to the focus (the distance from the eye to the camera's look-at point), so it
-// reads the same from a whole cell down to one protein: colour fades towards the background from
-// start × focus over span × focus, at most by strength.
+// Depth cueing measured in the frame's own depth range (nearest to farthest hit of an 8 × 8 grid of its
+// pixels), so it reads the same from a whole cell down to one protein: colour fades towards the
+// background from start over span of that range, at most by strength.
 constexpr EffectParameter kFog[] = {
-    {"start", "× focus", ParameterKind::number, 0, 100, false, false, {0.8, 0, 0}, NANO_SLOT(fog_range), PanelWidget::slider, 0, 4},
-    {"span", "× focus", ParameterKind::number, 0, 100, true, false, {0.8, 0, 0}, NANO_SLOT_AFTER(fog_range, 1), PanelWidget::log_slider, 0.05, 10},
-    {"strength", "", ParameterKind::number, 0, 1, false, false, {0.7, 0, 0}, NANO_SLOT(fog_strength), PanelWidget::slider, 0, 1},
+    {"start", "× depth range", ParameterKind::number, 0, 10, false, false, {0, 0, 0}, NANO_SLOT(fog_range), PanelWidget::slider, 0, 1},
+    {"span", "× depth range", ParameterKind::number, 0, 10, true, false, {1, 0, 0}, NANO_SLOT_AFTER(fog_range, 1), PanelWidget::log_slider, 0.05, 10},
+    {"strength", "", ParameterKind::number, 0, 1, false, false, {0.6, 0, 0}, NANO_SLOT(fog_strength), PanelWidget::slider, 0, 1},
 };
 #undef NANO_SLOT
 #undef NANO_SLOT_AFTER
@@ -66,19 +66,19 @@ constexpr EffectDeclaration kEffects[] = {
      16u, gpu::NANO_SPEC_SHADOWS, kShadows, "", "none: colour only (render.effects.shading checks it)", false},
     {EffectId::outlines, "outlines", "outlines", "outlines", "contours where the molecule or the depth changes between pixels, fading with the copy's size on screen",
      32u, gpu::NANO_SPEC_OUTLINES, kOutlines, "", "none: colour only (render.effects.outlines checks it against the ids image)", true},
-    {EffectId::fog, "fog", "fog", "fog", "depth cueing: what lies beyond the focus fades towards the background",
-     64u, gpu::NANO_SPEC_FOG, kFog, "", "none: colour only (render.effects.fog checks it against the depths)", false},
+    {EffectId::fog, "fog", "fog", "fog", "depth cueing: the farther within the frame's depth range, the paler",
+     64u, gpu::NANO_SPEC_FOG, kFog, "", "none: colour only (render.effects.fog checks it against the depths)", true},
 };
-// Goodsell's plates: contours that fade with a copy's size on screen, depth cueing from the focus on,
+// Goodsell's plates: contours that fade with a copy's size on screen, depth cueing over the frame's depths,
 // occlusion that reaches 8 pixels whatever the distance (chosen on the virion, the red blood cell and
 // blood at four distances each: docs/effects.md).
 constexpr PresetEffect kIllustrative[] = {
     {EffectId::outlines, {glm::dvec3(1, 0, 0), glm::dvec3(5, 0, 0), glm::dvec3(0, 0, 0), glm::dvec3(12, 0, 0)}},
-    {EffectId::fog, {glm::dvec3(0.8, 0, 0), glm::dvec3(0.8, 0, 0), glm::dvec3(0.7, 0, 0), glm::dvec3(0)}},
+    {EffectId::fog, {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0.6, 0, 0), glm::dvec3(0)}},
     {EffectId::ambient_occlusion, {glm::dvec3(8, 0, 0), glm::dvec3(40, 0, 0), glm::dvec3(8, 0, 0), glm::dvec3(0)}},
 };
 constexpr EffectPreset kPresets[] = {
-    {"illustrative", "outlines that fade with a copy's size, fog beyond the focus, occlusion at every scale", kIllustrative},
+    {"illustrative", "outlines that fade with a copy's size, fog over the frame's depths, occlusion at every scale", kIllustrative},
 };
 
 static_assert(std::size(kEffects) == kEffectCount, "one row per EffectId");

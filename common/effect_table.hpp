@@ -36,7 +36,7 @@ enum class PanelWidget : std::uint8_t { slider, log_slider, direction, colour_pi
 
 struct EffectParameter {
   std::string_view key;   // in the effect's scene object; the option is --<cli_prefix>-<key, '_' → '-'>
-  std::string_view unit;  // "Å", "px", "°", "Hz", "× focus" or "" (shown by --help and the panel)
+  std::string_view unit;  // "Å", "px", "°", "Hz", "× depth range" or "" (shown by --help and the panel)
   ParameterKind kind;
   double min, max;        // numbers: the accepted range; min is excluded when min_exclusive
   bool min_exclusive;

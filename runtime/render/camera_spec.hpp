@@ -14,8 +14,8 @@
 namespace nano::render {
 
 // The focus distance `render`, `bench` and the viewer shade with: from the eye to the look-at point
-// (RenderSettings::focus_distance: the depth cue and fog are measured in it). One rule, so their
-// frames stay identical.
+// (RenderSettings::focus_distance: the depth cue is measured in it). One rule, so their frames stay
+// identical.
 float focus_distance_for(const Camera& camera);
 
 // Keys may come in any order and any may be left out (they keep `base`'s value); a key given twice

@@ -284,8 +284,7 @@ struct Renderer::Impl {
     frame.effects.z = e.sample_index;
     frame.effects.w = scene.first_bead_level();
     frame.flat_eye = variant(settings).flat ? scene.flat_eye(ulas_origin(camera)) : glm::vec4(0.f);
-    frame.lod = glm::vec4(2.0f * camera.forward.w / float(camera.size.y), float(settings.lod_pixels), gpu::NANO_TYPICAL_ATOM_DIAMETER,
-                           settings.focus_distance > 0 ? settings.focus_distance : 1.f);
+    frame.lod = glm::vec4(2.0f * camera.forward.w / float(camera.size.y), float(settings.lod_pixels), gpu::NANO_TYPICAL_ATOM_DIAMETER, 0.f);
     const glm::vec3 jitter = jitter_frame_parameters(e);
     frame.effect_parameters = glm::vec4(e.ao_radius(), jitter.x, jitter.y, jitter.z);
     frame.effect_record = effect_record(e);

@@ -32,8 +32,7 @@ struct RenderSettings {
   Precision precision = Precision::two_float_eye;
   glm::vec3 light{0.3f, 0.5f, 0.8f}; // direction towards the light (world; normalised here)
   // Å from the eye to what it looks at: colour fades towards the background over four times it (the
-  // built-in depth cue), and the fog effect starts and spans in multiples of it. 0: no depth cue (fog
-  // then takes 1 Å, so it is defined).
+  // built-in depth cue). 0: no depth cue.
   float focus_distance = 0;
   EffectSettings effects;            // all off by default; render::package_effects gives the scene's
   bool without_effect_code = false;  // the shader built without any effect or counter code (bench: what "off" costs)

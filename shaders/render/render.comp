@@ -87,7 +87,7 @@ layout(constant_id = NANO_SPEC_JITTER) const bool kJitter = false;           // 
 layout(constant_id = NANO_SPEC_AMBIENT_OCCLUSION) const bool kAmbientOcclusion = false; // frame.effects.y short rays per pixel
 layout(constant_id = NANO_SPEC_SHADOWS) const bool kShadows = false;          // one shadow ray towards frame.light
 layout(constant_id = NANO_SPEC_OUTLINES) const bool kOutlines = false;        // contours, in the image pass
-layout(constant_id = NANO_SPEC_FOG) const bool kFog = false;                  // depth cueing from the focus (frame.lod.w)
+layout(constant_id = NANO_SPEC_FOG) const bool kFog = false;                  // depth cueing, in the image pass
 // Work counters per pixel (shared/ray_counters.h, `nanoview bench --counters`).
 layout(constant_id = NANO_SPEC_COUNTERS) const bool kCounters = false;
 // Level of detail: copies whose atoms span less than frame.lod.y pixels are drawn as their beads.
@@ -932,9 +932,11 @@ vec3 srgb_from_linear(vec3 c) {
 // - where copies meet at a depth step of 2 to 8 pixel footprints and more (NANO_OUTLINE_STEP_PIXELS),
 //   the contour ramps in whatever their size: the silhouettes of what is large on screen (a spike
 //   standing off the membrane, the limb of a cell) stay; sub-pixel bumps draw nothing;
-// - a crease ramps in from crease to 2 × crease Å, scaled by the copy's own fade.
+// - a crease ramps in from c to 2c, c the larger of the crease depth and 2 pixel footprints
+//   (NANO_CREASE_PIXELS), scaled by the copy's own fade: from afar a spike keeps its big folds only.
 // The strength in [0, 1] mixes the pixel's colour towards the outline colour: a grey ramp, not a switch.
 const float NANO_OUTLINE_STEP_PIXELS = 8.0;
+const float NANO_CREASE_PIXELS = 2.0;
 
 float smooth_ramp(float lo, float hi, float x) {
   float u = clamp((x - lo) / (hi - lo), 0.0, 1.0);
@@ -967,7 +969,8 @@ float outline_strength(uvec2 px, uint index) {
       float shown = fade > 0.0 ? smooth_ramp(0.5 * fade, fade, reach_of_atom(there.atom) / pixel) : 1.0;
       float gap = here_depth - there.depth;
       bool same = here_hit && there.copy_number_lo == here.copy_number_lo && there.copy_number_hi == here.copy_number_hi;
-      float edge = same ? shown * smooth_ramp(crease, 2.0 * crease, gap)
+      float fold = max(crease, NANO_CREASE_PIXELS * pixel);
+      float edge = same ? shown * smooth_ramp(fold, 2.0 * fold, gap)
                         : max(shown, smooth_ramp(NANO_OUTLINE_STEP_PIXELS, 4.0 * NANO_OUTLINE_STEP_PIXELS, gap / pixel));
       strength = max(strength, edge);
     }
@@ -981,19 +984,54 @@ uint mix_rgba8(uint a, uint b, float s) {
   return m.r | (m.g << 8) | (m.b << 16) | (255u << 24);
 }
 
-// Fog: colour fades towards the background (white) as the depth t passes from start to start + span
-// focus distances (smoothly), at most by `strength`. The focus (frame.lod.w > 0) is the distance from
-// the eye to the camera's look-at point, so the cue reads alike at every scale.
-float fog_amount(float t) {
-  float focus = frame.lod.w;
-  float start = frame.effect_record.fog_range.x * focus;
-  return frame.effect_record.fog_strength * smooth_ramp(start, start + frame.effect_record.fog_range.y * focus, t);
+// Fog (depth cueing): a hit pixel's colour fades towards the background (white, in linear light) as its
+// depth passes through the frame's depth range, smoothly from start to start + span of that range, at
+// most by `strength`. The range is the nearest and farthest hit among the pixels of an 8 × 8 grid
+// (pixel (⌊(2i + 1)·W / 16⌋, ⌊(2j + 1)·H / 16⌋)), so the cue spans what the frame shows at any
+// scale: the rim and the dimple of a red cell seen whole, the cells behind a cell in blood, the
+// lipids behind a protein. No grid pixel hit: no fog.
+vec2 frame_depth_range() {
+  uvec2 size = frame.camera.size.xy;
+  vec2 range = vec2(placement_inf(), -placement_inf());
+  for (uint j = 0u; j < 8u; ++j)
+    for (uint i = 0u; i < 8u; ++i) {
+      PixelHit h = finished_hits[((2u * j + 1u) * size.y / 16u) * size.x + (2u * i + 1u) * size.x / 16u];
+      if (h.atom != kNoHit) range = vec2(min(range.x, h.depth), max(range.y, h.depth));
+    }
+  return range;
+}
+
+float fog_amount(float t, vec2 range) {
+  if (!(range.x <= range.y)) return 0.0;
+  float extent = range.y - range.x;
+  float start = range.x + frame.effect_record.fog_range.x * extent;
+  float end = start + frame.effect_record.fog_range.y * extent;
+  float ramp = end > start ? smooth_ramp(start, end, t) : (t > start ? 1.0 : 0.0);
+  return frame.effect_record.fog_strength * ramp;
+}
+
+vec3 linear_from_srgb(vec3 c) {
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+
+uint fogged_rgba8(uint rgba, float amount) {
+  vec3 c = linear_from_srgb(vec3(uvec3(rgba, rgba >> 8, rgba >> 16) & uvec3(255u)) / 255.0);
+  uvec3 b = uvec3(round(srgb_from_linear(mix(c, vec3(1.0), amount)) * 255.0));
+  return b.r | (b.g << 8) | (b.b << 16) | (255u << 24);
 }
 
 // Any image-pass effect compiled in: without one, the pass test below is not in the code at all.
-const bool kImagePass = kOutlines;
+const bool kImagePass = kOutlines || kFog;
 
+// Fog first, on the hit pixels by their own depth; then the contours over it, unfogged.
 void image_pass(uvec2 px, uint index) {
+  if (kFog) {
+    PixelHit here = finished_hits[index];
+    if (here.atom != kNoHit) {
+      float amount = fog_amount(here.depth, frame_depth_range());
+      if (amount > 0.0) colours[index] = fogged_rgba8(colours[index], amount);
+    }
+  }
   if (kOutlines) {
     float s = outline_strength(px, index);
     if (s > 0.0) colours[index] = mix_rgba8(colours[index], frame.effect_record.outline_colour, s);
@@ -1066,10 +1104,9 @@ void main() {
     vec3 base = molecules[hit_type].colour.rgb;
     float facing = abs(dot(n, d));
     float ambient = kAmbientOcclusion ? float(open) / float(ao_rays) : 1.0;
-    vec3 lit = base * ((0.25 + 0.2 * facing) * ambient + 0.55 * lambert);
+    vec3 lit = base * ((0.25 + 0.2 * facing) + 0.55 * lambert) * (0.4 + 0.6 * ambient);
     float cue = frame.light.w > 0.0 ? exp(-t / frame.light.w) : 1.0;
     colour = mix(vec3(1.0), lit, 0.35 + 0.65 * cue);
-    if (kFog) colour = mix(colour, vec3(1.0), fog_amount(t));
   }
   hits[index] = hit;
   vec3 srgb = srgb_from_linear(colour);

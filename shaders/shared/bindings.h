@@ -81,7 +81,7 @@ NANO_CONST int NANO_SPEC_MEDIUM = 14;
 // Some molecule type is hidden (--hide; its levels have count 0): candidates of a hidden type are
 // dropped before their placement, ownership or keep query is computed.
 NANO_CONST int NANO_SPEC_HIDDEN_TYPES = 15;
-// Fog (depth cueing relative to the focus distance, RenderFrame.lod.w).
+// Fog (depth cueing over the frame's depth range, in the image pass).
 NANO_CONST int NANO_SPEC_FOG = 16;
 
 // shaders/explicit_instancing/instanced.comp, set 0 (explicit instancing: runtime/explicit_instancing/).

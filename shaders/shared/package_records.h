@@ -196,7 +196,7 @@ struct SceneEffects {
   vec4 spin;               // steady proxy motion (no keyframes): xyz unit axis, w degrees per second
   vec4 velocity;           // xyz: Å per second; w: reserved
   vec2 jitter;             // x: amplitude (degrees), y: frequency (Hz)
-  vec2 fog_range;          // x: start, y: span, as multiples of the focus distance (format ≤ 2.8: reserved zeros)
+  vec2 fog_range;          // x: start, y: span, as fractions of the frame's depth range (format ≤ 2.8: reserved zeros)
   vec2 ambient_occlusion;  // x: rays per pixel, y: radius (Å)
   float ao_radius_pixels;  // the radius at least this many pixels at the hit (format ≤ 2.8: reserved zero)
   float fog_strength;      // in [0, 1] (format ≤ 2.8: reserved zero)

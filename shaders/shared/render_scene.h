@@ -75,8 +75,7 @@ struct RenderFrame {
   vec4 effect_parameters;  // x: AO radius (Å); y: time (s); z: jitter amplitude (radians); w: jitter frequency (Hz)
   vec4 lod;       // level of detail: x: a pixel's footprint per Å of distance (2·tan(fov/2) / height);
                   // y: a copy whose atoms (z: their typical diameter, Å) span fewer pixels than this is
-                  // drawn as its beads; w: the focus distance (Å, > 0: RenderSettings::focus_distance), fog's
-                  // unit. effects.w holds the first bead level in `levels`.
+                  // drawn as its beads; w: reserved. effects.w holds the first bead level in `levels`.
   vec4 flat_eye;  // the flat level (FlatCopy): xyz: the eye in its space (eye − anchor, from double);
                   // w: 1 when it holds copies, 0 when every compartment instance is traced virtually
   vec4 clip[14];  // camera-relative world half-spaces (unit n, d): a point p stays iff n·p + d ≥ 0 for all

@@ -1,7 +1,10 @@
 // Ambient occlusion and shadows may only darken: with the same camera, the frame with the effects
 // must hit the very same atoms (they change shading, not visibility), no hit pixel may be brighter
 // than without them (occlusion and shadow only remove light), and some must be darker.
-// Usage: check_effect_shading PLAIN.png PLAIN.ids SHADED.png SHADED.ids MIN_DARKER_FRACTION
+// With LESS_THAN.png (a frame of the same view shaded otherwise): the mean over hit pixels of the
+// luminance kept (shaded / plain) must be at least 0.05 below that frame's: AO whose radius follows
+// the pixel must carry more than one measured in Å when seen from afar.
+// Usage: check_effect_shading PLAIN.png PLAIN.ids SHADED.png SHADED.ids MIN_DARKER_FRACTION [LESS_THAN.png]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,7 +18,8 @@ int luminance(std::uint32_t rgba) { return int(rgba & 255u) + int((rgba >> 8) & 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 6) return std::fprintf(stderr, "usage: check_effect_shading PLAIN.png PLAIN.ids SHADED.png SHADED.ids MIN_FRACTION\n"), 2;
+  if (argc != 6 && argc != 7)
+    return std::fprintf(stderr, "usage: check_effect_shading PLAIN.png PLAIN.ids SHADED.png SHADED.ids MIN_FRACTION [LESS_THAN.png]\n"), 2;
   try {
     using nano::render::test::read_rendered_frame;
     const auto plain_frame = read_rendered_frame(argv[1], argv[2]);
@@ -25,6 +29,13 @@ int main(int argc, char** argv) {
     const auto& plain_ids = plain_frame.ids;
     const auto& shaded = shaded_frame.rgba;
     const auto& shaded_ids = shaded_frame.ids;
+    std::vector<std::uint32_t> other;
+    if (argc == 7) {
+      std::uint32_t ow = 0, oh = 0;
+      other = nano::render::read_png(argv[6], ow, oh);
+      if (ow != plain_frame.width || oh != plain_frame.height) return std::fprintf(stderr, "%s differs in size\n", argv[6]), 1;
+    }
+    double kept = 0, other_kept = 0;
     std::size_t hit = 0, darker = 0, brighter = 0, other_hit = 0;
     for (std::size_t i = 0; i < plain.size(); ++i) {
       const auto& a = plain_ids[i];
@@ -39,6 +50,8 @@ int main(int argc, char** argv) {
         continue;
       }
       ++hit;
+      kept += double(luminance(shaded[i])) / std::max(1, luminance(plain[i]));
+      if (!other.empty()) other_kept += double(luminance(other[i])) / std::max(1, luminance(plain[i]));
       const int d = luminance(shaded[i]) - luminance(plain[i]);
       if (d > 3) ++brighter;  // 1 unit per channel of rounding
       if (d < -3) ++darker;
@@ -47,6 +60,10 @@ int main(int argc, char** argv) {
     std::printf("%zu hit pixels: %zu darker (%.3f), %zu brighter or changed background, %zu with another hit\n", hit, darker,
                 fraction, brighter, other_hit);
     if (other_hit != 0 || brighter != 0 || hit == 0 || fraction < std::atof(argv[5])) return 1;
+    if (!other.empty()) {
+      std::printf("luminance kept: %.3f, against %.3f in %s\n", kept / double(hit), other_kept / double(hit), argv[6]);
+      if (!(kept / double(hit) <= other_kept / double(hit) - 0.05)) return 1;
+    }
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

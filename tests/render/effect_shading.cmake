@@ -29,3 +29,27 @@ foreach(pair "ao;0.2" "shadows;0.1" "both;0.3")
     message(FATAL_ERROR "${variant} changed more than shading or did not darken enough")
   endif()
 endforeach()
+
+# From afar (the blood scene's camera, FAR_PACKAGE), AO whose rays reach 8 pixels' footprint must darken
+# the frame clearly more than the same AO measured in Å alone.
+set(far_common ${FAR_PACKAGE} --size 96x72 --no-scene-effects)
+foreach(variant plain angstrom pixels)
+  set(extra)
+  if(variant STREQUAL "angstrom")
+    set(extra --effect ao --ao-rays 8 --ao-radius 40)
+  elseif(variant STREQUAL "pixels")
+    set(extra --effect ao --ao-rays 8 --ao-radius 40 --ao-radius-pixels 8)
+  endif()
+  execute_process(COMMAND ${NANOVIEW} render ${far_common} ${extra} -o ${WORK}/far-ao-${variant}.png --ids ${WORK}/far-ao-${variant}.ids
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "render far ${variant} failed: ${out}${err}")
+  endif()
+endforeach()
+execute_process(COMMAND ${CHECK} ${WORK}/far-ao-plain.png ${WORK}/far-ao-plain.ids ${WORK}/far-ao-pixels.png ${WORK}/far-ao-pixels.ids 0.3
+                        ${WORK}/far-ao-angstrom.png
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message(STATUS "AO in pixels from afar: ${out}${err}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "AO with a radius in pixels changed more than shading, or does not carry more than AO in Å from afar")
+endif()
