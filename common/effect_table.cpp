@@ -74,7 +74,7 @@ constexpr EffectDeclaration kEffects[] = {
 // blood at four distances each: docs/effects.md).
 constexpr PresetEffect kIllustrative[] = {
     {EffectId::outlines, {glm::dvec3(1, 0, 0), glm::dvec3(5, 0, 0), glm::dvec3(0, 0, 0), glm::dvec3(12, 0, 0)}},
-    {EffectId::fog, {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0.6, 0, 0), glm::dvec3(0)}},
+    {EffectId::fog, {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0.5, 0, 0), glm::dvec3(0)}},
     {EffectId::ambient_occlusion, {glm::dvec3(8, 0, 0), glm::dvec3(40, 0, 0), glm::dvec3(8, 0, 0), glm::dvec3(0)}},
 };
 constexpr EffectPreset kPresets[] = {

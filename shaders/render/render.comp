@@ -929,9 +929,11 @@ vec3 srgb_from_linear(vec3 c) {
 // its own at infinite depth. Thresholds are measured on screen, at the nearer pixel's footprint:
 // - a copy's contours ramp in as its bounding radius grows from fade/2 to fade pixels (fade 0: always
 //   full), so a membrane seen whole is not a mesh of lines;
-// - where copies meet at a depth step of 2 to 8 pixel footprints and more (NANO_OUTLINE_STEP_PIXELS),
-//   the contour ramps in whatever their size: the silhouettes of what is large on screen (a spike
-//   standing off the membrane, the limb of a cell) stay; sub-pixel bumps draw nothing;
+// - against the background the contour is always full: the silhouette of a cell seen whole;
+// - where copies meet at a depth step of 8 to 32 pixel footprints (NANO_OUTLINE_STEP_PIXELS), the
+//   contour ramps in whatever their size, once the nearer copy spans a few pixels (its radius from 1
+//   to 3 pixels): the silhouettes of what is large on screen (a spike standing off the membrane, the
+//   limb of a cell in front of another) stay; sub-pixel bumps and sub-pixel copies draw nothing;
 // - a crease ramps in from c to 2c, c the larger of the crease depth and 2 pixel footprints
 //   (NANO_CREASE_PIXELS), scaled by the copy's own fade: from afar a spike keeps its big folds only.
 // The strength in [0, 1] mixes the pixel's colour towards the outline colour: a grey ramp, not a switch.
@@ -966,12 +968,14 @@ float outline_strength(uvec2 px, uint index) {
       PixelHit there = finished_hits[uint(q.y) * uint(size.x) + uint(q.x)];
       if (there.atom == kNoHit || !(there.depth < here_depth)) continue;  // only a nearer neighbour draws here
       float pixel = max(there.depth * frame.lod.x, 1e-30);  // Å one pixel spans at the nearer hit
-      float shown = fade > 0.0 ? smooth_ramp(0.5 * fade, fade, reach_of_atom(there.atom) / pixel) : 1.0;
+      float reach = reach_of_atom(there.atom);
+      float shown = fade > 0.0 ? smooth_ramp(0.5 * fade, fade, reach / pixel) : 1.0;
       float gap = here_depth - there.depth;
       bool same = here_hit && there.copy_number_lo == here.copy_number_lo && there.copy_number_hi == here.copy_number_hi;
       float fold = max(crease, NANO_CREASE_PIXELS * pixel);
-      float edge = same ? shown * smooth_ramp(fold, 2.0 * fold, gap)
-                        : max(shown, smooth_ramp(NANO_OUTLINE_STEP_PIXELS, 4.0 * NANO_OUTLINE_STEP_PIXELS, gap / pixel));
+      float step = here_hit ? smooth_ramp(NANO_OUTLINE_STEP_PIXELS, 4.0 * NANO_OUTLINE_STEP_PIXELS, gap / pixel) * smooth_ramp(1.0, 3.0, reach / pixel)
+                            : 1.0;
+      float edge = same ? shown * smooth_ramp(fold, 2.0 * fold, gap) : max(shown, step);
       strength = max(strength, edge);
     }
   return strength;
@@ -985,18 +989,22 @@ uint mix_rgba8(uint a, uint b, float s) {
 }
 
 // Fog (depth cueing): a hit pixel's colour fades towards the background (white, in linear light) as its
-// depth passes through the frame's depth range, smoothly from start to start + span of that range, at
-// most by `strength`. The range is the nearest and farthest hit among the pixels of an 8 × 8 grid
+// view depth (its distance along the camera's forward axis: a wall facing the camera is one depth)
+// passes through the frame's depth range, smoothly from start to start + span of that range, at most
+// by `strength`. The range is the least and greatest view depth hit among the pixels of an 8 × 8 grid
 // (pixel (⌊(2i + 1)·W / 16⌋, ⌊(2j + 1)·H / 16⌋)), so the cue spans what the frame shows at any
 // scale: the rim and the dimple of a red cell seen whole, the cells behind a cell in blood, the
 // lipids behind a protein. No grid pixel hit: no fog.
+float view_depth(uvec2 px, float t) { return t * dot(camera_ray_direction(frame.camera, px.x, px.y), frame.camera.forward.xyz); }
+
 vec2 frame_depth_range() {
   uvec2 size = frame.camera.size.xy;
   vec2 range = vec2(placement_inf(), -placement_inf());
   for (uint j = 0u; j < 8u; ++j)
     for (uint i = 0u; i < 8u; ++i) {
-      PixelHit h = finished_hits[((2u * j + 1u) * size.y / 16u) * size.x + (2u * i + 1u) * size.x / 16u];
-      if (h.atom != kNoHit) range = vec2(min(range.x, h.depth), max(range.y, h.depth));
+      uvec2 q = uvec2((2u * i + 1u) * size.x / 16u, (2u * j + 1u) * size.y / 16u);
+      PixelHit h = finished_hits[q.y * size.x + q.x];
+      if (h.atom != kNoHit) range = vec2(min(range.x, view_depth(q, h.depth)), max(range.y, view_depth(q, h.depth)));
     }
   return range;
 }
@@ -1028,7 +1036,7 @@ void image_pass(uvec2 px, uint index) {
   if (kFog) {
     PixelHit here = finished_hits[index];
     if (here.atom != kNoHit) {
-      float amount = fog_amount(here.depth, frame_depth_range());
+      float amount = fog_amount(view_depth(px, here.depth), frame_depth_range());
       if (amount > 0.0) colours[index] = fogged_rgba8(colours[index], amount);
     }
   }

@@ -1,12 +1,13 @@
 // Fog changes colour only, and exactly as docs/effects.md says: with the same camera the fogged frame
 // hits the very same atoms; the background keeps its colour; every hit pixel at depth t shows the
 // plain frame's colour mixed (in linear light) towards the white background by
-//   STRENGTH · smoothstep(near + START·(far − near), near + (START + SPAN)·(far − near), t)
-// where near and far are the least and greatest depth hit among the pixels
+//   STRENGTH · smoothstep(near + START·(far − near), near + (START + SPAN)·(far − near), z)
+// z = t·cos θ its view depth (θ between its ray and the view axis, from the pixel's place in a pinhole
+// image of vertical field FOV), near and far the least and greatest z hit among the pixels
 // (⌊(2i + 1)·W / 16⌋, ⌊(2j + 1)·H / 16⌋), i, j = 0..7 (±2 per channel: the plain colour was already
 // rounded to 8 bits); and the check is not vacuous: a share of the hit pixels must be fogged by at
 // least a tenth.
-// Usage: check_fog PLAIN.png PLAIN.ids FOG.png FOG.ids START SPAN STRENGTH MIN_FOGGED_SHARE
+// Usage: check_fog PLAIN.png PLAIN.ids FOG.png FOG.ids START SPAN STRENGTH MIN_FOGGED_SHARE FOV_DEGREES
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,17 +27,25 @@ int channel(std::uint32_t rgba, int c) { return int((rgba >> (8 * c)) & 255u); }
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 9) return std::fprintf(stderr, "usage: check_fog PLAIN.png PLAIN.ids FOG.png FOG.ids START SPAN STRENGTH MIN_SHARE\n"), 2;
+  if (argc != 10)
+    return std::fprintf(stderr, "usage: check_fog PLAIN.png PLAIN.ids FOG.png FOG.ids START SPAN STRENGTH MIN_SHARE FOV_DEGREES\n"), 2;
   try {
     using nano::render::test::read_rendered_frame;
     const auto plain = read_rendered_frame(argv[1], argv[2]);
     const auto fogged = read_rendered_frame(argv[3], argv[4]);
     if (!plain.same_size(fogged)) return std::fprintf(stderr, "sizes differ\n"), 1;
+    const double half_height = std::tan(std::atof(argv[9]) * M_PI / 360), aspect = double(plain.width) / plain.height;
+    const auto view_depth = [&](std::size_t x, std::size_t y, double t) {
+      const double u = (2 * (x + 0.5) / plain.width - 1) * half_height * aspect, v = (1 - 2 * (y + 0.5) / plain.height) * half_height;
+      return t / std::sqrt(1 + u * u + v * v);
+    };
     double near = INFINITY, far = -INFINITY;
     for (std::uint32_t j = 0; j < 8; ++j)
       for (std::uint32_t i = 0; i < 8; ++i) {
-        const auto& h = plain.ids[std::size_t((2 * j + 1) * plain.height / 16) * plain.width + (2 * i + 1) * plain.width / 16];
-        if (h.atom != nano::gpu::kNoHit) near = std::min(near, double(h.depth)), far = std::max(far, double(h.depth));
+        const std::size_t x = (2 * i + 1) * plain.width / 16, y = (2 * j + 1) * plain.height / 16;
+        const auto& h = plain.ids[y * plain.width + x];
+        if (h.atom != nano::gpu::kNoHit)
+          near = std::min(near, view_depth(x, y, h.depth)), far = std::max(far, view_depth(x, y, h.depth));
       }
     if (!(near <= far)) return std::fprintf(stderr, "no pixel of the 8 x 8 grid hit anything: the view proves nothing\n"), 1;
     const double start = near + std::atof(argv[5]) * (far - near), span = std::atof(argv[6]) * (far - near);
@@ -55,7 +64,8 @@ int main(int argc, char** argv) {
         continue;
       }
       ++hits;
-      const double u = span > 0 ? std::clamp((double(a.depth) - start) / span, 0.0, 1.0) : (a.depth > start ? 1.0 : 0.0);
+      const double z = view_depth(i % plain.width, i / plain.width, a.depth);
+      const double u = span > 0 ? std::clamp((z - start) / span, 0.0, 1.0) : (z > start ? 1.0 : 0.0);
       const double f = strength * u * u * (3 - 2 * u);
       fogged_tenth += f >= 0.1;
       for (int c = 0; c < 3; ++c) {

@@ -7,7 +7,8 @@
 // is infinitely far), with f = depth(q)·2·tan(fov/2)/height the Å one pixel spans at q:
 //   shown = ramp(FADE/2, FADE, R/f), R the bounding radius of q's molecule type (1 when FADE is 0);
 //   same copy:    shown · ramp(c, 2c, depth(p) − depth(q)), c = max(CREASE, 2f);
-//   another copy: max(shown, ramp(8, 32, (depth(p) − depth(q)) / f));
+//   another copy: max(shown, step), step = 1 when p is background, else
+//                 ramp(8, 32, (depth(p) − depth(q)) / f) · ramp(1, 3, R/f);
 // p's strength is the largest over its q, ramp the smoothstep from 0 to 1.
 // It also reports, for the measures: the share of hit pixels outlines change, and for a named
 // molecule type, every copy of it that covers MIN_PIXELS must have ≥ 90 % of the pixels around it (just
@@ -72,8 +73,8 @@ std::vector<double> expected_strength(const std::vector<PixelHit>& ids, int w, i
           const double shown = rule.fade > 0 ? ramp(rule.fade / 2, rule.fade, reach / pixel) : 1.0;
           const double gap = depth_of(here) - depth_of(there);
           const double fold = std::max(rule.crease, 2 * pixel);
-          const double edge = same_copy(here, there) ? shown * ramp(fold, 2 * fold, gap)
-                                                     : std::max(shown, ramp(8, 32, gap / pixel));
+          const double step = here.atom == kNoHit ? 1.0 : ramp(8, 32, gap / pixel) * ramp(1, 3, reach / pixel);
+          const double edge = same_copy(here, there) ? shown * ramp(fold, 2 * fold, gap) : std::max(shown, step);
           strength = std::max(strength, edge);
         }
       out[std::size_t(y) * w + x] = strength;

@@ -21,7 +21,7 @@ foreach(case "0;1;0.6;0.3" "0.4;0.2;1;0.2")
     message(FATAL_ERROR "fog render failed: ${out}${err}")
   endif()
   execute_process(COMMAND ${CHECK} ${WORK}/fog-plain.png ${WORK}/fog-plain.ids ${WORK}/fog-${start}.png ${WORK}/fog-${start}.ids
-                          ${start} ${span} ${strength} ${share}
+                          ${start} ${span} ${strength} ${share} 60
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   message(STATUS "fog from ${start} over ${span}: ${out}${err}")
   if(NOT rc EQUAL 0)
