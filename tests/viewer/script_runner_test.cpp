@@ -65,6 +65,20 @@ TEST(ScriptRunner, ChangesStateAndRendersFrames) {
   EXPECT_FALSE(host.state_.settings.effects.clipping.box.has_value());
 }
 
+// `preset illustrative` turns its effects on with the preset's values; an `effect ... off` after it
+// still switches one of them off.
+TEST(ScriptRunner, PresetTurnsItsEffectsOnWithItsValues) {
+  FakeHost host;
+  std::ostringstream out;
+  run("preset illustrative\neffect fog off\n", host, out);
+  const render::EffectSettings& e = host.state_.settings.effects;
+  for (const PresetEffect& effect : find_preset("illustrative")->effects) {
+    EXPECT_EQ(e.flag(effect.id), effect.id != EffectId::fog) << effect_declaration(effect.id).name;
+    EXPECT_EQ(e.parameters(effect.id), effect.values);
+  }
+  EXPECT_FALSE(e.flag(EffectId::shadows));
+}
+
 TEST(ScriptRunner, ShowAndHideSwitchTheMediumAndNamesInTheSettings) {
   FakeHost host;
   std::ostringstream out;

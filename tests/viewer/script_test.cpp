@@ -149,7 +149,9 @@ TEST(Script, ErrorsNameFileLineAndProblem) {
   expect_error("clip box 1,1,1,0,0,0\n", "line 1", "x0 < x1");
   expect_error("clip sphere 1\n", "line 1", "clip expects");
   expect_error("clip off now\n", "line 1", "unexpected 'now'");
-  expect_error("effect fog on\n", "line 1", "unknown effect 'fog'");
+  expect_error("effect bloom on\n", "line 1", "unknown effect 'bloom'");
+  expect_error("preset goodsell\n", "line 1", "unknown preset 'goodsell' (illustrative)");
+  expect_error("preset illustrative now\n", "line 1", "unexpected 'now'");
   expect_error("effect ao maybe\n", "line 1", "on or off");
   expect_error("effect ao\n", "line 1", "on or off");
   expect_error("hide\n", "line 1", "hide expects medium or the name");
