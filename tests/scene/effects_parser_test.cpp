@@ -109,8 +109,8 @@ TEST(EffectsParser, ClippingAmbientOcclusionShadows) {
 TEST(EffectsParser, FogTakesTheTableFallbacksAndRanges) {
   const Effects e = effects_from(R"({"effects": {"fog": {"strength": 0.5}}})");
   ASSERT_TRUE(e[EffectId::fog].has_value());
-  EXPECT_EQ((*e[EffectId::fog])[0].x, 0.8);  // start
-  EXPECT_EQ((*e[EffectId::fog])[1].x, 0.8);  // span
+  EXPECT_EQ((*e[EffectId::fog])[0].x, 0.0);  // start: the nearest depth the frame shows
+  EXPECT_EQ((*e[EffectId::fog])[1].x, 1.0);  // span: the whole depth range
   EXPECT_EQ((*e[EffectId::fog])[2].x, 0.5);
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"fog": {"span": 0}}})"), "effects.fog.span", "> 0");
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"fog": {"strength": 1.5}}})"), "effects.fog.strength", "[0, 1]");
