@@ -992,7 +992,8 @@ uint mix_rgba8(uint a, uint b, float s) {
 // view depth (its distance along the camera's forward axis: a wall facing the camera is one depth)
 // passes through the frame's depth range, smoothly from start to start + span of that range, at most
 // by `strength`. The range is the least and greatest view depth hit among the pixels of an 8 × 8 grid
-// (pixel (⌊(2i + 1)·W / 16⌋, ⌊(2j + 1)·H / 16⌋)), so the cue spans what the frame shows at any
+// (pixel (⌊(2i + 1)·W / 16⌋, ⌊(2j + 1)·H / 16⌋)), its extent at least a tenth of the nearest
+// depth, so the cue spans what the frame shows at any
 // scale: the rim and the dimple of a red cell seen whole, the cells behind a cell in blood, the
 // lipids behind a protein. No grid pixel hit: no fog.
 float view_depth(uvec2 px, float t) { return t * dot(camera_ray_direction(frame.camera, px.x, px.y), frame.camera.forward.xyz); }
@@ -1009,9 +1010,13 @@ vec2 frame_depth_range() {
   return range;
 }
 
+// The range spans at least a tenth of its nearest depth (NANO_FOG_LEAST_EXTENT): a patch of membrane
+// seen face-on, a few Å deep at 6,000 Å, is not stretched into a full ramp.
+const float NANO_FOG_LEAST_EXTENT = 0.1;
+
 float fog_amount(float t, vec2 range) {
   if (!(range.x <= range.y)) return 0.0;
-  float extent = range.y - range.x;
+  float extent = max(range.y - range.x, NANO_FOG_LEAST_EXTENT * range.x);
   float start = range.x + frame.effect_record.fog_range.x * extent;
   float end = start + frame.effect_record.fog_range.y * extent;
   float ramp = end > start ? smooth_ramp(start, end, t) : (t > start ? 1.0 : 0.0);

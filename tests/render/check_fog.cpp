@@ -1,7 +1,7 @@
 // Fog changes colour only, and exactly as docs/effects.md says: with the same camera the fogged frame
 // hits the very same atoms; the background keeps its colour; every hit pixel at depth t shows the
 // plain frame's colour mixed (in linear light) towards the white background by
-//   STRENGTH · smoothstep(near + START·(far − near), near + (START + SPAN)·(far − near), z)
+//   STRENGTH · smoothstep(near + START·e, near + (START + SPAN)·e, z),  e = max(far − near, near / 10)
 // z = t·cos θ its view depth (θ between its ray and the view axis, from the pixel's place in a pinhole
 // image of vertical field FOV), near and far the least and greatest z hit among the pixels
 // (⌊(2i + 1)·W / 16⌋, ⌊(2j + 1)·H / 16⌋), i, j = 0..7 (±2 per channel: the plain colour was already
@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
           near = std::min(near, view_depth(x, y, h.depth)), far = std::max(far, view_depth(x, y, h.depth));
       }
     if (!(near <= far)) return std::fprintf(stderr, "no pixel of the 8 x 8 grid hit anything: the view proves nothing\n"), 1;
-    const double start = near + std::atof(argv[5]) * (far - near), span = std::atof(argv[6]) * (far - near);
+    const double extent = std::max(far - near, near / 10);
+    const double start = near + std::atof(argv[5]) * extent, span = std::atof(argv[6]) * extent;
     const double strength = std::atof(argv[7]);
     std::size_t hits = 0, fogged_tenth = 0, wrong = 0, other_hit = 0, background_changed = 0;
     for (std::size_t i = 0; i < plain.rgba.size(); ++i) {
