@@ -919,6 +919,13 @@ vec3 srgb_from_linear(vec3 c) {
   return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
 }
 
+// A colour buffer word: RGBA8 as the image shows it (sRGB), R in the low byte, alpha 255.
+uint rgba8_from_bytes(vec3 bytes) {
+  uvec3 b = uvec3(round(bytes));
+  return b.r | (b.g << 8) | (b.b << 16) | (255u << 24);
+}
+vec3 bytes_from_rgba8(uint rgba) { return vec3(uvec3(rgba, rgba >> 8, rgba >> 16) & uvec3(255u)); }
+
 // The image pass (frame.pass.x = 1, after every pixel is traced): effects that read the finished
 // hits of a pixel's neighbours (EffectDeclaration::image_pass in common/effect_table.hpp).
 
@@ -981,12 +988,7 @@ float outline_strength(uvec2 px, uint index) {
   return strength;
 }
 
-uint mix_rgba8(uint a, uint b, float s) {
-  vec3 x = vec3(uvec3(a, a >> 8, a >> 16) & uvec3(255u));
-  vec3 y = vec3(uvec3(b, b >> 8, b >> 16) & uvec3(255u));
-  uvec3 m = uvec3(round(mix(x, y, s)));
-  return m.r | (m.g << 8) | (m.b << 16) | (255u << 24);
-}
+uint mix_rgba8(uint a, uint b, float s) { return rgba8_from_bytes(mix(bytes_from_rgba8(a), bytes_from_rgba8(b), s)); }
 
 // Fog (depth cueing): a hit pixel's colour fades towards the background (white, in linear light) as its
 // view depth (its distance along the camera's forward axis: a wall facing the camera is one depth)
@@ -1028,9 +1030,8 @@ vec3 linear_from_srgb(vec3 c) {
 }
 
 uint fogged_rgba8(uint rgba, float amount) {
-  vec3 c = linear_from_srgb(vec3(uvec3(rgba, rgba >> 8, rgba >> 16) & uvec3(255u)) / 255.0);
-  uvec3 b = uvec3(round(srgb_from_linear(mix(c, vec3(1.0), amount)) * 255.0));
-  return b.r | (b.g << 8) | (b.b << 16) | (255u << 24);
+  vec3 c = linear_from_srgb(bytes_from_rgba8(rgba) / 255.0);
+  return rgba8_from_bytes(srgb_from_linear(mix(c, vec3(1.0), amount)) * 255.0);
 }
 
 // Any image-pass effect compiled in: without one, the pass test below is not in the code at all.
@@ -1122,9 +1123,7 @@ void main() {
     colour = mix(vec3(1.0), lit, 0.35 + 0.65 * cue);
   }
   hits[index] = hit;
-  vec3 srgb = srgb_from_linear(colour);
-  uvec3 b = uvec3(round(srgb * 255.0));
-  colours[index] = b.r | (b.g << 8) | (b.b << 16) | (255u << 24);
+  colours[index] = rgba8_from_bytes(srgb_from_linear(colour) * 255.0);
   if (kCounters && (index + 1u) * NANO_RAY_COUNTER_COUNT <= uint(counters.length()))
     for (uint k = 0u; k < NANO_RAY_COUNTER_COUNT; ++k) counters[index * NANO_RAY_COUNTER_COUNT + k] = ray_counts[k];
 }
