@@ -54,9 +54,7 @@ int main(int argc, char** argv) {
     std::size_t hits = 0, fogged_tenth = 0, wrong = 0, other_hit = 0, background_changed = 0;
     for (std::size_t i = 0; i < plain.rgba.size(); ++i) {
       const auto& a = plain.ids[i];
-      const auto& b = fogged.ids[i];
-      if (a.atom != b.atom || a.copy_number_lo != b.copy_number_lo || a.copy_number_hi != b.copy_number_hi ||
-          !(a.depth == b.depth || (std::isinf(a.depth) && std::isinf(b.depth)))) {
+      if (!nano::render::test::same_hit(a, fogged.ids[i])) {
         ++other_hit;
         continue;
       }

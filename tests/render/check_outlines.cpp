@@ -164,11 +164,8 @@ int main(int argc, char** argv) {
     const std::vector<double> strength = expected_strength(ids, int(w), int(h), rule);
     std::size_t hits = 0, changed_hits = 0, outline = 0, full = 0, wrong = 0, other_hit = 0;
     for (std::size_t i = 0; i < strength.size(); ++i) {
-      const PixelHit& a = plain_frame.ids[i];
       const PixelHit& b = ids[i];
-      if (a.atom != b.atom || a.copy_number_lo != b.copy_number_lo || a.copy_number_hi != b.copy_number_hi ||
-          !(a.depth == b.depth || (std::isinf(a.depth) && std::isinf(b.depth))))
-        ++other_hit;
+      if (!nano::render::test::same_hit(plain_frame.ids[i], b)) ++other_hit;
       const bool hit = b.atom != kNoHit;
       hits += hit;
       changed_hits += hit && outlined[i] != plain[i];

@@ -1,5 +1,6 @@
 #pragma once
 // One render as the effect checks read it back: its colours (PNG) and its ids image, of one size.
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,13 @@ struct RenderedFrame {
   std::vector<gpu::PixelHit> ids;
   bool same_size(const RenderedFrame& o) const { return width == o.width && height == o.height; }
 };
+
+// The same atom of the same copy at the same depth (the background's infinite depths equal): what an
+// effect that changes colour only must leave every pixel of a frame.
+inline bool same_hit(const gpu::PixelHit& a, const gpu::PixelHit& b) {
+  return a.atom == b.atom && a.copy_number_lo == b.copy_number_lo && a.copy_number_hi == b.copy_number_hi &&
+         (a.depth == b.depth || (std::isinf(a.depth) && std::isinf(b.depth)));
+}
 
 inline RenderedFrame read_rendered_frame(const std::string& png, const std::string& ids) {
   RenderedFrame f;
