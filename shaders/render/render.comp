@@ -940,7 +940,8 @@ vec3 bytes_from_rgba8(uint rgba) { return vec3(uvec3(rgba, rgba >> 8, rgba >> 16
 // - where copies meet at a depth step of 8 to 32 pixel footprints (NANO_OUTLINE_STEP_PIXELS), the
 //   contour ramps in whatever their size, once the nearer copy spans a few pixels (its radius from 1
 //   to 3 pixels): the silhouettes of what is large on screen (a spike standing off the membrane, the
-//   limb of a cell in front of another) stay; sub-pixel bumps and sub-pixel copies draw nothing;
+//   limb of a virion over its far side) stay; sub-pixel bumps and sub-pixel copies draw nothing (so
+//   surfaces of sub-pixel copies crossing each other get no contour: docs/effects.md);
 // - a crease ramps in from c to 2c, c the larger of the crease depth and 2 pixel footprints
 //   (NANO_CREASE_PIXELS), scaled by the copy's own fade: from afar a spike keeps its big folds only.
 // The strength in [0, 1] mixes the pixel's colour towards the outline colour: a grey ramp, not a switch.
