@@ -17,6 +17,7 @@
 #include "runtime/render/effects.hpp"
 #include "runtime/render/pick_info.hpp"
 #include "runtime/render/renderer.hpp"
+#include "runtime/session/oracle_view.hpp"
 #include "runtime/session/session.hpp"
 
 namespace nano::cli {

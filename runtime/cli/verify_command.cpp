@@ -19,6 +19,7 @@
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/image_io.hpp"
 #include "runtime/render/renderer.hpp"
+#include "runtime/session/oracle_view.hpp"
 #include "runtime/session/session.hpp"
 #include "runtime/session/view_judge.hpp"
 

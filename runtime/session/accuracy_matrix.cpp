@@ -11,6 +11,7 @@
 #include "runtime/bench/ray_counters.hpp"
 #include "runtime/oracle/oracle_render.hpp"
 #include "runtime/oracle/render_compare.hpp"
+#include "runtime/session/oracle_view.hpp"
 #include "runtime/session/session.hpp"
 
 namespace nano::session {

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "format/package.hpp"
-#include "runtime/oracle/explicit_scene.hpp"
 #include "runtime/render/camera_spec.hpp"
 #include "runtime/render/effects.hpp"
 #include "runtime/render/gpu_scene.hpp"
@@ -79,18 +78,6 @@ struct EffectOptions {
 // The camera a command's --camera option names: keys it leaves out (or all, when empty) keep the
 // package's camera. Throws InputError naming --camera when the text does not parse.
 Camera camera_option(const format::Package& package, const std::string& text);
-
-// What the effects change for the CPU oracle, as the renderer applies them: moved instances and
-// jittered copies (the scene) and clipped atoms (the render options). AO and shadows change colours
-// only, which the oracle does not produce.
-struct OracleEffects {
-  oracle::ExplicitSceneOptions scene;
-  std::vector<glm::dvec4> clip;
-};
-OracleEffects oracle_effects(const format::Package& package, const render::EffectSettings& effects);
-// What the settings hide (--hide: the medium, compartments, molecule types), for the oracle as the
-// renderer hides it. Throws InputError naming --hide for a name the package does not have.
-void hide_from_oracle(const format::Package& package, const render::RenderSettings& settings, oracle::ExplicitSceneOptions& scene);
 
 // Wall-clock seconds of each step of opening a session (bench's load time by stage).
 struct SessionTimings {
