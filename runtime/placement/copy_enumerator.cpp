@@ -138,11 +138,26 @@ struct CopyEnumerator::Impl : format::PackageView {
     number_limit = *end;
   }
 
-  // The instances whose exclusion box holds region-space point c.
-  void near_instances(const vec3& c, std::vector<std::uint32_t>& near) const {
+  // The instances whose exclusion box meets medium box ijk's reach (its middle and every copy centre
+  // of its cube, with a margin far above their float rounding): the only ones near_instances can
+  // find for that box, so a blood scene's copies each test a few instances rather than all of them.
+  std::vector<std::uint32_t> instances_meeting_box(const ivec3& ijk, double B) const {
+    const dvec3 corner = dvec3(ijk) * B;
+    const dvec3 lo = corner + glm::min(medium_reach.lo, dvec3(0.0)) - 1.0;
+    const dvec3 hi = corner + glm::max(medium_reach.hi, dvec3(B)) + 1.0;
+    std::vector<std::uint32_t> meeting;
+    for (std::uint32_t i = 0; i < exclusion_boxes.size(); ++i) {
+      const auto& [box_lo, box_hi] = exclusion_boxes[i];
+      if (glm::all(glm::lessThanEqual(box_lo, hi)) && glm::all(glm::lessThanEqual(lo, box_hi))) meeting.push_back(i);
+    }
+    return meeting;
+  }
+
+  // Of `candidates`, the instances whose exclusion box holds region-space point c.
+  void near_instances(const vec3& c, const std::vector<std::uint32_t>& candidates, std::vector<std::uint32_t>& near) const {
     near.clear();
     const dvec3 q(c);
-    for (std::uint32_t i = 0; i < exclusion_boxes.size(); ++i) {
+    for (const std::uint32_t i : candidates) {
       const auto& [lo, hi] = exclusion_boxes[i];
       if (q.x >= lo.x && q.y >= lo.y && q.z >= lo.z && q.x <= hi.x && q.y <= hi.y && q.z <= hi.z) near.push_back(i);
     }
@@ -163,9 +178,10 @@ struct CopyEnumerator::Impl : format::PackageView {
     emit.copy.id.cell = ijk;
     // A box wholly inside an instance keeps nothing: trilinear values change by at most √3 per unit
     // step, so a centre value below margin − 1.5·B rejects every copy of the box.
+    const std::vector<std::uint32_t> candidates = instances_meeting_box(ijk, double(B));
     std::vector<std::uint32_t> near;
     const vec3 middle = gpu::medium_copy_centre(ijk, B, vec3(B / 2));
-    near_instances(middle, near);
+    near_instances(middle, candidates, near);
     for (const std::uint32_t i : near)
       if (double(exclusion_value(*this, medium_records[i], middle)) <
           double(exclusion_fields[medium_records[i].ids.x].limits.x) - 1.5 * double(B))
@@ -175,7 +191,7 @@ struct CopyEnumerator::Impl : format::PackageView {
       const gpu::MoleculeInstance& inst = instances[cube.first_instance + k];
       if (options.visibility.molecule_type_hidden(inst.molecule_type)) continue;  // before its keep test, the costly part
       const vec3 c = gpu::medium_copy_centre(ijk, B, vec3(inst.position));
-      near_instances(c, near);
+      near_instances(c, candidates, near);
       if (!medium_copy_kept(*this, medium_records, near, c, molecules[inst.molecule_type].aabb_min.w)) continue;
       emit.copy.id.instance = k;
       emit.copy.number = medium_base + std::uint64_t{box} * medium_instances_per_cube + k;
