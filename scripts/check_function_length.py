@@ -3,23 +3,30 @@
 
   check_function_length.py FOLDER... [--limit N] [--allow FILE:NAME ...] [--top K]
 
-Scans every .cpp/.hpp under the folders with a brace-matching pass over the code (comments and string
-literals blanked first), and counts a function from the line of its name (a lambda from its capture
-list) to the line of its closing brace. Prints FILE:LINE: NAME N lines for each one over the limit (80)
-and exits 1 when there is any that --allow does not name; --top K lists the K longest as well.
-Exits 2 on bad arguments.
+Scans every C++ (.cpp/.hpp/.h/.cc) and GLSL (.comp/.glsl) file under the folders with a brace-matching
+pass over the code (comments, string literals and preprocessor lines blanked first), and counts a function
+from the line of its name (a lambda from its capture list) to the line of its closing brace. Prints
+FILE:LINE: NAME N lines for each one over the limit (80) and exits 1 when there is any that --allow does
+not name; --top K lists the K longest as well.
+Exits 2 on bad arguments and on a file whose brackets do not pair up (code inside macros is not measured).
 """
 import argparse
 import os
 import re
 import sys
 
+# "layout" opens a GLSL interface block: layout(set = 0, binding = 1) readonly buffer Atoms { ... };
 NOT_CALLS = {"if", "for", "while", "switch", "catch", "return", "sizeof", "alignof", "decltype", "requires",
-             "static_assert", "noexcept", "alignas"}
+             "static_assert", "noexcept", "alignas", "layout"}
 # What may stand between a parameter list's ')' and the body's '{': qualifiers and a trailing return type.
 BETWEEN = {"const", "noexcept", "override", "final", "mutable", "constexpr", "volatile", "&", "&&", "->", "::", "<",
            ">", ",", "*"}
 TOKEN = re.compile(r"[A-Za-z_]\w*|::|->|&&|\S")
+SOURCES = (".cpp", ".hpp", ".h", ".cc", ".comp", ".glsl")
+
+
+class Unreadable(Exception):
+    """Brackets that do not pair up (say each branch of a #if opens its own brace): the lengths would be wrong."""
 
 
 def blank(text):
@@ -56,10 +63,23 @@ def blank(text):
     return "".join(out)
 
 
+def blank_directives(text):
+    """The text with preprocessor lines (and their continuations) replaced by spaces: a macro's braces
+    (#define NANO_BEGIN namespace nano::gpu {) are not the code's, and the parentheses of #define F(x) or
+    #if defined(X) would name the struct or block that follows."""
+    lines = text.split("\n")
+    continued = False
+    for i, line in enumerate(lines):
+        if continued or line.lstrip().startswith("#"):
+            continued = line.rstrip().endswith("\\")
+            lines[i] = " " * len(line)
+    return "\n".join(lines)
+
+
 def definitions(path):
     """(lines, name, first line) of every function and lambda body in the file."""
     with open(path, encoding="utf-8") as f:
-        text = blank(f.read())
+        text = blank_directives(blank(f.read()))
     toks, line = [], 1
     last = 0
     for m in TOKEN.finditer(text):
@@ -67,11 +87,15 @@ def definitions(path):
         last = m.start()
         toks.append((m.group(), line))
     opener, pending = {}, []
-    for i, (t, _) in enumerate(toks):
+    for i, (t, line) in enumerate(toks):
         if t in "([{":
             pending.append(i)
-        elif t in ")]}" and pending:
+        elif t in ")]}":
+            if not pending or toks[pending[-1]][0] != "([{"[")]}".index(t)]:
+                raise Unreadable(f"{path}:{line}: '{t}' does not close what is open there")
             opener[i] = pending.pop()
+    if pending:
+        raise Unreadable(f"{path}:{toks[pending[-1]][1]}: '{toks[pending[-1]][0]}' is never closed")
 
     def named(close_paren):
         """The name before the parameter list that ends at close_paren, or None (a call, a control statement)."""
@@ -136,10 +160,14 @@ def main():
         for root, dirs, names in os.walk(folder):
             dirs.sort()
             for n in sorted(names):
-                if n.endswith((".cpp", ".hpp", ".h", ".cc")):
+                if n.endswith(SOURCES):
                     path = os.path.join(root, n)
                     shown = os.path.relpath(path, os.path.dirname(os.path.abspath(folder.rstrip("/"))))
-                    everything += [(lines, name, shown, start) for lines, name, start in definitions(path)]
+                    try:
+                        everything += [(lines, name, shown, start) for lines, name, start in definitions(path)]
+                    except Unreadable as e:
+                        print(f"check_function_length: {e}", file=sys.stderr)
+                        return 2
     everything.sort(key=lambda d: (-d[0], d[2], d[3]))
     for lines, name, shown, start in everything[:a.top]:
         print(f"{lines:5d}  {shown}:{start}: {name}")

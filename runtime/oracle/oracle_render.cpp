@@ -463,6 +463,151 @@ std::string count(double v) {
   return buf;
 }
 
+// One render's state across its rounds: what every step reads (the scene, the eye's rays, the
+// instances' reach, the medium's hits) and what the steps fill (the image, the unresolved pixels).
+struct DeepeningRender {
+  const ExplicitScene& scene;
+  const format::Package& package;
+  const gpu::Camera& camera;
+  const OracleRenderOptions& options;
+  OracleRenderStats& st;
+  std::vector<gpu::PixelHit>& image;
+  std::vector<Ray> rays;
+  std::vector<WorldBox> bounds;
+  double grow = 0;  // the largest atom reach from a copy's origin, over every instance stretch
+  std::vector<gpu::PixelHit> medium_hits;
+  std::vector<std::uint32_t> pending;
+
+  double medium_depth(std::uint32_t p) const {
+    return medium_hits.empty() || medium_hits[p].atom == gpu::kNoHit ? kInf : double(medium_hits[p].depth);
+  }
+  int threads() const { return static_cast<int>(std::max(1u, options.threads)); }
+};
+
+Pyramid eye_pyramid(const gpu::Camera& camera) {
+  Pyramid view;
+  view.eye = dvec3(glm::vec3(camera.position));
+  view.f = dvec3(glm::vec3(camera.forward));
+  view.r = dvec3(glm::vec3(camera.right));
+  view.u = dvec3(glm::vec3(camera.up));
+  return view;
+}
+
+std::vector<Ray> camera_rays(const gpu::Camera& camera, const dvec3& eye) {
+  const std::uint32_t width = camera.size.x, height = camera.size.y;
+  std::vector<Ray> rays(std::size_t(width) * height);
+  for (std::uint32_t y = 0; y < height; ++y)
+    for (std::uint32_t x = 0; x < width; ++x) {
+      Ray& ray = rays[std::size_t(y) * width + x];
+      ray.o = eye;
+      ray.d = dvec3(gpu::camera_ray_direction(camera, x, y));
+      ray.d /= glm::length(ray.d);
+      ray.inv = 1.0 / ray.d;
+    }
+  return rays;
+}
+
+// A ray through no instance's reach meets no compartment atom: its medium hit or nothing, now. The
+// others stay pending.
+void resolve_rays_out_of_reach(DeepeningRender& r) {
+  for (std::uint32_t p = 0; p < r.image.size(); ++p) {
+    if (!reach_spans(r.rays[p], r.bounds, r.grow).empty()) r.pending.push_back(p);
+    else if (std::isfinite(r.medium_depth(p))) r.image[p] = r.medium_hits[p];
+  }
+}
+
+// The pixels left when a round cannot hold their atoms: each through its own ray's tube.
+void trace_tubes(DeepeningRender& r) {
+  std::atomic<std::uint64_t> segments{0};
+  const double tube_grow = r.grow * std::max(1.0, r.options.radius_scale);
+  constexpr std::size_t kTubeChunk = 8;
+  parallel_for((r.pending.size() + kTubeChunk - 1) / kTubeChunk, r.threads(), [&](std::size_t chunk) {
+    for (std::size_t i = chunk * kTubeChunk; i < std::min(r.pending.size(), (chunk + 1) * kTubeChunk); ++i) {
+      const std::uint32_t p = r.pending[i];
+      const double medium_t = r.medium_depth(p);
+      const NearestHit hit = trace_tube(r.scene, r.package, r.rays[p], reach_spans(r.rays[p], r.bounds, tube_grow), tube_grow,
+                                        medium_t, r.options, segments);
+      if (hit.t <= medium_t && hit.t != kInf) r.image[p] = make_hit(hit.t, hit.atom, hit.id, hit.number);
+      else if (std::isfinite(medium_t)) r.image[p] = r.medium_hits[p];
+    }
+  });
+  r.st.tube_rays = r.pending.size();
+  r.st.tube_segments = segments;
+  r.pending.clear();
+}
+
+// Narrows the pyramid to the ndc rectangle of the pending pixels (as camera_ray_direction computes
+// a pixel's ndc coordinates, before normalising), widened past the float rounding.
+void fit_pyramid_to_pending(Pyramid& view, const DeepeningRender& r) {
+  const gpu::Camera& camera = r.camera;
+  const std::uint32_t width = camera.size.x, height = camera.size.y;
+  view.x0 = view.y0 = kInf, view.x1 = view.y1 = -kInf;
+  for (std::uint32_t p : r.pending) {
+    const std::uint32_t x = p % width, y = p / width;
+    const glm::dvec2 n((2.0 * (x + 0.5) / width - 1.0) * camera.forward.w * camera.right.w,
+                       (1.0 - 2.0 * (y + 0.5) / height) * camera.forward.w);
+    view.x0 = std::min(view.x0, n.x), view.x1 = std::max(view.x1, n.x);
+    view.y0 = std::min(view.y0, n.y), view.y1 = std::max(view.y1, n.y);
+  }
+  const double widen = 1e-6 * (1 + camera.forward.w * (1 + camera.right.w));
+  view.x0 -= widen, view.x1 += widen, view.y0 -= widen, view.y1 += widen;
+  view.make_planes();
+}
+
+// Every compartment atom that can meet the pyramid up to depth_bound, with its copy. Throws
+// RoundTooLarge past the atom cap when ray tubes may take over, InputError when they may not.
+void hold_round_atoms(const DeepeningRender& r, const Pyramid& view, double depth_bound, std::vector<HeldAtom>& atoms,
+                      std::vector<HeldCopy>& copies) {
+  const OracleRenderOptions& options = r.options;
+  WorldBox box = view.box(depth_bound);
+  box.min -= r.grow, box.max += r.grow;
+  atoms.clear(), copies.clear();
+  r.scene.for_each_compartment_atom(box, [&](const AtomSample& s) {
+    // Clipping keeps or removes an atom whole, by its centre (as the renderer).
+    for (const glm::dvec4& h : options.clip)
+      if (!(glm::dot(dvec3(h), s.position) + h.w >= 0)) return;
+    if (!view.meets_sphere(s.position, s.radius * std::max(1.0, options.radius_scale), depth_bound)) return;
+    // A copy's atoms arrive consecutively and copy numbers are unique.
+    if (copies.empty() || copies.back().number != s.copy->number) copies.push_back({s.copy->id, s.copy->number});
+    if (atoms.size() >= options.max_atoms && options.ray_tubes) throw RoundTooLarge{};
+    if (atoms.size() >= options.max_atoms)
+      throw InputError(r.package.name(), "camera " + options.camera_name,
+                       "the CPU oracle would need more than " + count(double(options.max_atoms)) +
+                           " atoms to resolve the view up to " + count(depth_bound) +
+                           " Å from the eye; choose a camera that sees less (closer, narrower) or raise the atom cap");
+    atoms.push_back({s.position, s.radius * options.radius_scale, s.atom, std::uint32_t(copies.size() - 1)});
+  });
+}
+
+// Traces the pending pixels against the round's atoms (which the BVH reorders) up to depth_bound;
+// those with a hit (an atom's or the medium's) there are final and leave the pending list.
+void trace_round(DeepeningRender& r, std::vector<HeldAtom>& atoms, const std::vector<HeldCopy>& copies,
+                 double depth_bound) {
+  const AtomBvh bvh(atoms);
+  std::vector<std::uint8_t> resolved(r.pending.size(), 0);
+  constexpr std::size_t kChunk = 64;
+  parallel_for((r.pending.size() + kChunk - 1) / kChunk, r.threads(), [&](std::size_t chunk) {
+    for (std::size_t i = chunk * kChunk; i < std::min(r.pending.size(), (chunk + 1) * kChunk); ++i) {
+      const std::uint32_t p = r.pending[i];
+      const auto [hit, t] = bvh.trace(r.rays[p], depth_bound, copies);
+      const double medium_t = r.medium_depth(p);
+      if (hit >= 0 && t <= medium_t) {
+        const HeldCopy& c = copies[atoms[hit].copy];
+        r.image[p] = make_hit(t, atoms[hit].atom, c.id, c.number);
+      } else if (medium_t <= depth_bound) {
+        r.image[p] = r.medium_hits[p];
+      } else {
+        continue;
+      }
+      resolved[i] = 1;
+    }
+  });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < r.pending.size(); ++i)
+    if (!resolved[i]) r.pending[kept++] = r.pending[i];
+  r.pending.resize(kept);
+}
+
 }  // namespace
 
 gpu::PixelHit background_pixel() {
@@ -492,143 +637,48 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
                                          const gpu::Camera& camera, const OracleRenderOptions& options,
                                          OracleRenderStats* stats) {
   const auto start = std::chrono::steady_clock::now();
-  const std::uint32_t width = camera.size.x, height = camera.size.y;
-  std::vector<gpu::PixelHit> image(std::size_t(width) * height, background_pixel());
+  std::vector<gpu::PixelHit> image(std::size_t(camera.size.x) * camera.size.y, background_pixel());
   OracleRenderStats local_stats;
   OracleRenderStats& st = stats ? *stats : local_stats;
   st = {};
   if (image.empty()) return image;
 
-  Pyramid view;
-  view.eye = dvec3(glm::vec3(camera.position));
-  view.f = dvec3(glm::vec3(camera.forward));
-  view.r = dvec3(glm::vec3(camera.right));
-  view.u = dvec3(glm::vec3(camera.up));
-  std::vector<Ray> rays(image.size());
-  for (std::uint32_t y = 0; y < height; ++y)
-    for (std::uint32_t x = 0; x < width; ++x) {
-      Ray& ray = rays[std::size_t(y) * width + x];
-      ray.o = view.eye;
-      ray.d = dvec3(gpu::camera_ray_direction(camera, x, y));
-      ray.d /= glm::length(ray.d);
-      ray.inv = 1.0 / ray.d;
-    }
-  // The ndc coordinates of a pixel, as camera_ray_direction computes them (before normalising).
-  const auto ndc = [&](std::uint32_t x, std::uint32_t y) {
-    return glm::dvec2((2.0 * (x + 0.5) / width - 1.0) * camera.forward.w * camera.right.w,
-                      (1.0 - 2.0 * (y + 0.5) / height) * camera.forward.w);
-  };
-
-  const std::vector<WorldBox> bounds = instance_bounds(package, scene.instance_transforms());
+  Pyramid view = eye_pyramid(camera);
+  DeepeningRender r{scene, package, camera, options, st, image, camera_rays(camera, view.eye),
+                    instance_bounds(package, scene.instance_transforms())};
   double nearest = kInf, farthest = 0;
-  for (const WorldBox& b : bounds) nearest = std::min(nearest, distance_to_box(view.eye, b)), farthest = std::max(farthest, farthest_corner(view.eye, b));
-  const double grow = largest_type_radius(package) * largest_instance_stretch(scene.instance_transforms()) + 1e-3;
-  double depth_bound = (std::isfinite(nearest) ? nearest : 0) + options.first_margin;
+  for (const WorldBox& b : r.bounds) nearest = std::min(nearest, distance_to_box(view.eye, b)), farthest = std::max(farthest, farthest_corner(view.eye, b));
+  const double near_depth = std::isfinite(nearest) ? nearest : 0;
+  r.grow = largest_type_radius(package) * largest_instance_stretch(scene.instance_transforms()) + 1e-3;
+  double depth_bound = near_depth + options.first_margin;
 
   // The medium first: a pixel whose medium hit lies within a round's depth bound is resolved by that
   // round whether or not a compartment atom comes nearer, so the rounds stop where the plasma does.
-  const std::vector<gpu::PixelHit> medium_hits = scene.has_medium() ? trace_medium(scene, package, rays, options)
-                                                                    : std::vector<gpu::PixelHit>{};
-  const auto medium_depth = [&](std::uint32_t p) {
-    return medium_hits.empty() || medium_hits[p].atom == gpu::kNoHit ? kInf : double(medium_hits[p].depth);
-  };
-  // A ray through no instance's reach meets no compartment atom: its medium hit or nothing, now.
-  std::vector<std::uint32_t> pending;
-  for (std::uint32_t p = 0; p < image.size(); ++p) {
-    if (!reach_spans(rays[p], bounds, grow).empty()) pending.push_back(p);
-    else if (std::isfinite(medium_depth(p))) image[p] = medium_hits[p];
-  }
-  // The pixels left when a round cannot hold their atoms: each through its own ray's tube.
-  const auto trace_tubes = [&] {
-    std::atomic<std::uint64_t> segments{0};
-    const double tube_grow = grow * std::max(1.0, options.radius_scale);
-    constexpr std::size_t kTubeChunk = 8;
-    parallel_for((pending.size() + kTubeChunk - 1) / kTubeChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
-      for (std::size_t i = chunk * kTubeChunk; i < std::min(pending.size(), (chunk + 1) * kTubeChunk); ++i) {
-        const std::uint32_t p = pending[i];
-        const double medium_t = medium_depth(p);
-        const NearestHit hit = trace_tube(scene, package, rays[p], reach_spans(rays[p], bounds, tube_grow), tube_grow, medium_t,
-                                       options, segments);
-        if (hit.t <= medium_t && hit.t != kInf) image[p] = make_hit(hit.t, hit.atom, hit.id, hit.number);
-        else if (std::isfinite(medium_t)) image[p] = medium_hits[p];
-      }
-    });
-    st.tube_rays = pending.size();
-    st.tube_segments = segments;
-    pending.clear();
-  };
-  if (options.tubes_only) trace_tubes();
+  if (scene.has_medium()) r.medium_hits = trace_medium(scene, package, r.rays, options);
+  resolve_rays_out_of_reach(r);
+  if (options.tubes_only) trace_tubes(r);
   std::vector<HeldAtom> atoms;
   std::vector<HeldCopy> copies;
-  while (!pending.empty() && farthest > 0) {
+  while (!r.pending.empty() && farthest > 0) {
     ++st.rounds;
-    view.x0 = view.y0 = kInf, view.x1 = view.y1 = -kInf;
-    for (std::uint32_t p : pending) {
-      const glm::dvec2 n = ndc(p % width, p / width);
-      view.x0 = std::min(view.x0, n.x), view.x1 = std::max(view.x1, n.x);
-      view.y0 = std::min(view.y0, n.y), view.y1 = std::max(view.y1, n.y);
-    }
-    const double widen = 1e-6 * (1 + camera.forward.w * (1 + camera.right.w));
-    view.x0 -= widen, view.x1 += widen, view.y0 -= widen, view.y1 += widen;
-    view.make_planes();
-    WorldBox box = view.box(depth_bound);
-    box.min -= grow, box.max += grow;
-
-    atoms.clear(), copies.clear();
+    fit_pyramid_to_pending(view, r);
     try {
-    scene.for_each_compartment_atom(box, [&](const AtomSample& s) {
-      // Clipping keeps or removes an atom whole, by its centre (as the renderer).
-      for (const glm::dvec4& h : options.clip)
-        if (!(glm::dot(dvec3(h), s.position) + h.w >= 0)) return;
-      if (!view.meets_sphere(s.position, s.radius * std::max(1.0, options.radius_scale), depth_bound)) return;
-      // A copy's atoms arrive consecutively and copy numbers are unique.
-      if (copies.empty() || copies.back().number != s.copy->number) copies.push_back({s.copy->id, s.copy->number});
-      if (atoms.size() >= options.max_atoms && options.ray_tubes) throw RoundTooLarge{};
-      if (atoms.size() >= options.max_atoms)
-        throw InputError(package.name(), "camera " + options.camera_name,
-                         "the CPU oracle would need more than " + count(double(options.max_atoms)) +
-                             " atoms to resolve the view up to " + count(depth_bound) +
-                             " Å from the eye; choose a camera that sees less (closer, narrower) or raise the atom cap");
-      atoms.push_back({s.position, s.radius * options.radius_scale, s.atom, std::uint32_t(copies.size() - 1)});
-    });
+      hold_round_atoms(r, view, depth_bound, atoms, copies);
     } catch (const RoundTooLarge&) {
-      trace_tubes();
+      trace_tubes(r);
       break;
     }
     st.atoms_last_round = atoms.size();
     st.atoms_total += atoms.size();
     st.final_depth_bound = depth_bound;
-
-    const AtomBvh bvh(atoms);
-    std::vector<std::uint8_t> resolved(pending.size(), 0);
-    constexpr std::size_t kChunk = 64;
-    parallel_for((pending.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
-      for (std::size_t i = chunk * kChunk; i < std::min(pending.size(), (chunk + 1) * kChunk); ++i) {
-        const auto [hit, t] = bvh.trace(rays[pending[i]], depth_bound, copies);
-        const double medium_t = medium_depth(pending[i]);
-        if (hit >= 0 && t <= medium_t) {
-          const HeldCopy& c = copies[atoms[hit].copy];
-          image[pending[i]] = make_hit(t, atoms[hit].atom, c.id, c.number);
-        } else if (medium_t <= depth_bound) {
-          image[pending[i]] = medium_hits[pending[i]];
-        } else {
-          continue;
-        }
-        resolved[i] = 1;
-      }
-    });
-
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < pending.size(); ++i)
-      if (!resolved[i]) pending[kept++] = pending[i];
-    pending.resize(kept);
+    trace_round(r, atoms, copies, depth_bound);
     if (depth_bound >= farthest) break;  // nothing lies beyond: the rest is background
     // Deeper by twice as much beyond the nearest instance: a far eye does not jump the whole
     // distance it already stands away (its pyramid would hold every cell in view).
-    depth_bound = (std::isfinite(nearest) ? nearest : 0) + 2 * (depth_bound - (std::isfinite(nearest) ? nearest : 0));
+    depth_bound = near_depth + 2 * (depth_bound - near_depth);
   }
-  for (std::uint32_t p : pending)
-    if (!medium_hits.empty() && medium_hits[p].atom != gpu::kNoHit) image[p] = medium_hits[p];
+  for (std::uint32_t p : r.pending)
+    if (!r.medium_hits.empty() && r.medium_hits[p].atom != gpu::kNoHit) image[p] = r.medium_hits[p];
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return image;
 }

@@ -52,6 +52,99 @@ void time_alternately(unsigned round, render::Renderer& variant, render::Rendere
   }
 }
 
+// The variant the others are measured against (the last marked default); `who` names the caller in
+// the error when there is none.
+const MatrixVariant& default_variant(const std::vector<MatrixVariant>& variants, const char* who) {
+  const MatrixVariant* found = nullptr;
+  for (const MatrixVariant& v : variants)
+    if (v.is_default) found = &v;
+  if (!found) throw std::invalid_argument(std::string(who) + ": no default variant");
+  return *found;
+}
+
+// Oracle images per effect signature and camera, made once.
+class OracleImages {
+ public:
+  OracleImages(const format::Package& package, const std::vector<gpu::Camera>& cameras, const Progress& progress)
+      : package_(package), cameras_(cameras), progress_(progress) {}
+
+  const std::vector<gpu::PixelHit>& of(const render::EffectSettings& e, std::size_t k) {
+    const std::string key = oracle_key(e);
+    auto it = images_.find({key, k});
+    if (it != images_.end()) return it->second;
+    if (progress_) progress_("oracle for " + key + ", view " + std::to_string(k));
+    const OracleEffects o = oracle_effects(package_, e);
+    const oracle::ExplicitScene scene(package_, o.scene);
+    oracle::OracleRenderOptions options;
+    options.camera_name = "matrix view " + std::to_string(k);
+    options.clip = o.clip;
+    return images_.emplace(std::pair{key, k}, oracle::oracle_render(scene, package_, cameras_[k], options)).first->second;
+  }
+
+ private:
+  const format::Package& package_;
+  const std::vector<gpu::Camera>& cameras_;
+  const Progress& progress_;
+  std::map<std::pair<std::string, std::size_t>, std::vector<gpu::PixelHit>> images_;
+};
+
+// Every view with its own settings (the clipping plane follows the view).
+std::vector<render::RenderSettings> per_view_settings(const render::RenderSettings& settings,
+                                                      const std::vector<gpu::Camera>& cameras) {
+  std::vector<render::RenderSettings> per_view;
+  for (const gpu::Camera& c : cameras) {
+    per_view.push_back(settings);
+    per_view.back().effects = effects_for_view(settings.effects, c);
+  }
+  return per_view;
+}
+
+// Warm-up and accuracy: one frame per camera against the oracle.
+void measure_accuracy(render::Renderer& renderer, const render::GpuScene& target, const std::vector<gpu::Camera>& cameras,
+                      const std::vector<render::RenderSettings>& per_view, OracleImages& oracle_images, MatrixRow& row) {
+  std::uint64_t agree = 0;
+  for (std::size_t k = 0; k < cameras.size(); ++k) {
+    renderer.set_settings(per_view[k]);
+    const render::Frame f = renderer.render(cameras[k]);
+    // The flat level's share follows the view: the most any view took.
+    row.device_bytes = std::max<std::uint64_t>(row.device_bytes, target.report().memory.total());
+    const oracle::CompareResult r =
+        oracle::compare_images(oracle_images.of(per_view[k].effects, k), f.hits, cameras[k].size.x, cameras[k].size.y, 0);
+    agree += r.agree, row.pixels += r.pixels;
+  }
+  row.wrong_percent = row.pixels ? 100.0 * double(row.pixels - agree) / double(row.pixels) : 0.0;
+}
+
+// Work: every view once more with the counters on (their own pipeline, outside the timing).
+void measure_work(render::Renderer& renderer, const std::vector<gpu::Camera>& cameras,
+                  const std::vector<render::RenderSettings>& per_view, MatrixRow& row) {
+  std::vector<std::uint32_t> words;
+  for (std::size_t k = 0; k < cameras.size(); ++k) {
+    render::RenderSettings counting = per_view[k];
+    counting.counters = true;
+    renderer.set_settings(counting);
+    const render::Frame f = renderer.render(cameras[k]);
+    words.insert(words.end(), f.counters.begin(), f.counters.end());
+  }
+  const bench::CounterSummary work = bench::summarize_counters(words);
+  row.queries_per_pixel = work.rows[bench::kQueriesStarted].mean;
+  row.candidates_per_pixel = work.rows[bench::kCandidatesMet].mean;
+}
+
+// Time: the variant and the default alternately on the same frames (time_alternately).
+void measure_time(render::Renderer& renderer, render::Renderer& default_renderer, const std::vector<gpu::Camera>& cameras,
+                  const std::vector<render::RenderSettings>& per_view, unsigned rounds, MatrixRow& row) {
+  std::vector<double> mine, theirs;
+  for (unsigned round = 0; round < rounds; ++round)
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      renderer.set_settings(per_view[k]);
+      time_alternately(round, renderer, default_renderer, cameras[k], mine, theirs);
+    }
+  row.seconds_median = bench::frame_stats(mine).median;
+  row.default_seconds_median = bench::frame_stats(theirs).median;
+  row.time_ratio = row.seconds_median / row.default_seconds_median;
+}
+
 }  // namespace
 
 std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package) {
@@ -103,34 +196,14 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
                                            render::GpuScene& default_scene, const std::vector<gpu::Camera>& cameras,
                                            const std::vector<MatrixVariant>& variants, unsigned rounds,
                                            const Progress& progress) {
-  const auto say = [&](const std::string& text) {
-    if (progress) progress(text);
-  };
-  const MatrixVariant* reference = nullptr;
-  for (const MatrixVariant& v : variants)
-    if (v.is_default) reference = &v;
-  if (!reference) throw std::invalid_argument("run_accuracy_matrix: no default variant");
-  render::Renderer default_renderer(device, default_scene, reference->settings);
+  const MatrixVariant& reference = default_variant(variants, "run_accuracy_matrix");
+  render::Renderer default_renderer(device, default_scene, reference.settings);
   for (const gpu::Camera& c : cameras) default_renderer.render(c);  // compiles the default pipeline
-
-  // Oracle images per effect signature and camera, made once.
-  std::map<std::pair<std::string, std::size_t>, std::vector<gpu::PixelHit>> oracle_images;
-  const auto oracle_for = [&](const render::EffectSettings& e, std::size_t k) -> const std::vector<gpu::PixelHit>& {
-    const std::string key = oracle_key(e);
-    auto it = oracle_images.find({key, k});
-    if (it != oracle_images.end()) return it->second;
-    say("oracle for " + key + ", view " + std::to_string(k));
-    const OracleEffects o = oracle_effects(package, e);
-    const oracle::ExplicitScene scene(package, o.scene);
-    oracle::OracleRenderOptions options;
-    options.camera_name = "matrix view " + std::to_string(k);
-    options.clip = o.clip;
-    return oracle_images.emplace(std::pair{key, k}, oracle::oracle_render(scene, package, cameras[k], options)).first->second;
-  };
+  OracleImages oracle_images(package, cameras, progress);
 
   std::vector<MatrixRow> rows;
   for (const MatrixVariant& v : variants) {
-    say(v.knob + " = " + v.value);
+    if (progress) progress(v.knob + " = " + v.value);
     const bool own_scene = v.scene.shell != render::SceneOptions{}.shell || v.scene.two_level_membranes;
     std::unique_ptr<render::GpuScene> scene;
     if (own_scene) scene = std::make_unique<render::GpuScene>(device, package, v.scene);
@@ -139,46 +212,10 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
     MatrixRow row;
     row.variant = v;
     row.device_bytes = target.report().memory.total();
-    // Every view with its own settings (the clipping plane follows the view).
-    std::vector<render::RenderSettings> per_view;
-    for (const gpu::Camera& c : cameras) {
-      per_view.push_back(v.settings);
-      per_view.back().effects = effects_for_view(v.settings.effects, c);
-    }
-    // Warm-up and accuracy: one frame per camera against the oracle.
-    std::uint64_t agree = 0;
-    for (std::size_t k = 0; k < cameras.size(); ++k) {
-      renderer.set_settings(per_view[k]);
-      const render::Frame f = renderer.render(cameras[k]);
-      // The flat level's share follows the view: the most any view took.
-      row.device_bytes = std::max<std::uint64_t>(row.device_bytes, target.report().memory.total());
-      const oracle::CompareResult r = oracle::compare_images(oracle_for(per_view[k].effects, k), f.hits, cameras[k].size.x, cameras[k].size.y, 0);
-      agree += r.agree, row.pixels += r.pixels;
-    }
-    row.wrong_percent = row.pixels ? 100.0 * double(row.pixels - agree) / double(row.pixels) : 0.0;
-    // Work: every view once more with the counters on (their own pipeline, outside the timing).
-    std::vector<std::uint32_t> words;
-    for (std::size_t k = 0; k < cameras.size(); ++k) {
-      render::RenderSettings counting = per_view[k];
-      counting.counters = true;
-      renderer.set_settings(counting);
-      const render::Frame f = renderer.render(cameras[k]);
-      words.insert(words.end(), f.counters.begin(), f.counters.end());
-    }
-    const bench::CounterSummary work = bench::summarize_counters(words);
-    row.queries_per_pixel = work.rows[bench::kQueriesStarted].mean;
-    row.candidates_per_pixel = work.rows[bench::kCandidatesMet].mean;
-    // Time: the variant and the default alternately on the same frames, the order flipping per
-    // round, so both see the same machine.
-    std::vector<double> mine, theirs;
-    for (unsigned round = 0; round < rounds; ++round)
-      for (std::size_t k = 0; k < cameras.size(); ++k) {
-        renderer.set_settings(per_view[k]);
-        time_alternately(round, renderer, default_renderer, cameras[k], mine, theirs);
-      }
-    row.seconds_median = bench::frame_stats(mine).median;
-    row.default_seconds_median = bench::frame_stats(theirs).median;
-    row.time_ratio = row.seconds_median / row.default_seconds_median;
+    const std::vector<render::RenderSettings> per_view = per_view_settings(v.settings, cameras);
+    measure_accuracy(renderer, target, cameras, per_view, oracle_images, row);
+    measure_work(renderer, cameras, per_view, row);
+    measure_time(renderer, default_renderer, cameras, per_view, rounds, row);
     rows.push_back(std::move(row));
   }
   return rows;
@@ -187,11 +224,7 @@ std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const forma
 std::vector<LodFarRow> run_lod_far_views(const vk::Device& device, render::GpuScene& scene,
                                          const std::vector<LodFarView>& views, const std::vector<MatrixVariant>& variants,
                                          unsigned rounds, const Progress& progress) {
-  const MatrixVariant* full = nullptr;
-  for (const MatrixVariant& v : variants)
-    if (v.is_default) full = &v;
-  if (!full) throw std::invalid_argument("run_lod_far_views: no default variant");
-  render::Renderer full_renderer(device, scene, full->settings);
+  render::Renderer full_renderer(device, scene, default_variant(variants, "run_lod_far_views").settings);
   std::vector<LodFarRow> rows;
   for (const MatrixVariant& v : variants) {
     if (v.knob != "lod") continue;

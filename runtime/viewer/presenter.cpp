@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -29,6 +30,35 @@ constexpr FormatChoice kFormats[] = {
     {VK_FORMAT_B8G8R8A8_SRGB, true},
     {VK_FORMAT_R8G8B8A8_SRGB, false},
 };
+
+vk::DeviceHandle<VkSemaphore> make_semaphore(VkDevice d) {
+  VkSemaphoreCreateInfo semaphore_info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  VkSemaphore semaphore = VK_NULL_HANDLE;
+  check(vkCreateSemaphore(d, &semaphore_info, nullptr, &semaphore), "vkCreateSemaphore");
+  return vk::DeviceHandle<VkSemaphore>(d, semaphore, vkDestroySemaphore);
+}
+
+// The swapchain's size for a framebuffer of fw × fh pixels; 0 × 0 while minimised on some platforms.
+VkExtent2D swapchain_extent(const VkSurfaceCapabilitiesKHR& caps, std::uint32_t fw, std::uint32_t fh) {
+  VkExtent2D extent = caps.currentExtent;
+  if (extent.width == 0xFFFFFFFFu) {  // the surface takes the swapchain's size
+    extent.width = std::clamp(fw, caps.minImageExtent.width, caps.maxImageExtent.width);
+    extent.height = std::clamp(fh, caps.minImageExtent.height, caps.maxImageExtent.height);
+  }
+  return extent;
+}
+
+VkCompositeAlphaFlagBitsKHR composite_alpha(const VkSurfaceCapabilitiesKHR& caps) {
+  VkCompositeAlphaFlagBitsKHR alpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
+  if (!(caps.supportedCompositeAlpha & alpha))
+    for (VkCompositeAlphaFlagBitsKHR a : {VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR, VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR,
+                                          VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR})
+      if (caps.supportedCompositeAlpha & a) {
+        alpha = a;
+        break;
+      }
+  return alpha;
+}
 
 }  // namespace
 
@@ -88,10 +118,7 @@ Presenter::Presenter(const vk::Device& device, VkSurfaceKHR surface, const Windo
   allocate.commandBufferCount = 1;
   check(vkAllocateCommandBuffers(d, &allocate, &commands_), "vkAllocateCommandBuffers");
 
-  VkSemaphoreCreateInfo semaphore_info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-  VkSemaphore semaphore = VK_NULL_HANDLE;
-  check(vkCreateSemaphore(d, &semaphore_info, nullptr, &semaphore), "vkCreateSemaphore");
-  acquired_ = vk::DeviceHandle<VkSemaphore>(d, semaphore, vkDestroySemaphore);
+  acquired_ = make_semaphore(d);
   VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   fence_info.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // the first frame has nothing to wait for
   VkFence fence = VK_NULL_HANDLE;
@@ -136,35 +163,34 @@ void Presenter::destroy_swapchain_objects() {
 bool Presenter::recreate() {
   const auto [fw, fh] = window_.framebuffer_size();
   if (fw == 0 || fh == 0) return false;
-  const VkDevice d = device_.handle();
-  const VkPhysicalDevice physical = device_.physical_device();
   {
     const std::lock_guard queue_lock(device_.queue_mutex());
-    check(vkDeviceWaitIdle(d), "vkDeviceWaitIdle");
+    check(vkDeviceWaitIdle(device_.handle()), "vkDeviceWaitIdle");
   }
 
   VkSurfaceCapabilitiesKHR caps{};
-  check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(physical, surface_, &caps), "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
+  check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(device_.physical_device(), surface_, &caps),
+        "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
   if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT))
     throw std::runtime_error("the window's swapchain images cannot be transfer destinations; the viewer uploads into them");
-  VkExtent2D extent = caps.currentExtent;
-  if (extent.width == 0xFFFFFFFFu) {  // the surface takes the swapchain's size
-    extent.width = std::clamp(fw, caps.minImageExtent.width, caps.maxImageExtent.width);
-    extent.height = std::clamp(fh, caps.minImageExtent.height, caps.maxImageExtent.height);
-  }
+  const VkExtent2D extent = swapchain_extent(caps, fw, fh);
   if (extent.width == 0 || extent.height == 0) return false;  // minimised on some platforms
   std::uint32_t images = std::max(caps.minImageCount, 2u);
   if (caps.maxImageCount != 0) images = std::min(images, caps.maxImageCount);
 
-  VkCompositeAlphaFlagBitsKHR alpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
-  if (!(caps.supportedCompositeAlpha & alpha))
-    for (VkCompositeAlphaFlagBitsKHR a : {VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR, VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR,
-                                          VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR})
-      if (caps.supportedCompositeAlpha & a) {
-        alpha = a;
-        break;
-      }
+  replace_swapchain(caps, extent, images);
+  create_image_targets();
+  const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
+  if (staging_.size() != bytes)
+    staging_ = vk::Buffer(device_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::HostVisible);
+  min_image_count_ = images;
+  stale_ = false;
+  if (on_recreate) on_recreate(min_image_count_);
+  return true;
+}
 
+void Presenter::replace_swapchain(const VkSurfaceCapabilitiesKHR& caps, VkExtent2D extent, std::uint32_t images) {
+  const VkDevice d = device_.handle();
   VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
   info.surface = surface_;
   info.minImageCount = images;
@@ -176,7 +202,7 @@ bool Presenter::recreate() {
   info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;  // one queue does everything
   info.preTransform = (caps.supportedTransforms & VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR) ? VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR
                                                                                           : caps.currentTransform;
-  info.compositeAlpha = alpha;
+  info.compositeAlpha = composite_alpha(caps);
   info.presentMode = VK_PRESENT_MODE_FIFO_KHR;  // always supported; frames are slower than vsync anyway
   info.clipped = VK_TRUE;
   info.oldSwapchain = swapchain_;
@@ -186,7 +212,10 @@ bool Presenter::recreate() {
   if (swapchain_ != VK_NULL_HANDLE) vkDestroySwapchainKHR(d, swapchain_, nullptr);
   swapchain_ = swapchain;
   extent_ = extent;
+}
 
+void Presenter::create_image_targets() {
+  const VkDevice d = device_.handle();
   std::uint32_t count = 0;
   check(vkGetSwapchainImagesKHR(d, swapchain_, &count, nullptr), "vkGetSwapchainImagesKHR");
   images_.resize(count);
@@ -204,29 +233,18 @@ bool Presenter::recreate() {
     fb_info.renderPass = render_pass_.get();
     fb_info.attachmentCount = 1;
     fb_info.pAttachments = &view;
-    fb_info.width = extent.width;
-    fb_info.height = extent.height;
+    fb_info.width = extent_.width;
+    fb_info.height = extent_.height;
     fb_info.layers = 1;
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     check(vkCreateFramebuffer(d, &fb_info, nullptr, &framebuffer), "vkCreateFramebuffer");
     framebuffers_.emplace_back(d, framebuffer, vkDestroyFramebuffer);
-    VkSemaphoreCreateInfo semaphore_info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VkSemaphore semaphore = VK_NULL_HANDLE;
-    check(vkCreateSemaphore(d, &semaphore_info, nullptr, &semaphore), "vkCreateSemaphore");
-    rendered_.emplace_back(d, semaphore, vkDestroySemaphore);
+    rendered_.push_back(make_semaphore(d));
   }
-  const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
-  if (staging_.size() != bytes)
-    staging_ = vk::Buffer(device_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::HostVisible);
-  min_image_count_ = images;
-  stale_ = false;
-  if (on_recreate) on_recreate(min_image_count_);
-  return true;
 }
 
 bool Presenter::present(std::span<const std::uint32_t> rgba, std::uint32_t width, std::uint32_t height,
                         const std::function<void(VkCommandBuffer)>& overlay) {
-  const VkDevice d = device_.handle();
   const auto [fw, fh] = window_.framebuffer_size();
   if (fw == 0 || fh == 0) return false;  // minimised: nothing to show, keep the swapchain
   // The queue may be busy with a pipeline's first dispatch on a worker thread (a driver that compiles
@@ -237,23 +255,35 @@ bool Presenter::present(std::span<const std::uint32_t> rgba, std::uint32_t width
   if (stale_ || fw != extent_.width || fh != extent_.height) {
     if (!recreate()) return false;
   }
+  const std::optional<std::uint32_t> index = acquire_image();
+  if (!index) return false;
+  upload(rgba, width, height);
+  record_frame(*index, overlay);
+  submit_and_present(*index);
+  return true;
+}
 
+std::optional<std::uint32_t> Presenter::acquire_image() {
+  const VkDevice d = device_.handle();
   VkFence fence = done_.get();
   check(vkWaitForFences(d, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   std::uint32_t index = 0;
   VkResult acquired = vkAcquireNextImageKHR(d, swapchain_, UINT64_MAX, acquired_.get(), VK_NULL_HANDLE, &index);
   if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
     stale_ = true;
-    return false;
+    return std::nullopt;
   }
   if (acquired == VK_SUBOPTIMAL_KHR)
     stale_ = true;  // still presentable; re-created after this frame
   else
     check(acquired, "vkAcquireNextImageKHR");
   check(vkResetFences(d, 1, &fence), "vkResetFences");
+  return index;
+}
 
-  // Stretched to the swapchain and swizzled on the host: a few MB per frame, far below the cost
-  // of the ray-query frame itself, and no sampler or pipeline of our own to keep.
+// Stretched to the swapchain and swizzled on the host: a few MB per frame, far below the cost
+// of the ray-query frame itself, and no sampler or pipeline of our own to keep.
+void Presenter::upload(std::span<const std::uint32_t> rgba, std::uint32_t width, std::uint32_t height) {
   std::span<const std::uint32_t> source = rgba;
   if (width != extent_.width || height != extent_.height) {
     scratch_ = resample_nearest(rgba, width, height, extent_.width, extent_.height);
@@ -265,7 +295,10 @@ bool Presenter::present(std::span<const std::uint32_t> rgba, std::uint32_t width
     upload[i] = bgra_ ? ((w & 0x0000FF00u) | ((w & 0xFFu) << 16) | ((w >> 16) & 0xFFu) | 0xFF000000u) : (w | 0xFF000000u);
   }
   staging_.write(std::as_bytes(std::span(upload)));
+}
 
+// The copy of the staging buffer into swapchain image `index`, then the overlay's render pass.
+void Presenter::record_frame(std::uint32_t index, const std::function<void(VkCommandBuffer)>& overlay) {
   check(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -278,7 +311,7 @@ bool Presenter::present(std::span<const std::uint32_t> rgba, std::uint32_t width
   to_transfer.srcQueueFamilyIndex = to_transfer.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   to_transfer.image = images_[index];
   to_transfer.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  // Source stage TRANSFER chains with the acquire semaphore's wait stage below.
+  // Source stage TRANSFER chains with the acquire semaphore's wait stage (submit_and_present).
   vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
                        nullptr, 1, &to_transfer);
   VkBufferImageCopy copy{};
@@ -294,7 +327,9 @@ bool Presenter::present(std::span<const std::uint32_t> rgba, std::uint32_t width
   if (overlay) overlay(commands_);
   vkCmdEndRenderPass(commands_);
   check(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
+}
 
+void Presenter::submit_and_present(std::uint32_t index) {
   VkSemaphore wait = acquired_.get(), signal = rendered_[index].get();
   const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -305,7 +340,7 @@ bool Presenter::present(std::span<const std::uint32_t> rgba, std::uint32_t width
   submit.pCommandBuffers = &commands_;
   submit.signalSemaphoreCount = 1;
   submit.pSignalSemaphores = &signal;
-  check(vkQueueSubmit(device_.queue(), 1, &submit, fence), "vkQueueSubmit");
+  check(vkQueueSubmit(device_.queue(), 1, &submit, done_.get()), "vkQueueSubmit");
 
   VkPresentInfoKHR present_info{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
   present_info.waitSemaphoreCount = 1;
@@ -318,7 +353,6 @@ bool Presenter::present(std::span<const std::uint32_t> rgba, std::uint32_t width
     stale_ = true;
   else
     check(presented, "vkQueuePresentKHR");
-  return true;
 }
 
 }  // namespace nano::viewer

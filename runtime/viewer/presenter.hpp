@@ -6,6 +6,7 @@
 // device's one queue, one frame in flight: the renderer already waits for each frame on the host.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -43,7 +44,13 @@ public:
 private:
   void choose_format();
   bool recreate();  // false while the window has no area
+  void replace_swapchain(const VkSurfaceCapabilitiesKHR& caps, VkExtent2D extent, std::uint32_t images);
+  void create_image_targets();  // per swapchain image: its view, framebuffer and `rendered_` semaphore
   void destroy_swapchain_objects();
+  std::optional<std::uint32_t> acquire_image();  // none when the swapchain is out of date
+  void upload(std::span<const std::uint32_t> rgba, std::uint32_t width, std::uint32_t height);
+  void record_frame(std::uint32_t index, const std::function<void(VkCommandBuffer)>& overlay);
+  void submit_and_present(std::uint32_t index);
 
   const vk::Device& device_;
   VkSurfaceKHR surface_;

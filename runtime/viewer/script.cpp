@@ -16,6 +16,8 @@
 namespace nano::viewer {
 namespace {
 
+using K = ScriptCommand::Kind;
+
 std::string_view trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t\r");
   if (first == std::string_view::npos) return {};
@@ -80,8 +82,7 @@ void check_camera_syntax(const std::string& spec) {
 constexpr std::uint32_t kMaxPathFrame = 10'000'000;
 
 // `path save FILE | load FILE | clear | frame K | play A B`; `rest` is what follows "path".
-void parse_path_command(std::string_view rest, ScriptCommand& c) {
-  using K = ScriptCommand::Kind;
+void parse_path_command(std::string_view, std::string_view rest, ScriptCommand& c) {
   std::string_view args;
   const std::string_view what = next_word(rest, args);
   if (what == "save" || what == "load") {
@@ -116,109 +117,154 @@ void parse_path_command(std::string_view rest, ScriptCommand& c) {
   }
 }
 
+void parse_camera_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  if (rest.empty()) throw std::invalid_argument("camera needs a spec position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG");
+  c.kind = K::camera;
+  c.text = std::string(rest);
+  check_camera_syntax(c.text);
+}
+
+void parse_clip_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  std::string_view args;
+  const std::string_view what = next_word(rest, args);
+  if (what == "plane") {
+    c.kind = K::clip_plane;
+    c.plane = render::parse_clip_plane(args);
+  } else if (what == "box") {
+    c.kind = K::clip_box;
+    c.box = render::parse_clip_box(args);
+  } else if (what == "off") {
+    c.kind = K::clip_off;
+    expect_no_more(args, "clip off");
+  } else {
+    throw std::invalid_argument("clip expects 'plane nx,ny,nz,d', 'box x0,y0,z0,x1,y1,z1' or 'off', got '" +
+                                std::string(rest) + "'");
+  }
+}
+
+void parse_effect_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  std::string_view tail;
+  const std::string_view name = next_word(rest, rest);
+  const std::string_view state = next_word(rest, tail);
+  render::EffectSettings scratch;
+  (void)render::effect_flag(scratch, name);  // throws for an unknown name
+  if (state != "on" && state != "off")
+    throw std::invalid_argument("effect " + std::string(name) + " expects on or off, got '" + std::string(state) + "'");
+  expect_no_more(tail, "effect NAME on|off");
+  c.kind = K::effect;
+  c.text = std::string(name);
+  c.on = state == "on";
+}
+
+void parse_preset_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  std::string_view tail;
+  const std::string_view name = next_word(rest, tail);
+  render::EffectSettings scratch;
+  render::apply_preset(scratch, name);  // throws for an unknown name
+  expect_no_more(tail, "preset NAME");
+  c.kind = K::preset;
+  c.text = std::string(name);
+}
+
+// `show NAME` and `hide NAME`.
+void parse_show_command(std::string_view word, std::string_view rest, ScriptCommand& c) {
+  std::string_view tail;
+  const std::string_view what = next_word(rest, tail);
+  if (what.empty()) throw std::invalid_argument(std::string(word) + " expects medium or the name of a compartment or molecule type");
+  expect_no_more(tail, std::string(word) + " NAME");
+  c.kind = K::show;
+  c.text = std::string(what);
+  c.on = word == "show";
+}
+
+// A time in seconds ≥ 0 and nothing after it; `expects` and `usage` word the errors.
+double parse_seconds(std::string_view rest, std::string_view expects, std::string_view usage) {
+  std::string_view tail;
+  const std::string_view value = next_word(rest, tail);
+  double seconds = 0;
+  if (!parse_number(value, seconds) || !std::isfinite(seconds) || seconds < 0)
+    throw std::invalid_argument(std::string(expects) + ", got '" + std::string(value) + "'");
+  expect_no_more(tail, usage);
+  return seconds;
+}
+
+void parse_time_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  c.seconds = parse_seconds(rest, "time expects seconds ≥ 0", "time SECONDS");
+  c.kind = K::time;
+}
+
+void parse_keyframe_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  c.seconds = parse_seconds(rest, "keyframe expects its time in seconds ≥ 0", "keyframe SECONDS");
+  c.kind = K::keyframe;
+}
+
+void parse_wait_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  std::string_view tail;
+  c.count = parse_count(next_word(rest, tail), "wait N", 100000);
+  expect_no_more(tail, "wait N");
+  c.kind = K::wait;
+}
+
+void parse_pick_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  std::string_view tail;
+  const std::string_view x = next_word(rest, rest);
+  const std::string_view y = next_word(rest, tail);
+  if (x.empty() || y.empty()) throw std::invalid_argument("pick expects X Y (pixel column and row)");
+  c.x = parse_count(x, "pick X", 16383);
+  c.y = parse_count(y, "pick Y", 16383);
+  expect_no_more(tail, "pick X Y");
+  c.kind = K::pick;
+}
+
+void parse_screenshot_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  if (rest.empty()) throw std::invalid_argument("screenshot expects a PATH (.png)");
+  c.kind = K::screenshot;
+  c.text = std::string(rest);
+  if (std::filesystem::path(c.text).extension() == ".ids")
+    throw std::invalid_argument("screenshot PATH must not end in .ids: the hit ids are written beside it as PATH.ids");
+}
+
+void parse_size_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  std::string_view tail;
+  const auto [w, h] = render::parse_image_size(next_word(rest, tail));
+  expect_no_more(tail, "size WxH");
+  c.kind = K::size;
+  c.x = w, c.y = h;
+}
+
+void parse_quit_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+  expect_no_more(rest, "quit");
+  c.kind = K::quit;
+}
+
+// A command's parser is given the command word and what follows it on the line.
+using CommandParser = void (*)(std::string_view word, std::string_view rest, ScriptCommand& c);
+constexpr std::pair<std::string_view, CommandParser> kCommands[] = {
+    {"camera", parse_camera_command},
+    {"clip", parse_clip_command},
+    {"effect", parse_effect_command},
+    {"preset", parse_preset_command},
+    {"show", parse_show_command},
+    {"hide", parse_show_command},
+    {"time", parse_time_command},
+    {"wait", parse_wait_command},
+    {"pick", parse_pick_command},
+    {"screenshot", parse_screenshot_command},
+    {"size", parse_size_command},
+    {"keyframe", parse_keyframe_command},
+    {"path", parse_path_command},
+    {"quit", parse_quit_command},
+};
+
 ScriptCommand parse_line(std::string_view line) {
   ScriptCommand c;
   std::string_view rest;
   const std::string_view word = next_word(line, rest);
-  using K = ScriptCommand::Kind;
-  if (word == "camera") {
-    if (rest.empty()) throw std::invalid_argument("camera needs a spec position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG");
-    c.kind = K::camera;
-    c.text = std::string(rest);
-    check_camera_syntax(c.text);
-  } else if (word == "clip") {
-    std::string_view args;
-    const std::string_view what = next_word(rest, args);
-    if (what == "plane") {
-      c.kind = K::clip_plane;
-      c.plane = render::parse_clip_plane(args);
-    } else if (what == "box") {
-      c.kind = K::clip_box;
-      c.box = render::parse_clip_box(args);
-    } else if (what == "off") {
-      c.kind = K::clip_off;
-      expect_no_more(args, "clip off");
-    } else {
-      throw std::invalid_argument("clip expects 'plane nx,ny,nz,d', 'box x0,y0,z0,x1,y1,z1' or 'off', got '" +
-                                  std::string(rest) + "'");
-    }
-  } else if (word == "effect") {
-    std::string_view tail;
-    const std::string_view name = next_word(rest, rest);
-    const std::string_view state = next_word(rest, tail);
-    render::EffectSettings scratch;
-    (void)render::effect_flag(scratch, name);  // throws for an unknown name
-    if (state != "on" && state != "off")
-      throw std::invalid_argument("effect " + std::string(name) + " expects on or off, got '" + std::string(state) + "'");
-    expect_no_more(tail, "effect NAME on|off");
-    c.kind = K::effect;
-    c.text = std::string(name);
-    c.on = state == "on";
-  } else if (word == "preset") {
-    std::string_view tail;
-    const std::string_view name = next_word(rest, tail);
-    render::EffectSettings scratch;
-    render::apply_preset(scratch, name);  // throws for an unknown name
-    expect_no_more(tail, "preset NAME");
-    c.kind = K::preset;
-    c.text = std::string(name);
-  } else if (word == "show" || word == "hide") {
-    std::string_view tail;
-    const std::string_view what = next_word(rest, tail);
-    if (what.empty()) throw std::invalid_argument(std::string(word) + " expects medium or the name of a compartment or molecule type");
-    expect_no_more(tail, std::string(word) + " NAME");
-    c.kind = K::show;
-    c.text = std::string(what);
-    c.on = word == "show";
-  } else if (word == "time") {
-    std::string_view tail;
-    const std::string_view value = next_word(rest, tail);
-    if (!parse_number(value, c.seconds) || !std::isfinite(c.seconds) || c.seconds < 0)
-      throw std::invalid_argument("time expects seconds ≥ 0, got '" + std::string(value) + "'");
-    expect_no_more(tail, "time SECONDS");
-    c.kind = K::time;
-  } else if (word == "wait") {
-    std::string_view tail;
-    c.count = parse_count(next_word(rest, tail), "wait N", 100000);
-    expect_no_more(tail, "wait N");
-    c.kind = K::wait;
-  } else if (word == "pick") {
-    std::string_view tail;
-    const std::string_view x = next_word(rest, rest);
-    const std::string_view y = next_word(rest, tail);
-    if (x.empty() || y.empty()) throw std::invalid_argument("pick expects X Y (pixel column and row)");
-    c.x = parse_count(x, "pick X", 16383);
-    c.y = parse_count(y, "pick Y", 16383);
-    expect_no_more(tail, "pick X Y");
-    c.kind = K::pick;
-  } else if (word == "screenshot") {
-    if (rest.empty()) throw std::invalid_argument("screenshot expects a PATH (.png)");
-    c.kind = K::screenshot;
-    c.text = std::string(rest);
-    if (std::filesystem::path(c.text).extension() == ".ids")
-      throw std::invalid_argument("screenshot PATH must not end in .ids: the hit ids are written beside it as PATH.ids");
-  } else if (word == "size") {
-    std::string_view tail;
-    const auto [w, h] = render::parse_image_size(next_word(rest, tail));
-    expect_no_more(tail, "size WxH");
-    c.kind = K::size;
-    c.x = w, c.y = h;
-  } else if (word == "keyframe") {
-    std::string_view tail;
-    const std::string_view value = next_word(rest, tail);
-    if (!parse_number(value, c.seconds) || !std::isfinite(c.seconds) || c.seconds < 0)
-      throw std::invalid_argument("keyframe expects its time in seconds ≥ 0, got '" + std::string(value) + "'");
-    expect_no_more(tail, "keyframe SECONDS");
-    c.kind = K::keyframe;
-  } else if (word == "path") {
-    parse_path_command(rest, c);
-  } else if (word == "quit") {
-    expect_no_more(rest, "quit");
-    c.kind = K::quit;
-  } else {
+  const auto command = std::find_if(std::begin(kCommands), std::end(kCommands), [&](const auto& entry) { return entry.first == word; });
+  if (command == std::end(kCommands))
     throw std::invalid_argument("unknown command '" + std::string(word) +
                                 "' (camera, clip, effect, time, wait, pick, screenshot, size, keyframe, path, quit)");
-  }
+  command->second(word, rest, c);
   return c;
 }
 

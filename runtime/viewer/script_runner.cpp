@@ -13,80 +13,66 @@
 namespace nano::viewer {
 namespace {
 
-void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
+using K = ScriptCommand::Kind;
+
+void add_clip_plane(render::EffectSettings& effects, const glm::dvec4& plane) {
+  if (effects.clipping.planes.size() >= render::kMaxClipPlanes)
+    throw std::invalid_argument("at most " + std::to_string(render::kMaxClipPlanes) +
+                                " clip planes (the scene's included); 'clip off' removes them");
+  effects.clipping.planes.push_back(plane);
+  effects.flag(EffectId::clipping) = true;
+}
+
+// A command that changes what the frame shows (camera, clipping, effects, shown names, time, size).
+void change_view(const ScriptCommand& c, ScriptHost& host) {
   ViewerState& s = host.state();
   render::EffectSettings& effects = s.settings.effects;
-  using K = ScriptCommand::Kind;
   switch (c.kind) {
-    case K::camera:
-      s.camera.set_camera(render::parse_camera(c.text, s.camera.camera()));
-      s.touch();
-      break;
-    case K::clip_plane:
-      if (effects.clipping.planes.size() >= render::kMaxClipPlanes)
-        throw std::invalid_argument("at most " + std::to_string(render::kMaxClipPlanes) +
-                                    " clip planes (the scene's included); 'clip off' removes them");
-      effects.clipping.planes.push_back(c.plane);
-      effects.flag(EffectId::clipping) = true;
-      s.touch();
-      break;
+    case K::camera: s.camera.set_camera(render::parse_camera(c.text, s.camera.camera())); break;
+    case K::clip_plane: add_clip_plane(effects, c.plane); break;
     case K::clip_box:
       effects.clipping.box = c.box;
       effects.flag(EffectId::clipping) = true;
-      s.touch();
       break;
     case K::clip_off:
       effects.clipping = {};
       effects.flag(EffectId::clipping) = false;
-      s.touch();
       break;
-    case K::effect:
-      render::set_effect(effects, c.text, c.on);
-      s.touch();
-      break;
-    case K::preset:
-      render::apply_preset(effects, c.text);
-      s.touch();
-      break;
-    case K::show:
-      render::set_shown(s.settings, c.text, c.on);
-      s.touch();
-      break;
-    case K::time:
-      effects.time = c.seconds;
-      s.touch();
-      break;
-    case K::wait:
-      host.render_frames(c.count);
-      break;
-    case K::pick: {
-      const render::Frame& frame = host.current_frame();
-      if (c.x >= frame.width || c.y >= frame.height)
-        throw std::invalid_argument("pixel (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") lies outside the " +
-                                    std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame");
-      nlohmann::json j = host.describe(frame.hits[std::size_t(c.y) * frame.width + c.x]);
-      j["x"] = c.x;
-      j["y"] = c.y;
-      out << j.dump() << '\n' << std::flush;  // one line per pick: scripts parse stdout line by line
-      s.last_pick = std::move(j);
-      break;
-    }
-    case K::screenshot: {
-      const render::Frame& frame = host.current_frame();
-      const auto image = host.current_image();
-      render::write_png(c.text, frame.width, frame.height, image);
-      render::write_ids(ids_path_for(c.text), frame.width, frame.height, frame.hits);
-      s.status = "screenshot " + c.text;
-      break;
-    }
-    case K::size:
-      host.resize(c.x, c.y);
-      s.touch();
-      break;
-    case K::keyframe:
-      // Only the path changes, not what the frame shows: no touch().
-      add_keyframe(s.path.path, s.camera.camera(), c.seconds);
-      break;
+    case K::effect: render::set_effect(effects, c.text, c.on); break;
+    case K::preset: render::apply_preset(effects, c.text); break;
+    case K::show: render::set_shown(s.settings, c.text, c.on); break;
+    case K::time: effects.time = c.seconds; break;
+    case K::size: host.resize(c.x, c.y); break;
+    default: return;
+  }
+  s.touch();
+}
+
+void pick_pixel(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
+  const render::Frame& frame = host.current_frame();
+  if (c.x >= frame.width || c.y >= frame.height)
+    throw std::invalid_argument("pixel (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") lies outside the " +
+                                std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame");
+  nlohmann::json j = host.describe(frame.hits[std::size_t(c.y) * frame.width + c.x]);
+  j["x"] = c.x;
+  j["y"] = c.y;
+  out << j.dump() << '\n' << std::flush;  // one line per pick: scripts parse stdout line by line
+  host.state().last_pick = std::move(j);
+}
+
+void write_screenshot(const std::string& path, ScriptHost& host) {
+  const render::Frame& frame = host.current_frame();
+  const auto image = host.current_image();
+  render::write_png(path, frame.width, frame.height, image);
+  render::write_ids(ids_path_for(path), frame.width, frame.height, frame.hits);
+  host.state().status = "screenshot " + path;
+}
+
+// keyframe and the path commands: only the path changes, not what the frame shows (no touch()).
+void run_path_command(const ScriptCommand& c, ScriptHost& host) {
+  ViewerState& s = host.state();
+  switch (c.kind) {
+    case K::keyframe: add_keyframe(s.path.path, s.camera.camera(), c.seconds); break;
     case K::path_save:
       if (s.path.path.keyframes.empty()) throw std::invalid_argument("no keyframes to save ('keyframe SECONDS' adds one)");
       render::write_camera_path(c.text, s.path.path);
@@ -100,9 +86,7 @@ void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
       stop_playback(s);
       s.path.path.keyframes.clear();
       break;
-    case K::path_frame:
-      show_path_at(s, path_frame_time(s.path.path, c.first));
-      break;
+    case K::path_frame: show_path_at(s, path_frame_time(s.path.path, c.first)); break;
     case K::path_play:
       (void)path_frame_time(s.path.path, c.last);  // a range past the end fails before any frame
       for (std::uint32_t k = c.first; k <= c.last; ++k) {
@@ -110,8 +94,31 @@ void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
         host.render_frames(1);
       }
       break;
-    case K::quit:
-      break;
+    default: break;
+  }
+}
+
+void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
+  switch (c.kind) {
+    case K::camera:
+    case K::clip_plane:
+    case K::clip_box:
+    case K::clip_off:
+    case K::effect:
+    case K::preset:
+    case K::show:
+    case K::time:
+    case K::size: change_view(c, host); break;
+    case K::wait: host.render_frames(c.count); break;
+    case K::pick: pick_pixel(c, host, out); break;
+    case K::screenshot: write_screenshot(c.text, host); break;
+    case K::keyframe:
+    case K::path_save:
+    case K::path_load:
+    case K::path_clear:
+    case K::path_frame:
+    case K::path_play: run_path_command(c, host); break;
+    case K::quit: break;
   }
 }
 

@@ -375,25 +375,125 @@ private:
     if (!logged_status_.empty()) std::fprintf(stderr, "view: %s\n", logged_status_.c_str());
   }
 
+  // Whether the loop has something to trace, show or play; at rest it sleeps until input instead.
+  bool busy(bool active) const {
+    return active || job_ || shown_ == &reduced_ || shown_ == nullptr || !full_is_current() || wants_more_samples() ||
+           state_.playing || state_.path.play_time;
+  }
+
+  // At rest with every sample in, sleep until something happens: no frame, no CPU.
+  // While a pipeline builds on a worker thread there is nothing to trace: wait for input a little
+  // rather than spin on the core the compiler needs, and look at the build ~20 times a second.
+  void wait_for_events(bool has_work) {
+    if (!compiling_.empty()) {
+      // (Under Xvfb the wait returns at once, events or not: a short sleep keeps the core free.)
+      std::this_thread::sleep_for(std::chrono::milliseconds(15));
+      window_.wait_events(0.035);
+    } else if (has_work) {
+      window_.poll_events();
+    } else {
+      window_.wait_events(0.5);
+    }
+  }
+
+  void log_handled_keys(const InputResult& input) {
+    if (!input_log_) return;
+    const std::vector<Window::KeyTimes>& times = window_.last_key_times();
+    for (std::size_t k = 0; k < input.keys.size(); ++k) {
+      std::fprintf(stderr, "view: key %d handled at %.3f\n", input.keys[k], wall_seconds());
+      if (k < times.size()) unpresented_keys_.push_back({input.keys[k], times[k], Clock::now(), presented_});
+    }
+  }
+
+  // The camera, playback and key toggles of this iteration's input, and the time it moves on.
+  void apply_input(const InputResult& input, double dt) {
+    if (input.camera_moved) {
+      state_.touch();
+      if (state_.path.play_time) {  // the user takes the camera back
+        stop_playback(state_);
+        state_.status = "path playback stopped by camera input";
+        log_status();
+      }
+    }
+    // Advanced before K, L and the panel act: a playback they start shows time 0 first instead of
+    // jumping ahead by however long the previous (perhaps full-resolution) frame took.
+    advance_playback(state_, dt);
+    log_status();
+    // K and L can both arrive during one long frame: each outcome is logged.
+    if (input.add_keyframe) {
+      record_keyframe(state_);
+      log_status();
+    }
+    if (input.toggle_path) {
+      toggle_playback(state_);
+      log_status();
+    }
+    if (input.toggle_ambient_occlusion) {
+      state_.settings.effects.flag(EffectId::ambient_occlusion) = !state_.settings.effects.flag(EffectId::ambient_occlusion);
+      state_.touch();
+    }
+    if (state_.playing && !state_.path.play_time) {  // while a path plays, it drives the time
+      state_.settings.effects.time += dt * state_.play_speed;
+      state_.touch();
+    }
+  }
+
+  // Draws the panel into the overlay's frame. True while a slider is dragged: that is motion too,
+  // previewed at reduced resolution.
+  bool run_panel() {
+    const std::uint64_t before_panel = state_.version;
+    const Camera camera_before_panel = state_.camera.camera();
+    draw_panel(state_, panel_context());
+    if (state_.path.play_time && camera_before_panel != state_.camera.camera()) {
+      stop_playback(state_);  // an edit in the camera section is camera input too
+      state_.status = "path playback stopped by a camera edit";
+    }
+    log_status();
+    return ImGui::IsAnyItemActive() && state_.version != before_panel;
+  }
+
+  // Takes a requested screenshot, then starts, keeps or drops the frame in progress and traces its
+  // next part. `shown_reduced`: the window showed a reduced frame when this iteration began.
+  void advance_frames(bool screenshot_key, bool moving, bool shown_reduced) {
+    try {
+      if (screenshot_key || state_.screenshot_requested) {
+        state_.screenshot_requested = false;
+        screenshot();
+      }
+      // A frame of a state that has changed since it began is dropped, except a reduced one
+      // while moving (each is cheap and shows the motion; dropping them could show nothing).
+      if (job_ && job_->version != state_.version && !(moving && job_->scale > 1)) job_.reset();
+      if (job_ && job_->size != render_size()) job_.reset();
+      if (!job_) {
+        const auto [rw, rh] = render_size();
+        if (moving) start_job(motion_scale(seconds_per_pixel_, rw, rh, state_.motion_budget));
+        else if (shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples()) start_job(refinement_scale());
+      }
+      if (job_) advance_job();
+    } catch (const std::invalid_argument& e) {
+      // Settings the renderer refuses (e.g. an effect the two-level path lacks): say so, keep going.
+      state_.status = e.what();
+      state_.touch();
+    }
+    log_status();
+  }
+
+  // While a frame is traced in parts, the window (panel, overlay) is presented at ~60 Hz, not after
+  // every part; camera motion is shown at once.
+  void present_when_due(bool camera_moved) {
+    const auto presenting = Clock::now();
+    if (!job_ || camera_moved || std::chrono::duration<double>(presenting - last_present_).count() >= 1.0 / 60) {
+      present();
+      last_present_ = presenting;
+    }
+  }
+
   void interactive_loop() {
     auto last = Clock::now();
     bool active = false;
     while (!window_.should_close()) {
       const bool shown_reduced = shown_ == &reduced_;
-      const bool busy = active || job_ || shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples() ||
-                        state_.playing || state_.path.play_time;
-      // At rest with every sample in, sleep until something happens: no frame, no CPU.
-      // While a pipeline builds on a worker thread there is nothing to trace: wait for input a little
-      // rather than spin on the core the compiler needs, and look at the build ~20 times a second.
-      if (!compiling_.empty()) {
-        // (Under Xvfb the wait returns at once, events or not: a short sleep keeps the core free.)
-        std::this_thread::sleep_for(std::chrono::milliseconds(15));
-        window_.wait_events(0.035);
-      } else if (busy) {
-        window_.poll_events();
-      } else {
-        window_.wait_events(0.5);
-      }
+      wait_for_events(busy(active));
       const auto now = Clock::now();
       const double dt = std::chrono::duration<double>(now - last).count();
       last = now;
@@ -405,85 +505,16 @@ private:
 
       overlay_->begin_frame();
       const InputResult input = handle_camera_input(window_, state_.camera, dt);
-      if (input_log_) {
-        const std::vector<Window::KeyTimes>& times = window_.last_key_times();
-        for (std::size_t k = 0; k < input.keys.size(); ++k) {
-          std::fprintf(stderr, "view: key %d handled at %.3f\n", input.keys[k], wall_seconds());
-          if (k < times.size()) unpresented_keys_.push_back({input.keys[k], times[k], Clock::now(), presented_});
-        }
-      }
-      if (input.camera_moved) {
-        state_.touch();
-        if (state_.path.play_time) {  // the user takes the camera back
-          stop_playback(state_);
-          state_.status = "path playback stopped by camera input";
-          log_status();
-        }
-      }
-      // Advanced before K, L and the panel act: a playback they start shows time 0 first instead of
-      // jumping ahead by however long the previous (perhaps full-resolution) frame took.
-      advance_playback(state_, dt);
-      log_status();
-      // K and L can both arrive during one long frame: each outcome is logged.
-      if (input.add_keyframe) {
-        record_keyframe(state_);
-        log_status();
-      }
-      if (input.toggle_path) {
-        toggle_playback(state_);
-        log_status();
-      }
-      if (input.toggle_ambient_occlusion) {
-        state_.settings.effects.flag(EffectId::ambient_occlusion) = !state_.settings.effects.flag(EffectId::ambient_occlusion);
-        state_.touch();
-      }
-      if (state_.playing && !state_.path.play_time) {  // while a path plays, it drives the time
-        state_.settings.effects.time += dt * state_.play_speed;
-        state_.touch();
-      }
-      const std::uint64_t before_panel = state_.version;
-      const Camera camera_before_panel = state_.camera.camera();
-      draw_panel(state_, panel_context());
-      if (state_.path.play_time && camera_before_panel != state_.camera.camera()) {
-        stop_playback(state_);  // an edit in the camera section is camera input too
-        state_.status = "path playback stopped by a camera edit";
-      }
-      log_status();
-      // A slider being dragged is motion too: preview it at reduced resolution.
-      const bool panel_dragging = ImGui::IsAnyItemActive() && state_.version != before_panel;
+      log_handled_keys(input);
+      apply_input(input, dt);
+      const bool panel_dragging = run_panel();
       overlay_->end_frame();
       active = input.dragging || ImGui::IsAnyItemActive();
 
       if (input.click) pick(input.click->first, input.click->second);
       const bool moving = input.camera_moved || state_.playing || panel_dragging || state_.path.play_time.has_value();
-      try {
-        if (input.screenshot || state_.screenshot_requested) {
-          state_.screenshot_requested = false;
-          screenshot();
-        }
-        // A frame of a state that has changed since it began is dropped, except a reduced one
-        // while moving (each is cheap and shows the motion; dropping them could show nothing).
-        if (job_ && job_->version != state_.version && !(moving && job_->scale > 1)) job_.reset();
-        if (job_ && job_->size != render_size()) job_.reset();
-        if (!job_) {
-          const auto [rw, rh] = render_size();
-          if (moving) start_job(motion_scale(seconds_per_pixel_, rw, rh, state_.motion_budget));
-          else if (shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples()) start_job(refinement_scale());
-        }
-        if (job_) advance_job();
-      } catch (const std::invalid_argument& e) {
-        // Settings the renderer refuses (e.g. an effect the two-level path lacks): say so, keep going.
-        state_.status = e.what();
-        state_.touch();
-      }
-      log_status();
-      const auto presenting = Clock::now();
-      // While a frame is traced in parts, the window (panel, overlay) is presented at ~60 Hz,
-      // not after every part.
-      if (!job_ || input.camera_moved || std::chrono::duration<double>(presenting - last_present_).count() >= 1.0 / 60) {
-        present();
-        last_present_ = presenting;
-      }
+      advance_frames(input.screenshot, moving, shown_reduced);
+      present_when_due(input.camera_moved);
     }
   }
 

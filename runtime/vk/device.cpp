@@ -47,6 +47,64 @@ Pfn load(VkDevice device, const char* name) {
   return function;
 }
 
+// The required extensions, host-memory import when the device has it, and the caller's extras.
+// Points into `options`, which must outlive the result.
+std::vector<const char*> device_extensions(const DeviceReport& report, const DeviceOptions& options) {
+  std::vector<const char*> extensions(std::begin(kRequiredDeviceExtensions), std::end(kRequiredDeviceExtensions));
+  if (report.external_memory_host) {
+    extensions.push_back(VK_KHR_EXTERNAL_MEMORY_EXTENSION_NAME);  // core in 1.1; listed for 1.0-era loaders
+    extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+  }
+  for (const auto& name : options.extensions)
+    if (std::find_if(extensions.begin(), extensions.end(), [&](const char* e) { return name == e; }) == extensions.end())
+      extensions.push_back(name.c_str());
+  return extensions;
+}
+
+// A logical device with ray queries, acceleration structures and buffer device addresses, and one
+// queue of the report's compute family.
+VkDevice create_device(VkPhysicalDevice physical_device, const DeviceReport& report, const DeviceOptions& options) {
+  VkPhysicalDeviceRayQueryFeaturesKHR ray_query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  ray_query.rayQuery = VK_TRUE;
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR acceleration{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  acceleration.accelerationStructure = VK_TRUE;
+  acceleration.pNext = &ray_query;
+  VkPhysicalDeviceVulkan12Features vulkan12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  vulkan12.bufferDeviceAddress = VK_TRUE;
+  vulkan12.pNext = &acceleration;
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  features.features.shaderInt64 = report.shader_int64 ? VK_TRUE : VK_FALSE;
+  features.pNext = &vulkan12;
+
+  const float priority = 1.0f;
+  VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queue_info.queueFamilyIndex = report.compute_queue_family;
+  queue_info.queueCount = 1;
+  queue_info.pQueuePriorities = &priority;
+
+  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  info.pNext = &features;
+  info.queueCreateInfoCount = 1;
+  info.pQueueCreateInfos = &queue_info;
+  const std::vector<const char*> extensions = device_extensions(report, options);
+  info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
+  VkDevice device = VK_NULL_HANDLE;
+  check(vkCreateDevice(physical_device, &info, nullptr, &device), "vkCreateDevice");
+  return device;
+}
+
+AccelerationStructureFunctions load_acceleration_structure_functions(VkDevice device) {
+  AccelerationStructureFunctions f;
+  f.create = load<PFN_vkCreateAccelerationStructureKHR>(device, "vkCreateAccelerationStructureKHR");
+  f.destroy = load<PFN_vkDestroyAccelerationStructureKHR>(device, "vkDestroyAccelerationStructureKHR");
+  f.get_build_sizes = load<PFN_vkGetAccelerationStructureBuildSizesKHR>(device, "vkGetAccelerationStructureBuildSizesKHR");
+  f.cmd_build = load<PFN_vkCmdBuildAccelerationStructuresKHR>(device, "vkCmdBuildAccelerationStructuresKHR");
+  f.get_device_address =
+      load<PFN_vkGetAccelerationStructureDeviceAddressKHR>(device, "vkGetAccelerationStructureDeviceAddressKHR");
+  return f;
+}
+
 }  // namespace
 
 Device::Device(VkPhysicalDevice physical_device, DeviceReport report, const DeviceOptions& options)
@@ -66,49 +124,11 @@ Device::Device(VkPhysicalDevice physical_device, DeviceReport report, const Devi
   host_import_alignment_ = host_properties.minImportedHostPointerAlignment;
   vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
 
-  VkPhysicalDeviceRayQueryFeaturesKHR ray_query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
-  ray_query.rayQuery = VK_TRUE;
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR acceleration{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
-  acceleration.accelerationStructure = VK_TRUE;
-  acceleration.pNext = &ray_query;
-  VkPhysicalDeviceVulkan12Features vulkan12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-  vulkan12.bufferDeviceAddress = VK_TRUE;
-  vulkan12.pNext = &acceleration;
-  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  features.features.shaderInt64 = report_.shader_int64 ? VK_TRUE : VK_FALSE;
-  features.pNext = &vulkan12;
-
-  const float priority = 1.0f;
-  VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-  queue_info.queueFamilyIndex = report_.compute_queue_family;
-  queue_info.queueCount = 1;
-  queue_info.pQueuePriorities = &priority;
-
-  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-  info.pNext = &features;
-  info.queueCreateInfoCount = 1;
-  info.pQueueCreateInfos = &queue_info;
-  std::vector<const char*> extensions(std::begin(kRequiredDeviceExtensions), std::end(kRequiredDeviceExtensions));
-  if (report_.external_memory_host) {
-    extensions.push_back(VK_KHR_EXTERNAL_MEMORY_EXTENSION_NAME);  // core in 1.1; listed for 1.0-era loaders
-    extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
-  }
-  for (const auto& name : options.extensions)
-    if (std::find_if(extensions.begin(), extensions.end(), [&](const char* e) { return name == e; }) == extensions.end())
-      extensions.push_back(name.c_str());
-  info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
-  info.ppEnabledExtensionNames = extensions.data();
-  check(vkCreateDevice(physical_device_, &info, nullptr, &device_), "vkCreateDevice");
+  device_ = create_device(physical_device_, report_, options);
 
   try {
     vkGetDeviceQueue(device_, report_.compute_queue_family, 0, &queue_);
-    as_functions_.create = load<PFN_vkCreateAccelerationStructureKHR>(device_, "vkCreateAccelerationStructureKHR");
-    as_functions_.destroy = load<PFN_vkDestroyAccelerationStructureKHR>(device_, "vkDestroyAccelerationStructureKHR");
-    as_functions_.get_build_sizes =
-        load<PFN_vkGetAccelerationStructureBuildSizesKHR>(device_, "vkGetAccelerationStructureBuildSizesKHR");
-    as_functions_.cmd_build = load<PFN_vkCmdBuildAccelerationStructuresKHR>(device_, "vkCmdBuildAccelerationStructuresKHR");
-    as_functions_.get_device_address =
-        load<PFN_vkGetAccelerationStructureDeviceAddressKHR>(device_, "vkGetAccelerationStructureDeviceAddressKHR");
+    as_functions_ = load_acceleration_structure_functions(device_);
 
     if (report_.external_memory_host)
       get_host_pointer_properties_ =
