@@ -9,17 +9,16 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
-#include <tuple>
 
 #include <unistd.h>
 
 #include <glm/gtc/matrix_access.hpp>
 
 #include "common/error.hpp"
-#include "common/singular_value.hpp"
 #include "format/core_skip.hpp"
 #include "format/package_view.hpp"
 #include "runtime/placement/medium_rule.hpp"
+#include "runtime/placement/membrane_distortion.hpp"
 #include "runtime/render/flat_level.hpp"
 #include "runtime/render/kept_boxes.hpp"
 #include "runtime/render/morton.hpp"
@@ -157,7 +156,7 @@ struct GpuScene::Impl : format::PackageView {
     first_atom_square = first_area + std::uint32_t(compartments.size());
     first_bead = first_atom_square + std::uint32_t(tiles2d.size());
     first_class_square = first_bead + std::uint32_t(molecules.size());
-    level_records.assign(first_class_square + (kDistortionClasses - 1) * tiles2d.size(), gpu::RenderLevel{});
+    level_records.assign(first_class_square + (placement::kDistortionClasses - 1) * tiles2d.size(), gpu::RenderLevel{});
     levels.resize(level_records.size());
     build_molecule_levels();
     build_bead_levels();
@@ -435,176 +434,26 @@ struct GpuScene::Impl : format::PackageView {
     }
   }
 
-  // How far a membrane molecule's true placement (chart_membrane_molecule: the interpolated normal
-  // n(uv_m) and the frame built on it, not M1's face frame) can stray from where M1 puts it, per
-  // compartment. In tile space (M1⁻¹) an atom offset p of a copy becomes T·p with T = L·F, L the
-  // inverse linear part of M1 and F the copy's frame; its centre (x, y, z) moves by
-  // z·L(n − N) + L(X_smooth − X_flat). So a copy whose M1-placed atoms fill the box c ± h (about its
-  // origin) lies in c ± (h + E·(|c| + h) + that offset's bound, per axis in square_boxes), with
-  // E the element-wise largest |T − I|, σ L's largest singular value, δ = max |n_i − N| over
-  // corners (n(uv_m) of an owned copy is a positive combination of them) and b the smooth surface's
-  // largest lift off its facet (chart_smooth_bulge). E is sampled over each triangle (a barycentric
-  // grid, where owned copies sit) and widened by a fifth plus 0.02 for what lies between samples.
-  // Along N the lift reaches tens of Å on coarse facets; the shader shears each slot's ray onto the
-  // tile's lift plane (chart_lift_shear_ray), so a sheared triangle's boxes hold only what the plane
-  // misses: the curvature term, exact per copy, and the plane's slope across the copy's own width.
-  struct Distortion {
-    double sigma = 0, delta = 0, bulge = 0;
-    double lift_lo = 0, lift_hi = 0;  // range of the smooth surface's lift along the face normal (tile z)
-    dmat3 e{0.0};  // element-wise max |T − I|
-    // Sheared triangles: ranges of chart_smooth_lift_curvature (column r: tile component r; lo > hi:
-    // none in this bound) and the largest |∂plane/∂x|, |∂plane/∂y| per component. Unsheared ones:
-    // their lift range along the normal (lo > hi: none).
-    dmat3 curvature_lo{dvec3(INFINITY), dvec3(INFINITY), dvec3(INFINITY)};
-    dmat3 curvature_hi{dvec3(-INFINITY), dvec3(-INFINITY), dvec3(-INFINITY)};
-    bool has_sheared() const { return curvature_lo[0].x <= curvature_hi[0].x; }
-    bool has_unsheared() const { return unsheared_lo <= unsheared_hi; }
-    dvec3 slope_x{0.0}, slope_y{0.0};
-    double unsheared_lo = INFINITY, unsheared_hi = -INFINITY;
-    double plane_error = 0;  // the float plane's rounding (Å), shader and host alike
-  };
-  // Widens `into` (nothing yet: the first distortion) to hold o.
-  static void widen_to(std::optional<Distortion>& into, const Distortion& o) {
-    Distortion& d = into ? *into : into.emplace(o);
-    d.sigma = std::max(d.sigma, o.sigma), d.delta = std::max(d.delta, o.delta), d.bulge = std::max(d.bulge, o.bulge);
-    d.lift_lo = std::min(d.lift_lo, o.lift_lo), d.lift_hi = std::max(d.lift_hi, o.lift_hi);
-    for (int col = 0; col < 3; ++col) d.e[col] = glm::max(d.e[col], o.e[col]);
-    for (int r = 0; r < 3; ++r)
-      d.curvature_lo[r] = glm::min(d.curvature_lo[r], o.curvature_lo[r]), d.curvature_hi[r] = glm::max(d.curvature_hi[r], o.curvature_hi[r]);
-    d.slope_x = glm::max(d.slope_x, o.slope_x), d.slope_y = glm::max(d.slope_y, o.slope_y);
-    d.unsheared_lo = std::min(d.unsheared_lo, o.unsheared_lo), d.unsheared_hi = std::max(d.unsheared_hi, o.unsheared_hi);
-    d.plane_error = std::max(d.plane_error, o.plane_error);
-  }
-
-  // Range of the lift left over by the plane for a copy at Δ from the tile's centre (tile Å) under
-  // curvatures in [lo, hi]: Δx²·h.x + 2·Δx·Δy·h.y + Δy²·h.z, each term linear in its h.
-  static std::pair<double, double> curvature_range(const dvec3& lo, const dvec3& hi, const dvec2& delta) {
-    const dvec3 w(delta.x * delta.x, 2 * delta.x * delta.y, delta.y * delta.y);
-    double out_lo = 0, out_hi = 0;
-    for (int k = 0; k < 3; ++k) {
-      out_lo += std::min(w[k] * lo[k], w[k] * hi[k]);
-      out_hi += std::max(w[k] * lo[k], w[k] * hi[k]);
-    }
-    return {out_lo, out_hi};
-  }
-
-  // One triangle's distortion (already widened for what lies between samples), or nothing for a
-  // triangle that owns no copy.
-  std::optional<Distortion> triangle_distortion(const gpu::Compartment& c, const gpu::RenderCompartment& rc,
-                                                std::uint32_t t) const {
-    const gpu::Mesh& mesh = meshes[c.mesh];
-    const float s_over_S = rc.membrane.y;
-    constexpr int kSteps = 4;
-    Distortion d;
+  // One triangle's distortion (placement/membrane_distortion.hpp), or nothing for one that owns no copy.
+  std::optional<placement::MembraneDistortion> triangle_distortion(const gpu::Compartment& c, const gpu::RenderCompartment& rc,
+                                                                   std::uint32_t t) const {
     const gpu::Triangle& tri = triangles[t];
-    const std::uint32_t f = mesh.first_vertex;
-    const glm::vec2 t0 = vertex_uvs[f + tri.v0], t1 = vertex_uvs[f + tri.v1], t2 = vertex_uvs[f + tri.v2];
-    if (gpu::own_edge_inner_q(gpu::own_quantize(t0), gpu::own_quantize(t1), gpu::own_quantize(t2)) == 0) return std::nullopt;
-    const vec3 n0(vertex_normals[f + tri.v0]), n1(vertex_normals[f + tri.v1]), n2(vertex_normals[f + tri.v2]);
-    const gpu::TriangleChart chart = gpu::chart_make(vec3(vertex_positions[f + tri.v0]), vec3(vertex_positions[f + tri.v1]),
-                                                     vec3(vertex_positions[f + tri.v2]), t0, t1, t2, n0, n1, n2);
-    if (!gpu::chart_valid(chart)) return std::nullopt;  // owns nothing the oracle would accept either
-    const dmat3 m1(dvec3(chart.ju) * double(s_over_S), dvec3(chart.jv) * double(s_over_S), dvec3(chart.face_normal));
-    const dmat3 l = glm::inverse(m1);
-    d.sigma = largest_singular_value(l);
-    for (const vec3& n : {n0, n1, n2})
-      d.delta = std::max(d.delta, glm::length(glm::normalize(dvec3(n)) - dvec3(chart.face_normal)));
-    d.bulge = double(gpu::chart_smooth_bulge(chart, c.scales.w));
-    float lift_lo, lift_hi;  // a convex stretch of surface lifts only outward: the box grows on one side
-    gpu::chart_smooth_lift_range(chart, c.scales.w, lift_lo, lift_hi);
-    d.lift_lo = lift_lo, d.lift_hi = lift_hi;
-    for (int i = 0; i <= kSteps; ++i)
-      for (int j = 0; i + j <= kSteps; ++j) {
-        const glm::vec2 uv = t0 + (t1 - t0) * (float(i) / kSteps) + (t2 - t0) * (float(j) / kSteps);
-        glm::vec2 uv_m;
-        const gpu::Affine3 placed =
-            gpu::chart_membrane_molecule(chart, uv, s_over_S, c.scales.w, vec3(0.f), glm::vec4(0, 0, 0, 1), uv_m);
-        const dmat3 tm = l * dmat3(placed.linear);
-        for (int col = 0; col < 3; ++col)
-          for (int row = 0; row < 3; ++row)
-            d.e[col][row] = std::max(d.e[col][row], std::abs(tm[col][row] - (col == row ? 1.0 : 0.0)));
-      }
-    for (int col = 0; col < 3; ++col)
-      for (int row = 0; row < 3; ++row) d.e[col][row] = d.e[col][row] * 1.2 + 0.02;
-    // The lift plane: its slopes are affine in UV, so their largest |value| over the tiles the shader
-    // takes planes of (centres within the triangle's UV box widened by a tile) is at a corner of that
-    // box; so is the largest |barycentric|, which sets the float plane's rounding.
-    const glm::mat3 k = gpu::chart_smooth_lift_coefficients(chart, c.scales.w);
-    const glm::mat3 directions = gpu::chart_lift_directions(chart, s_over_S);
-    const double tile = rc.membrane.x;
-    const dvec2 uv_lo = dvec2(glm::min(t0, glm::min(t1, t2))) - tile, uv_hi = dvec2(glm::max(t0, glm::max(t1, t2))) + tile;
-    double l_max = 1, lift_scale = 0;
-    for (int col = 0; col < 3; ++col)
-      for (int row = 0; row < 3; ++row) lift_scale = std::max(lift_scale, std::abs(double(k[col][row])));
-    dvec3 slope_x(0.0), slope_y(0.0);
-    for (const dvec2 corner : {uv_lo, dvec2(uv_hi.x, uv_lo.y), dvec2(uv_lo.x, uv_hi.y), uv_hi}) {
-      const gpu::LiftPlane plane = gpu::chart_smooth_lift_plane(chart, k, directions, glm::vec2(corner), s_over_S, glm::vec2(0.f));
-      slope_x = glm::max(slope_x, glm::abs(dvec3(plane.dx))), slope_y = glm::max(slope_y, glm::abs(dvec3(plane.dy)));
-      const dvec3 bary(gpu::chart_barycentric(chart, glm::vec2(corner)));
-      l_max = std::max({l_max, std::abs(bary.x), std::abs(bary.y), std::abs(bary.z)});
+    const std::uint32_t f = meshes[c.mesh].first_vertex;
+    placement::MembraneTriangleCorners corners;
+    const std::uint32_t v[3] = {tri.v0, tri.v1, tri.v2};
+    for (int i = 0; i < 3; ++i) {
+      corners.position[i] = vec3(vertex_positions[f + v[i]]);
+      corners.normal[i] = vec3(vertex_normals[f + v[i]]);
+      corners.uv[i] = vertex_uvs[f + v[i]];
     }
-    slope_x = slope_x * (1 + 1e-3) + 1e-6, slope_y = slope_y * (1 + 1e-3) + 1e-6;
-    const dmat3 curvature(gpu::chart_smooth_lift_curvature(chart, k, directions, s_over_S));
-    const double half = rc.membrane.z;
-    // Sheared, a copy's box grows by its curvature term (at most |h|₁·half² over the tile) and the
-    // slope across its width (a lipid's ~15 Å each way); unsheared, by the whole lift: its range
-    // along the normal and σ·δ·bulge across.
-    double sheared_growth = 0;
-    for (int r = 0; r < 3; ++r)
-      sheared_growth += 2 * (std::abs(curvature[r].x) + 2 * std::abs(curvature[r].y) + std::abs(curvature[r].z)) * half * half +
-                        2 * 15.0 * (slope_x[r] + slope_y[r]);
-    if (sheared_growth < d.lift_hi - d.lift_lo + 4 * d.sigma * d.delta * d.bulge) {
-      for (int r = 0; r < 3; ++r) {
-        const dvec3 margin = glm::abs(curvature[r]) * 1e-4 + 1e-9;
-        d.curvature_lo[r] = curvature[r] - margin, d.curvature_hi[r] = curvature[r] + margin;
-      }
-      d.slope_x = slope_x, d.slope_y = slope_y;
-      d.plane_error = 1e-5 * (lift_scale * d.sigma * 3 * l_max * l_max + std::max({slope_x.x + slope_y.x, slope_x.y + slope_y.y, slope_x.z + slope_y.z}) * half * 4);
-    } else {
-      d.unsheared_lo = d.lift_lo, d.unsheared_hi = d.lift_hi;
-    }
-    return d;
+    return placement::triangle_distortion(corners, {rc.membrane.x, rc.membrane.y, rc.membrane.z, c.scales.w});
   }
 
-  // Distortion classes: an mLAS box must hold its copy wherever a triangle places it, but triangles
-  // differ (on the red blood cell the smooth surface lifts copies 17–80 Å off their facets, and one
-  // bound for all made a ray meet ~40 molecule boxes to hit one). The compartment's triangles are
-  // ranked by how far they widen a typical lipid's box and split at kClassShare; class k gets its own
-  // copy of every square's mLAS, widened for its own worst triangle, and a triangle's slots query its
-  // class's. Two classes, the best three quarters and the rest: red blood cell frames 1.34× faster at
-  // its scene camera for 7 MB more device memory (four classes: 10 MB more, 1.34×).
-  static constexpr std::uint32_t kDistortionClasses = 2;
-  static constexpr double kClassShare[kDistortionClasses] = {0.75, 1.0};
-  struct DistortionClasses {
-    std::vector<std::uint8_t> of_triangle;  // per triangle of the mesh
-    std::vector<bool> unsheared;            // per triangle: its slots' rays are not sheared
-    std::array<std::optional<Distortion>, kDistortionClasses> bound;
-  };
-  DistortionClasses distortion_classes(const gpu::Compartment& c, const gpu::RenderCompartment& rc) const {
+  placement::DistortionClasses distortion_classes(const gpu::Compartment& c, const gpu::RenderCompartment& rc) const {
     const gpu::Mesh& mesh = meshes[c.mesh];
-    DistortionClasses out;
-    out.of_triangle.assign(mesh.triangle_count, 0);
-    out.unsheared.assign(mesh.triangle_count, false);
-    std::vector<std::pair<double, std::uint32_t>> ranked;  // (size of a typical lipid's box, local triangle)
-    std::vector<std::optional<Distortion>> per(mesh.triangle_count);
-    for (std::uint32_t k = 0; k < mesh.triangle_count; ++k) {
-      per[k] = triangle_distortion(c, rc, mesh.first_triangle + k);
-      if (!per[k]) continue;
-      out.unsheared[k] = per[k]->has_unsheared();
-      // A lipid standing 20 Å off the surface at a tile corner (the curvature term's worst place).
-      const CopyBoxes typical = copy_boxes(dvec3(0, 0, 20), dvec3(0.0), dvec3(8, 8, 12), 15, *per[k], rc.membrane.z);
-      const dvec3 size = typical.hi - typical.lo;
-      ranked.push_back({size.x + size.y + size.z, k});
-    }
-    std::sort(ranked.begin(), ranked.end());
-    std::uint32_t cls = 0;
-    for (std::size_t r = 0; r < ranked.size(); ++r) {
-      while (double(r) >= kClassShare[cls] * double(ranked.size()) && cls + 1 < kDistortionClasses) ++cls;
-      const std::uint32_t k = ranked[r].second;
-      out.of_triangle[k] = std::uint8_t(cls);
-      widen_to(out.bound[cls], *per[k]);
-    }
-    return out;
+    std::vector<std::optional<placement::MembraneDistortion>> per(mesh.triangle_count);
+    for (std::uint32_t k = 0; k < mesh.triangle_count; ++k) per[k] = triangle_distortion(c, rc, mesh.first_triangle + k);
+    return placement::distortion_classes(per, rc.membrane.z);
   }
 
   // The M1-placed atoms of copy `m` (spheres included) as a box about its origin, from the atoms
@@ -622,68 +471,13 @@ struct GpuScene::Impl : format::PackageView {
     return {lo, hi};
   }
 
-  // Where a copy at tile-space position `pos` whose M1-placed atoms fill c ± h about it (bounding
-  // radius r) can lie, under distortion d: `lo`/`hi` in its slot's sheared tile space (its mLAS box),
-  // `reach_lo`/`reach_hi` in the unsheared one (the repLAS and slot boxes, which the origin tile's
-  // ray meets). `half` is the tile point the lift planes are taken at (RenderCompartment.membrane.z).
-  struct CopyBoxes {
-    dvec3 lo, hi, reach_lo, reach_hi;
-  };
-  static CopyBoxes copy_boxes(const dvec3& pos, const dvec3& c, const dvec3& h, double r, const Distortion& d, double half) {
-    // δ grows by 1e-3 for the rounding of the normalised interpolation; the pad covers the float
-    // tile-space ray (≈ 1e-6 of the distance to the tile) of any camera within 10^5 Å.
-    const double sigma = d.sigma * (1 + 1e-4), delta = d.delta + 1e-3, pad = 0.1;
-    // Where the true centre lies off M1's: z·(n − N) + (X_smooth − X_flat). L keeps a world
-    // vector's component along N as tile z and maps its tangential part, at most σ-stretched,
-    // to tile x, y. Along N: |z|·(1 − cos θ) = |z|·|n − N|²/2 ≤ |z|·δ²/2, and the lift ≤ b;
-    // tangentially: |z|·sin θ ≤ |z|·δ, and the lift, a combination of corner normals each
-    // within δ of N, ≤ b·δ.
-    // Along N the parts have known signs: z·(n·N − 1) lies between 0 and −z·δ²/2, and the lift
-    // between d.lift_lo and d.lift_hi (floats: widened by 1e-4 of the bulge and 1e-3 Å).
-    const double bulge = d.bulge * (1 + 1e-4), slack = 1e-4 * bulge + 1e-3;
-    const double turn_xy = sigma * delta * std::abs(pos.z), lift_xy = sigma * delta * bulge;
-    const double turn_z = pos.z * delta * delta / 2;
-    // Two bounds of the same copy, both containing it: its own atoms' box widened by the chart's turn
-    // and stretch, and the sphere of its bounding radius (stretched by up to σ in tile x, y, not in
-    // z). Their intersection holds it too; which is tighter depends on the chart (a strongly
-    // stretched or mirrored one turns the box far more than it stretches the sphere).
-    const dvec3 e = h + d.e * (glm::abs(c) + h) + pad;
-    const dvec3 radius = dvec3(sigma * r, sigma * r, r) + pad;
-    // The copy without the lift: its atoms, turned by the normal's tilt.
-    const dvec3 atoms_lo = glm::max(pos + c - e, pos - radius) - dvec3(turn_xy, turn_xy, std::max(turn_z, 0.0) + slack);
-    const dvec3 atoms_hi = glm::min(pos + c + e, pos + radius) + dvec3(turn_xy, turn_xy, std::max(-turn_z, 0.0) + slack);
-    CopyBoxes out;
-    out.reach_lo = atoms_lo - dvec3(lift_xy, lift_xy, -d.lift_lo);
-    out.reach_hi = atoms_hi + dvec3(lift_xy, lift_xy, d.lift_hi);
-    // Moved onto the tile's lift plane, p' = p − plane(p.x, p.y): the centre keeps the curvature term
-    // lift(uv_m) − plane(pos) (unsheared triangles: the whole lift), and a point at (x, y) off the
-    // centre also meets the plane's slopes times that offset.
-    dvec3 lift_lo(INFINITY), lift_hi(-INFINITY);
-    if (d.has_sheared()) {
-      const dvec2 delta_c = dvec2(pos) - half;
-      dvec3 q_lo, q_hi;
-      for (int k = 0; k < 3; ++k) std::tie(q_lo[k], q_hi[k]) = curvature_range(d.curvature_lo[k], d.curvature_hi[k], delta_c);
-      const dvec2 across = glm::max(glm::abs(dvec2(atoms_lo) - dvec2(pos)), glm::abs(dvec2(atoms_hi) - dvec2(pos))) +
-                           glm::max(glm::abs(dvec2(q_lo)), glm::abs(dvec2(q_hi)));
-      const dvec3 tilt = d.slope_x * across.x + d.slope_y * across.y + d.plane_error;
-      lift_lo = q_lo - tilt, lift_hi = q_hi + tilt;
-    }
-    if (d.has_unsheared()) {
-      lift_lo = glm::min(lift_lo, dvec3(-lift_xy, -lift_xy, d.unsheared_lo));
-      lift_hi = glm::max(lift_hi, dvec3(lift_xy, lift_xy, d.unsheared_hi));
-    }
-    out.lo = atoms_lo + lift_lo;
-    out.hi = atoms_hi + lift_hi;
-    return out;
-  }
-
   // Square t's molecule boxes in the sheared tile space of distortion d (copy_boxes). Grows
   // square_reach[t] to hold the copies in unsheared tile space.
-  std::vector<VkAabbPositionsKHR> square_boxes(std::uint32_t t, const Distortion& d, double half) {
+  std::vector<VkAabbPositionsKHR> square_boxes(std::uint32_t t, const placement::MembraneDistortion& d, double half) {
     std::vector<VkAabbPositionsKHR> boxes;
     for (std::uint32_t m = tiles2d[t].first_instance; m < tiles2d[t].first_instance + tiles2d[t].instance_count; ++m) {
       const auto [atoms_lo, atoms_hi] = placed_extent(instances[m]);
-      const CopyBoxes b = copy_boxes(dvec3(instances[m].position), (atoms_lo + atoms_hi) * 0.5, (atoms_hi - atoms_lo) * 0.5,
+      const placement::CopyBoxes b = placement::copy_boxes(dvec3(instances[m].position), (atoms_lo + atoms_hi) * 0.5, (atoms_hi - atoms_lo) * 0.5,
                                      type_radius[instances[m].molecule_type], d, half);
       boxes.push_back(box_of(b.lo, b.hi));
       square_reach[t].first = glm::min(square_reach[t].first, b.reach_lo);
@@ -701,12 +495,12 @@ struct GpuScene::Impl : format::PackageView {
   // mLAS: per Wang square, molecule boxes in tile space widened by the distortion of every
   // compartment that uses the square; per Wang cube, bounding spheres' boxes in cube space.
   void build_tile_levels() {
-    std::vector<std::array<std::optional<Distortion>, kDistortionClasses>> square_distortion(tiles2d.size());
+    std::vector<std::array<std::optional<placement::MembraneDistortion>, placement::kDistortionClasses>> square_distortion(tiles2d.size());
     std::vector<double> square_half(tiles2d.size(), 0.0);  // the tile point of its lift planes
     for (std::uint32_t ci = 0; ci < compartments.size(); ++ci) {
       const gpu::Compartment& c = compartments[ci];
       if (c.membrane_recipe == gpu::NANO_NO_INDEX) continue;
-      const DistortionClasses classes = distortion_classes(c, render_compartments[ci]);
+      const placement::DistortionClasses classes = distortion_classes(c, render_compartments[ci]);
       // Per triangle, where its class's squares start, relative to class 0's (frame.levels.x).
       render_compartments[ci].core_skip.y = std::uint32_t(orders.size());
       for (std::size_t k = 0; k < classes.of_triangle.size(); ++k)
@@ -715,14 +509,14 @@ struct GpuScene::Impl : format::PackageView {
       for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count; ++t) {
         // A square belongs to one membrane's tile set, so every compartment using it has its tile size.
         square_half[t] = render_compartments[ci].membrane.z;
-        for (std::uint32_t k = 0; k < kDistortionClasses; ++k) {
-          if (classes.bound[k]) widen_to(square_distortion[t][k], *classes.bound[k]);
+        for (std::uint32_t k = 0; k < placement::kDistortionClasses; ++k) {
+          if (classes.bound[k]) placement::widen_to(square_distortion[t][k], *classes.bound[k]);
         }
       }
     }
     square_reach.assign(tiles2d.size(), {dvec3(INFINITY), dvec3(-INFINITY)});
     for (std::uint32_t t = 0; t < tiles2d.size(); ++t)
-      for (std::uint32_t k = 0; k < kDistortionClasses; ++k)
+      for (std::uint32_t k = 0; k < placement::kDistortionClasses; ++k)
         if (square_distortion[t][k] && tiles2d[t].instance_count > 0)  // else no compartment renders it
           add_tile_level(square_level(k, t), square_boxes(t, *square_distortion[t][k], square_half[t]));
     build_replication_areas();
