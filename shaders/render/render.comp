@@ -445,7 +445,7 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
   w.mt.t1 = uvs[f + tri.v1];
   w.mt.t2 = uvs[f + tri.v2];
   w.mt.seam_edges = sh.seam_edges;
-  // A package without drops gets a zero record per triangle from the loader (gpu_scene.cpp).
+  // A package without drops gets a zero record per triangle from the loader (levels/sections.cpp).
   TriangleDrops td = triangle_drops[t];
   w.mt.drop_first = td.first;
   w.mt.drop_count = td.count;
@@ -488,7 +488,7 @@ void membrane_element_query(RenderCompartment rc, ShellWalk w, uint tile, ivec2 
   e.first = squares[tile].first_instance;
   e.g = replication_tile_uv(cell, rc.membrane.x);
   chart_tile_inverse_ray(w.chart, e.g, s_over_S, o, d, e.ot, e.dt);
-  // Its mLAS boxes stand on the tile's lift plane, not on the facet (gpu_scene.cpp, square_boxes).
+  // Its mLAS boxes stand on the tile's lift plane, not on the facet (levels/membrane.cpp, square_boxes).
   vec2 centre = vec2(rc.membrane.z);
   chart_lift_shear_ray(chart_smooth_lift_plane(w.chart, w.lift, w.lift_directions, e.g, s_over_S, centre), centre, e.ot, e.dt);
   e.q_lo = w.t_lo;
