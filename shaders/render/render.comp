@@ -9,7 +9,7 @@
 //  shell: exact ray–prism test (its interval bounds every query below), then the tiles of the
 //        triangle's replication area the ray meets (a repLAS query, or slab tests of each slot's box
 //        for areas of ≤ NANO_DIRECT_SLOTS slots): tile-space ray by M1⁻¹, the Wang square's mLAS
-//        (molecule boxes widened so they contain the true placement, runtime/render/gpu_scene.cpp),
+//        (molecule boxes widened so they contain the true placement, runtime/placement/membrane_distortion.hpp),
 //        ownership and seam rule (membrane_keeps_copy) before the true placement M2
 //        (chart_membrane_molecule), molecule-space ray, the type's nLAS, exact ray–sphere.
 //  core: 3D-DDA over the grid widened by one box; a cell with no live box within one step leaves the
@@ -445,7 +445,7 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
   w.mt.t1 = uvs[f + tri.v1];
   w.mt.t2 = uvs[f + tri.v2];
   w.mt.seam_edges = sh.seam_edges;
-  // A package without drops gets a zero record per triangle from the loader (gpu_scene.cpp).
+  // A package without drops gets a zero record per triangle from the loader (levels/sections.cpp).
   TriangleDrops td = triangle_drops[t];
   w.mt.drop_first = td.first;
   w.mt.drop_count = td.count;
@@ -467,6 +467,93 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
   return true;
 }
 
+// Where the copies of one element can be hit: its mLAS (`entry` in `levels`) and its tile's first
+// molecule instance, the ray in the tile's space on [q_lo, q_hi], and what the copies' placement needs.
+struct ElementQuery {
+  uint entry;
+  uint first;
+  vec3 ot;
+  vec3 dt;
+  float q_lo;
+  float q_hi;
+  vec2 g;        // membrane: the tile's UV origin
+  vec3 box_min;  // core: the box's corner
+  uint mask;     // core: the boundary box's keep-mask
+};
+
+// Replication slot `cell` (tile `tile` of the membrane recipe) of the prism walk w.
+void membrane_element_query(RenderCompartment rc, ShellWalk w, uint tile, ivec2 cell, vec3 o, vec3 d, inout ElementQuery e) {
+  float s_over_S = rc.membrane.y;
+  e.entry = frame.levels.x + w.squares + tile;  // the mLAS of the triangle's distortion class
+  e.first = squares[tile].first_instance;
+  e.g = replication_tile_uv(cell, rc.membrane.x);
+  chart_tile_inverse_ray(w.chart, e.g, s_over_S, o, d, e.ot, e.dt);
+  // Its mLAS boxes stand on the tile's lift plane, not on the facet (levels/membrane.cpp, square_boxes).
+  vec2 centre = vec2(rc.membrane.z);
+  chart_lift_shear_ray(chart_smooth_lift_plane(w.chart, w.lift, w.lift_directions, e.g, s_over_S, centre), centre, e.ot, e.dt);
+  e.q_lo = w.t_lo;
+  e.q_hi = min(best_t, w.t_hi);
+}
+
+// Core-grid box `box` (grid cell `cell`): false when the ray misses what the box can hold, clipping
+// removes it or it lies outside the compartment.
+bool core_element_query(Compartment c, RenderCompartment rc, uint box, ivec3 cell, vec3 o, vec3 d, inout ElementQuery e) {
+  uint occ = occupancy_of(c.grid_dims.w + box);
+  if (occ == NANO_BOX_OUTSIDE) return false;
+  e.box_min = core_box_min(c.grid_min.xyz, vec3(c.grid_min.w), cell);
+  float tn;
+  float tf;
+  if (!aabb_intersect(e.box_min + rc.reach_lo.xyz, e.box_min + rc.reach_hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
+  if (kClipping && clip_removes_box(e.box_min + rc.reach_lo.xyz, e.box_min + rc.reach_hi.xyz)) return false;
+  if (occ == NANO_BOX_BOUNDARY) {
+    uint record = boundary_record(c, box);
+    if (record == NANO_NO_INDEX) return false;
+    vec3 kept_lo;
+    vec3 kept_hi;
+    if (!kept_box_unpack(kept_boxes[record], c.grid_min.w, kept_lo, kept_hi) ||
+        !aabb_intersect(e.box_min + kept_lo, e.box_min + kept_hi, o, d, 0.0, best_t, tn, tf))
+      return false;
+    e.mask = boundary_boxes[record].first_word;
+  }
+  uint cube = recipe_cell(c.soluble_recipe, cell);
+  e.entry = frame.levels.y + cube;
+  e.first = cubes[cube].first_instance;
+  e.ot = o - e.box_min;
+  e.dt = d;
+  e.q_lo = 0.0;
+  e.q_hi = best_t;
+  return true;
+}
+
+// Copy m (instance mi) of the element placed and numbered: false when the membrane's ownership,
+// seam rule or the baker's list rejects it.
+bool place_element_copy(uint inst, Compartment c, RenderCompartment rc, bool membrane, uint tl, ShellWalk w,
+                        uint slot_or_box, ElementQuery e, uint m, MoleculeInstance mi, out Affine3 placement,
+                        out uvec2 number) {
+  if (membrane) {
+    // Ownership and the seam rule first: they need only the copy's UV (the same chart_molecule_uv
+    // the placement computes, so bit-identical), and they reject most candidates before the
+    // placement's normal, frame and rotation are computed.
+    float s_over_S = rc.membrane.y;
+    vec2 uv_m = chart_molecule_uv(e.g, s_over_S, mi.position.xyz);
+    if (!membrane_keeps_copy(w.mt, uv_m, chart_position(w.chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) {
+      count_work(NANO_RC_OWNERSHIP_REJECTS);
+      return false;
+    }
+    if (!membrane_copy_listed_shows(membrane_copy_listed(w.mt, membrane_copy_key(slot_or_box, m)), mi.flags)) {
+      count_work(NANO_RC_LISTED_REJECTS);
+      return false;
+    }
+    placement = chart_membrane_molecule(w.chart, e.g, s_over_S, c.scales.w, mi.position.xyz, mi.rotation, uv_m);
+    number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
+                                  slot_or_box, rc.counts.x, m);
+  } else {
+    placement = core_soluble_molecule(e.box_min, mi.position.xyz, mi.rotation);
+    number = copy_number_core(render_instances[inst].base.xy, rc.span.xy, slot_or_box, rc.counts.y, m);
+  }
+  return true;
+}
+
 // The copies of one element on the ray (o, d) (compartment space), placed on the fly: membrane copies
 // of replication slot `slot_or_box` (tile `cell.xy` of the area, on [w.t_lo, w.t_hi]) of triangle
 // `tl`, or soluble copies of core-grid box `slot_or_box` (grid cell `cell`). The element's mLAS
@@ -477,97 +564,41 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
 // state. `c` and `rc` are compartment `ci`'s records, read once per µLAS candidate by the caller.
 bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool membrane, uint tl, ShellWalk w,
                    uint slot_or_box, ivec3 cell, vec3 o, vec3 d) {
-  uint entry;    // the element's mLAS in `levels`
-  uint first;    // its tile's first molecule instance
-  vec3 ot;       // the ray in the tile's space
-  vec3 dt;
-  float q_lo;    // the part of the ray the element's copies can be hit on
-  float q_hi;
-  vec2 g = vec2(0.0);                   // membrane: the tile's UV origin
-  vec3 box_min = vec3(0.0);             // core: the box's corner
-  uint mask = NANO_NO_INDEX;            // core: the boundary box's keep-mask
-  float s_over_S = rc.membrane.y;
+  ElementQuery e;
+  e.g = vec2(0.0);
+  e.box_min = vec3(0.0);
+  e.mask = NANO_NO_INDEX;
   if (membrane) {
     uint tile = recipe_cell(c.membrane_recipe, ivec3(cell.xy, 0));
     if (kTwoLevel) return trace_atom_tile(inst, ci, tl, w.mt, w.chart, cell.xy, tile, slot_or_box, o, d);
-    entry = frame.levels.x + w.squares + tile;  // the mLAS of the triangle's distortion class
-    first = squares[tile].first_instance;
-    g = replication_tile_uv(cell.xy, rc.membrane.x);
-    chart_tile_inverse_ray(w.chart, g, s_over_S, o, d, ot, dt);
-    // Its mLAS boxes stand on the tile's lift plane, not on the facet (gpu_scene.cpp, square_boxes).
-    vec2 centre = vec2(rc.membrane.z);
-    chart_lift_shear_ray(chart_smooth_lift_plane(w.chart, w.lift, w.lift_directions, g, s_over_S, centre), centre, ot, dt);
-    q_lo = w.t_lo;
-    q_hi = min(best_t, w.t_hi);
-  } else {
-    uint occ = occupancy_of(c.grid_dims.w + slot_or_box);
-    if (occ == NANO_BOX_OUTSIDE) return false;
-    box_min = core_box_min(c.grid_min.xyz, vec3(c.grid_min.w), cell);
-    float tn;
-    float tf;
-    if (!aabb_intersect(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz, o, d, 0.0, best_t, tn, tf)) return false;
-    if (kClipping && clip_removes_box(box_min + rc.reach_lo.xyz, box_min + rc.reach_hi.xyz)) return false;
-    if (occ == NANO_BOX_BOUNDARY) {
-      uint record = boundary_record(c, slot_or_box);
-      if (record == NANO_NO_INDEX) return false;
-      vec3 kept_lo;
-      vec3 kept_hi;
-      if (!kept_box_unpack(kept_boxes[record], c.grid_min.w, kept_lo, kept_hi) ||
-          !aabb_intersect(box_min + kept_lo, box_min + kept_hi, o, d, 0.0, best_t, tn, tf))
-        return false;
-      mask = boundary_boxes[record].first_word;
-    }
-    uint cube = recipe_cell(c.soluble_recipe, cell);
-    entry = frame.levels.y + cube;
-    first = cubes[cube].first_instance;
-    ot = o - box_min;
-    dt = d;
-    q_lo = 0.0;
-    q_hi = best_t;
+    membrane_element_query(rc, w, tile, cell.xy, o, d, e);
+  } else if (!core_element_query(c, rc, slot_or_box, cell, o, d, e)) {
+    return false;
   }
-  RenderLevel level = levels[entry];
+  RenderLevel level = levels[e.entry];
   if (level.count == 0u) return false;
   bool found = false;
   count_work(NANO_RC_MLAS_QUERIES);
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), kAabbOnly, 0xFF, ot, q_lo, dt, q_hi);
+  rayQueryInitializeEXT(q, accelerationStructureEXT(level.address), kAabbOnly, 0xFF, e.ot, e.q_lo, e.dt, e.q_hi);
   while (rayQueryProceedEXT(q)) {
     count_work(NANO_RC_MLAS_CANDIDATES);
     uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
     if (p >= level.count) continue;
     uint m = orders[level.order_first + p];
-    if (!membrane && mask != NANO_NO_INDEX && ((mask_words[mask + m / 32u] >> (m % 32u)) & 1u) == 0u) {
+    if (!membrane && e.mask != NANO_NO_INDEX && ((mask_words[e.mask + m / 32u] >> (m % 32u)) & 1u) == 0u) {
       count_work(NANO_RC_MASK_REJECTS);
       continue;
     }
-    MoleculeInstance mi = instances[first + m];
+    MoleculeInstance mi = instances[e.first + m];
     if (type_hidden(mi.molecule_type)) continue;
     Affine3 placement;
     uvec2 number;
-    if (membrane) {
-      // Ownership and the seam rule first: they need only the copy's UV (the same chart_molecule_uv
-      // the placement computes, so bit-identical), and they reject most candidates before the
-      // placement's normal, frame and rotation are computed.
-      vec2 uv_m = chart_molecule_uv(g, s_over_S, mi.position.xyz);
-      if (!membrane_keeps_copy(w.mt, uv_m, chart_position(w.chart, uv_m), molecules[mi.molecule_type].aabb_min.w)) {
-        count_work(NANO_RC_OWNERSHIP_REJECTS);
-        continue;
-      }
-      if (!membrane_copy_listed_shows(membrane_copy_listed(w.mt, membrane_copy_key(slot_or_box, m)), mi.flags)) {
-        count_work(NANO_RC_LISTED_REJECTS);
-        continue;
-      }
-      placement = chart_membrane_molecule(w.chart, g, s_over_S, c.scales.w, mi.position.xyz, mi.rotation, uv_m);
-      number = copy_number_membrane(render_instances[inst].base.xy, tl, c.replication_width * c.replication_height,
-                                    slot_or_box, rc.counts.x, m);
-    } else {
-      placement = core_soluble_molecule(box_min, mi.position.xyz, mi.rotation);
-      number = copy_number_core(render_instances[inst].base.xy, rc.span.xy, slot_or_box, rc.counts.y, m);
-    }
+    if (!place_element_copy(inst, c, rc, membrane, tl, w, slot_or_box, e, m, mi, placement, number)) continue;
     // mLAS-level trivial reject: the copy's bounding sphere wholly clipped.
     if (kClipping && clip_removes_whole_ball(placement.translation, molecules[mi.molecule_type].aabb_min.w)) continue;
     if (kJitter) placement = jittered(placement, number);
-    if (!trace_molecule(mi.molecule_type, placement, vec3(0.0), o, d, q_lo)) continue;
+    if (!trace_molecule(mi.molecule_type, placement, vec3(0.0), o, d, e.q_lo)) continue;
     found = true;
     best.compartment_instance = inst;
     best.element = membrane ? meshes[c.mesh].first_triangle + tl : slot_or_box;
@@ -576,7 +607,7 @@ bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool
     best.instance = m;
     best.copy_number_lo = number.x;
     best.copy_number_hi = number.y;
-    if (best_t >= q_lo) rayQueryGenerateIntersectionEXT(q, best_t);  // a hit must lie in the query's range
+    if (best_t >= e.q_lo) rayQueryGenerateIntersectionEXT(q, best_t);  // a hit must lie in the query's range
   }
   return found;
 }
@@ -743,11 +774,117 @@ void trace_medium(vec3 origin, vec3 d) {
   if (found) best_to_world = mat4x3(vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, 1.0), -render_medium.eye_hi.xyz);
 }
 
-// Traces one ray through the whole scene: origin camera-relative world, unit direction d, hits in
-// [0, t_max]. kEyeFromHost: the ray enters each instance's compartment space through the host's
-// double computation (RenderInstance), not the driver's float WorldToObject: the eye as a two-float
-// sum, a secondary ray's (AO, shadows) origin as the eye plus L⁻¹·origin. Leaves the hit in best*.
-bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
+// The next slot of the prism walk w's area from `step` on, in order: every one (kWalkAllSlots) or each
+// whose box the ray meets (kWalkSlotBoxes). False when none is left.
+bool next_slot_in_order(RenderCompartment rc, ShellWalk w, inout uint step, inout ivec2 element) {
+  while (step < uint(w.extent.x * w.extent.y)) {
+    ivec2 sxy = ivec2(int(step % uint(w.extent.x)), int(step / uint(w.extent.x)));
+    ++step;
+    if (w.mode == kWalkSlotBoxes) {
+      vec3 shift = vec3(float(sxy.x) * rc.slot_lo.w, float(sxy.y) * rc.slot_lo.w, 0.0);
+      float tn;
+      float tf;
+      if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, w.ot, w.dt, w.t_lo, min(best_t, w.t_hi), tn, tf)) continue;
+    }
+    element = sxy;
+    return true;
+  }
+  return false;
+}
+
+// The soluble copies of instance `inst`'s core grid (compartment `ci`) on the ray (o, od): its own
+// walk (its own mLAS and nLAS loops once compiled), cells in ray order, at each the boxes within one
+// step not traced at the cell before. False when it found no nearer hit.
+bool trace_core_grid(uint inst, uint ci, Compartment c, RenderCompartment rc, vec3 o, vec3 od) {
+  if (rc.span.z == 0u) return false;
+  float B = c.grid_min.w;
+  if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(ivec3(c.grid_dims.xyz) + ivec3(1)) * B)) return false;
+  // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
+  // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
+  GridDda it;
+  dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), ivec3(c.grid_dims.xyz) + ivec3(2), o, od, 0.0, best_t);
+  ShellWalk w;  // trace_element's membrane state, unused by a core box
+  bool found = false;
+  ivec3 dims = ivec3(c.grid_dims.xyz);
+  ivec3 cell;
+  float ta;
+  ivec3 previous = ivec3(-1000000);
+  ivec3 cells = dims + ivec3(2);
+  while (dda_current(it, cell, ta)) {
+    if (ta > best_t) break;  // a cell beyond the best hit ends the walk
+    count_work(NANO_RC_CORE_STEPS);
+    uint skip_index = rc.core_skip.x + uint(cell.x) + uint(cells.x) * (uint(cell.y) + uint(cells.y) * uint(cell.z));
+    uint skip = core_skip_level_in_word(core_skip_words[skip_index >> 3], skip_index);
+    if (skip != 0u) {
+      // Nothing to trace within one step of any cell of the block: the walk resumes beyond it.
+      // `cell`'s own boxes are dead, so it may stand as the cell before for the de-duplication.
+      ivec3 block_lo = core_skip_block_lo(cell, skip);
+      dda_skip_block(it, block_lo, core_skip_block_hi(block_lo, skip, cells));
+    } else {
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
+            if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
+            ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
+            if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
+            count_work(NANO_RC_CORE_BOXES);
+            uint box = uint(ijk.x) + uint(dims.x) * (uint(ijk.y) + uint(dims.y) * uint(ijk.z));
+            if (trace_element(inst, ci, c, rc, false, 0u, w, box, ijk, o, od)) found = true;
+          }
+    }
+    previous = cell;
+    dda_advance(it);  // the one step of the walk, after a skip out of the block
+  }
+  return found;
+}
+
+// The membrane copies of prism `prim` of instance `inst` (compartment `ci`) on the ray (o, od): the
+// slots of its triangle's replication area the ray meets, each traced by trace_element. False when
+// the triangle is in the flat level, the ray misses its prism or it found no nearer hit.
+bool trace_prism(uint inst, uint ci, Compartment c, RenderCompartment rc, uint prim, bool use_flat, vec3 o, vec3 od) {
+  uint tl = orders[rc.counts.w + prim];
+  if (use_flat && triangle_flattened(render_instances[inst].base.w + tl)) return false;  // its copies are in the flat level
+  ShellWalk w;
+  if (!shell_walk_begin(ci, tl, o, od, w)) return false;
+  bool found = false;
+  rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
+  if (kRepLasWalk && w.mode == kWalkRepLas) {
+    RenderLevel a = levels[rc.span.w];
+    count_work(NANO_RC_REPLAS_QUERIES);
+    rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
+  }
+  uint step = 0u;  // slots walked
+  while (true) {
+    // The next slot of the area.
+    ivec2 element = ivec2(0);
+    bool next = false;
+    if (kRepLasWalk && w.mode == kWalkRepLas) {
+      while (!next && rayQueryProceedEXT(area)) {
+        uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
+        RenderLevel a = levels[rc.span.w];
+        if (p >= a.count) continue;
+        uint slot = orders[a.order_first + p];
+        ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
+        if (sxy.x >= w.extent.x || sxy.y >= w.extent.y) continue;
+        element = sxy;
+        next = true;
+      }
+    } else {
+      next = next_slot_in_order(rc, w, step, element);
+    }
+    if (!next) break;
+    count_work(NANO_RC_SLOTS_TRIED);
+    uint slot = uint(element.x) + c.replication_width * uint(element.y);
+    if (!trace_element(inst, ci, c, rc, true, tl, w, slot, ivec3(replication_tile_index(w.origin, element), 0), o, od)) continue;
+    found = true;
+    if (kRepLasWalk && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
+  }
+  return found;
+}
+
+// Forgets the best hit: nothing met yet up to t_max.
+void reset_best(float t_max) {
   best_t = t_max;
   best.depth = placement_inf();
   best.compartment_instance = kNoHit;
@@ -760,7 +897,14 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
   best.copy_number_hi = kNoHit;
   best_normal_c = vec3(0.0);
   best_type = 0u;
+}
 
+// Traces one ray through the whole scene: origin camera-relative world, unit direction d, hits in
+// [0, t_max]. kEyeFromHost: the ray enters each instance's compartment space through the host's
+// double computation (RenderInstance), not the driver's float WorldToObject: the eye as a two-float
+// sum, a secondary ray's (AO, shadows) origin as the eye plus L⁻¹·origin. Leaves the hit in best*.
+bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
+  reset_best(t_max);
   bool use_flat = kFlat && frame.flat_eye.w != 0.0;
   // Two passes of one query: the flat level first (its hit bounds every µLAS candidate), then the
   // µLAS — one traversal in the compiled code, not two.
@@ -808,101 +952,11 @@ bool trace_scene(vec3 origin, vec3 d, float t_max, bool primary) {
     RenderCompartment rc = render_compartments[ci];
     Compartment c = compartments[ci];
     bool membrane = prim < rc.counts.z;
-    uint tl = 0u;
-    ShellWalk w;
-    GridDda it;
-    if (membrane) {
-      tl = orders[rc.counts.w + prim];
-      if (use_flat && triangle_flattened(render_instances[inst].base.w + tl)) continue;  // its copies are in the flat level
-      if (!shell_walk_begin(ci, tl, o, od, w)) continue;
-    } else {
-      if (rc.span.z == 0u) continue;
-      float B = c.grid_min.w;
-      if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(ivec3(c.grid_dims.xyz) + ivec3(1)) * B)) continue;
-      // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
-      // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
-      dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), ivec3(c.grid_dims.xyz) + ivec3(2), o, od, 0.0, best_t);
-    }
-    bool found = false;
-    if (!membrane) {
-      // The core grid's own walk (its own mLAS and nLAS loops once compiled): cells in ray order, at
-      // each the boxes within one step not traced at the cell before.
-      ivec3 dims = ivec3(c.grid_dims.xyz);
-      ivec3 cell;
-      float ta;
-      ivec3 previous = ivec3(-1000000);
-      ivec3 cells = dims + ivec3(2);
-      while (dda_current(it, cell, ta)) {
-        if (ta > best_t) break;  // a cell beyond the best hit ends the walk
-        count_work(NANO_RC_CORE_STEPS);
-        uint skip_index = rc.core_skip.x + uint(cell.x) + uint(cells.x) * (uint(cell.y) + uint(cells.y) * uint(cell.z));
-        uint skip = core_skip_level_in_word(core_skip_words[skip_index >> 3], skip_index);
-        if (skip != 0u) {
-          // Nothing to trace within one step of any cell of the block: the walk resumes beyond it.
-          // `cell`'s own boxes are dead, so it may stand as the cell before for the de-duplication.
-          ivec3 block_lo = core_skip_block_lo(cell, skip);
-          dda_skip_block(it, block_lo, core_skip_block_hi(block_lo, skip, cells));
-        } else {
-          for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-              for (int dx = -1; dx <= 1; ++dx) {
-                ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
-                if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
-                ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
-                if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
-                count_work(NANO_RC_CORE_BOXES);
-                uint box = uint(ijk.x) + uint(dims.x) * (uint(ijk.y) + uint(dims.y) * uint(ijk.z));
-                if (trace_element(inst, ci, c, rc, false, 0u, w, box, ijk, o, od)) found = true;
-              }
-        }
-        previous = cell;
-        dda_advance(it);  // the one step of the walk, after a skip out of the block
-      }
-    } else {
-      rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
-      if (kRepLasWalk && w.mode == kWalkRepLas) {
-        RenderLevel a = levels[rc.span.w];
-        count_work(NANO_RC_REPLAS_QUERIES);
-        rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
-      }
-      uint step = 0u;  // slots walked
-      while (true) {
-        // The next slot of the area.
-        ivec2 element = ivec2(0);
-        bool next = false;
-        if (kRepLasWalk && w.mode == kWalkRepLas) {
-          while (!next && rayQueryProceedEXT(area)) {
-            uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
-            RenderLevel a = levels[rc.span.w];
-            if (p >= a.count) continue;
-            uint slot = orders[a.order_first + p];
-            ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
-            if (sxy.x >= w.extent.x || sxy.y >= w.extent.y) continue;
-            element = sxy;
-            next = true;
-          }
-        } else {
-          while (!next && step < uint(w.extent.x * w.extent.y)) {
-            ivec2 sxy = ivec2(int(step % uint(w.extent.x)), int(step / uint(w.extent.x)));
-            ++step;
-            if (w.mode == kWalkSlotBoxes) {
-              vec3 shift = vec3(float(sxy.x) * rc.slot_lo.w, float(sxy.y) * rc.slot_lo.w, 0.0);
-              float tn;
-              float tf;
-              if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, w.ot, w.dt, w.t_lo, min(best_t, w.t_hi), tn, tf)) continue;
-            }
-            element = sxy;
-            next = true;
-          }
-        }
-        if (!next) break;
-        count_work(NANO_RC_SLOTS_TRIED);
-        uint slot = uint(element.x) + c.replication_width * uint(element.y);
-        if (!trace_element(inst, ci, c, rc, true, tl, w, slot, ivec3(replication_tile_index(w.origin, element), 0), o, od)) continue;
-        found = true;
-        if (kRepLasWalk && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
-      }
-    }
+    bool found;
+    if (membrane)
+      found = trace_prism(inst, ci, c, rc, prim, use_flat, o, od);
+    else
+      found = trace_core_grid(inst, ci, c, rc, o, od);
     if (found) {
       best_to_world = rayQueryGetIntersectionObjectToWorldEXT(q, false);
       rayQueryGenerateIntersectionEXT(q, best_t);

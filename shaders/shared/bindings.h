@@ -15,7 +15,7 @@ NANO_CONST uint NANO_WORKGROUP_SIZE = 8u;
 NANO_CONST uint NANO_DESCRIPTOR_SET = 0u;
 
 // shaders/render/render.comp, set 0. Bindings below NANO_SCENE_BINDING_COUNT hold the scene (one
-// package section or derived buffer each: runtime/render/gpu_scene.cpp); the last four the frame.
+// package section or derived buffer each: runtime/render/levels/, one file per level); the last four the frame.
 // A binding holding one package section is named after it: NANO_B_<name in format/section_table.hpp>.
 NANO_CONST uint NANO_B_ULAS = 0u;  // the µLAS; every other binding is a storage buffer
 NANO_CONST uint NANO_B_MOLECULES = 1u;

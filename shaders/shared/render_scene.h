@@ -1,4 +1,4 @@
-// Records the renderer derives from a package at load time (runtime/render/gpu_scene.cpp) and its
+// Records the renderer derives from a package at load time (runtime/render/levels/) and its
 // shader (shaders/render/render.comp) reads next to the package's own sections. std430 = C++ layout
 // by the same rules as package_records.h (vec4/uvec4 members at multiples of 16 bytes).
 #ifndef NANO_RENDER_SCENE_H
