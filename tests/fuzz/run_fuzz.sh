@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # Configures and builds the clang/libFuzzer build (NANO_FUZZ_ONLY) in BUILD_DIR, and fuzzes for a
 # bounded time, starting from the checked-in seeds (docs/tests.md, "Fuzzing"):
-#   package  the package reader + validator       (seeds tests/fuzz/corpus/, 35 s by default)
-#   scene    the scene reader + feasibility       (seeds tests/fuzz/scene_corpus/, 25 s)
+#   package  the package reader + validator       (seeds tests/fuzz/corpus/, 15 s by default)
+#   scene    the scene reader + feasibility       (seeds tests/fuzz/scene_corpus/, 12 s)
 #   recipe   the cellPACK recipe reader           (seeds tests/fuzz/recipe_corpus/ and the
-#            recipes of tests/cellpack/data/, 10 s)
+#            recipes of tests/cellpack/data/, 6 s)
 #   obj off ply stl draco collada
-#            one mesh reader each (parse_proxy_mesh; seeds tests/fuzz/mesh_corpus/FORMAT/, 10 s;
+#            one mesh reader each (parse_proxy_mesh; seeds tests/fuzz/mesh_corpus/FORMAT/, 6 s;
 #            Collada's Assimp runs in a process of its own, started once per input that passes
 #            collada_reader.cpp's checks: far fewer inputs a second)
 #   pdb mmcif
-#            parse_pdb / parse_mmcif and molecule_from_text (seeds tests/fuzz/structure_corpus/, 10 s)
-#   gzip     structure_text_from_bytes (gzip, binary rejection), then molecule_from_text (10 s)
+#            parse_pdb / parse_mmcif and molecule_from_text (seeds tests/fuzz/structure_corpus/, 6 s)
+#   gzip     structure_text_from_bytes (gzip, binary rejection), then molecule_from_text (6 s)
 # New corpus entries and crash artifacts go to BUILD_DIR (scratch: BUILD_DIR/{corpus,findings} for
 # the package reader, BUILD_DIR/NAME-{corpus,findings} for the others), never into the repository.
 # usage: run_fuzz.sh SOURCE_DIR BUILD_DIR [build|SESSION...|all]   (default all: build, then every session)
@@ -45,13 +45,13 @@ fuzz() {
 session() {
   local fuzz_dir=$src/tests/fuzz
   case $1 in
-    package) fuzz package 35 16384 "$fuzz_dir/corpus" ;;
-    scene) fuzz scene 25 65536 "$fuzz_dir/scene_corpus" -dict="$fuzz_dir/scene.dict" ;;
-    recipe) fuzz recipe 10 65536 "$fuzz_dir/recipe_corpus:$src/tests/cellpack/data" -dict="$fuzz_dir/recipe.dict" ;;
-    obj | off | ply | stl | collada) fuzz "$1" 10 16384 "$fuzz_dir/mesh_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
-    draco) fuzz draco 10 16384 "$fuzz_dir/mesh_corpus/draco" ;;
-    pdb | mmcif) fuzz "$1" 10 32768 "$fuzz_dir/structure_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
-    gzip) fuzz gzip 10 32768 "$fuzz_dir/structure_corpus/gzip" ;;
+    package) fuzz package 15 16384 "$fuzz_dir/corpus" ;;
+    scene) fuzz scene 12 65536 "$fuzz_dir/scene_corpus" -dict="$fuzz_dir/scene.dict" ;;
+    recipe) fuzz recipe 6 65536 "$fuzz_dir/recipe_corpus:$src/tests/cellpack/data" -dict="$fuzz_dir/recipe.dict" ;;
+    obj | off | ply | stl | collada) fuzz "$1" 6 16384 "$fuzz_dir/mesh_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
+    draco) fuzz draco 6 16384 "$fuzz_dir/mesh_corpus/draco" ;;
+    pdb | mmcif) fuzz "$1" 6 32768 "$fuzz_dir/structure_corpus/$1" -dict="$fuzz_dir/$1.dict" ;;
+    gzip) fuzz gzip 6 32768 "$fuzz_dir/structure_corpus/gzip" ;;
     *) echo "run_fuzz.sh: unknown session '$1' (build, ${sessions[*]} or all)" >&2; exit 2 ;;
   esac
 }
