@@ -26,11 +26,7 @@
 namespace nano::cli {
 
 std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text) {
-  try {
-    return render::parse_image_size(text);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--size", "", e.what());
-  }
+  return render::parse_image_size(text, "--size");
 }
 
 namespace {

@@ -86,21 +86,13 @@ CameraPath parse_camera_path(const Json& json, const std::string& file) {
       for (const char* other : {"position", "look_at", "up", "fov_degrees"})
         if (k.has(other))
           k.required(other).fail("give either \"camera\" or position/look_at/up/fov_degrees, not both");
-      try {
-        key.camera = parse_camera(spec->string(), previous);
-      } catch (const std::invalid_argument& e) {
-        spec->fail(e.what());
-      }
+      key.camera = parse_camera(spec->string(), previous, spec->source());
     } else {
       if (const auto position = k.optional("position")) key.camera.position = position->vec3();
       if (const auto look_at = k.optional("look_at")) key.camera.look_at = look_at->vec3();
       if (const auto up = k.optional("up")) key.camera.up = up->vec3();
       if (const auto fov = k.optional("fov_degrees")) key.camera.fov_degrees = fov->number_strictly_between(0, 180);
-      try {
-        key.camera.check();
-      } catch (const std::invalid_argument& e) {
-        k.fail(e.what());
-      }
+      if (const std::string wrong = key.camera.problem(); !wrong.empty()) k.fail(wrong);
     }
     // Normalised lerp has no answer halfway between opposite up vectors.
     if (!path.keyframes.empty() &&

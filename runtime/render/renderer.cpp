@@ -388,11 +388,11 @@ struct Renderer::Impl {
   }
 };
 
-Precision parse_precision(std::string_view text) {
+Precision parse_precision(std::string_view text, const InputSource& source) {
   if (text == "two-float-eye") return Precision::two_float_eye;
   if (text == "camera-relative") return Precision::camera_relative;
   if (text == "world") return Precision::world;
-  throw std::invalid_argument("expected two-float-eye, camera-relative or world, got '" + std::string(text) + "'");
+  source.fail("expected two-float-eye, camera-relative or world, got '" + std::string(text) + "'");
 }
 
 const char* to_string(Precision precision) {

@@ -22,7 +22,8 @@ enum class Precision {
   camera_relative,  // µLAS relative to the eye; the eye enters compartment space by the float transform
   world,            // µLAS in world coordinates, rays from the world eye: plain float everywhere
 };
-Precision parse_precision(std::string_view text);  // throws std::invalid_argument naming the choices
+// Throws an InputError against `source` naming the choices.
+Precision parse_precision(std::string_view text, const InputSource& source);
 const char* to_string(Precision precision);
 
 struct RenderSettings {

@@ -171,7 +171,7 @@ void effects_section(ViewerState& s, const PanelContext& c) {
   render::EffectSettings& e = s.settings.effects;
   for (const EffectPreset& preset : effect_presets()) {
     if (ImGui::Button(std::string(preset.name).c_str())) {
-      render::apply_preset(e, preset.name);
+      render::apply_preset(e, preset);
       s.touch();
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(preset.summary).c_str());

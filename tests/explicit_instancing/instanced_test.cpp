@@ -128,7 +128,7 @@ TEST_F(Instanced, ReplicationAreaSizeSelectsTheRepLasTraversal) {
   InstancedRenderer explicit_renderer(s.device, explicit_scene);
   // Straight down onto the flat membranes, and grazing them.
   for (const char* view : {"position=64,64,140;look_at=64,64,0;up=0,1,0;fov=60", "position=-60,70,9;look_at=64,64,0;up=0,0,1;fov=50"}) {
-    const gpu::Camera camera = render::parse_camera(view).to_gpu(64, 64);
+    const gpu::Camera camera = render::parse_camera(view, {}, "--camera").to_gpu(64, 64);
     expect_agreement(explicit_renderer, hand_renderer, camera, view);
     const render::Frame counted = hand_renderer.render(camera);
     std::uint64_t replas_queries = 0;
