@@ -71,7 +71,7 @@ void write_screenshot(const std::string& path, ScriptHost& host) {
 void run_path_command(const ScriptCommand& c, const InputSource& line, ScriptHost& host) {
   ViewerState& s = host.state();
   switch (c.kind) {
-    case K::keyframe: add_keyframe(s.path.path, s.camera.camera(), c.seconds); break;
+    case K::keyframe: add_keyframe(s.path.path, s.camera.camera(), c.seconds, line); break;
     case K::path_save:
       if (s.path.path.keyframes.empty()) line.fail("no keyframes to save ('keyframe SECONDS' adds one)");
       render::write_camera_path(c.text, s.path.path);
@@ -85,11 +85,11 @@ void run_path_command(const ScriptCommand& c, const InputSource& line, ScriptHos
       stop_playback(s);
       s.path.path.keyframes.clear();
       break;
-    case K::path_frame: show_path_at(s, path_frame_time(s.path.path, c.first)); break;
+    case K::path_frame: show_path_at(s, path_frame_time(s.path.path, c.first, line)); break;
     case K::path_play:
-      (void)path_frame_time(s.path.path, c.last);  // a range past the end fails before any frame
+      (void)path_frame_time(s.path.path, c.last, line);  // a range past the end fails before any frame
       for (std::uint32_t k = c.first; k <= c.last; ++k) {
-        show_path_at(s, path_frame_time(s.path.path, k));
+        show_path_at(s, path_frame_time(s.path.path, k, line));
         host.render_frames(1);
       }
       break;
@@ -137,7 +137,7 @@ bool run_command(const ScriptCommand& command, const std::string& file, ScriptHo
     // written or read names only itself, so add which line asked for it.
     if (e.file() == line.file && e.where() == line.where) throw;
     line.fail(e.what());
-  } catch (const std::invalid_argument& e) {  // the path commands' refusals (path_recording.hpp)
+  } catch (const std::invalid_argument& e) {  // settings the renderer refuses (renderer.hpp), the window closing
     line.fail(e.what());
   } catch (const std::filesystem::filesystem_error& e) {
     line.fail(e.what());
