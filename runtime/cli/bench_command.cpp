@@ -374,7 +374,8 @@ void run_matrix(const Options& o, session::RenderSession& session, nlohmann::ord
   std::printf("%s", md.c_str());
   if (!o.markdown.empty()) write_text(o.markdown, md);
   if (!o.plot.empty())
-    write_text(o.plot, bench::svg_plot(session::matrix_plot(rows, "Error against time: " + std::filesystem::path(session.package.name()).filename().string())));
+    write_text(o.plot, bench::svg_plot(session::matrix_plot(rows, "Error against time: " + std::filesystem::path(session.package.name()).filename().string()),
+                                       "--plot"));
 }
 
 void run_explicit(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
