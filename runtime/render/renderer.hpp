@@ -93,7 +93,7 @@ public:
   // Builds the pipeline `settings` select on a worker thread — vkCreateComputePipelines, then one
   // dispatch of one workgroup on placeholder resources, where a driver that compiles at first use
   // (lavapipe: LLVM) compiles — unless it is built or being built; returns at once. Throws
-  // std::invalid_argument for settings set_settings would refuse. ready() says when it is done;
+  // InputError for settings set_settings would refuse. ready() says when it is done;
   // set_settings() with them waits for it. A viewer switching an effect keeps showing what it has
   // meanwhile instead of stalling.
   void prepare(const RenderSettings& settings);
@@ -102,7 +102,8 @@ public:
 
   // Effects and knobs for the next frames. A change of what is compiled in (the specialization
   // constants) builds another pipeline, once; parameters (planes, time, AO radius) cost nothing.
-  // Throws std::invalid_argument for more than 8 clip planes or effects the two-level path lacks.
+  // Throws an InputError naming the package for more than 8 clip planes, effects the two-level path
+  // lacks or a level of detail without beads.
   void set_settings(const RenderSettings& settings);
   const RenderSettings& settings() const;
 

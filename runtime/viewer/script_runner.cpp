@@ -137,7 +137,7 @@ bool run_command(const ScriptCommand& command, const std::string& file, ScriptHo
     // written or read names only itself, so add which line asked for it.
     if (e.file() == line.file && e.where() == line.where) throw;
     line.fail(e.what());
-  } catch (const std::invalid_argument& e) {  // settings the renderer refuses (renderer.hpp), the window closing
+  } catch (const std::invalid_argument& e) {  // the window closed during the line (ScriptHost::render_frames)
     line.fail(e.what());
   } catch (const std::filesystem::filesystem_error& e) {
     line.fail(e.what());

@@ -293,8 +293,9 @@ TEST_F(Instanced, PackageWithoutBeadsRefusesLevelOfDetail) {
   try {
     renderer.set_settings(render::RenderSettings{.lod_pixels = 1});
     ADD_FAILURE() << "a level of detail without beads was accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("old.nup: no beads"), std::string::npos) << e.what();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "old.nup") << e.what();
+    EXPECT_NE(e.rule().find("no beads"), std::string::npos) << e.what();
   }
 }
 
