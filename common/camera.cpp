@@ -8,12 +8,17 @@
 
 namespace nano {
 
-void Camera::check() const {
+std::string Camera::problem() const {
   const glm::dvec3 f = look_at - position;
-  if (!(glm::length(f) > 0)) throw std::invalid_argument("camera: position and look_at are the same point");
+  if (!(glm::length(f) > 0)) return "camera: position and look_at are the same point";
   if (!(glm::length(glm::cross(f / glm::length(f), up)) > 1e-9 * glm::length(up)))
-    throw std::invalid_argument("camera: up is zero or parallel to the viewing direction");
-  if (!(fov_degrees > 0 && fov_degrees < 180)) throw std::invalid_argument("camera: fov_degrees must lie in (0, 180)");
+    return "camera: up is zero or parallel to the viewing direction";
+  if (!(fov_degrees > 0 && fov_degrees < 180)) return "camera: fov_degrees must lie in (0, 180)";
+  return {};
+}
+
+void Camera::check() const {
+  if (const std::string wrong = problem(); !wrong.empty()) throw std::invalid_argument(wrong);
 }
 
 gpu::Camera Camera::to_gpu(std::uint32_t width, std::uint32_t height) const {

@@ -25,8 +25,11 @@ struct Camera {
   glm::dvec3 up{0.0, 1.0, 0.0};
   double fov_degrees = kDefaultFovDegrees;  // vertical
 
-  // Throws std::invalid_argument unless position ≠ look_at, up is not parallel to look_at − position
-  // and 0 < fov < 180.
+  // What makes this no camera, or "" when position ≠ look_at, up is not parallel to
+  // look_at − position and 0 < fov < 180. Parsers report it against their InputSource.
+  std::string problem() const;
+  // For cameras that were checked on the way in: throws std::invalid_argument (a broken invariant)
+  // with problem().
   void check() const;
   // The shader's camera for an image of width × height pixels (checks first).
   gpu::Camera to_gpu(std::uint32_t width, std::uint32_t height) const;

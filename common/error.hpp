@@ -25,4 +25,15 @@ private:
   std::string file_, where_, rule_;
 };
 
+// Where a text came from, handed down to the function that parses it so that function can throw
+// the InputError itself: an option ("--camera"), or a file and a place in it ("run.nvs", "line 12").
+struct InputSource {
+  InputSource(std::string file, std::string where = {}) : file(std::move(file)), where(std::move(where)) {}
+  InputSource(const char* file) : file(file) {}
+
+  [[noreturn]] void fail(std::string rule) const { throw InputError(file, where, std::move(rule)); }
+
+  std::string file, where;
+};
+
 }  // namespace nano

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "common/error.hpp"
 #include "common/json_document.hpp"
 
 namespace nano {
@@ -24,6 +25,8 @@ public:
 
   const std::string& path() const { return path_; }
   const std::string& file() const { return *file_; }
+  // This value as the source of a text parsed further (a camera spec inside a string).
+  InputSource source() const { return {file(), path()}; }
   const Json& json() const { return *value_; }
 
   [[noreturn]] void fail(const std::string& rule) const;

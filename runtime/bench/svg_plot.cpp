@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <stdexcept>
 
 namespace nano::bench {
 namespace {
@@ -68,7 +67,7 @@ Axis make_axis(double lo, double hi, bool log) {
 
 }  // namespace
 
-std::string svg_plot(const PlotSpec& spec) {
+std::string svg_plot(const PlotSpec& spec, const InputSource& source) {
   const auto drawable = [&](const PlotPoint& p) {
     return std::isfinite(p.x) && std::isfinite(p.y) && (!spec.log_x || p.x > 0) && (!spec.log_y || p.y > 0);
   };
@@ -82,7 +81,7 @@ std::string svg_plot(const PlotSpec& spec) {
       }
       x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
     }
-  if (!(x0 <= x1)) throw std::invalid_argument("svg_plot: no point to draw in '" + spec.title + "'");
+  if (!(x0 <= x1)) source.fail("svg_plot: no point to draw in '" + spec.title + "'");
   const Axis ax = make_axis(x0, x1, spec.log_x), ay = make_axis(y0, y1, spec.log_y);
   const double pw = kWidth - kLeft - kRight, ph = kHeight - kTop - kBottom;
   const auto px = [&](double x) { return kLeft + pw * ax.to_unit(x); };

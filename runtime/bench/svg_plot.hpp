@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "common/error.hpp"
+
 namespace nano::bench {
 
 struct PlotPoint {
@@ -23,7 +25,8 @@ struct PlotSpec {
   std::vector<PlotSeries> series;
 };
 
-// The SVG document (800 × 500). Throws std::invalid_argument when no point can be drawn.
-std::string svg_plot(const PlotSpec& spec);
+// The SVG document (800 × 500). Throws an InputError against `source` (where the points came from)
+// when no point can be drawn.
+std::string svg_plot(const PlotSpec& spec, const InputSource& source);
 
 }  // namespace nano::bench

@@ -279,7 +279,7 @@ void run_compile(const Options& o, session::RenderSession& session, nlohmann::or
       std::printf("%-28s %9.1f %6u %9.3f %9.3f %9.3f  %s\n", row.what.c_str(), b.spirv_bytes / 1e3, b.ray_query_loops,
                   b.create_seconds, b.first_dispatch_seconds, b.create_seconds + b.first_dispatch_seconds, b.variant.c_str());
       built.emplace(name, out["variants"].size());
-    } catch (const std::invalid_argument& e) {  // a knob this package cannot take (no beads, no atom squares)
+    } catch (const InputError& e) {  // a knob this package cannot take (no beads, no atom squares)
       j["unavailable"] = e.what();
       std::printf("%-28s unavailable: %s\n", row.what.c_str(), e.what());
     }
@@ -374,7 +374,8 @@ void run_matrix(const Options& o, session::RenderSession& session, nlohmann::ord
   std::printf("%s", md.c_str());
   if (!o.markdown.empty()) write_text(o.markdown, md);
   if (!o.plot.empty())
-    write_text(o.plot, bench::svg_plot(session::matrix_plot(rows, "Error against time: " + std::filesystem::path(session.package.name()).filename().string())));
+    write_text(o.plot, bench::svg_plot(session::matrix_plot(rows, "Error against time: " + std::filesystem::path(session.package.name()).filename().string()),
+                                       "--plot"));
 }
 
 void run_explicit(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {

@@ -45,12 +45,7 @@ void add_plot_command(CLI::App& app) {
       }
       spec.series.push_back(std::move(series));
     }
-    std::string svg;
-    try {
-      svg = bench::svg_plot(spec);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(o->spec, "", e.what());
-    }
+    const std::string svg = bench::svg_plot(spec, o->spec);
     write_file_atomically(o->output, std::as_bytes(std::span(svg.data(), svg.size())));
   });
 }

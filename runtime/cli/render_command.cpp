@@ -26,11 +26,7 @@
 namespace nano::cli {
 
 std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text) {
-  try {
-    return render::parse_image_size(text);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--size", "", e.what());
-  }
+  return render::parse_image_size(text, "--size");
 }
 
 namespace {
@@ -73,14 +69,8 @@ std::pair<std::uint64_t, std::uint64_t> movie_frames(const RenderOptions& o, con
                                       : parse_frame_range(o.frames, path.frame_count());
   if (o.repeat > 1) throw InputError("--repeat", "", "times one frame; it cannot be combined with a path's frames");
   const std::pair<const char*, const std::string*> patterns[] = {{"-o", &o.output}, {"--depth", &o.depth}, {"--ids", &o.ids}};
-  for (const auto& [option, pattern] : patterns) {
-    if (pattern->empty()) continue;
-    try {
-      render::check_frame_pattern(*pattern);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(option, "", e.what());
-    }
-  }
+  for (const auto& [option, pattern] : patterns)
+    if (!pattern->empty()) render::check_frame_pattern(*pattern, option);
   return range;
 }
 

@@ -34,7 +34,10 @@ std::uint64_t CameraPath::frame_count() const {
   return std::uint64_t(std::floor(duration() * fps + 1e-9)) + 1;
 }
 
-Camera camera_at(const CameraPath& path, double time) {
+namespace {
+
+// camera_at without its check: the reader reports a degenerate frame against the file instead.
+Camera interpolated_camera(const CameraPath& path, double time) {
   const auto& keys = path.keyframes;
   if (keys.empty()) throw std::invalid_argument("camera path: no keyframes");
   if (!(time > keys.front().time)) return keys.front().camera;  // NaN clamps to the start too
@@ -56,6 +59,13 @@ Camera camera_at(const CameraPath& path, double time) {
   c.look_at = hermite(&Camera::look_at);
   c.up = glm::normalize((1 - s) * glm::normalize(a.camera.up) + s * glm::normalize(b.camera.up));
   c.fov_degrees = (1 - s) * a.camera.fov_degrees + s * b.camera.fov_degrees;
+  return c;
+}
+
+}  // namespace
+
+Camera camera_at(const CameraPath& path, double time) {
+  const Camera c = interpolated_camera(path, time);
   c.check();
   return c;
 }
@@ -86,21 +96,13 @@ CameraPath parse_camera_path(const Json& json, const std::string& file) {
       for (const char* other : {"position", "look_at", "up", "fov_degrees"})
         if (k.has(other))
           k.required(other).fail("give either \"camera\" or position/look_at/up/fov_degrees, not both");
-      try {
-        key.camera = parse_camera(spec->string(), previous);
-      } catch (const std::invalid_argument& e) {
-        spec->fail(e.what());
-      }
+      key.camera = parse_camera(spec->string(), previous, spec->source());
     } else {
       if (const auto position = k.optional("position")) key.camera.position = position->vec3();
       if (const auto look_at = k.optional("look_at")) key.camera.look_at = look_at->vec3();
       if (const auto up = k.optional("up")) key.camera.up = up->vec3();
       if (const auto fov = k.optional("fov_degrees")) key.camera.fov_degrees = fov->number_strictly_between(0, 180);
-      try {
-        key.camera.check();
-      } catch (const std::invalid_argument& e) {
-        k.fail(e.what());
-      }
+      if (const std::string wrong = key.camera.problem(); !wrong.empty()) k.fail(wrong);
     }
     // Normalised lerp has no answer halfway between opposite up vectors.
     if (!path.keyframes.empty() &&
@@ -113,14 +115,9 @@ CameraPath parse_camera_path(const Json& json, const std::string& file) {
   if (double(path.duration()) * path.fps >= double(kMaxFrames))
     keyframes.fail("more than " + std::to_string(kMaxFrames) + " frames");
   // Keyframes can be fine while the spline between them passes the eye through the target.
-  for (std::uint64_t f = 0; f < path.frame_count(); ++f) {
-    try {
-      camera_at(path, path.frame_time(f));
-    } catch (const std::invalid_argument& e) {
-      keyframes.fail("frame " + std::to_string(f) + " (time " + std::to_string(path.frame_time(f)) +
-                     " s) has a degenerate camera: " + e.what());
-    }
-  }
+  for (std::uint64_t f = 0; f < path.frame_count(); ++f)
+    if (const std::string wrong = interpolated_camera(path, path.frame_time(f)).problem(); !wrong.empty())
+      keyframes.fail("frame " + std::to_string(f) + " (time " + std::to_string(path.frame_time(f)) + " s) has a degenerate camera: " + wrong);
   return path;
 }
 
@@ -146,9 +143,9 @@ void write_camera_path(const std::filesystem::path& path, const CameraPath& came
 namespace {
 
 // Calls `literal(text)` for the text between conversions and `conversion(zero_pad, width)` for
-// each %d; throws on anything else, so checking and formatting cannot disagree.
+// each %d, so checking and formatting cannot disagree; returns what is wrong with the pattern, or "".
 template <class Literal, class Conversion>
-void walk_pattern(std::string_view pattern, Literal literal, Conversion conversion) {
+std::string walk_pattern(std::string_view pattern, Literal literal, Conversion conversion) {
   int conversions = 0;
   for (std::size_t i = 0; i < pattern.size();) {
     const std::size_t percent = pattern.find('%', i);
@@ -165,31 +162,33 @@ void walk_pattern(std::string_view pattern, Literal literal, Conversion conversi
     std::size_t width = 0;
     while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9' && width < 1000) width = 10 * width + (pattern[j++] - '0');
     if (j >= pattern.size() || pattern[j] != 'd' || width > 20)
-      throw std::invalid_argument("'" + std::string(pattern) + "': the only conversion allowed is one %d for the frame number (" +
-                                  "optionally %05d or %5d, width ≤ 20); write a literal % as %%");
+      return "'" + std::string(pattern) + "': the only conversion allowed is one %d for the frame number (" +
+             "optionally %05d or %5d, width ≤ 20); write a literal % as %%";
     conversion(zero, width);
     ++conversions;
     i = j + 1;
   }
   if (conversions != 1)
-    throw std::invalid_argument("'" + std::string(pattern) + "' must hold exactly one %d for the frame number (it holds " +
-                                std::to_string(conversions) + ")");
+    return "'" + std::string(pattern) + "' must hold exactly one %d for the frame number (it holds " + std::to_string(conversions) + ")";
+  return {};
 }
 
 }  // namespace
 
-void check_frame_pattern(std::string_view pattern) {
-  walk_pattern(pattern, [](std::string_view) {}, [](bool, std::size_t) {});
+void check_frame_pattern(std::string_view pattern, const InputSource& source) {
+  if (const std::string wrong = walk_pattern(pattern, [](std::string_view) {}, [](bool, std::size_t) {}); !wrong.empty())
+    source.fail(wrong);
 }
 
 std::string frame_file_name(std::string_view pattern, std::uint64_t frame) {
   std::string out;
-  walk_pattern(pattern, [&](std::string_view text) { out += text; },
-               [&](bool zero, std::size_t width) {
-                 const std::string digits = std::to_string(frame);
-                 if (digits.size() < width) out.append(width - digits.size(), zero ? '0' : ' ');
-                 out += digits;
-               });
+  const std::string wrong = walk_pattern(pattern, [&](std::string_view text) { out += text; },
+                                         [&](bool zero, std::size_t width) {
+                                           const std::string digits = std::to_string(frame);
+                                           if (digits.size() < width) out.append(width - digits.size(), zero ? '0' : ' ');
+                                           out += digits;
+                                         });
+  if (!wrong.empty()) throw std::logic_error("frame_file_name before check_frame_pattern: " + wrong);
   return out;
 }
 

@@ -59,8 +59,9 @@ Camera camera_at(const CameraPath& path, double time);
 
 // Movie frame file names ("frames/%05d.png"): `pattern` holds exactly one printf-style integer
 // conversion, %d with an optional 0 flag and width (%d, %5d, %05d), and no other % but %%.
-// Throws std::invalid_argument saying what is wrong.
-void check_frame_pattern(std::string_view pattern);
+// check_frame_pattern throws an InputError against `source` (the option that gave the pattern)
+// saying what is wrong; frame_file_name expects a checked pattern.
+void check_frame_pattern(std::string_view pattern, const InputSource& source);
 std::string frame_file_name(std::string_view pattern, std::uint64_t frame);
 
 }  // namespace nano::render

@@ -4,20 +4,19 @@
 #include <iterator>
 #include <cstdio>
 #include <sstream>
-#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 namespace nano::render {
 namespace {
 
-glm::dvec3 parse_vector(std::string_view key, std::string_view value) {
+glm::dvec3 parse_vector(std::string_view key, std::string_view value, const InputSource& source) {
   glm::dvec3 v;
   std::string s(value);
   char tail = 0;
   if (std::sscanf(s.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &tail) != 3 || !std::isfinite(v.x) ||
       !std::isfinite(v.y) || !std::isfinite(v.z))
-    throw std::invalid_argument("camera: '" + std::string(key) + "=" + s + "' is not three finite numbers x,y,z");
+    source.fail("camera: '" + std::string(key) + "=" + s + "' is not three finite numbers x,y,z");
   return v;
 }
 
@@ -25,7 +24,7 @@ glm::dvec3 parse_vector(std::string_view key, std::string_view value) {
 
 float focus_distance_for(const Camera& camera) { return float(glm::length(camera.look_at - camera.position)); }
 
-Camera parse_camera(std::string_view text, const Camera& base) {
+Camera parse_camera(std::string_view text, const Camera& base, const InputSource& source) {
   // The scene file's words, and the short aliases older command lines and scripts use.
   struct Key {
     std::string_view name, alias;
@@ -40,27 +39,26 @@ Camera parse_camera(std::string_view text, const Camera& base) {
     start = end + 1;
     if (part.empty()) continue;
     const std::size_t eq = part.find('=');
-    if (eq == std::string_view::npos) throw std::invalid_argument("camera: '" + std::string(part) + "' has no '='");
+    if (eq == std::string_view::npos) source.fail("camera: '" + std::string(part) + "' has no '='");
     const std::string_view key = part.substr(0, eq), value = part.substr(eq + 1);
     std::size_t k = 0;
     while (k < std::size(keys) && key != keys[k].name && (keys[k].alias.empty() || key != keys[k].alias)) ++k;
     if (k == std::size(keys))
-      throw std::invalid_argument("camera: unknown key '" + std::string(key) +
-                                  "' (position, look_at, up, fov_degrees; aliases pos, at, fov)");
+      source.fail("camera: unknown key '" + std::string(key) + "' (position, look_at, up, fov_degrees; aliases pos, at, fov)");
     if (!given[k].empty())
-      throw std::invalid_argument("camera: '" + std::string(key) + "' repeats '" + std::string(given[k]) + "'");
+      source.fail("camera: '" + std::string(key) + "' repeats '" + std::string(given[k]) + "'");
     given[k] = key;
-    if (k == 0) c.position = parse_vector(key, value);
-    else if (k == 1) c.look_at = parse_vector(key, value);
-    else if (k == 2) c.up = parse_vector(key, value);
+    if (k == 0) c.position = parse_vector(key, value, source);
+    else if (k == 1) c.look_at = parse_vector(key, value, source);
+    else if (k == 2) c.up = parse_vector(key, value, source);
     else {
       std::string s(value);
       char tail = 0;
       if (std::sscanf(s.c_str(), "%lf%c", &c.fov_degrees, &tail) != 1)
-        throw std::invalid_argument("camera: '" + std::string(key) + "=" + s + "' is not a number of degrees");
+        source.fail("camera: '" + std::string(key) + "=" + s + "' is not a number of degrees");
     }
   }
-  c.check();
+  if (const std::string wrong = c.problem(); !wrong.empty()) source.fail(wrong);
   return c;
 }
 

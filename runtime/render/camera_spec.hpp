@@ -10,6 +10,7 @@
 
 #include "format/package.hpp"
 #include "common/camera.hpp"
+#include "common/error.hpp"
 
 namespace nano::render {
 
@@ -19,8 +20,9 @@ namespace nano::render {
 float focus_distance_for(const Camera& camera);
 
 // Keys may come in any order and any may be left out (they keep `base`'s value); a key given twice
-// (also once by its alias) is an error. Throws std::invalid_argument naming the part that does not parse.
-Camera parse_camera(std::string_view text, const Camera& base = {});
+// (also once by its alias) is an error. Throws an InputError against `source` (where the text came
+// from) naming the part that does not parse.
+Camera parse_camera(std::string_view text, const Camera& base, const InputSource& source);
 
 // The package's default camera (section scene), or a view of everything when it has none.
 Camera package_camera(const format::Package& package);

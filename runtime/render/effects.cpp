@@ -12,7 +12,7 @@ namespace nano::render {
 namespace {
 
 // Exactly `n` comma-separated finite numbers.
-std::vector<double> numbers(std::string_view text, std::size_t n, const char* what) {
+std::vector<double> numbers(std::string_view text, std::size_t n, const char* what, const InputSource& source) {
   std::vector<double> v;
   std::string s(text);
   const char* p = s.c_str();
@@ -20,16 +20,15 @@ std::vector<double> numbers(std::string_view text, std::size_t n, const char* wh
     char* end = nullptr;
     const double x = std::strtod(p, &end);
     if (end == p || !std::isfinite(x))
-      throw std::invalid_argument(std::string(what) + ": expected " + std::to_string(n) + " comma-separated numbers, got '" + s + "'");
+      source.fail(std::string(what) + ": expected " + std::to_string(n) + " comma-separated numbers, got '" + s + "'");
     v.push_back(x);
     while (*end == ' ') ++end;
     if (*end == '\0') break;
-    if (*end != ',') throw std::invalid_argument(std::string(what) + ": unexpected '" + std::string(1, *end) + "' in '" + s + "'");
+    if (*end != ',') source.fail(std::string(what) + ": unexpected '" + std::string(1, *end) + "' in '" + s + "'");
     p = end + 1;
   }
   if (v.size() != n)
-    throw std::invalid_argument(std::string(what) + ": expected " + std::to_string(n) + " numbers, got " + std::to_string(v.size()) +
-                                " in '" + s + "'");
+    source.fail(std::string(what) + ": expected " + std::to_string(n) + " numbers, got " + std::to_string(v.size()) + " in '" + s + "'");
   return v;
 }
 
@@ -54,15 +53,19 @@ EffectSettings package_effects(const format::Package& package) {
   return e;
 }
 
-bool& effect_flag(EffectSettings& effects, std::string_view name) {
+bool& effect_flag(EffectSettings& effects, std::string_view name, const InputSource& source) {
   if (const EffectDeclaration* effect = find_effect(name)) return effects.flag(effect->id);
-  throw std::invalid_argument("unknown effect '" + std::string(name) + "' (" + effect_names() + ")");
+  source.fail("unknown effect '" + std::string(name) + "' (" + effect_names() + ")");
 }
 
-void apply_preset(EffectSettings& effects, std::string_view name) {
+void apply_preset(EffectSettings& effects, std::string_view name, const InputSource& source) {
   const EffectPreset* preset = find_preset(name);
-  if (!preset) throw std::invalid_argument("unknown preset '" + std::string(name) + "' (" + preset_names() + ")");
-  for (const PresetEffect& effect : preset->effects) {
+  if (!preset) source.fail("unknown preset '" + std::string(name) + "' (" + preset_names() + ")");
+  apply_preset(effects, *preset);
+}
+
+void apply_preset(EffectSettings& effects, const EffectPreset& preset) {
+  for (const PresetEffect& effect : preset.effects) {
     effects.flag(effect.id) = true;
     effects.parameters(effect.id) = effect.values;
   }
@@ -75,12 +78,12 @@ gpu::SceneEffects effect_record(const EffectSettings& effects) {
   return record;
 }
 
-glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view text) {
+glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view text, const InputSource& source) {
   const bool vector = parameter.kind == ParameterKind::unit_vector || parameter.kind == ParameterKind::colour;
-  const std::vector<double> v = numbers(text, vector ? 3 : 1, vector ? "x,y,z" : "a number");
+  const std::vector<double> v = numbers(text, vector ? 3 : 1, vector ? "x,y,z" : "a number", source);
   glm::dvec3 value = vector ? glm::dvec3(v[0], v[1], v[2]) : glm::dvec3(v[0], 0.0, 0.0);
   if (const std::string problem = parameter_problem(parameter, value); !problem.empty())
-    throw std::invalid_argument(std::string(parameter.key) + " " + problem + ", got '" + std::string(text) + "'");
+    source.fail(std::string(parameter.key) + " " + problem + ", got '" + std::string(text) + "'");
   if (parameter.kind == ParameterKind::unit_vector) value = glm::normalize(value);
   return value;
 }
@@ -99,19 +102,19 @@ std::string parameter_help(const EffectDeclaration& effect, const EffectParamete
   return what + "); sets the value, --effect " + std::string(effect.name) + " turns it on";
 }
 
-glm::dvec4 parse_clip_plane(std::string_view text) {
-  const std::vector<double> v = numbers(text, 4, "clip plane nx,ny,nz,d");
+glm::dvec4 parse_clip_plane(std::string_view text, const InputSource& source) {
+  const std::vector<double> v = numbers(text, 4, "clip plane nx,ny,nz,d", source);
   const glm::dvec3 n(v[0], v[1], v[2]);
   const double length = glm::length(n);
-  if (!(length > 0)) throw std::invalid_argument("clip plane nx,ny,nz,d: the normal must be non-zero, got '" + std::string(text) + "'");
+  if (!(length > 0)) source.fail("clip plane nx,ny,nz,d: the normal must be non-zero, got '" + std::string(text) + "'");
   return glm::dvec4(n / length, v[3] / length);
 }
 
-std::pair<glm::dvec3, glm::dvec3> parse_clip_box(std::string_view text) {
-  const std::vector<double> v = numbers(text, 6, "clip box x0,y0,z0,x1,y1,z1");
+std::pair<glm::dvec3, glm::dvec3> parse_clip_box(std::string_view text, const InputSource& source) {
+  const std::vector<double> v = numbers(text, 6, "clip box x0,y0,z0,x1,y1,z1", source);
   const glm::dvec3 lo(v[0], v[1], v[2]), hi(v[3], v[4], v[5]);
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
-    throw std::invalid_argument("clip box x0,y0,z0,x1,y1,z1: expected x0 < x1, y0 < y1 and z0 < z1, got '" + std::string(text) + "'");
+    source.fail("clip box x0,y0,z0,x1,y1,z1: expected x0 < x1, y0 < y1 and z0 < z1, got '" + std::string(text) + "'");
   return {lo, hi};
 }
 

@@ -15,6 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include "common/effect_table.hpp"
+#include "common/error.hpp"
 #include "format/package.hpp"
 
 namespace nano::render {
@@ -56,30 +57,34 @@ struct EffectSettings {
 EffectSettings package_effects(const format::Package& package);
 
 // The switch of effect `name` (as --effect and the viewer script spell it, common/effect_table.hpp);
-// throws std::invalid_argument naming the choices for another name.
-bool& effect_flag(EffectSettings& effects, std::string_view name);
-inline void set_effect(EffectSettings& effects, std::string_view name, bool on) { effect_flag(effects, name) = on; }
-// Turns on the effects of preset `name` (common/effect_table.hpp) with its values; throws
-// std::invalid_argument naming the choices for another name.
-void apply_preset(EffectSettings& effects, std::string_view name);
+// for another name, throws an InputError against `source` (where the name came from) naming the choices.
+bool& effect_flag(EffectSettings& effects, std::string_view name, const InputSource& source);
+inline void set_effect(EffectSettings& effects, std::string_view name, bool on, const InputSource& source) {
+  effect_flag(effects, name, source) = on;
+}
+// Turns on the effects of preset `name` (common/effect_table.hpp) with its values; for another name,
+// throws an InputError against `source` naming the choices.
+void apply_preset(EffectSettings& effects, std::string_view name, const InputSource& source);
+void apply_preset(EffectSettings& effects, const EffectPreset& preset);
 // The on effects' parameters in the package's record layout, as the shader reads them
 // (RenderFrame::effect_record).
 gpu::SceneEffects effect_record(const EffectSettings& effects);
 
 // A parameter option's text ("16", "0.2,0.5,1"): the value, unit vectors normalised; throws
-// std::invalid_argument saying what the parameter accepts.
-glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view text);
+// an InputError against `source` saying what the parameter accepts.
+glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view text, const InputSource& source);
 // --help's line for a parameter option.
 std::string parameter_help(const EffectDeclaration& effect, const EffectParameter& parameter);
 
-// "nx,ny,nz,d" → plane; "x0,y0,z0,x1,y1,z1" → box. Throw std::invalid_argument saying what is wrong.
-glm::dvec4 parse_clip_plane(std::string_view text);
+// "nx,ny,nz,d" → plane; "x0,y0,z0,x1,y1,z1" → box. Throw an InputError against `source` saying what
+// is wrong.
+glm::dvec4 parse_clip_plane(std::string_view text, const InputSource& source);
 // (time, amplitude in radians, frequency) as the frame hands them to the shader: the oracle jitters
 // with these very floats.
 glm::vec3 jitter_frame_parameters(const EffectSettings& effects);
 
 // The half-spaces (unit n, d) a point must satisfy to stay: the planes, then the box's six faces.
 std::vector<glm::dvec4> clip_half_spaces(const Clipping& clipping);
-std::pair<glm::dvec3, glm::dvec3> parse_clip_box(std::string_view text);
+std::pair<glm::dvec3, glm::dvec3> parse_clip_box(std::string_view text, const InputSource& source);
 
 }  // namespace nano::render

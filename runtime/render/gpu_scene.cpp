@@ -22,11 +22,10 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ShellMode parse_shell_mode(std::string_view text) {
+ShellMode parse_shell_mode(std::string_view text, const InputSource& source) {
   for (ShellMode m : {ShellMode::adaptive_overlap, ShellMode::adaptive, ShellMode::fixed_overlap, ShellMode::fixed})
     if (text == to_string(m)) return m;
-  throw std::invalid_argument("shell mode '" + std::string(text) +
-                              "' is not one of adaptive-overlap, adaptive, fixed-overlap, fixed");
+  source.fail("shell mode '" + std::string(text) + "' is not one of adaptive-overlap, adaptive, fixed-overlap, fixed");
 }
 
 const char* to_string(ShellMode mode) {

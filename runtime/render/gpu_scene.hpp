@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <vulkan/vulkan.h>
 
+#include "common/error.hpp"
 #include "format/package.hpp"
 #include "format/package_view.hpp"
 #include "runtime/placement/visibility.hpp"
@@ -27,7 +28,7 @@ namespace nano::render {
 // The four shells of the paper's comparison. Without overlap (side offset 0) molecules that cross
 // a triangle's edge lose the part outside its prism; the fixed shells use each mesh's largest offsets.
 enum class ShellMode { adaptive_overlap, adaptive, fixed_overlap, fixed };
-ShellMode parse_shell_mode(std::string_view text);  // throws std::invalid_argument naming the choices
+ShellMode parse_shell_mode(std::string_view text, const InputSource& source);  // an InputError names the choices
 const char* to_string(ShellMode mode);
 
 struct SceneOptions {

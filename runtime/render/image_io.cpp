@@ -108,7 +108,7 @@ void write_depth_pfm(const std::filesystem::path& path, std::uint32_t width, std
   write_file_atomically(path, std::as_bytes(std::span(bytes.data(), bytes.size())));
 }
 
-std::pair<std::uint32_t, std::uint32_t> parse_image_size(std::string_view text) {
+std::pair<std::uint32_t, std::uint32_t> parse_image_size(std::string_view text, const InputSource& source) {
   const auto number = [](std::string_view digits, std::uint32_t& value) {
     const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     return !digits.empty() && error == std::errc() && end == digits.data() + digits.size();
@@ -117,7 +117,7 @@ std::pair<std::uint32_t, std::uint32_t> parse_image_size(std::string_view text) 
   std::uint32_t w = 0, h = 0;
   if (x == std::string_view::npos || !number(text.substr(0, x), w) || !number(text.substr(x + 1), h) || w == 0 || h == 0 ||
       w > 16384 || h > 16384)
-    throw std::invalid_argument("expected a size WxH with 1 ≤ W, H ≤ 16384, got '" + std::string(text) + "'");
+    source.fail("expected a size WxH with 1 ≤ W, H ≤ 16384, got '" + std::string(text) + "'");
   return {w, h};
 }
 

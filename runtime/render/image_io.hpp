@@ -7,13 +7,14 @@
 #include <utility>
 #include <vector>
 
+#include "common/error.hpp"
 #include "shared/camera.h"
 
 namespace nano::render {
 
-// "WxH" with 1 ≤ W, H ≤ 16384 (digits only); throws std::invalid_argument saying what is wrong.
-// Every command's --size and the viewer's `size` script command read sizes with it.
-std::pair<std::uint32_t, std::uint32_t> parse_image_size(std::string_view text);
+// "WxH" with 1 ≤ W, H ≤ 16384 (digits only); throws an InputError against `source` saying what is
+// wrong. Every command's --size and the viewer's `size` script command read sizes with it.
+std::pair<std::uint32_t, std::uint32_t> parse_image_size(std::string_view text, const InputSource& source);
 
 // 8-bit RGBA PNG; `rgba` row-major with row 0 the top row, R in the low byte of each word.
 void write_png(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,

@@ -134,18 +134,20 @@ vk::ComputePipelineDesc pipeline_desc(const Variant& v) {
   return desc;
 }
 
-void check(const RenderSettings& s) {
+// Settings come together from options, the package's scene and the viewer's panel; what the
+// renderer knows of their source is the package they are refused for.
+void check(const RenderSettings& s, const InputSource& package) {
   const EffectSettings& e = s.effects;
   if (e.flag(EffectId::clipping) && clip_half_spaces(e.clipping).size() > gpu::NANO_MAX_CLIP_HALF_SPACES)
-    throw std::invalid_argument("at most 8 clip planes (plus the clip box)");
+    package.fail("at most 8 clip planes (plus the clip box)");
   if (s.two_level && ((e.flag(EffectId::clipping) && e.clipping.any()) || e.flag(EffectId::jitter)))
-    throw std::invalid_argument("--levels 2 (the paper's two-level membrane) has no clipping or jitter; use 3+rep or 3");
+    package.fail("--levels 2 (the paper's two-level membrane) has no clipping or jitter; use 3+rep or 3");
   if (e.flag(EffectId::ambient_occlusion) && !(e.ao_rays() >= 1 && e.ao_rays() <= 1024 && e.ao_radius() > 0))
-    throw std::invalid_argument("ambient occlusion needs 1 to 1024 rays and a positive radius");
-  if (e.flag(EffectId::shadows) && !(glm::length(e.light_direction()) > 0)) throw std::invalid_argument("shadows need a light direction");
-  if (s.counters && s.without_effect_code) throw std::invalid_argument("the build without effect code has no counters");
-  if (!(s.lod_pixels >= 0 && s.lod_pixels <= 1e4)) throw std::invalid_argument("--lod: a pixel threshold in (0, 10000]");
-  if (s.lod_pixels > 0 && s.without_effect_code) throw std::invalid_argument("the build without effect code has no level of detail");
+    package.fail("ambient occlusion needs 1 to 1024 rays and a positive radius");
+  if (e.flag(EffectId::shadows) && !(glm::length(e.light_direction()) > 0)) package.fail("shadows need a light direction");
+  if (s.counters && s.without_effect_code) package.fail("the build without effect code has no counters");
+  if (!(s.lod_pixels >= 0 && s.lod_pixels <= 1e4)) package.fail("--lod: a pixel threshold in (0, 10000]");
+  if (s.lod_pixels > 0 && s.without_effect_code) package.fail("the build without effect code has no level of detail");
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -224,10 +226,10 @@ struct Renderer::Impl {
   placement::Visibility visibility;  // settings.hidden resolved
 
   void set_settings(const RenderSettings& r) {
-    check(r);
+    const InputSource package(scene.package().name());
+    check(r, package);
     if (r.lod_pixels > 0 && !scene.has_beads())
-      throw std::invalid_argument(scene.package().name() +
-                                  ": no beads (baked before format 2.5), so no level of detail: bake it again, or --lod off");
+      package.fail("no beads (baked before format 2.5), so no level of detail: bake it again, or --lod off");
     visibility = placement::resolve_hidden(scene.package(), r.hidden);
     settings = r;
     const Variant v = variant(settings);
@@ -240,7 +242,7 @@ struct Renderer::Impl {
   }
 
   void prepare(const RenderSettings& r) {
-    check(r);
+    check(r, scene.package().name());
     const Variant v = variant(r);
     if (pipelines.count(v) || building.count(v)) return;
     const vk::Device& d = device;
@@ -388,11 +390,11 @@ struct Renderer::Impl {
   }
 };
 
-Precision parse_precision(std::string_view text) {
+Precision parse_precision(std::string_view text, const InputSource& source) {
   if (text == "two-float-eye") return Precision::two_float_eye;
   if (text == "camera-relative") return Precision::camera_relative;
   if (text == "world") return Precision::world;
-  throw std::invalid_argument("expected two-float-eye, camera-relative or world, got '" + std::string(text) + "'");
+  source.fail("expected two-float-eye, camera-relative or world, got '" + std::string(text) + "'");
 }
 
 const char* to_string(Precision precision) {

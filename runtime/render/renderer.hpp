@@ -22,7 +22,8 @@ enum class Precision {
   camera_relative,  // µLAS relative to the eye; the eye enters compartment space by the float transform
   world,            // µLAS in world coordinates, rays from the world eye: plain float everywhere
 };
-Precision parse_precision(std::string_view text);  // throws std::invalid_argument naming the choices
+// Throws an InputError against `source` naming the choices.
+Precision parse_precision(std::string_view text, const InputSource& source);
 const char* to_string(Precision precision);
 
 struct RenderSettings {
@@ -92,7 +93,7 @@ public:
   // Builds the pipeline `settings` select on a worker thread — vkCreateComputePipelines, then one
   // dispatch of one workgroup on placeholder resources, where a driver that compiles at first use
   // (lavapipe: LLVM) compiles — unless it is built or being built; returns at once. Throws
-  // std::invalid_argument for settings set_settings would refuse. ready() says when it is done;
+  // InputError for settings set_settings would refuse. ready() says when it is done;
   // set_settings() with them waits for it. A viewer switching an effect keeps showing what it has
   // meanwhile instead of stalling.
   void prepare(const RenderSettings& settings);
@@ -101,7 +102,8 @@ public:
 
   // Effects and knobs for the next frames. A change of what is compiled in (the specialization
   // constants) builds another pipeline, once; parameters (planes, time, AO radius) cost nothing.
-  // Throws std::invalid_argument for more than 8 clip planes or effects the two-level path lacks.
+  // Throws an InputError naming the package for more than 8 clip planes, effects the two-level path
+  // lacks or a level of detail without beads.
   void set_settings(const RenderSettings& settings);
   const RenderSettings& settings() const;
 

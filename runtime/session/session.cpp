@@ -12,11 +12,7 @@ namespace nano::session {
 
 SessionOptions VariantOptions::scene_options() const {
   SessionOptions o;
-  try {
-    o.scene.shell = render::parse_shell_mode(shell);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--shell", "", e.what());
-  }
+  o.scene.shell = render::parse_shell_mode(shell, "--shell");
   o.scene.two_level_membranes = levels == "2";
   o.persistent_pipeline_cache = !no_pipeline_cache;
   return o;
@@ -47,11 +43,7 @@ render::RenderSettings VariantOptions::render_settings() const {
   if (levels != "3+rep" && levels != "3" && levels != "2")
     throw InputError("--levels", "", "expected 3+rep, 3 or 2, got '" + levels + "'");
   render::RenderSettings s;
-  try {
-    s.precision = render::parse_precision(precision);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--precision", "", e.what());
-  }
+  s.precision = render::parse_precision(precision, "--precision");
   s.exact_prism = prism == "exact";
   s.replication_las = levels == "3+rep";
   s.two_level = levels == "2";
@@ -67,32 +59,22 @@ render::RenderSettings VariantOptions::render_settings() const {
 
 render::EffectSettings EffectOptions::settings(const format::Package& package) const {
   render::EffectSettings e = no_scene_effects ? render::EffectSettings{} : render::package_effects(package);
-  const auto parse = [](const char* option, auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& error) {
-      throw InputError(option, "", error.what());
-    }
-  };
   if (!std::isfinite(time)) throw InputError("--time", "", "must be finite");
   e.time = time;
-  for (const std::string& plane : clip_planes) parse("--clip-plane", [&] { e.clipping.planes.push_back(render::parse_clip_plane(plane)); });
+  for (const std::string& plane : clip_planes) e.clipping.planes.push_back(render::parse_clip_plane(plane, "--clip-plane"));
   if (e.clipping.planes.size() > render::kMaxClipPlanes)
     throw InputError("--clip-plane", "", "at most " + std::to_string(render::kMaxClipPlanes) + " planes in all (the scene's included)");
-  if (!clip_box.empty()) parse("--clip-box", [&] { e.clipping.box = render::parse_clip_box(clip_box); });
+  if (!clip_box.empty()) e.clipping.box = render::parse_clip_box(clip_box, "--clip-box");
   if (!clip_planes.empty() || !clip_box.empty()) e.flag(EffectId::clipping) = true;
-  if (!preset.empty()) parse("--preset", [&] { render::apply_preset(e, preset); });
-  for (const std::string& name : on) parse("--effect", [&] { render::set_effect(e, name, true); });
-  for (const std::string& name : off) parse("--no-effect", [&] { render::set_effect(e, name, false); });
+  if (!preset.empty()) render::apply_preset(e, preset, "--preset");
+  for (const std::string& name : on) render::set_effect(e, name, true, "--effect");
+  for (const std::string& name : off) render::set_effect(e, name, false, "--no-effect");
   for (const EffectDeclaration& effect : effect_table())
     for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
       const std::string& text = parameters[static_cast<std::size_t>(effect.id)][i];
       if (text.empty()) continue;
       const EffectParameter& p = effect.parameters[i];
-      const std::string option = parameter_option(effect, p);
-      glm::dvec3 value{};
-      parse(option.c_str(), [&] { value = render::parse_parameter(p, text); });
-      e.parameters(effect.id)[i] = value;
+      e.parameters(effect.id)[i] = render::parse_parameter(p, text, parameter_option(effect, p));
     }
   return e;
 }
@@ -100,11 +82,7 @@ render::EffectSettings EffectOptions::settings(const format::Package& package) c
 Camera camera_option(const format::Package& package, const std::string& text) {
   const Camera base = render::package_camera(package);
   if (text.empty()) return base;
-  try {
-    return render::parse_camera(text, base);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--camera", "", e.what());
-  }
+  return render::parse_camera(text, base, "--camera");
 }
 
 namespace {

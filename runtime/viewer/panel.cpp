@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 #include <string>
 
 #include <glm/common.hpp>
@@ -65,11 +64,11 @@ void camera_section(ViewerState& s, const PanelContext& c) {
     changed = true;
   }
   if (changed && !c.scripted) {
-    try {
+    if (const std::string wrong = camera.problem(); !wrong.empty()) {
+      s.status = wrong;  // the edit is not taken; the session goes on
+    } else {
       s.camera.set_camera(camera);
       s.touch();
-    } catch (const std::invalid_argument& e) {
-      s.status = e.what();
     }
   }
 }
@@ -171,7 +170,7 @@ void effects_section(ViewerState& s, const PanelContext& c) {
   render::EffectSettings& e = s.settings.effects;
   for (const EffectPreset& preset : effect_presets()) {
     if (ImGui::Button(std::string(preset.name).c_str())) {
-      render::apply_preset(e, preset.name);
+      render::apply_preset(e, preset);
       s.touch();
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(preset.summary).c_str());

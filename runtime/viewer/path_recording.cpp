@@ -22,17 +22,20 @@ std::string summary(const render::CameraPath& path) {
          std::to_string(path.frame_count()) + " frame(s) at " + std::to_string(int(std::lround(path.fps))) + " fps";
 }
 
+// The K/L keys and the panel's buttons: their refusals go to the status line, which needs no source.
+const InputSource kInteractive{"viewer"};
+
 }  // namespace
 
 double next_keyframe_time(const render::CameraPath& path, double step) {
   return path.keyframes.empty() ? 0.0 : path.keyframes.back().time + step;
 }
 
-void add_keyframe(render::CameraPath& path, const Camera& camera, double time) {
-  if (!std::isfinite(time) || time < 0) throw std::invalid_argument("a keyframe time is seconds ≥ 0, got " + seconds_text(time));
+void add_keyframe(render::CameraPath& path, const Camera& camera, double time, const InputSource& source) {
+  if (!std::isfinite(time) || time < 0) source.fail("a keyframe time is seconds ≥ 0, got " + seconds_text(time));
   if (!path.keyframes.empty() && !(time > path.keyframes.back().time))
-    throw std::invalid_argument("keyframe times must increase: " + seconds_text(time) + " does not come after the last keyframe's " +
-                                seconds_text(path.keyframes.back().time));
+    source.fail("keyframe times must increase: " + seconds_text(time) + " does not come after the last keyframe's " +
+                seconds_text(path.keyframes.back().time));
   render::CameraPath candidate = path;
   candidate.keyframes.push_back({time, camera});
   // The reader's rules, applied now: a recording that could not be saved (or rendered) would only
@@ -40,17 +43,16 @@ void add_keyframe(render::CameraPath& path, const Camera& camera, double time) {
   try {
     (void)render::parse_camera_path(render::to_json(candidate), "");
   } catch (const InputError& e) {
-    throw std::invalid_argument("keyframe at " + seconds_text(time) + " rejected: " +
-                                (e.where().empty() ? "" : e.where() + ": ") + e.rule());
+    // The reader's error names a file that does not exist yet; say which keyframe it refuses.
+    source.fail("keyframe at " + seconds_text(time) + " rejected: " + (e.where().empty() ? "" : e.where() + ": ") + e.rule());
   }
   path = std::move(candidate);
 }
 
-double path_frame_time(const render::CameraPath& path, std::uint64_t frame) {
-  if (path.keyframes.empty()) throw std::invalid_argument("no camera path: add keyframes or load a path first");
+double path_frame_time(const render::CameraPath& path, std::uint64_t frame, const InputSource& source) {
+  if (path.keyframes.empty()) source.fail("no camera path: add keyframes or load a path first");
   if (frame >= path.frame_count())
-    throw std::invalid_argument("frame " + std::to_string(frame) + " is past the path's last frame " +
-                                std::to_string(path.frame_count() - 1));
+    source.fail("frame " + std::to_string(frame) + " is past the path's last frame " + std::to_string(path.frame_count() - 1));
   return path.frame_time(frame);
 }
 
@@ -60,8 +62,8 @@ void show_path_at(ViewerState& state, double time) {
   state.touch();
 }
 
-void start_playback(ViewerState& state) {
-  if (state.path.path.keyframes.empty()) throw std::invalid_argument("no camera path to play: add keyframes (K) or load one");
+void start_playback(ViewerState& state, const InputSource& source) {
+  if (state.path.path.keyframes.empty()) source.fail("no camera path to play: add keyframes (K) or load one");
   state.playing = false;
   state.path.play_time = 0.0;
   show_path_at(state, 0.0);
@@ -95,12 +97,12 @@ void stop_playback(ViewerState& state) { state.path.play_time.reset(); }
 void record_keyframe(ViewerState& state) {
   PathRecording& r = state.path;
   try {
-    add_keyframe(r.path, state.camera.camera(), next_keyframe_time(r.path, r.step));
+    add_keyframe(r.path, state.camera.camera(), next_keyframe_time(r.path, r.step), kInteractive);
     // The camera too: the session log then holds the recording in the syntax --camera reads.
     state.status = "keyframe " + std::to_string(r.path.keyframes.size()) + " at " + seconds_text(r.path.duration()) + ": " +
                    r.path.keyframes.back().camera.to_string();
-  } catch (const std::invalid_argument& e) {
-    state.status = e.what();
+  } catch (const InputError& e) {
+    state.status = e.rule();
   }
 }
 
@@ -111,10 +113,10 @@ void toggle_playback(ViewerState& state) {
     return;
   }
   try {
-    start_playback(state);
+    start_playback(state, kInteractive);
     state.status = "playing the path: " + summary(state.path.path);
-  } catch (const std::exception& e) {
-    state.status = e.what();
+  } catch (const InputError& e) {
+    state.status = e.rule();
   }
 }
 

@@ -24,26 +24,27 @@ struct PathRecording {
 // When K adds the next keyframe: 0 for the first, otherwise the last keyframe's time + `step`.
 double next_keyframe_time(const render::CameraPath& path, double step);
 
-// Appends `camera` at `time` (s). Throws std::invalid_argument, leaving the path unchanged, when
+// Appends `camera` at `time` (s). Throws an InputError against `source` (the script line or the
+// key that asked), leaving the path unchanged, when
 // the time does not come after the last keyframe or the path would no longer save (the up vector
 // turns by 180°, the spline passes the eye through the target, too many frames): a recording is
 // always one that `render --path` accepts.
-void add_keyframe(render::CameraPath& path, const Camera& camera, double time);
+void add_keyframe(render::CameraPath& path, const Camera& camera, double time, const InputSource& source);
 
-// Time of frame `frame` (k / fps). Throws std::invalid_argument when there is no path or the
-// frame lies past its last.
-double path_frame_time(const render::CameraPath& path, std::uint64_t frame);
+// Time of frame `frame` (k / fps). Throws an InputError against `source` when there is no path or
+// the frame lies past its last.
+double path_frame_time(const render::CameraPath& path, std::uint64_t frame, const InputSource& source);
 
 // Sets the camera to camera_at(path, time) and the effect time to `time`, exactly what `render
 // --path` uses for a frame at that time, so animation plays along with the camera.
 void show_path_at(ViewerState& state, double time);
 
-// Playback in the window. start_playback shows time 0 (throws std::invalid_argument without
+// Playback in the window. start_playback shows time 0 (throws an InputError against `source` without
 // keyframes) and pauses the free-running animation clock, which the path now drives;
 // advance_playback moves on by `seconds` of wall-clock time and returns whether it still plays
 // (at the end it shows the last keyframe and stops; a degenerate camera between frame times stops
 // it with a status line instead of throwing). stop_playback leaves the camera where it is.
-void start_playback(ViewerState& state);
+void start_playback(ViewerState& state, const InputSource& source);
 bool advance_playback(ViewerState& state, double seconds);
 void stop_playback(ViewerState& state);
 

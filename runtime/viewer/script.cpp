@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <stdexcept>
 
 #include "common/error.hpp"
 #include "runtime/render/camera_spec.hpp"
@@ -43,24 +42,23 @@ bool parse_number(std::string_view s, T& value) {
   return error == std::errc() && end == s.data() + s.size();
 }
 
-std::uint32_t parse_count(std::string_view s, const char* what, std::uint32_t max) {
+std::uint32_t parse_count(std::string_view s, const char* what, std::uint32_t max, const InputSource& source) {
   std::uint32_t value = 0;
   if (!parse_number(s, value) || value > max)
-    throw std::invalid_argument(std::string(what) + " must be a whole number from 0 to " + std::to_string(max) +
-                                ", got '" + std::string(s) + "'");
+    source.fail(std::string(what) + " must be a whole number from 0 to " + std::to_string(max) + ", got '" + std::string(s) + "'");
   return value;
 }
 
-void expect_no_more(std::string_view rest, std::string_view command) {
+void expect_no_more(std::string_view rest, std::string_view command, const InputSource& source) {
   if (!rest.empty())
-    throw std::invalid_argument("unexpected '" + std::string(rest) + "' after '" + std::string(command) + "'");
+    source.fail("unexpected '" + std::string(rest) + "' after '" + std::string(command) + "'");
 }
 
 // A camera spec may leave keys out (they keep the camera current when the line runs), so it can
 // only be checked against a stand-in camera here. Two unrelated stand-ins: a spec that parses
 // against either is well formed; one that fails against both is wrong whatever camera it meets
 // (bad syntax, position = look_at, fov_degrees out of range).
-void check_camera_syntax(const std::string& spec) {
+void check_camera_syntax(const std::string& spec, const InputSource& source) {
   const Camera a{};
   Camera b;
   b.position = {-311.0, 517.0, 1931.0};
@@ -68,11 +66,11 @@ void check_camera_syntax(const std::string& spec) {
   b.up = {0.3, 0.5, 0.8};
   b.fov_degrees = 33;
   try {
-    (void)render::parse_camera(spec, a);
-  } catch (const std::invalid_argument& first) {
+    (void)render::parse_camera(spec, a, source);
+  } catch (const InputError& first) {
     try {
-      (void)render::parse_camera(spec, b);
-    } catch (const std::invalid_argument&) {
+      (void)render::parse_camera(spec, b, source);
+    } catch (const InputError&) {
       throw first;
     }
   }
@@ -82,163 +80,161 @@ void check_camera_syntax(const std::string& spec) {
 constexpr std::uint32_t kMaxPathFrame = 10'000'000;
 
 // `path save FILE | load FILE | clear | frame K | play A B`; `rest` is what follows "path".
-void parse_path_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+void parse_path_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
   std::string_view args;
   const std::string_view what = next_word(rest, args);
   if (what == "save" || what == "load") {
     // The rest of the line, spaces included, as screenshot takes it.
-    if (args.empty()) throw std::invalid_argument("path " + std::string(what) + " expects a FILE (.json)");
+    if (args.empty()) source.fail("path " + std::string(what) + " expects a FILE (.json)");
     c.kind = what == "save" ? K::path_save : K::path_load;
     c.text = std::string(args);
   } else if (what == "clear") {
-    expect_no_more(args, "path clear");
+    expect_no_more(args, "path clear", source);
     c.kind = K::path_clear;
   } else if (what == "frame") {
     std::string_view tail;
     const std::string_view k = next_word(args, tail);
-    if (k.empty()) throw std::invalid_argument("path frame expects a frame number K");
-    c.first = parse_count(k, "path frame K", kMaxPathFrame);
-    expect_no_more(tail, "path frame K");
+    if (k.empty()) source.fail("path frame expects a frame number K");
+    c.first = parse_count(k, "path frame K", kMaxPathFrame, source);
+    expect_no_more(tail, "path frame K", source);
     c.kind = K::path_frame;
   } else if (what == "play") {
     std::string_view tail;
     const std::string_view a = next_word(args, args);
     const std::string_view b = next_word(args, tail);
-    if (a.empty() || b.empty()) throw std::invalid_argument("path play expects A B (first and last frame)");
-    c.first = parse_count(a, "path play A", kMaxPathFrame);
-    c.last = parse_count(b, "path play B", kMaxPathFrame);
+    if (a.empty() || b.empty()) source.fail("path play expects A B (first and last frame)");
+    c.first = parse_count(a, "path play A", kMaxPathFrame, source);
+    c.last = parse_count(b, "path play B", kMaxPathFrame, source);
     if (c.first > c.last)
-      throw std::invalid_argument("path play A B needs A ≤ B, got " + std::to_string(c.first) + " > " + std::to_string(c.last));
-    expect_no_more(tail, "path play A B");
+      source.fail("path play A B needs A ≤ B, got " + std::to_string(c.first) + " > " + std::to_string(c.last));
+    expect_no_more(tail, "path play A B", source);
     c.kind = K::path_play;
   } else {
-    throw std::invalid_argument("path expects 'save FILE', 'load FILE', 'clear', 'frame K' or 'play A B', got '" +
-                                std::string(rest) + "'");
+    source.fail("path expects 'save FILE', 'load FILE', 'clear', 'frame K' or 'play A B', got '" + std::string(rest) + "'");
   }
 }
 
-void parse_camera_command(std::string_view, std::string_view rest, ScriptCommand& c) {
-  if (rest.empty()) throw std::invalid_argument("camera needs a spec position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG");
+void parse_camera_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
+  if (rest.empty()) source.fail("camera needs a spec position=x,y,z;look_at=x,y,z;up=x,y,z;fov_degrees=DEG");
   c.kind = K::camera;
   c.text = std::string(rest);
-  check_camera_syntax(c.text);
+  check_camera_syntax(c.text, source);
 }
 
-void parse_clip_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+void parse_clip_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
   std::string_view args;
   const std::string_view what = next_word(rest, args);
   if (what == "plane") {
     c.kind = K::clip_plane;
-    c.plane = render::parse_clip_plane(args);
+    c.plane = render::parse_clip_plane(args, source);
   } else if (what == "box") {
     c.kind = K::clip_box;
-    c.box = render::parse_clip_box(args);
+    c.box = render::parse_clip_box(args, source);
   } else if (what == "off") {
     c.kind = K::clip_off;
-    expect_no_more(args, "clip off");
+    expect_no_more(args, "clip off", source);
   } else {
-    throw std::invalid_argument("clip expects 'plane nx,ny,nz,d', 'box x0,y0,z0,x1,y1,z1' or 'off', got '" +
-                                std::string(rest) + "'");
+    source.fail("clip expects 'plane nx,ny,nz,d', 'box x0,y0,z0,x1,y1,z1' or 'off', got '" + std::string(rest) + "'");
   }
 }
 
-void parse_effect_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+void parse_effect_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
   std::string_view tail;
   const std::string_view name = next_word(rest, rest);
   const std::string_view state = next_word(rest, tail);
   render::EffectSettings scratch;
-  (void)render::effect_flag(scratch, name);  // throws for an unknown name
+  (void)render::effect_flag(scratch, name, source);  // throws for an unknown name
   if (state != "on" && state != "off")
-    throw std::invalid_argument("effect " + std::string(name) + " expects on or off, got '" + std::string(state) + "'");
-  expect_no_more(tail, "effect NAME on|off");
+    source.fail("effect " + std::string(name) + " expects on or off, got '" + std::string(state) + "'");
+  expect_no_more(tail, "effect NAME on|off", source);
   c.kind = K::effect;
   c.text = std::string(name);
   c.on = state == "on";
 }
 
-void parse_preset_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+void parse_preset_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
   std::string_view tail;
   const std::string_view name = next_word(rest, tail);
   render::EffectSettings scratch;
-  render::apply_preset(scratch, name);  // throws for an unknown name
-  expect_no_more(tail, "preset NAME");
+  render::apply_preset(scratch, name, source);  // throws for an unknown name
+  expect_no_more(tail, "preset NAME", source);
   c.kind = K::preset;
   c.text = std::string(name);
 }
 
 // `show NAME` and `hide NAME`.
-void parse_show_command(std::string_view word, std::string_view rest, ScriptCommand& c) {
+void parse_show_command(std::string_view word, std::string_view rest, const InputSource& source, ScriptCommand& c) {
   std::string_view tail;
   const std::string_view what = next_word(rest, tail);
-  if (what.empty()) throw std::invalid_argument(std::string(word) + " expects medium or the name of a compartment or molecule type");
-  expect_no_more(tail, std::string(word) + " NAME");
+  if (what.empty()) source.fail(std::string(word) + " expects medium or the name of a compartment or molecule type");
+  expect_no_more(tail, std::string(word) + " NAME", source);
   c.kind = K::show;
   c.text = std::string(what);
   c.on = word == "show";
 }
 
 // A time in seconds ≥ 0 and nothing after it; `expects` and `usage` word the errors.
-double parse_seconds(std::string_view rest, std::string_view expects, std::string_view usage) {
+double parse_seconds(std::string_view rest, std::string_view expects, std::string_view usage, const InputSource& source) {
   std::string_view tail;
   const std::string_view value = next_word(rest, tail);
   double seconds = 0;
   if (!parse_number(value, seconds) || !std::isfinite(seconds) || seconds < 0)
-    throw std::invalid_argument(std::string(expects) + ", got '" + std::string(value) + "'");
-  expect_no_more(tail, usage);
+    source.fail(std::string(expects) + ", got '" + std::string(value) + "'");
+  expect_no_more(tail, usage, source);
   return seconds;
 }
 
-void parse_time_command(std::string_view, std::string_view rest, ScriptCommand& c) {
-  c.seconds = parse_seconds(rest, "time expects seconds ≥ 0", "time SECONDS");
+void parse_time_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
+  c.seconds = parse_seconds(rest, "time expects seconds ≥ 0", "time SECONDS", source);
   c.kind = K::time;
 }
 
-void parse_keyframe_command(std::string_view, std::string_view rest, ScriptCommand& c) {
-  c.seconds = parse_seconds(rest, "keyframe expects its time in seconds ≥ 0", "keyframe SECONDS");
+void parse_keyframe_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
+  c.seconds = parse_seconds(rest, "keyframe expects its time in seconds ≥ 0", "keyframe SECONDS", source);
   c.kind = K::keyframe;
 }
 
-void parse_wait_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+void parse_wait_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
   std::string_view tail;
-  c.count = parse_count(next_word(rest, tail), "wait N", 100000);
-  expect_no_more(tail, "wait N");
+  c.count = parse_count(next_word(rest, tail), "wait N", 100000, source);
+  expect_no_more(tail, "wait N", source);
   c.kind = K::wait;
 }
 
-void parse_pick_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+void parse_pick_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
   std::string_view tail;
   const std::string_view x = next_word(rest, rest);
   const std::string_view y = next_word(rest, tail);
-  if (x.empty() || y.empty()) throw std::invalid_argument("pick expects X Y (pixel column and row)");
-  c.x = parse_count(x, "pick X", 16383);
-  c.y = parse_count(y, "pick Y", 16383);
-  expect_no_more(tail, "pick X Y");
+  if (x.empty() || y.empty()) source.fail("pick expects X Y (pixel column and row)");
+  c.x = parse_count(x, "pick X", 16383, source);
+  c.y = parse_count(y, "pick Y", 16383, source);
+  expect_no_more(tail, "pick X Y", source);
   c.kind = K::pick;
 }
 
-void parse_screenshot_command(std::string_view, std::string_view rest, ScriptCommand& c) {
-  if (rest.empty()) throw std::invalid_argument("screenshot expects a PATH (.png)");
+void parse_screenshot_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
+  if (rest.empty()) source.fail("screenshot expects a PATH (.png)");
   c.kind = K::screenshot;
   c.text = std::string(rest);
   if (std::filesystem::path(c.text).extension() == ".ids")
-    throw std::invalid_argument("screenshot PATH must not end in .ids: the hit ids are written beside it as PATH.ids");
+    source.fail("screenshot PATH must not end in .ids: the hit ids are written beside it as PATH.ids");
 }
 
-void parse_size_command(std::string_view, std::string_view rest, ScriptCommand& c) {
+void parse_size_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
   std::string_view tail;
-  const auto [w, h] = render::parse_image_size(next_word(rest, tail));
-  expect_no_more(tail, "size WxH");
+  const auto [w, h] = render::parse_image_size(next_word(rest, tail), source);
+  expect_no_more(tail, "size WxH", source);
   c.kind = K::size;
   c.x = w, c.y = h;
 }
 
-void parse_quit_command(std::string_view, std::string_view rest, ScriptCommand& c) {
-  expect_no_more(rest, "quit");
+void parse_quit_command(std::string_view, std::string_view rest, const InputSource& source, ScriptCommand& c) {
+  expect_no_more(rest, "quit", source);
   c.kind = K::quit;
 }
 
 // A command's parser is given the command word and what follows it on the line.
-using CommandParser = void (*)(std::string_view word, std::string_view rest, ScriptCommand& c);
+using CommandParser = void (*)(std::string_view word, std::string_view rest, const InputSource& source, ScriptCommand& c);
 constexpr std::pair<std::string_view, CommandParser> kCommands[] = {
     {"camera", parse_camera_command},
     {"clip", parse_clip_command},
@@ -256,15 +252,15 @@ constexpr std::pair<std::string_view, CommandParser> kCommands[] = {
     {"quit", parse_quit_command},
 };
 
-ScriptCommand parse_line(std::string_view line) {
+ScriptCommand parse_line(std::string_view line, const InputSource& source) {
   ScriptCommand c;
   std::string_view rest;
   const std::string_view word = next_word(line, rest);
   const auto command = std::find_if(std::begin(kCommands), std::end(kCommands), [&](const auto& entry) { return entry.first == word; });
   if (command == std::end(kCommands))
-    throw std::invalid_argument("unknown command '" + std::string(word) +
-                                "' (camera, clip, effect, time, wait, pick, screenshot, size, keyframe, path, quit)");
-  command->second(word, rest, c);
+    source.fail("unknown command '" + std::string(word) +
+                "' (camera, clip, effect, time, wait, pick, screenshot, size, keyframe, path, quit)");
+  command->second(word, rest, source, c);
   return c;
 }
 
@@ -282,13 +278,9 @@ Script parse_script(std::string_view text, const std::string& file) {
     if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
     line = trim(line);
     if (line.empty()) continue;
-    try {
-      ScriptCommand command = parse_line(line);
-      command.line = line_number;
-      script.commands.push_back(std::move(command));
-    } catch (const std::invalid_argument& e) {
-      throw InputError(file, "line " + std::to_string(line_number), e.what());
-    }
+    ScriptCommand command = parse_line(line, {file, "line " + std::to_string(line_number)});
+    command.line = line_number;
+    script.commands.push_back(std::move(command));
   }
   return script;
 }

@@ -15,21 +15,20 @@ namespace {
 
 using K = ScriptCommand::Kind;
 
-void add_clip_plane(render::EffectSettings& effects, const glm::dvec4& plane) {
+void add_clip_plane(render::EffectSettings& effects, const glm::dvec4& plane, const InputSource& line) {
   if (effects.clipping.planes.size() >= render::kMaxClipPlanes)
-    throw std::invalid_argument("at most " + std::to_string(render::kMaxClipPlanes) +
-                                " clip planes (the scene's included); 'clip off' removes them");
+    line.fail("at most " + std::to_string(render::kMaxClipPlanes) + " clip planes (the scene's included); 'clip off' removes them");
   effects.clipping.planes.push_back(plane);
   effects.flag(EffectId::clipping) = true;
 }
 
 // A command that changes what the frame shows (camera, clipping, effects, shown names, time, size).
-void change_view(const ScriptCommand& c, ScriptHost& host) {
+void change_view(const ScriptCommand& c, const InputSource& line, ScriptHost& host) {
   ViewerState& s = host.state();
   render::EffectSettings& effects = s.settings.effects;
   switch (c.kind) {
-    case K::camera: s.camera.set_camera(render::parse_camera(c.text, s.camera.camera())); break;
-    case K::clip_plane: add_clip_plane(effects, c.plane); break;
+    case K::camera: s.camera.set_camera(render::parse_camera(c.text, s.camera.camera(), line)); break;
+    case K::clip_plane: add_clip_plane(effects, c.plane, line); break;
     case K::clip_box:
       effects.clipping.box = c.box;
       effects.flag(EffectId::clipping) = true;
@@ -38,8 +37,8 @@ void change_view(const ScriptCommand& c, ScriptHost& host) {
       effects.clipping = {};
       effects.flag(EffectId::clipping) = false;
       break;
-    case K::effect: render::set_effect(effects, c.text, c.on); break;
-    case K::preset: render::apply_preset(effects, c.text); break;
+    case K::effect: render::set_effect(effects, c.text, c.on, line); break;
+    case K::preset: render::apply_preset(effects, c.text, line); break;
     case K::show: render::set_shown(s.settings, c.text, c.on); break;
     case K::time: effects.time = c.seconds; break;
     case K::size: host.resize(c.x, c.y); break;
@@ -48,11 +47,11 @@ void change_view(const ScriptCommand& c, ScriptHost& host) {
   s.touch();
 }
 
-void pick_pixel(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
+void pick_pixel(const ScriptCommand& c, const InputSource& line, ScriptHost& host, std::ostream& out) {
   const render::Frame& frame = host.current_frame();
   if (c.x >= frame.width || c.y >= frame.height)
-    throw std::invalid_argument("pixel (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") lies outside the " +
-                                std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame");
+    line.fail("pixel (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") lies outside the " + std::to_string(frame.width) +
+              "x" + std::to_string(frame.height) + " frame");
   nlohmann::json j = host.describe(frame.hits[std::size_t(c.y) * frame.width + c.x]);
   j["x"] = c.x;
   j["y"] = c.y;
@@ -69,12 +68,12 @@ void write_screenshot(const std::string& path, ScriptHost& host) {
 }
 
 // keyframe and the path commands: only the path changes, not what the frame shows (no touch()).
-void run_path_command(const ScriptCommand& c, ScriptHost& host) {
+void run_path_command(const ScriptCommand& c, const InputSource& line, ScriptHost& host) {
   ViewerState& s = host.state();
   switch (c.kind) {
-    case K::keyframe: add_keyframe(s.path.path, s.camera.camera(), c.seconds); break;
+    case K::keyframe: add_keyframe(s.path.path, s.camera.camera(), c.seconds, line); break;
     case K::path_save:
-      if (s.path.path.keyframes.empty()) throw std::invalid_argument("no keyframes to save ('keyframe SECONDS' adds one)");
+      if (s.path.path.keyframes.empty()) line.fail("no keyframes to save ('keyframe SECONDS' adds one)");
       render::write_camera_path(c.text, s.path.path);
       s.status = "saved path " + c.text;
       break;
@@ -86,11 +85,11 @@ void run_path_command(const ScriptCommand& c, ScriptHost& host) {
       stop_playback(s);
       s.path.path.keyframes.clear();
       break;
-    case K::path_frame: show_path_at(s, path_frame_time(s.path.path, c.first)); break;
+    case K::path_frame: show_path_at(s, path_frame_time(s.path.path, c.first, line)); break;
     case K::path_play:
-      (void)path_frame_time(s.path.path, c.last);  // a range past the end fails before any frame
+      (void)path_frame_time(s.path.path, c.last, line);  // a range past the end fails before any frame
       for (std::uint32_t k = c.first; k <= c.last; ++k) {
-        show_path_at(s, path_frame_time(s.path.path, k));
+        show_path_at(s, path_frame_time(s.path.path, k, line));
         host.render_frames(1);
       }
       break;
@@ -98,7 +97,7 @@ void run_path_command(const ScriptCommand& c, ScriptHost& host) {
   }
 }
 
-void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
+void execute(const ScriptCommand& c, const InputSource& line, ScriptHost& host, std::ostream& out) {
   switch (c.kind) {
     case K::camera:
     case K::clip_plane:
@@ -108,16 +107,16 @@ void execute(const ScriptCommand& c, ScriptHost& host, std::ostream& out) {
     case K::preset:
     case K::show:
     case K::time:
-    case K::size: change_view(c, host); break;
+    case K::size: change_view(c, line, host); break;
     case K::wait: host.render_frames(c.count); break;
-    case K::pick: pick_pixel(c, host, out); break;
+    case K::pick: pick_pixel(c, line, host, out); break;
     case K::screenshot: write_screenshot(c.text, host); break;
     case K::keyframe:
     case K::path_save:
     case K::path_load:
     case K::path_clear:
     case K::path_frame:
-    case K::path_play: run_path_command(c, host); break;
+    case K::path_play: run_path_command(c, line, host); break;
     case K::quit: break;
   }
 }
@@ -130,16 +129,18 @@ std::string ids_path_for(const std::string& png_path) {
 
 bool run_command(const ScriptCommand& command, const std::string& file, ScriptHost& host, std::ostream& out) {
   if (command.kind == ScriptCommand::Kind::quit) return false;
-  const std::string where = "line " + std::to_string(command.line);
+  const InputSource line{file, "line " + std::to_string(command.line)};
   try {
-    execute(command, host, out);
+    execute(command, line, host, out);
   } catch (const InputError& e) {
-    // An image file that cannot be written names itself; say which line asked for it.
-    throw InputError(file, where, e.what());
-  } catch (const std::invalid_argument& e) {
-    throw InputError(file, where, e.what());
+    // A refusal thrown against this line already says so; an image or path file that cannot be
+    // written or read names only itself, so add which line asked for it.
+    if (e.file() == line.file && e.where() == line.where) throw;
+    line.fail(e.what());
+  } catch (const std::invalid_argument& e) {  // the window closed during the line (ScriptHost::render_frames)
+    line.fail(e.what());
   } catch (const std::filesystem::filesystem_error& e) {
-    throw InputError(file, where, e.what());
+    line.fail(e.what());
   }
   return true;
 }

@@ -470,7 +470,7 @@ private:
         else if (shown_reduced || shown_ == nullptr || !full_is_current() || wants_more_samples()) start_job(refinement_scale());
       }
       if (job_) advance_job();
-    } catch (const std::invalid_argument& e) {
+    } catch (const InputError& e) {
       // Settings the renderer refuses (e.g. an effect the two-level path lacks): say so, keep going.
       state_.status = e.what();
       state_.touch();

@@ -94,7 +94,7 @@ TEST(SvgPlot, PointsInsideTheFrameAndLabelled) {
   spec.y_label = "error";
   spec.series.push_back({"shell", {{1.0, 0.0, "default"}, {0.8, 12.5, "fixed"}}, false});
   spec.series.push_back({"levels", {{3.9, 0.1, "2"}}, true});
-  const std::string svg = svg_plot(spec);
+  const std::string svg = svg_plot(spec, "plot.json");
   EXPECT_NE(svg.find("cost &lt;of&gt; &amp; accuracy"), std::string::npos);  // escaped
   const std::regex circle("<circle cx=\"([0-9.e+-]+)\" cy=\"([0-9.e+-]+)\" r=\"4\"");
   int points = 0;
@@ -114,10 +114,15 @@ TEST(SvgPlot, LogAxesLeaveOutWhatTheyCannotShow) {
   PlotSpec spec;
   spec.log_x = spec.log_y = true;
   spec.series.push_back({"scale", {{1, 0.5}, {1000, 2.0}, {10, 0.0}}, true});
-  const std::string svg = svg_plot(spec);
+  const std::string svg = svg_plot(spec, "plot.json");
   EXPECT_NE(svg.find("1 point(s) not drawable"), std::string::npos);
   spec.series = {{"none", {{0, 0}}, false}};
-  EXPECT_THROW(svg_plot(spec), std::invalid_argument);
+  try {
+    (void)svg_plot(spec, "plot.json");
+    ADD_FAILURE() << "drew a plot without a drawable point";
+  } catch (const nano::InputError& e) {
+    EXPECT_EQ(e.file(), "plot.json") << e.what();
+  }
 }
 
 }  // namespace

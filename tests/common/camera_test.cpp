@@ -43,6 +43,14 @@ TEST(Camera, RejectsDegenerateViews) {
   EXPECT_NO_THROW((Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 40}).check());
 }
 
+// problem() is what parsers report against their source; check() throws the same words.
+TEST(Camera, ProblemSaysWhatCheckRefuses) {
+  EXPECT_EQ((Camera{{1, 1, 1}, {1, 1, 1}, {0, 1, 0}, 40}).problem(), "camera: position and look_at are the same point");
+  EXPECT_EQ((Camera{{0, 0, 1}, {0, 0, 0}, {0, 0, 1}, 40}).problem(), "camera: up is zero or parallel to the viewing direction");
+  EXPECT_EQ((Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 0}).problem(), "camera: fov_degrees must lie in (0, 180)");
+  EXPECT_EQ((Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 40}).problem(), "");
+}
+
 TEST(Camera, TextNamesEveryFieldExactly) {
   const Camera c{{0.1, -2.0, 3e7}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 33.3};
   EXPECT_EQ(c.to_string(), "position=0.1,-2,3e+07;look_at=0,0,0;up=0,1,0;fov_degrees=33.3");

@@ -128,7 +128,7 @@ TEST_F(Instanced, ReplicationAreaSizeSelectsTheRepLasTraversal) {
   InstancedRenderer explicit_renderer(s.device, explicit_scene);
   // Straight down onto the flat membranes, and grazing them.
   for (const char* view : {"position=64,64,140;look_at=64,64,0;up=0,1,0;fov=60", "position=-60,70,9;look_at=64,64,0;up=0,0,1;fov=50"}) {
-    const gpu::Camera camera = render::parse_camera(view).to_gpu(64, 64);
+    const gpu::Camera camera = render::parse_camera(view, {}, "--camera").to_gpu(64, 64);
     expect_agreement(explicit_renderer, hand_renderer, camera, view);
     const render::Frame counted = hand_renderer.render(camera);
     std::uint64_t replas_queries = 0;
@@ -293,8 +293,9 @@ TEST_F(Instanced, PackageWithoutBeadsRefusesLevelOfDetail) {
   try {
     renderer.set_settings(render::RenderSettings{.lod_pixels = 1});
     ADD_FAILURE() << "a level of detail without beads was accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("old.nup: no beads"), std::string::npos) << e.what();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "old.nup") << e.what();
+    EXPECT_NE(e.rule().find("no beads"), std::string::npos) << e.what();
   }
 }
 

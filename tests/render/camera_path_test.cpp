@@ -284,9 +284,16 @@ TEST(FramePattern, FormatsAndRejects) {
   EXPECT_EQ(frame_file_name("%3d", 7), "  7");
   EXPECT_EQ(frame_file_name("100%%/%02d%%.png", 3), "100%/03%.png");
   EXPECT_EQ(frame_file_name("%03d", 12345), "12345");
-  for (const char* bad : {"out.png", "%d_%d.png", "%s.png", "%x.png", "%5.2d", "%ld.png", "%", "a%", "%-5d", "%021d", "%%d"})
-    EXPECT_THROW(check_frame_pattern(bad), std::invalid_argument) << bad;
-  EXPECT_NO_THROW(check_frame_pattern("%020d"));
+  for (const char* bad : {"out.png", "%d_%d.png", "%s.png", "%x.png", "%5.2d", "%ld.png", "%", "a%", "%-5d", "%021d", "%%d"}) {
+    try {
+      check_frame_pattern(bad, "--depth");
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const nano::InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(std::string("--depth: '") + bad + "'", 0), 0u) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(check_frame_pattern("%020d", "--depth"));
+  EXPECT_THROW((void)frame_file_name("out.png", 1), std::logic_error);  // patterns are checked first
 }
 
 }  // namespace

@@ -12,12 +12,14 @@
 #include "runtime/render/effects.hpp"
 #include "shared/effects.h"
 #include "tests/format/sample_scene.hpp"
+#include "tests/scene/input_error_matchers.hpp"
 
 namespace {
 
 using namespace nano;
 using namespace nano::render;
 using glm::dvec3;
+using nano::scene::testing::expect_input_error;
 
 struct Opened {
   explicit Opened(const format::test::SampleScene& s)
@@ -59,17 +61,17 @@ TEST(PackageEffects, AllOffWithoutTheSection) {
 }
 
 TEST(ClipSyntax, PlanesAndBoxes) {
-  EXPECT_EQ(parse_clip_plane("0,0,2,-4"), glm::dvec4(0, 0, 1, -2));  // normalised: d in Å
-  EXPECT_EQ(parse_clip_plane(" 1, 0,0, 5"), glm::dvec4(1, 0, 0, 5));
-  EXPECT_THROW(parse_clip_plane("0,0,0,1"), std::invalid_argument);
-  EXPECT_THROW(parse_clip_plane("1,0,0"), std::invalid_argument);
-  EXPECT_THROW(parse_clip_plane("1,0,0,1,2"), std::invalid_argument);
-  EXPECT_THROW(parse_clip_plane("1,0,x,1"), std::invalid_argument);
-  EXPECT_THROW(parse_clip_plane("1,0,nan,1"), std::invalid_argument);
-  const auto box = parse_clip_box("-1,-2,-3,4,5,6");
+  EXPECT_EQ(parse_clip_plane("0,0,2,-4", "--clip-plane"), glm::dvec4(0, 0, 1, -2));  // normalised: d in Å
+  EXPECT_EQ(parse_clip_plane(" 1, 0,0, 5", "--clip-plane"), glm::dvec4(1, 0, 0, 5));
+  for (const char* wrong : {"0,0,0,1", "1,0,0", "1,0,0,1,2", "1,0,x,1", "1,0,nan,1"}) {
+    const InputError e = expect_input_error([&] { (void)parse_clip_plane(wrong, {"clip.nvs", "line 4"}); });
+    EXPECT_EQ(std::string(e.what()).rfind("clip.nvs:line 4: clip plane nx,ny,nz,d: ", 0), 0u) << e.what();
+  }
+  const auto box = parse_clip_box("-1,-2,-3,4,5,6", "--clip-box");
   EXPECT_EQ(box.first, dvec3(-1, -2, -3));
   EXPECT_EQ(box.second, dvec3(4, 5, 6));
-  EXPECT_THROW(parse_clip_box("1,0,0,0,1,1"), std::invalid_argument);
+  const InputError e = expect_input_error([] { (void)parse_clip_box("1,0,0,0,1,1", "--clip-box"); });
+  EXPECT_EQ(e.file(), "--clip-box") << e.what();
 }
 
 TEST(ClipHalfSpaces, BoxFacesKeepExactlyTheInside) {
@@ -94,12 +96,19 @@ TEST(ClipHalfSpaces, BoxFacesKeepExactlyTheInside) {
 
 TEST(SetEffect, NamesAndDefaults) {
   EffectSettings e;
-  for (const EffectDeclaration& effect : effect_table()) set_effect(e, effect.name, true);
+  for (const EffectDeclaration& effect : effect_table()) set_effect(e, effect.name, true, "--effect");
   EXPECT_TRUE(e.flag(EffectId::clipping) && e.flag(EffectId::animation) && e.flag(EffectId::jitter) && e.flag(EffectId::ambient_occlusion) && e.flag(EffectId::shadows));
   EXPECT_GT(e.jitter_degrees(), 0.0);  // a scene without jitter parameters still wobbles when asked
-  set_effect(e, "ao", false);
+  set_effect(e, "ao", false, "--no-effect");
   EXPECT_FALSE(e.flag(EffectId::ambient_occlusion));
-  EXPECT_THROW(set_effect(e, "bloom", true), std::invalid_argument);
+  const InputError unknown = expect_input_error([&] { set_effect(e, "bloom", true, "--effect"); });
+  EXPECT_EQ(unknown.file(), "--effect") << unknown.what();
+  EXPECT_NE(unknown.rule().find("unknown effect 'bloom'"), std::string::npos) << unknown.what();
+  const InputError preset = expect_input_error([&] { apply_preset(e, "glow", "--preset"); });
+  EXPECT_EQ(preset.file(), "--preset") << preset.what();
+  const InputError parameter =
+      expect_input_error([] { (void)parse_parameter(find_effect("ao")->parameters[0], "-1", "--ao-rays"); });
+  EXPECT_EQ(parameter.file(), "--ao-rays") << parameter.what();
 }
 
 // A rotation by `degrees` about `axis`, then a translation (world).

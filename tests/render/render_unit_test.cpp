@@ -18,12 +18,15 @@
 #include "shared/render_scene.h"
 #include "runtime/render/morton.hpp"
 #include "tests/oracle/hand_scene.hpp"
+#include "tests/scene/input_error_matchers.hpp"
 #include "tests/oracle/test_package.hpp"
 
 namespace {
 
 using namespace nano::render;
 using nano::Camera;
+using nano::InputError;
+using nano::scene::testing::expect_input_error;
 
 TEST(MortonOrder, IsAPermutationThatKeepsNeighboursTogether) {
   // Boxes on a 16×16×16 lattice, shuffled: after sorting, consecutive boxes are mostly lattice
@@ -55,12 +58,12 @@ TEST(MortonOrder, IsAPermutationThatKeepsNeighboursTogether) {
 
 TEST(Camera, ParsesKeysInAnyOrderAndKeepsTheRest) {
   Camera base;
-  const Camera c = parse_camera("fov=30;pos=1,2,3;at=4,5,6", base);
+  const Camera c = parse_camera("fov=30;pos=1,2,3;at=4,5,6", base, "--camera");
   EXPECT_EQ(c.position, glm::dvec3(1, 2, 3));
   EXPECT_EQ(c.look_at, glm::dvec3(4, 5, 6));
   EXPECT_EQ(c.up, base.up);
   EXPECT_EQ(c.fov_degrees, 30);
-  const Camera again = parse_camera(c.to_string());
+  const Camera again = parse_camera(c.to_string(), {}, "--camera");
   EXPECT_EQ(again.position, c.position);
   EXPECT_EQ(again.look_at, c.look_at);
   EXPECT_DOUBLE_EQ(again.fov_degrees, c.fov_degrees);
@@ -77,40 +80,43 @@ TEST(Camera, TextRoundTripsThroughTheLongKeysAndTheAliases) {
   const std::string text = c.to_string();
   EXPECT_EQ(text.rfind("position=", 0), 0u) << text;
   for (const char* key : {";look_at=", ";up=", ";fov_degrees="}) EXPECT_NE(text.find(key), std::string::npos) << text;
-  EXPECT_EQ(parse_camera(text), c);
-  EXPECT_EQ(parse_camera(text, Camera{{5, 5, 5}, {1, 1, 1}, {0, 0, 1}, 10}), c);  // nothing of the base is left
+  EXPECT_EQ(parse_camera(text, {}, "--camera"), c);
+  EXPECT_EQ(parse_camera(text, Camera{{5, 5, 5}, {1, 1, 1}, {0, 0, 1}, 10}, "--camera"), c);  // nothing of the base is left
   std::string aliased = text;
   for (const auto& [word, alias] : {std::pair<std::string, std::string>{"position=", "pos="}, {"look_at=", "at="}, {"fov_degrees=", "fov="}})
     aliased.replace(aliased.find(word), word.size(), alias);
   EXPECT_EQ(aliased.rfind("pos=", 0), 0u) << aliased;
-  EXPECT_EQ(parse_camera(aliased), c);
+  EXPECT_EQ(parse_camera(aliased, {}, "--camera"), c);
   // Long keys and aliases mix.
-  EXPECT_EQ(parse_camera("pos=1,2,3;look_at=4,5,6;fov_degrees=30"), parse_camera("position=1,2,3;at=4,5,6;fov=30"));
+  EXPECT_EQ(parse_camera("pos=1,2,3;look_at=4,5,6;fov_degrees=30", {}, "--camera"),
+            parse_camera("position=1,2,3;at=4,5,6;fov=30", {}, "--camera"));
 }
 
 TEST(Camera, RefusesAKeyGivenTwice) {
   for (const char* twice : {"position=1,2,3;pos=1,2,3", "at=0,0,0;look_at=0,0,0", "fov=30;fov=30", "up=0,1,0;up=0,1,0"}) {
     try {
-      (void)parse_camera(twice);
+      (void)parse_camera(twice, {}, "--camera");
       ADD_FAILURE() << "accepted: " << twice;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("repeats"), std::string::npos) << e.what();
+    } catch (const InputError& e) {
+      EXPECT_NE(e.rule().find("repeats"), std::string::npos) << e.what();
     }
   }
 }
 
-TEST(Camera, RejectsWhatCannotBeACamera) {
-  EXPECT_THROW(parse_camera("pos=1,2"), std::invalid_argument);
-  EXPECT_THROW(parse_camera("pos=1,2,3,4"), std::invalid_argument);
-  EXPECT_THROW(parse_camera("zoom=2"), std::invalid_argument);
-  EXPECT_THROW(parse_camera("eye=1,2,3"), std::invalid_argument);  // no other spellings than the aliases
-  EXPECT_THROW(parse_camera("target=1,2,3"), std::invalid_argument);
-  EXPECT_THROW(parse_camera("position=0,0,0;look_at=0,0,0"), std::invalid_argument);
-  EXPECT_THROW(parse_camera("fov_degrees=0"), std::invalid_argument);
-  EXPECT_THROW(parse_camera("pos=0,0,0;at=0,0,0"), std::invalid_argument);
-  EXPECT_THROW(parse_camera("pos=0,0,5;at=0,0,0;up=0,0,1"), std::invalid_argument);  // up ∥ view
-  EXPECT_THROW(parse_camera("fov=180"), std::invalid_argument);
-  EXPECT_THROW(parse_camera("pos=nan,0,0"), std::invalid_argument);
+TEST(Camera, RejectsWhatCannotBeACameraNamingTheOption) {
+  for (const char* wrong : {"pos=1,2", "pos=1,2,3,4", "zoom=2", "eye=1,2,3" /* no other spellings than the aliases */,
+                            "target=1,2,3", "position=0,0,0;look_at=0,0,0", "fov_degrees=0", "pos=0,0,0;at=0,0,0",
+                            "pos=0,0,5;at=0,0,0;up=0,0,1" /* up ∥ view */, "fov=180", "pos=nan,0,0", "fov=abc"}) {
+    const InputError e = expect_input_error([&] { (void)parse_camera(wrong, {}, "--camera"); });
+    EXPECT_EQ(e.file(), "--camera") << wrong;
+    EXPECT_EQ(e.rule().rfind("camera: ", 0), 0u) << e.what();
+  }
+}
+
+// A spec read from a file (a script line, a path's keyframe) names the file and the place in it.
+TEST(Camera, ErrorNamesTheFileAndPlaceItCameFrom) {
+  const InputError e = expect_input_error([] { (void)parse_camera("zoom=2", {}, {"tour.nvs", "line 12"}); });
+  EXPECT_STREQ(e.what(), "tour.nvs:line 12: camera: unknown key 'zoom' (position, look_at, up, fov_degrees; aliases pos, at, fov)");
 }
 
 TEST(Camera, PixelRaysFollowTheDocumentedConvention) {

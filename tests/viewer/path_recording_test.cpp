@@ -20,45 +20,63 @@ Camera camera_at_eye(const glm::dvec3& eye) {
 
 ViewerState make_state() { return ViewerState(CameraController(Camera{}, 1000), render::RenderSettings{}); }
 
+// Where the action came from, as a script line names it.
+const InputSource kLine{"tour.nvs", "line 7"};
+
+// The error of `action`, which must be an InputError naming kLine.
+template <class F>
+std::string refusal(F&& action) {
+  try {
+    action();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), kLine.file) << e.what();
+    EXPECT_EQ(e.where(), kLine.where) << e.what();
+    return e.rule();
+  }
+  ADD_FAILURE() << "accepted";
+  return {};
+}
+
 TEST(PathRecording, KeyframeTimesFollowTheStep) {
   render::CameraPath path;
   EXPECT_EQ(next_keyframe_time(path, 2), 0.0);
-  add_keyframe(path, camera_at_eye({0, 0, 900}), 0);
+  add_keyframe(path, camera_at_eye({0, 0, 900}), 0, kLine);
   EXPECT_EQ(next_keyframe_time(path, 2), 2.0);
-  add_keyframe(path, camera_at_eye({500, 0, 500}), 1.5);
+  add_keyframe(path, camera_at_eye({500, 0, 500}), 1.5, kLine);
   EXPECT_EQ(next_keyframe_time(path, 0.5), 2.0);
   EXPECT_EQ(path.keyframes.size(), 2u);
 }
 
 TEST(PathRecording, RejectedKeyframesLeaveThePathAlone) {
   render::CameraPath path;
-  add_keyframe(path, camera_at_eye({0, 0, 900}), 1);
-  EXPECT_THROW(add_keyframe(path, camera_at_eye({0, 0, 800}), 1), std::invalid_argument);
-  EXPECT_THROW(add_keyframe(path, camera_at_eye({0, 0, 800}), -1), std::invalid_argument);
-  EXPECT_THROW(add_keyframe(path, camera_at_eye({0, 0, 800}), std::nan("")), std::invalid_argument);
+  add_keyframe(path, camera_at_eye({0, 0, 900}), 1, kLine);
+  EXPECT_NE(refusal([&] { add_keyframe(path, camera_at_eye({0, 0, 800}), 1, kLine); }).find("must increase"), std::string::npos);
+  EXPECT_NE(refusal([&] { add_keyframe(path, camera_at_eye({0, 0, 800}), -1, kLine); }).find("seconds ≥ 0"), std::string::npos);
+  EXPECT_NE(refusal([&] { add_keyframe(path, camera_at_eye({0, 0, 800}), std::nan(""), kLine); }).find("seconds ≥ 0"),
+            std::string::npos);
   Camera flipped = camera_at_eye({0, 0, 800});
   flipped.up = {0, -1, 0};
-  EXPECT_THROW(add_keyframe(path, flipped, 2), std::invalid_argument);
+  EXPECT_NE(refusal([&] { add_keyframe(path, flipped, 2, kLine); }).find("keyframe at 2 s rejected"), std::string::npos);
   EXPECT_EQ(path.keyframes.size(), 1u);
 }
 
 TEST(PathRecording, FrameTimes) {
   render::CameraPath path;
-  EXPECT_THROW(path_frame_time(path, 0), std::invalid_argument);
-  add_keyframe(path, camera_at_eye({0, 0, 900}), 0);
-  add_keyframe(path, camera_at_eye({900, 0, 0}), 1);
-  EXPECT_EQ(path_frame_time(path, 0), 0.0);
-  EXPECT_EQ(path_frame_time(path, 30), 1.0);
-  EXPECT_THROW(path_frame_time(path, 31), std::invalid_argument);
+  EXPECT_NE(refusal([&] { (void)path_frame_time(path, 0, kLine); }).find("no camera path"), std::string::npos);
+  add_keyframe(path, camera_at_eye({0, 0, 900}), 0, kLine);
+  add_keyframe(path, camera_at_eye({900, 0, 0}), 1, kLine);
+  EXPECT_EQ(path_frame_time(path, 0, kLine), 0.0);
+  EXPECT_EQ(path_frame_time(path, 30, kLine), 1.0);
+  EXPECT_NE(refusal([&] { (void)path_frame_time(path, 31, kLine); }).find("past the path's last frame 30"), std::string::npos);
 }
 
 TEST(PathRecording, PlaybackFollowsTheWallClockAndStopsAtTheEnd) {
   ViewerState s = make_state();
-  EXPECT_THROW(start_playback(s), std::invalid_argument);
-  add_keyframe(s.path.path, camera_at_eye({0, 0, 900}), 0);
-  add_keyframe(s.path.path, camera_at_eye({900, 0, 0}), 2);
+  EXPECT_NE(refusal([&] { start_playback(s, kLine); }).find("no camera path to play"), std::string::npos);
+  add_keyframe(s.path.path, camera_at_eye({0, 0, 900}), 0, kLine);
+  add_keyframe(s.path.path, camera_at_eye({900, 0, 0}), 2, kLine);
   s.playing = true;
-  start_playback(s);
+  start_playback(s, kLine);
   EXPECT_FALSE(s.playing);  // the path drives the effect time now
   EXPECT_EQ(s.camera.camera().position, glm::dvec3(0, 0, 900));
   const std::uint64_t version = s.version;

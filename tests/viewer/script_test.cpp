@@ -198,10 +198,15 @@ TEST(Script, MissingFileIsAnInputError) {
 }
 
 TEST(Script, SizeText) {
-  EXPECT_EQ(render::parse_image_size("640x480"), std::pair(640u, 480u));
-  EXPECT_THROW(render::parse_image_size("16385x1"), std::invalid_argument);
-  EXPECT_THROW(render::parse_image_size("x1"), std::invalid_argument);
-  EXPECT_THROW(render::parse_image_size("+64x48"), std::invalid_argument);
+  EXPECT_EQ(render::parse_image_size("640x480", "--size"), std::pair(640u, 480u));
+  for (const char* wrong : {"16385x1", "x1", "+64x48"}) {
+    try {
+      (void)render::parse_image_size(wrong, "--size");
+      ADD_FAILURE() << "accepted: " << wrong;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("--size: expected a size WxH with 1 ≤ W, H ≤ 16384, got '") + wrong + "'");
+    }
+  }
 }
 
 }  // namespace
