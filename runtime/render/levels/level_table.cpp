@@ -46,6 +46,4 @@ static_assert(rows_in_id_order(), "row i declares LevelId i");
 
 std::span<const LevelEntry> level_table() { return kLevels; }
 
-const LevelEntry& level_entry(LevelId id) { return kLevels[static_cast<std::size_t>(id)]; }
-
 }  // namespace nano::levels

@@ -46,6 +46,5 @@ struct LevelEntry {
 };
 
 std::span<const LevelEntry> level_table();
-const LevelEntry& level_entry(LevelId id);
 
 }  // namespace nano::levels
