@@ -339,11 +339,12 @@ void run_matrix(const Options& o, session::RenderSession& session, nlohmann::ord
   for (const oracle::VerifyCamera& vc : oracle::verify_cameras(session.package, scene, o.matrix_cameras))
     cameras.push_back(vc.view.to_gpu(w, h));
   const gpu::Camera far = session::camera_option(session.package, o.camera).to_gpu(w, h);
+  std::vector<session::KnownOracleImage> effect_free;  // the far view's, made by the probe
   try {
     oracle::OracleRenderOptions probe;
     probe.camera_name = "the matrix's far view";
     probe.ray_tubes = false;  // a view the rounds cannot hold is left out, not traced ray by ray
-    (void)oracle::oracle_render(scene, session.package, far, probe);
+    effect_free.push_back({cameras.size(), oracle::oracle_render(scene, session.package, far, probe)});
     cameras.push_back(far);
   } catch (const InputError& e) {
     std::fprintf(stderr, "matrix: far view left out: %s\n", e.what());
@@ -352,7 +353,7 @@ void run_matrix(const Options& o, session::RenderSession& session, nlohmann::ord
     throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
   const std::vector<session::MatrixVariant> variants = session::matrix_variants(o.variant.render_settings(), session.package);
   const std::vector<session::MatrixRow> rows = session::run_accuracy_matrix(
-      session.device, session.package, *session.scene, cameras, variants, rounds,
+      session.device, session.package, *session.scene, cameras, variants, rounds, effect_free,
       [](const std::string& what) { std::fprintf(stderr, "matrix: %s\n", what.c_str()); });
   out["size"] = {w, h};
   out["cameras"] = cameras.size();

@@ -33,9 +33,13 @@ render::EffectSettings effects_for_view(render::EffectSettings e, const gpu::Cam
   return e;
 }
 
+// What the oracle's picture depends on (oracle_effects): clipping, jitter, animation, and the time
+// only when something moves, so the colour-only effects share the default's images.
 std::string oracle_key(const render::EffectSettings& e) {
+  const bool jitter = e.flag(EffectId::jitter), animation = e.flag(EffectId::animation);
   char key[160];
-  std::snprintf(key, sizeof key, "c%d j%d a%d t%.9g", int(e.flag(EffectId::clipping) && e.clipping.any()), int(e.flag(EffectId::jitter)), int(e.flag(EffectId::animation)), e.time);
+  std::snprintf(key, sizeof key, "c%d j%d a%d t%.9g", int(e.flag(EffectId::clipping) && e.clipping.any()), int(jitter), int(animation),
+                jitter || animation ? e.time : 0.0);
   return key;
 }
 
@@ -67,6 +71,11 @@ class OracleImages {
  public:
   OracleImages(const format::Package& package, const std::vector<gpu::Camera>& cameras, const Progress& progress)
       : package_(package), cameras_(cameras), progress_(progress) {}
+
+  // An image made elsewhere, of view k with effects e, is not made again.
+  void add(const render::EffectSettings& e, std::size_t k, std::vector<gpu::PixelHit> image) {
+    images_.emplace(std::pair{oracle_key(e), k}, std::move(image));
+  }
 
   const std::vector<gpu::PixelHit>& of(const render::EffectSettings& e, std::size_t k) {
     const std::string key = oracle_key(e);
@@ -195,11 +204,16 @@ std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, c
 std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const format::Package& package,
                                            render::GpuScene& default_scene, const std::vector<gpu::Camera>& cameras,
                                            const std::vector<MatrixVariant>& variants, unsigned rounds,
-                                           const Progress& progress) {
+                                           const std::vector<KnownOracleImage>& effect_free, const Progress& progress) {
   const MatrixVariant& reference = default_variant(variants, "run_accuracy_matrix");
   render::Renderer default_renderer(device, default_scene, reference.settings);
   for (const gpu::Camera& c : cameras) default_renderer.render(c);  // compiles the default pipeline
   OracleImages oracle_images(package, cameras, progress);
+  for (const KnownOracleImage& known : effect_free) {
+    if (known.view >= cameras.size() || known.hits.size() != std::size_t(cameras[known.view].size.x) * cameras[known.view].size.y)
+      throw std::invalid_argument("run_accuracy_matrix: a known oracle image does not match its view");
+    oracle_images.add(render::EffectSettings{}, known.view, known.hits);
+  }
 
   std::vector<MatrixRow> rows;
   for (const MatrixVariant& v : variants) {

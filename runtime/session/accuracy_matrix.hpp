@@ -45,12 +45,19 @@ struct MatrixRow {
 
 using Progress = std::function<void(const std::string&)>;
 
+// An oracle image the caller already made: of cameras[view], every effect off.
+struct KnownOracleImage {
+  std::size_t view = 0;
+  std::vector<gpu::PixelHit> hits;
+};
+
 // Renders every camera with every variant (after one warm-up frame each), `rounds` times, and
 // compares one frame per camera with the oracle. `default_scene` must hold the default scene options.
+// The oracle images in `effect_free` are used as they are, not made again.
 std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const format::Package& package,
                                            render::GpuScene& default_scene, const std::vector<gpu::Camera>& cameras,
                                            const std::vector<MatrixVariant>& variants, unsigned rounds,
-                                           const Progress& progress = {});
+                                           const std::vector<KnownOracleImage>& effect_free = {}, const Progress& progress = {});
 
 // The level of detail where it acts: far views (a whole cell, a whole scene) that the CPU oracle
 // cannot resolve, so each lod variant is compared with the full-detail frame of the same renderer
