@@ -41,6 +41,7 @@ struct Aabb {
   void add(const dvec3& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
   void add(const Aabb& b) { lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi); }
   Aabb grown(double r) const { return {lo - r, hi + r}; }
+  static Aabb around(const dvec3& centre, double r) { return {centre - r, centre + r}; }
   // True iff one half-space (n, d) — keep n·p + d ≥ 0 — removes every point of the box.
   bool clipped_by_any(const std::vector<glm::dvec4>& half_spaces) const {
     for (const glm::dvec4& h : half_spaces) {
@@ -438,10 +439,15 @@ struct CopyEnumerator::Impl : format::PackageView {
           emit.copy.id.cell = ivec3(cell, 0);
           for (std::uint32_t m = 0; m < tile.instance_count; ++m) {
             const gpu::MoleculeInstance& inst = instances[tile.first_instance + m];
-            vec2 uv_m;
+            // Ownership and reach first, from the molecule's chart point alone (the same uv_m that
+            // chart_membrane_molecule computes): most copies of a cell belong to a neighbouring
+            // triangle or stand outside a small query, and need no frame.
+            vec2 uv_m = gpu::chart_molecule_uv(g, plan.s_over_S, vec3(inst.position));
+            if (!gpu::own_triangle_owns(t0, t1, t2, uv_m)) continue;
+            const Aabb copy_reach = Aabb::around(dvec3(gpu::chart_position(chart, uv_m)), grow);
+            if (!copy_reach.meets(query) || copy_reach.clipped_by_any(emit.local_clip)) continue;
             const gpu::Affine3 placement =
                 gpu::chart_membrane_molecule(chart, g, plan.s_over_S, plan.smooth, vec3(inst.position), inst.rotation, uv_m);
-            if (!gpu::own_triangle_owns(t0, t1, t2, uv_m)) continue;
             if (gpu::seam_drops(seam_edges, p0, p1, p2, gpu::chart_position(chart, uv_m),
                                 molecules[inst.molecule_type].aabb_min.w))
               continue;
