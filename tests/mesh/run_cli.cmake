@@ -132,6 +132,11 @@ elseif(CASE STREQUAL "bad_arguments")
   expect_match("${err}" "--triangles: a cube-sphere needs at least 48 triangles")
   run(1 make-mesh rbc --radius 3 -o "${WORK}/r.obj")
   expect_match("${err}" "--radius")
+  # --remesh is read where its name is known: refused before any mesh is read.
+  run(1 check-mesh "${WORK}/none.obj" --diameter 400 --remesh fast)
+  expect_match("${err}" "nanobake: error: --remesh: expected auto, off or an edge in Å > 0, got 'fast'")
+  run(1 check-mesh "${WORK}/none.obj" --diameter 400 --remesh=-5)
+  expect_match("${err}" "nanobake: error: --remesh: expected auto, off or an edge in Å > 0, got '-5'")
   expect_empty_dir("${WORK}")
 
 else()
