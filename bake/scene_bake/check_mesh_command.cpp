@@ -129,7 +129,7 @@ void check_proxy_mesh(const Arguments& args) {
   std::optional<mesh::ChartAtlas> atlas;
   mesh::ProxyMesh charted = proxy;
   if (surface_sound && (make || !report.usable())) {
-    atlas = mesh::generate_uv_charts(charted);
+    atlas = mesh::generate_uv_charts(charted, args.mesh);
     if (make) report = mesh::check_mesh(charted, options);
   }
   std::string text = args.json ? [&] {
