@@ -21,6 +21,8 @@ constexpr double kQuarterTurn = 1.5707963267948966;
 // creases over the same bilayer, a smaller share of the shape.
 constexpr double kSizeMargin = 1.03;
 
+}  // namespace
+
 std::optional<std::string> remesh_needed(const ProxyMesh& mesh, const MeshReport& report, const RemeshPolicy& policy) {
   if (policy.mode == RemeshPolicy::Mode::off) return std::nullopt;
   if (policy.mode == RemeshPolicy::Mode::edge) return number_text("the scene asks for edges of %.4g Å", policy.edge);
@@ -30,21 +32,23 @@ std::optional<std::string> remesh_needed(const ProxyMesh& mesh, const MeshReport
   return remesh_reason(mesh);
 }
 
+namespace {
+
 glm::dvec3 centroid(const ProxyMesh& mesh, std::size_t t) {
   return (mesh.corner_position(t, 0) + mesh.corner_position(t, 1) + mesh.corner_position(t, 2)) / 3.0;
 }
 
 // The prepare stage: remeshed for the membrane when it needs it.
-std::optional<RemeshReport> prepare(ProxyMesh& mesh, MeshReport& report, double thickness, const RemeshPolicy& policy) {
+std::optional<RemeshReport> prepare(ProxyMesh& mesh, MeshReport& report, double thickness, const RemeshPolicy& policy,
+                                    const InputSource& source) {
   const std::optional<std::string> reason = remesh_needed(mesh, report, policy);
   if (!reason) return std::nullopt;
   for (const MeshProblem& p : report.problems)
     if (!is_uv_rule(p.rule) && p.rule != rule::sliver)
-      throw std::invalid_argument("cannot remesh a mesh with a " + p.rule +
-                                  (p.face >= 0 ? " (face " + std::to_string(p.face) + ")" : std::string()));
+      source.fail("cannot remesh a mesh with a " + p.rule + (p.face >= 0 ? " (face " + std::to_string(p.face) + ")" : std::string()));
   const RemeshOptions options = membrane_remesh_options(
       mesh, thickness, policy.mode == RemeshPolicy::Mode::edge ? std::optional<double>(policy.edge) : std::nullopt);
-  RemeshReport remeshed = remesh_for_membrane(mesh, options, *reason);
+  RemeshReport remeshed = remesh_for_membrane(mesh, options, *reason, source);
   report = check_mesh_surface(mesh, CheckOptions{});  // its UVs are gone: the chart stage makes them
   return remeshed;
 }
@@ -157,9 +161,9 @@ void explain_crossings(const ProxyMesh& input, const RemeshReport& remesh, std::
 
 // The prepare and judge stages once, at the mesh's size (`input`: the mesh before them).
 MembraneFit prepare_and_judge(const ProxyMesh& input, ProxyMesh& mesh, MeshReport& report, double thickness,
-                              const RemeshPolicy& policy) {
+                              const RemeshPolicy& policy, const InputSource& source) {
   MembraneFit fit;
-  fit.remesh = prepare(mesh, report, thickness, policy);
+  fit.remesh = prepare(mesh, report, thickness, policy, source);
   if (!report.closed) return fit;  // check-mesh names what is wrong; nothing here to measure
   // A remeshed surface has rounded what it could: a crease left sharper than the shells follow counts.
   fit.tight = places(mesh, tight_triangles(mesh, report, thickness, fit.remesh.has_value(), fit));
@@ -188,7 +192,8 @@ MembraneFit prepare_and_judge(const ProxyMesh& input, ProxyMesh& mesh, MeshRepor
 
 // The smallest scale (from fit.scale_needed up) at which a copy of `input` prepared and judged again
 // takes the bilayer; records it in `fit` when one of kSizeChecks rounds finds it.
-void check_size(const ProxyMesh& input, double thickness, const RemeshPolicy& policy, MembraneFit& fit) {
+void check_size(const ProxyMesh& input, double thickness, const RemeshPolicy& policy, const InputSource& source,
+                MembraneFit& fit) {
   double scale = fit.scale_needed * kSizeMargin;
   for (int round = 0; round < kSizeChecks && scale <= kPlausibleGrowth; ++round) {
     fit.largest_scale_tried = scale;
@@ -196,7 +201,7 @@ void check_size(const ProxyMesh& input, double thickness, const RemeshPolicy& po
     for (glm::dvec3& p : larger.positions) p *= scale;
     MeshReport report = check_mesh_surface(larger, CheckOptions{});
     const ProxyMesh larger_input = larger;
-    const MembraneFit again = prepare_and_judge(larger_input, larger, report, thickness, policy);
+    const MembraneFit again = prepare_and_judge(larger_input, larger, report, thickness, policy, source);
     if (again.fits()) {
       fit.scale_needed = scale;
       fit.size_checked = true;
@@ -213,10 +218,11 @@ bool MembraneFit::has_defect() const {
   return std::any_of(tight.begin(), tight.end(), [](const TightFeature& f) { return f.defect; });
 }
 
-MembraneFit fit_membrane(ProxyMesh& mesh, MeshReport& report, double thickness, const RemeshPolicy& policy) {
+MembraneFit fit_membrane(ProxyMesh& mesh, MeshReport& report, double thickness, const RemeshPolicy& policy,
+                         const InputSource& source) {
   const ProxyMesh input = mesh;
-  MembraneFit fit = prepare_and_judge(input, mesh, report, thickness, policy);
-  if (!fit.fits() && !fit.has_defect()) check_size(input, thickness, policy, fit);
+  MembraneFit fit = prepare_and_judge(input, mesh, report, thickness, policy, source);
+  if (!fit.fits() && !fit.has_defect()) check_size(input, thickness, policy, source, fit);
   return fit;
 }
 

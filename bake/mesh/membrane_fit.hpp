@@ -18,6 +18,7 @@
 #include "bake/mesh/mesh_check.hpp"
 #include "bake/mesh/mesh_remesh.hpp"
 #include "bake/mesh/proxy_mesh.hpp"
+#include "common/error.hpp"
 
 namespace nano::mesh {
 
@@ -78,10 +79,15 @@ struct MembraneFit {
 // Prepares `mesh` (scaled to its final size; `report` its check-mesh report) for a bilayer
 // `thickness` Å thick — remeshed when the policy and its creases or slivers ask, replacing `report` —
 // and judges the prepared surface. When it does not fit and no place is a defect, the size that
-// works is checked on a copy (kSizeChecks rounds at most). Throws std::invalid_argument when the mesh
-// has problems besides UVs and slivers and would need remeshing (remeshing does not guess at a
-// shape), naming the first.
-MembraneFit fit_membrane(ProxyMesh& mesh, MeshReport& report, double thickness, const RemeshPolicy& policy);
+// works is checked on a copy (kSizeChecks rounds at most). Throws an InputError from `source` (the
+// mesh file, and the compartment the scene reads it for) when the mesh has problems besides UVs and
+// slivers and would need remeshing (remeshing does not guess at a shape), naming the first; a caller
+// that lists them all asks remesh_needed first.
+MembraneFit fit_membrane(ProxyMesh& mesh, MeshReport& report, double thickness, const RemeshPolicy& policy,
+                         const InputSource& source);
+
+// Why fit_membrane would remesh the mesh (`report`: its check-mesh report) under `policy`, or nullopt.
+std::optional<std::string> remesh_needed(const ProxyMesh& mesh, const MeshReport& report, const RemeshPolicy& policy);
 
 // The places (at most `shown`) with where they are — in Å and, with `file_scale` (Å per unit of the
 // file) != 1, in the file's own coordinates — and what to do: mend a defect there, or the smallest

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/mesh/proxy_mesh.hpp"
+#include "common/error.hpp"
 
 namespace nano::mesh {
 
@@ -80,9 +81,11 @@ struct RemeshReport {
 // turn by less than 0.14 rad per edge remeshed at twice the edge, up to options.max_edge, the
 // borders between levels rounded again, and faces with an angle under 5° remeshed with their
 // surroundings.
-// UVs are dropped (the baker makes charts for the new surface) and normals recomputed. Throws std::invalid_argument when
-// the triangles do not form a closed polygon mesh or the options are not positive.
-RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason);
+// UVs are dropped (the baker makes charts for the new surface) and normals recomputed. Throws an InputError from
+// `source` (the mesh file, and the compartment) when the triangles do not form a closed polygon mesh, and
+// std::invalid_argument when the options are not positive (a caller's bug: whoever reads them refuses those).
+RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason,
+                                 const InputSource& source);
 
 nlohmann::json to_json(const RemeshReport& report);
 std::string describe(const RemeshReport& report);

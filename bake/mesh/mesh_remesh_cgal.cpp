@@ -22,6 +22,7 @@
 #include "bake/mesh/mesh_remesh.hpp"
 #include "bake/mesh/number_text.hpp"
 #include "bake/mesh/vertex_normals.hpp"
+#include "common/error.hpp"
 
 namespace nano::mesh {
 namespace {
@@ -61,7 +62,9 @@ constexpr int kMendRounds = 3;
 // A cap whose neighbour across its longest edge lies in its plane within this is mended by a flip.
 constexpr double kFlatCapDegrees = 2.0;
 
-SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
+// `source` names the mesh when CGAL finds it is no closed polygon mesh: check-mesh refuses such meshes
+// before anyone remeshes them, so only a disagreement between its checks and CGAL's comes here.
+SurfaceMesh to_surface_mesh(const ProxyMesh& mesh, const InputSource& source) {
   std::vector<Point> points;
   points.reserve(mesh.positions.size());
   for (const glm::dvec3& p : mesh.positions) points.emplace_back(p.x, p.y, p.z);
@@ -69,10 +72,10 @@ SurfaceMesh to_surface_mesh(const ProxyMesh& mesh) {
   polygons.reserve(mesh.triangles.size());
   for (const Triangle& t : mesh.triangles) polygons.push_back({t[0], t[1], t[2]});
   if (!PMP::is_polygon_soup_a_polygon_mesh(polygons))
-    throw std::invalid_argument("cannot remesh: the faces do not form an oriented 2-manifold");
+    source.fail("cannot remesh: the faces do not form an oriented 2-manifold");
   SurfaceMesh sm;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
-  if (!CGAL::is_closed(sm)) throw std::invalid_argument("cannot remesh: the mesh has holes");
+  if (!CGAL::is_closed(sm)) source.fail("cannot remesh: the mesh has holes");
   return sm;
 }
 
@@ -483,15 +486,18 @@ void mend_slivers(SurfaceMesh& work, const Tree& tree, const RemeshOptions& opti
 
 }  // namespace
 
-RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason) {
+RemeshReport remesh_for_membrane(ProxyMesh& mesh, const RemeshOptions& options, const std::string& reason,
+                                 const InputSource& source) {
+  // Invariant, not input: a scene's "remesh" edge and check-mesh's --remesh are refused unless > 0
+  // where they are read, and the bilayer's thickness likewise.
   if (!(options.edge > 0.0) || !(options.max_distance > 0.0))
-    throw std::invalid_argument("cannot remesh: the target edge and the distance bound must be positive");
+    throw std::invalid_argument("remesh_for_membrane: the target edge and the distance bound must be positive");
   RemeshReport report;
   report.reason = reason;
   report.edge = options.edge;
   report.distance_bound = options.max_distance;
   report.triangles_in = mesh.triangles.size();
-  const SurfaceMesh input = to_surface_mesh(mesh);
+  const SurfaceMesh input = to_surface_mesh(mesh, source);
   report.largest_crease_in = largest_crease(input);
   report.area_in = PMP::area(input);
   report.volume_in = PMP::volume(input);

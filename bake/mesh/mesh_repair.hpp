@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/mesh/proxy_mesh.hpp"
+#include "common/error.hpp"
 
 namespace nano::mesh {
 
@@ -51,10 +52,10 @@ struct RepairReport {
 // Repairs `mesh` in place. Its UVs and normals are dropped (the faces change; the baker makes
 // charts and normals again). Vertices keep their indices, copies made by a split after them,
 // unless collapsing a degenerate face removed one.
-// Throws std::invalid_argument naming the vertices and triangles (0-based, as check-mesh names
-// them) where the faces do not form a surface CGAL can mend: a non-manifold edge, a one-sided
-// surface.
-RepairReport repair_mesh(ProxyMesh& mesh, const RepairOptions& options = {});
+// Throws an InputError from `source` (the mesh file, and the compartment the scene reads it for)
+// naming the vertices and triangles (0-based, as check-mesh names them) where the faces do not
+// form a surface CGAL can mend: a non-manifold edge, a one-sided surface, no face left.
+RepairReport repair_mesh(ProxyMesh& mesh, const InputSource& source, const RepairOptions& options = {});
 
 nlohmann::json to_json(const RepairReport& report);
 std::string describe(const RepairReport& report);

@@ -21,6 +21,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include "bake/mesh/vertex_normals.hpp"
+#include "common/error.hpp"
 
 namespace nano::mesh {
 namespace {
@@ -51,7 +52,7 @@ std::string list(const std::vector<std::size_t>& values) {
 
 // Three or more faces on one edge: refused with the first such edge (in face order) and the count.
 void refuse_non_manifold_edges(const ProxyMesh& mesh, const std::vector<Polygon>& polygons,
-                               const std::vector<std::size_t>& face_of) {
+                               const std::vector<std::size_t>& face_of, const InputSource& source) {
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> faces_on;
   for (std::size_t p = 0; p < polygons.size(); ++p)
     for (std::size_t k = 0; k < 3; ++k) faces_on[edge_key(polygons[p][k], polygons[p][(k + 1) % 3])].push_back(p);
@@ -67,7 +68,7 @@ void refuse_non_manifold_edges(const ProxyMesh& mesh, const std::vector<Polygon>
   if (count == 0) return;
   std::vector<std::size_t> triangles;
   for (std::size_t p : *first) triangles.push_back(face_of[p]);
-  throw std::invalid_argument(
+  source.fail(
       "cannot repair: " + std::to_string(triangles.size()) + " faces (triangles " + list(triangles) +
       ") share the edge between " + vertex_text(mesh, first_key >> 32) + " and " +
       vertex_text(mesh, first_key & 0xffffffffu) + "; which of them belong together is the user's call" +
@@ -95,14 +96,14 @@ struct OrientationVisitor : PMP::Default_orientation_visitor {
 
 // After orientation, two faces walking an edge of the input the same way: a one-sided surface.
 void refuse_one_sided(const ProxyMesh& mesh, const std::vector<Polygon>& polygons, const std::vector<std::size_t>& face_of,
-                      const std::vector<std::size_t>& origin) {
+                      const std::vector<std::size_t>& origin, const InputSource& source) {
   std::unordered_map<std::uint64_t, std::size_t> walked_by;
   for (std::size_t p = 0; p < polygons.size(); ++p)
     for (std::size_t k = 0; k < 3; ++k) {
       const std::size_t a = origin[polygons[p][k]], b = origin[polygons[p][(k + 1) % 3]];
       const auto [it, inserted] = walked_by.emplace(directed_key(a, b), p);
       if (!inserted)
-        throw std::invalid_argument(
+        source.fail(
             "cannot repair: the faces cannot be oriented consistently (a one-sided surface, like a Möbius band): "
             "however they are turned, two faces walk an edge the same way, e.g. triangles " +
             std::to_string(std::min(face_of[it->second], face_of[p])) + " and " +
@@ -214,7 +215,7 @@ struct Soup {
   std::vector<std::size_t> face_of;  // the input triangle of each polygon
 };
 
-Soup distinct_faces(const ProxyMesh& mesh, RepairReport& report) {
+Soup distinct_faces(const ProxyMesh& mesh, RepairReport& report, const InputSource& source) {
   Soup soup;
   for (const glm::dvec3& p : mesh.positions) soup.points.emplace_back(p.x, p.y, p.z);
   std::unordered_set<std::array<std::uint32_t, 3>, TriangleHash> seen;
@@ -233,13 +234,13 @@ Soup distinct_faces(const ProxyMesh& mesh, RepairReport& report) {
     soup.polygons.push_back({t[0], t[1], t[2]});
     soup.face_of.push_back(f);
   }
-  if (soup.polygons.empty()) throw std::invalid_argument("cannot repair: no face is left");
+  if (soup.polygons.empty()) source.fail("cannot repair: no face is left");
   return soup;
 }
 
 // Orientation and non-manifold vertices, on the soup: CGAL turns faces to agree across their edges
 // and gives each fan of faces around a vertex its own copy of it.
-void orient_and_split(const ProxyMesh& mesh, Soup& soup, RepairReport& report) {
+void orient_and_split(const ProxyMesh& mesh, Soup& soup, RepairReport& report, const InputSource& source) {
   OrientationRecord record;
   record.reversed.assign(soup.polygons.size(), 0);
   record.origin.resize(soup.points.size());
@@ -248,13 +249,13 @@ void orient_and_split(const ProxyMesh& mesh, Soup& soup, RepairReport& report) {
   visitor.record = &record;
   const std::size_t input_vertices = soup.points.size();
   PMP::orient_polygon_soup(soup.points, soup.polygons, CGAL::parameters::visitor(visitor));
-  refuse_one_sided(mesh, soup.polygons, soup.face_of, record.origin);
+  refuse_one_sided(mesh, soup.polygons, soup.face_of, record.origin, source);
   report.non_manifold_vertices_split = record.vertices_split;
   report.vertex_copies_added = record.copies;
   report.faces_reoriented = keep_the_majority(soup.polygons, record.reversed);
   if (!PMP::is_polygon_soup_a_polygon_mesh(soup.polygons))
-    throw std::invalid_argument("cannot repair: the faces do not form a surface even after orienting them and splitting "
-                                "their non-manifold vertices; check-mesh names the problems");
+    source.fail("cannot repair: the faces do not form a surface even after orienting them and splitting "
+                "their non-manifold vertices; check-mesh names the problems");
   report.split_separation = pull_copies_apart(soup.points, soup.polygons, record.origin, input_vertices);
 }
 
@@ -313,7 +314,7 @@ void face_pieces_outward(SurfaceMesh& sm, RepairReport& report) {
   report.reoriented = !turned.empty();
 }
 
-ProxyMesh proxy_of(const SurfaceMesh& sm) {
+ProxyMesh proxy_of(const SurfaceMesh& sm, const InputSource& source) {
   ProxyMesh repaired;
   for (SurfaceMesh::Vertex_index v : sm.vertices()) {
     const Kernel::Point_3& p = sm.point(v);
@@ -323,30 +324,32 @@ ProxyMesh proxy_of(const SurfaceMesh& sm) {
     Triangle t{};
     int k = 0;
     for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
-      if (k == 3) throw std::invalid_argument("cannot repair: CGAL left a face of more than three vertices");
+      // Invariant, not input: every face handed to CGAL is a triangle and its repairs keep them so.
+      if (k == 3) throw std::logic_error("repair_mesh: CGAL left a face of more than three vertices");
       t[k++] = std::uint32_t(v.idx());
     }
     repaired.triangles.push_back(t);
   }
-  if (repaired.triangles.empty()) throw std::invalid_argument("cannot repair: no face is left");
+  // Removing degenerate faces can take every face of a mesh made of slivers.
+  if (repaired.triangles.empty()) source.fail("cannot repair: no face is left");
   compute_angle_weighted_normals(repaired);
   return repaired;
 }
 
 }  // namespace
 
-RepairReport repair_mesh(ProxyMesh& mesh, const RepairOptions& options) {
+RepairReport repair_mesh(ProxyMesh& mesh, const InputSource& source, const RepairOptions& options) {
   RepairReport report;
   report.faces_before = mesh.triangles.size();
-  Soup soup = distinct_faces(mesh, report);
-  refuse_non_manifold_edges(mesh, soup.polygons, soup.face_of);
-  orient_and_split(mesh, soup, report);
+  Soup soup = distinct_faces(mesh, report, source);
+  refuse_non_manifold_edges(mesh, soup.polygons, soup.face_of, source);
+  orient_and_split(mesh, soup, report, source);
   SurfaceMesh sm;
   PMP::polygon_soup_to_polygon_mesh(soup.points, soup.polygons, sm);
   remove_degenerate_faces(sm, report);
   fill_small_holes(sm, options, report);
   face_pieces_outward(sm, report);
-  mesh = proxy_of(sm);
+  mesh = proxy_of(sm, source);
   report.faces_after = mesh.triangles.size();
   return report;
 }

@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 
 #include "bake/mesh/chart_parameterization.hpp"
+#include "common/error.hpp"
 
 namespace nano::mesh {
 namespace {
@@ -33,9 +34,11 @@ struct Surface {
   std::vector<double> area;
   std::vector<std::array<std::uint32_t, 3>> across;
 
-  explicit Surface(const ProxyMesh& m) : mesh(m) {
+  // The mesh's own faults are refused from `source` (the mesh file), naming the triangle or edge.
+  Surface(const ProxyMesh& m, const InputSource& source) : mesh(m) {
     const std::size_t n = m.triangles.size();
-    if (n == 0 || n >= kNone) throw std::invalid_argument("a mesh of 1 to 2^32 − 1 triangles");
+    if (n == 0 || n >= kNone)
+      source.fail("cannot make UV charts: they need a mesh of 1 to 2^32 − 1 triangles, this one has " + std::to_string(n));
     normal.resize(n), centroid.resize(n), area.resize(n), across.assign(n, {kNone, kNone, kNone});
     std::unordered_map<std::uint64_t, std::uint32_t> directed;  // directed edge → face
     directed.reserve(3 * n);
@@ -44,13 +47,13 @@ struct Surface {
       const dvec3 a = m.positions[t[0]], b = m.positions[t[1]], c = m.positions[t[2]];
       const dvec3 cross = glm::cross(b - a, c - a);
       area[f] = 0.5 * glm::length(cross);
-      if (!(area[f] > 0)) throw std::invalid_argument("triangle " + std::to_string(f) + " has zero area");
+      if (!(area[f] > 0)) source.fail("cannot make UV charts: triangle " + std::to_string(f) + " has zero area");
       normal[f] = cross / (2 * area[f]);
       centroid[f] = (a + b + c) / 3.0;
       for (int k = 0; k < 3; ++k)
         if (!directed.emplace(edge_key(t[k], t[(k + 1) % 3]), f).second)
-          throw std::invalid_argument("edge " + std::to_string(t[k]) + "–" + std::to_string(t[(k + 1) % 3]) + " of triangle " +
-                                      std::to_string(f) + " is non-manifold or inconsistently oriented");
+          source.fail("cannot make UV charts: edge " + std::to_string(t[k]) + "–" + std::to_string(t[(k + 1) % 3]) +
+                      " of triangle " + std::to_string(f) + " is non-manifold or inconsistently oriented");
     }
     for (std::uint32_t f = 0; f < n; ++f) {
       const Triangle& t = m.triangles[f];
@@ -432,12 +435,13 @@ double pack(std::vector<Flattened>& charts, double gutter) {
 
 }  // namespace
 
-ChartAtlas generate_uv_charts(ProxyMesh& mesh, const ChartOptions& options) {
+ChartAtlas generate_uv_charts(ProxyMesh& mesh, const InputSource& source, const ChartOptions& options) {
   const auto started = std::chrono::steady_clock::now();
+  // Invariants, not input: the options are the baker's own constants (and tests'), never read from a file.
   if (!(options.max_normal_angle_degrees > 0 && options.max_normal_angle_degrees < 90))
-    throw std::invalid_argument("the charts' normal angle must lie in (0°, 90°)");
-  if (!(options.max_stretch >= 1)) throw std::invalid_argument("the stretch bound must be at least 1");
-  const Surface s(mesh);
+    throw std::invalid_argument("generate_uv_charts: the charts' normal angle must lie in (0°, 90°)");
+  if (!(options.max_stretch >= 1)) throw std::invalid_argument("generate_uv_charts: the stretch bound must be at least 1");
+  const Surface s(mesh, source);
   const double cos_limit = std::cos(options.max_normal_angle_degrees * M_PI / 180.0);
   std::deque<std::vector<std::uint32_t>> pending;
   std::vector<std::vector<std::uint32_t>> grown = grow_charts(s, cos_limit, options.seed);

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/mesh/proxy_mesh.hpp"
+#include "common/error.hpp"
 
 namespace nano::mesh {
 
@@ -47,9 +48,10 @@ struct ChartAtlas {
 };
 
 // Replaces mesh.uvs / mesh.uv_triangles with generated ones. The mesh must be an edge-manifold
-// triangle mesh (every edge on at most two faces, consistently oriented): throws
-// std::invalid_argument naming the first offending edge otherwise.
-ChartAtlas generate_uv_charts(ProxyMesh& mesh, const ChartOptions& options = {});
+// triangle mesh (every edge on at most two faces, consistently oriented) without zero-area
+// triangles: throws an InputError from `source` (the mesh file, and the compartment the scene
+// reads it for) naming the first offending edge or triangle otherwise.
+ChartAtlas generate_uv_charts(ProxyMesh& mesh, const InputSource& source, const ChartOptions& options = {});
 
 nlohmann::json to_json(const ChartAtlas& atlas);
 

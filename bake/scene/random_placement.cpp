@@ -199,6 +199,8 @@ std::size_t expanded_instance_count(const SceneDescription& scene) {
 
 std::vector<PlacedInstance> expand_random_instances(const SceneDescription& scene,
                                                     const std::vector<double>& bounding_radius) {
+  // Invariants, not input: the baker measures every compartment's mesh, which the mesh checks have
+  // already found closed, finite and of non-zero area.
   if (bounding_radius.size() != scene.compartments.size())
     throw std::invalid_argument("expand_random_instances: one bounding radius per compartment is needed");
   for (double r : bounding_radius)

@@ -336,6 +336,7 @@ void check_soluble_amounts(const SceneDescription& scene, const SolubleDescripti
 }  // namespace
 
 void check_molecule_amounts(const SceneDescription& scene, std::span<const MoleculeMeasure> molecules) {
+  // Invariant, not input: the baker measures every molecule of the scene (so below).
   if (molecules.size() != scene.molecules.size())
     throw std::invalid_argument("check_molecule_amounts: one measure per molecule is needed");
   for (const MembraneDescription& m : scene.membranes) {
@@ -348,7 +349,7 @@ void check_molecule_amounts(const SceneDescription& scene, std::span<const Molec
 namespace {
 
 const MoleculeMeasure& measure_of(std::span<const MoleculeMeasure> molecules, const NameRef& molecule, const char* check) {
-  if (molecule.index >= molecules.size())
+  if (molecule.index >= molecules.size())  // invariant: the parser resolved the name to a molecule of the scene
     throw std::invalid_argument(std::string(check) + ": one measure per molecule is needed");
   return molecules[molecule.index];
 }
@@ -411,7 +412,7 @@ void check_compartment_amounts(const SceneDescription& scene, std::size_t compar
   for (std::size_t i = 0; i < m.proteins.size(); ++i) {
     const MembraneProtein& protein = m.proteins[i];
     if (!protein.per_compartment) continue;
-    if (protein.molecule.index >= molecules.size())
+    if (protein.molecule.index >= molecules.size())  // invariant, as in measure_of
       throw std::invalid_argument("check_compartment_amounts: one measure per molecule is needed");
     const MoleculeMeasure& p = molecules[protein.molecule.index];
     const double footprint = std::max({p.outer_footprint, p.inner_footprint, p.height > 0.0 ? p.volume / p.height : 0.0});
@@ -528,7 +529,7 @@ void check_lipid_mix_amounts(const SceneDescription& scene, std::size_t membrane
 }
 
 void check_placement_amounts(const SceneDescription& scene, std::span<const double> bounding_radii) {
-  if (bounding_radii.size() != scene.compartments.size())
+  if (bounding_radii.size() != scene.compartments.size())  // invariant: the baker measures every compartment
     throw std::invalid_argument("check_placement_amounts: one bounding radius per compartment is needed");
   for (std::size_t e = 0; e < scene.instances.size(); ++e) {
     const auto* placement = std::get_if<RandomPlacement>(&scene.instances[e]);

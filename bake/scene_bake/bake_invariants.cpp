@@ -43,7 +43,7 @@ void check_nothing_emptied(const scene::SceneDescription& scene, std::span<const
                            const std::vector<std::optional<BakedLipidPatch>>& patches,
                            std::span<const scene::CompartmentMeasure> meshes,
                            const std::function<const mesh::ProxyMesh&(std::size_t)>& mesh_of) {
-  if (meshes.size() != scene.compartments.size())
+  if (meshes.size() != scene.compartments.size())  // invariant: the baker measures every compartment
     throw std::invalid_argument("check_nothing_emptied: one mesh measure per compartment is needed");
   for (std::size_t m = 0; m < scene.membranes.size() && m < patches.size(); ++m)
     if (patches[m]) scene::check_lipid_mix_amounts(scene, m, patch_places(*patches[m], scene.membranes[m].tile_size));
@@ -117,7 +117,7 @@ std::string soluble_reason(const BakedScene& baked, std::size_t set, const Compa
 }  // namespace
 
 void check_every_molecule_placed(const scene::SceneDescription& scene, const BakedScene& baked) {
-  if (baked.compartments.size() != scene.compartments.size())
+  if (baked.compartments.size() != scene.compartments.size())  // invariant: the baker bakes every compartment
     throw std::invalid_argument("check_every_molecule_placed: one summary per compartment is needed");
   const auto refuse = [&](const std::string& key, const std::string& amount, const CompartmentSummary& c,
                           const std::string& name, const std::string& why) {

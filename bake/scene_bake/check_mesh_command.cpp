@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,6 +57,15 @@ std::pair<scene::CompartmentDescription, std::optional<double>> scene_compartmen
   return {scene.compartments[*found], scene_bake::compartment_bilayer_thickness(scene, *found)};
 }
 
+// --remesh's edge, read where the option's name is known (a scene's "remesh" edge: likewise > 0).
+double remesh_edge(const std::string& text) {
+  char* end = nullptr;
+  const double edge = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(edge > 0 && std::isfinite(edge)))
+    InputSource("--remesh").fail("expected auto, off or an edge in Å > 0, got '" + text + "'");
+  return edge;
+}
+
 // The compartment the command line describes: MESH sized and mended as a scene's keys would.
 scene::CompartmentDescription command_line_compartment(const Arguments& args) {
   scene::CompartmentDescription c;
@@ -69,7 +79,7 @@ scene::CompartmentDescription command_line_compartment(const Arguments& args) {
     c.mesh.remesh = scene::MeshSource::Remesh::off;
   } else if (args.remesh != "auto") {
     c.mesh.remesh = scene::MeshSource::Remesh::edge;
-    c.mesh.remesh_edge = std::stod(args.remesh);
+    c.mesh.remesh_edge = remesh_edge(args.remesh);
   }
   return c;
 }
@@ -119,7 +129,7 @@ void check_proxy_mesh(const Arguments& args) {
   std::optional<mesh::ChartAtlas> atlas;
   mesh::ProxyMesh charted = proxy;
   if (surface_sound && (make || !report.usable())) {
-    atlas = mesh::generate_uv_charts(charted);
+    atlas = mesh::generate_uv_charts(charted, args.mesh);
     if (make) report = mesh::check_mesh(charted, options);
   }
   std::string text = args.json ? [&] {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
-#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -81,13 +80,14 @@ double enclosed_volume(const mesh::ProxyMesh& m) {
 }
 
 
+// Where the stages below refuse the mesh from: its file (or what generated it), for this compartment.
+InputSource mesh_source(const CompartmentMesh& result, const scene::CompartmentDescription& compartment) {
+  return InputSource(result.origin, "compartment '" + compartment.name + "'");
+}
+
 // The repair stage: what "repair" mends, said in the report.
 void repair(CompartmentMesh& result, const scene::CompartmentDescription& compartment) {
-  try {
-    result.repair = mesh::repair_mesh(result.mesh);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
-  }
+  result.repair = mesh::repair_mesh(result.mesh, mesh_source(result, compartment));
 }
 
 // The size stage: "diameter" or "volume" after the units and the compartment's scale.
@@ -121,16 +121,16 @@ mesh::RemeshPolicy remesh_policy(const scene::MeshSource& source) {
 // The prepare and judge stages (bake/mesh/membrane_fit.hpp): remeshed when needed, refused with every
 // place a bilayer cannot follow named, and the size at which it would (or the defect to mend).
 void fit_for_membrane(CompartmentMesh& result, const scene::CompartmentDescription& compartment, double thickness) {
-  mesh::MembraneFit fit;
-  try {
-    fit = mesh::fit_membrane(result.mesh, result.report, thickness, remesh_policy(compartment.mesh));
-  } catch (const std::invalid_argument& e) {
-    std::vector<mesh::MeshProblem> shape_problems;
-    for (const mesh::MeshProblem& p : result.report.problems)
-      if (!mesh::is_uv_rule(p.rule) && p.rule != mesh::rule::sliver) shape_problems.push_back(p);
-    if (!shape_problems.empty()) refuse(result, compartment.name, shape_problems);
-    throw InputError(result.origin, "", std::string(e.what()) + " (compartment '" + compartment.name + "')");
-  }
+  const mesh::RemeshPolicy policy = remesh_policy(compartment.mesh);
+  // Remeshing does not guess at a shape: a mesh that needs it is refused with all its own defects
+  // (and what "repair" did), not only the first one fit_membrane would name.
+  std::vector<mesh::MeshProblem> shape_problems;
+  for (const mesh::MeshProblem& p : result.report.problems)
+    if (!mesh::is_uv_rule(p.rule) && p.rule != mesh::rule::sliver) shape_problems.push_back(p);
+  if (!shape_problems.empty() && mesh::remesh_needed(result.mesh, result.report, policy))
+    refuse(result, compartment.name, shape_problems);
+  const mesh::MembraneFit fit =
+      mesh::fit_membrane(result.mesh, result.report, thickness, policy, mesh_source(result, compartment));
   result.remesh = fit.remesh;
   result.thinnest_wall = fit.thinnest_wall;
   result.narrowest_gap = fit.narrowest_gap;
@@ -163,11 +163,7 @@ void chart(CompartmentMesh& result, const scene::CompartmentDescription& compart
                      : result.mesh.has_uvs()                       ? "made by the baker (the mesh's own UVs fail the checks)"
                      : result.remesh                               ? "made by the baker (the mesh was remeshed)"
                                                                    : "made by the baker (the mesh has none)";
-  try {
-    result.charts = mesh::generate_uv_charts(result.mesh);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(result.origin, "", std::string("cannot make UV charts for compartment '") + compartment.name + "': " + e.what());
-  }
+  result.charts = mesh::generate_uv_charts(result.mesh, mesh_source(result, compartment));
   result.report = mesh::check_mesh(result.mesh, mesh::CheckOptions{});
   if (!result.report.usable()) refuse(result, compartment.name, result.report.problems);
 }

@@ -32,7 +32,7 @@ void set_bounds(PackedMesh& packed) {
 }  // namespace
 
 PackedMesh pack_mesh(const mesh::ProxyMesh& mesh) {
-  if (!mesh.has_uvs() || !mesh.has_normals())
+  if (!mesh.has_uvs() || !mesh.has_normals())  // invariant: the chart stage gave every packed mesh both
     throw std::invalid_argument("pack_mesh needs per-corner UVs and normals");
   PackedMesh packed;
   std::map<std::array<std::uint32_t, 3>, std::uint32_t> vertex_of_corner;

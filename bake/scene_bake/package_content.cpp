@@ -141,11 +141,13 @@ std::uint32_t PackageContent::add_recipe(const tiles::TilingRecipe& recipe, cons
 
 std::uint32_t PackageContent::add_mesh(const PackedMesh& mesh, const std::vector<gpu::TriangleShell>& shells,
                                       const std::vector<std::vector<std::uint32_t>>& dropped) {
-  if (shells.size() != mesh.triangles.size()) throw std::invalid_argument("one shell per triangle");
-  if (!dropped.empty() && dropped.size() != mesh.triangles.size()) throw std::invalid_argument("one drop list per triangle");
+  // Invariants, not input: the baker builds the shells and drop lists from this very mesh.
+  if (shells.size() != mesh.triangles.size()) throw std::invalid_argument("add_mesh: one shell per triangle");
+  if (!dropped.empty() && dropped.size() != mesh.triangles.size())
+    throw std::invalid_argument("add_mesh: one drop list per triangle");
   for (const std::vector<std::uint32_t>& keys : dropped)
     if (std::adjacent_find(keys.begin(), keys.end(), std::greater_equal<>()) != keys.end())
-      throw std::invalid_argument("dropped-copy keys must ascend strictly");
+      throw std::invalid_argument("add_mesh: dropped-copy keys must ascend strictly");
   gpu::Mesh record{};
   record.aabb_min = glm::vec4(mesh.aabb_min, 0.f);
   record.aabb_max = glm::vec4(mesh.aabb_max, 0.f);

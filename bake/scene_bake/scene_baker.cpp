@@ -155,8 +155,9 @@ std::vector<gpu::SceneEffects> scene_effects(const scene::Effects& effects) {
   if (effect_flags(effects) == 0) return {};
   gpu::SceneEffects e{};
   if (const auto& clip = effects.clipping) {
+    // Invariant, not input: the scene parser refuses more planes, naming the key.
     if (clip->planes.size() > gpu::NANO_MAX_CLIP_PLANES)
-      throw std::invalid_argument("effects.clipping.planes: at most 8 planes");  // the parser stops more
+      throw std::invalid_argument("scene_effects: more clip planes than the parser lets through (at most 8)");
     for (std::size_t k = 0; k < clip->planes.size(); ++k) e.clip_planes[k] = glm::vec4(clip->planes[k]);
     e.clip_plane_count = static_cast<std::uint32_t>(clip->planes.size());
     if (clip->box) {

@@ -25,7 +25,10 @@ struct CoarseBead {
 };
 
 // Every atom in exactly one bead. Deterministic: depends only
-// on the atoms and their order (residues by first atom, a residue's fragments likewise). Throws std::invalid_argument for a non-finite position or radius.
+// on the atoms and their order (residues by first atom, a residue's fragments likewise).
+// Throws std::invalid_argument for a non-finite position or radius: a caller's bug, not bad input
+// (the structure readers refuse non-finite coordinates and give every atom a radius; a scene's
+// stand-in spheres are refused unless their radius lies in (0, 1000] Å).
 std::vector<CoarseBead> coarse_beads(const std::vector<Atom>& atoms);
 
 }  // namespace nano::structure

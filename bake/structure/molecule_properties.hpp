@@ -25,7 +25,9 @@ struct MoleculeProperties {
 };
 
 // Requires at least one atom. `up` when given must be non-zero; it is normalised.
-// Throws std::invalid_argument on an empty span or a zero `up`.
+// Throws std::invalid_argument on an empty span or a zero `up`: a caller's bug, not bad input (the
+// readers refuse a file whose selection leaves no atom; the scene's "up" and inspect's --up refuse
+// the zero vector where they are read).
 MoleculeProperties compute_molecule_properties(std::span<const Atom> atoms, std::optional<glm::dvec3> up = std::nullopt);
 
 }  // namespace nano::structure

@@ -23,7 +23,7 @@ void add_box(ProxyMesh& m, const glm::dvec3& lo, const glm::dvec3& size) {
 
 MembraneFit judge(ProxyMesh m, double thickness) {
   MeshReport report = check_mesh(m, {});
-  return fit_membrane(m, report, thickness, RemeshPolicy{});
+  return fit_membrane(m, report, thickness, RemeshPolicy{}, "m.obj");
 }
 
 TEST(MembraneFit, ABoxOfTenBilayersFitsAndIsRemeshed) {
@@ -123,9 +123,30 @@ TEST(MembraneFit, RemeshOffJudgesWallsButNotCreases) {
   MeshReport report = check_mesh(m, {});
   RemeshPolicy off;
   off.mode = RemeshPolicy::Mode::off;
-  const MembraneFit fit = fit_membrane(m, report, 40.0, off);
+  const MembraneFit fit = fit_membrane(m, report, 40.0, off, "m.obj");
   EXPECT_TRUE(fit.fits()) << "the scene keeps its mesh: the shells judge it";
   EXPECT_FALSE(fit.remesh.has_value());
+}
+
+// A box with a hole needs its creases rounded, and remeshing does not guess at a shape: refused
+// from the source the caller names, with the first problem; remesh_needed says why it would remesh.
+TEST(MembraneFit, AMeshToRemeshWithAHoleIsRefusedNamingTheSource) {
+  ProxyMesh m;
+  add_box(m, glm::dvec3(0.0), glm::dvec3(400.0));
+  m.triangles.pop_back();
+  MeshReport report = check_mesh(m, {});
+  EXPECT_TRUE(remesh_needed(m, report, RemeshPolicy{}).has_value());
+  try {
+    fit_membrane(m, report, 40.0, RemeshPolicy{}, {"box.obj", "compartment 'c'"});
+    ADD_FAILURE() << "remeshed a box with a hole";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "box.obj");
+    EXPECT_EQ(e.where(), "compartment 'c'");
+    EXPECT_EQ(e.rule().rfind("cannot remesh a mesh with a ", 0), 0u) << e.what();
+  }
+  RemeshPolicy off;
+  off.mode = RemeshPolicy::Mode::off;
+  EXPECT_FALSE(remesh_needed(m, report, off).has_value());
 }
 
 }  // namespace

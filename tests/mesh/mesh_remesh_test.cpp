@@ -88,7 +88,7 @@ TEST(MeshRemesh, ABoxIsRoundedWithinTheBoundAndStaysSound) {
   const ProxyMesh input = box(600.0);
   ProxyMesh m = input;
   const RemeshOptions options = membrane_remesh_options(input, 40.0);
-  const RemeshReport r = remesh_for_membrane(m, options, "test");
+  const RemeshReport r = remesh_for_membrane(m, options, "test", "m.obj");
   EXPECT_EQ(r.triangles_in, 12u);
   EXPECT_EQ(r.triangles_out, m.triangles.size());
   EXPECT_GT(r.triangles_out, 2000u);
@@ -142,7 +142,7 @@ TEST(MeshRemesh, ALargeBoxCoarsensItsFacesInGradedLevels) {
   options.crease_radius = 90.0;
   options.max_edge = 960.0;
   options.crease_edge = 30.0;
-  const RemeshReport r = remesh_for_membrane(m, options, "test");
+  const RemeshReport r = remesh_for_membrane(m, options, "test", "m.obj");
   EXPECT_GE(r.coarsest_edge, 480.0);
   // Finer than the uniform pass only along the creases (half its edge, over about 1.5 crease radii),
   // coarser elsewhere: fewer triangles in all (the fanned levels' mending made 211,144 of 166,824 on a
@@ -159,19 +159,25 @@ TEST(MeshRemesh, AFineSphereKeepsItsShape) {
   const ProxyMesh input = make_sphere_mesh(2000, 300.0);
   ProxyMesh m = input;
   RemeshOptions options{15.0, 20.0, 60.0};
-  const RemeshReport r = remesh_for_membrane(m, options, "test");
+  const RemeshReport r = remesh_for_membrane(m, options, "test", "m.obj");
   EXPECT_EQ(r.smoothing_steps, 0) << "no crease to round";
   EXPECT_LE(farthest_from(m, input), 2.0);
   EXPECT_NEAR(r.volume_out / r.volume_in, 1.0, 0.01);
 }
 
+// An open mesh is input the caller's source names; non-positive options are the caller's bug.
 TEST(MeshRemesh, RefusesAnOpenMeshAndNonPositiveOptions) {
   ProxyMesh open = box(100.0);
   open.triangles.pop_back();
-  EXPECT_THROW(remesh_for_membrane(open, {10.0, 10.0, 10.0}, "test"), std::invalid_argument);
+  try {
+    remesh_for_membrane(open, {10.0, 10.0, 10.0}, "test", {"open.obj", "compartment 'c'"});
+    ADD_FAILURE() << "remeshed an open mesh";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "open.obj:compartment 'c': cannot remesh: the mesh has holes");
+  }
   ProxyMesh closed = box(100.0);
-  EXPECT_THROW(remesh_for_membrane(closed, {0.0, 10.0, 10.0}, "test"), std::invalid_argument);
-  EXPECT_THROW(remesh_for_membrane(closed, {10.0, -1.0, 10.0}, "test"), std::invalid_argument);
+  EXPECT_THROW(remesh_for_membrane(closed, {0.0, 10.0, 10.0}, "test", "closed.obj"), std::invalid_argument);
+  EXPECT_THROW(remesh_for_membrane(closed, {10.0, -1.0, 10.0}, "test", "closed.obj"), std::invalid_argument);
 }
 
 }  // namespace

@@ -138,7 +138,7 @@ std::string moebius_band() {
 TEST(MeshRepair, ClosesAHole) {
   ProxyMesh m = read(kVertices + "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 2 1 6\nf 3 2 6\nf 4 3 6\n");
   ASSERT_EQ(check_mesh(m, {}).holes, 1u);
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_EQ(r.holes_filled, 1u);
   EXPECT_EQ(r.triangles_added, 1u);
   EXPECT_EQ(r.faces_after, 8u);
@@ -156,7 +156,7 @@ TEST(MeshRepair, CollapsesAZeroAreaFace) {
   const MeshReport before = check_mesh(m, {});
   ASSERT_TRUE(has_rule(before, rule::zero_area));
   ASSERT_TRUE(before.closed);
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_GE(r.degenerate_faces_removed, 1u);
   const MeshReport after = check_mesh(m, {});
   EXPECT_FALSE(has_rule(after, rule::zero_area));
@@ -172,14 +172,14 @@ TEST(MeshRepair, TurnsAnInsideOutMeshOutward) {
     reversed += f;
   ProxyMesh m = read(kVertices + reversed);
   ASSERT_TRUE(has_rule(check_mesh(m, {}), rule::inward_orientation));
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_TRUE(r.reoriented);
   EXPECT_TRUE(sound(check_mesh(m, {})));
 }
 
 TEST(MeshRepair, LeavesLargeHolesAndSaysSo) {
   ProxyMesh m = read(kVertices + "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n");  // the lower half missing: a 4-edge hole
-  const RepairReport r = repair_mesh(m, {.max_hole_edges = 3});
+  const RepairReport r = repair_mesh(m, "m.obj", {.max_hole_edges = 3});
   EXPECT_EQ(r.holes_filled, 0u);
   EXPECT_EQ(r.holes_left, 1u);
   EXPECT_EQ(check_mesh(m, {}).holes, 1u);
@@ -192,9 +192,11 @@ TEST(MeshRepair, RefusesNonManifoldEdgesByName) {
   ProxyMesh m = read(kVertices + "v 2 2 2\n" + kFaces + "f 1 2 7\n");
   ASSERT_TRUE(has_rule(check_mesh(m, {}), rule::non_manifold_edge));
   try {
-    repair_mesh(m);
+    repair_mesh(m, {"fin.obj", "compartment 'c'"});
     ADD_FAILURE() << "repaired a non-manifold edge";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "fin.obj");
+    EXPECT_EQ(e.where(), "compartment 'c'");
     const std::string what = e.what();
     EXPECT_NE(what.find("3 faces (triangles 0, 4, 8) share the edge between vertex 0 (1, 0, 0) and vertex 1 (0, 1, 0)"),
               std::string::npos) << what;
@@ -205,9 +207,9 @@ TEST(MeshRepair, RefusesNonManifoldEdgesByName) {
   ProxyMesh pair = read(two_octahedra({1, 1, 0}));
   ASSERT_TRUE(has_rule(check_mesh(pair, {}), rule::non_manifold_edge));
   try {
-    repair_mesh(pair);
+    repair_mesh(pair, "m.obj");
     ADD_FAILURE() << "repaired two octahedra sharing an edge";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("4 faces (triangles 0, 4, 10, 14) share the edge between vertex 0 (1, 0, 0) and vertex 1 (0, 1, 0)"),
               std::string::npos) << e.what();
   }
@@ -215,7 +217,7 @@ TEST(MeshRepair, RefusesNonManifoldEdgesByName) {
 
 TEST(MeshRepair, ASoundMeshIsLeftAsItIs) {
   ProxyMesh m = read(kVertices + kFaces);
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_FALSE(r.changed());
   EXPECT_EQ(r.faces_after, 8u);
   EXPECT_EQ(describe(r), "repair: nothing to mend");
@@ -231,7 +233,7 @@ TEST(MeshRepair, SplitsAVertexWhereTwoClosedPiecesTouch) {
   const MeshReport before = check_mesh(m, {});
   ASSERT_TRUE(has_rule(before, rule::non_manifold_vertex));
   ASSERT_TRUE(before.closed);
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_EQ(r.non_manifold_vertices_split, 1u);
   EXPECT_EQ(r.vertex_copies_added, 1u);
   EXPECT_GT(r.split_separation, 0.0);
@@ -260,7 +262,7 @@ TEST(MeshRepair, SplitsAPinchedVertexOfOneSurface) {
   ASSERT_TRUE(has_rule(before, rule::non_manifold_vertex));
   ASSERT_TRUE(before.closed);
   ASSERT_TRUE(before.oriented);
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_EQ(r.non_manifold_vertices_split, 1u);
   EXPECT_EQ(r.pieces, 1u);
   EXPECT_EQ(r.faces_reoriented, 0u);
@@ -281,7 +283,7 @@ TEST(MeshRepair, TurnsAFaceOrientedAgainstItsNeighbours) {
     for (const std::string& f : faces) text += f;
     ProxyMesh m = read(text);
     ASSERT_TRUE(has_rule(check_mesh(m, {}), rule::inconsistent_orientation));
-    const RepairReport r = repair_mesh(m);
+    const RepairReport r = repair_mesh(m, "m.obj");
     EXPECT_EQ(r.faces_reoriented, 1u) << flipped;
     EXPECT_FALSE(r.reoriented) << flipped;
     EXPECT_TRUE(says(r, "1 faces turned to agree with their neighbours")) << describe(r);
@@ -292,7 +294,7 @@ TEST(MeshRepair, TurnsAFaceOrientedAgainstItsNeighbours) {
 // Inside out but for one face: that face is turned to agree, then the whole turned outward.
 TEST(MeshRepair, TurnsOneFaceThenTheWholeMesh) {
   ProxyMesh m = read(kVertices + "f 1 2 5\nf 2 5 3\nf 3 5 4\nf 4 5 1\nf 2 6 1\nf 3 6 2\nf 4 6 3\nf 1 6 4\n");
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_EQ(r.faces_reoriented, 1u);
   EXPECT_TRUE(r.reoriented);
   EXPECT_EQ(r.pieces_turned_over, 1u);
@@ -306,7 +308,7 @@ TEST(MeshRepair, ClosesA64EdgeHoleAndLeavesA65EdgeOne) {
   const MeshReport before = check_mesh(m, {});
   ASSERT_EQ(before.holes, 1u);
   ASSERT_FALSE(before.closed);
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_EQ(r.holes_filled, 1u);
   EXPECT_EQ(r.triangles_added, 62u);
   EXPECT_EQ(r.holes_left, 0u);
@@ -314,7 +316,7 @@ TEST(MeshRepair, ClosesA64EdgeHoleAndLeavesA65EdgeOne) {
   expect_sound(m);
 
   ProxyMesh wider = read(sphere_without_south_cap(65));
-  const RepairReport left = repair_mesh(wider);
+  const RepairReport left = repair_mesh(wider, "m.obj");
   EXPECT_EQ(left.holes_filled, 0u);
   EXPECT_EQ(left.holes_left, 1u);
   EXPECT_EQ(left.largest_hole_left, 65u);
@@ -327,7 +329,7 @@ TEST(MeshRepair, ClosesA64EdgeHoleAndLeavesA65EdgeOne) {
 TEST(MeshRepair, DropsADuplicateFace) {
   ProxyMesh m = read(kVertices + kFaces + "f 5 2 1\n");
   ASSERT_TRUE(has_rule(check_mesh(m, {}), rule::non_manifold_edge));
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_EQ(r.duplicate_faces_removed, 1u);
   EXPECT_EQ(r.faces_after, 8u);
   EXPECT_TRUE(says(r, "1 duplicate faces dropped")) << describe(r);
@@ -338,18 +340,32 @@ TEST(MeshRepair, DropsADuplicateFace) {
 TEST(MeshRepair, RefusesAOneSidedSurface) {
   ProxyMesh m = read(moebius_band());
   try {
-    repair_mesh(m);
+    repair_mesh(m, "moebius.obj");
     ADD_FAILURE() << "repaired a Möbius band";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "moebius.obj");
     EXPECT_NE(std::string(e.what()).find("one-sided"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("triangles "), std::string::npos) << e.what();
+  }
+}
+
+// Faces that all repeat a corner leave nothing to mend: refused from the source the caller names.
+TEST(MeshRepair, RefusesAMeshWithNoFaceLeftNamingTheSource) {
+  ProxyMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.triangles = {{0, 0, 1}, {1, 2, 2}};
+  try {
+    repair_mesh(m, {"slivers.obj", "compartment 'cell'"});
+    ADD_FAILURE() << "repaired a mesh of repeated corners";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "slivers.obj:compartment 'cell': cannot repair: no face is left");
   }
 }
 
 // Two separate closed octahedra need nothing; the report still says there are two pieces.
 TEST(MeshRepair, SaysWhenASoundMeshIsSeveralPieces) {
   ProxyMesh m = read(two_octahedra({5, 0, 0}));
-  const RepairReport r = repair_mesh(m);
+  const RepairReport r = repair_mesh(m, "m.obj");
   EXPECT_FALSE(r.changed());
   EXPECT_EQ(r.pieces, 2u);
   EXPECT_EQ(describe(r), "repair: nothing to mend (the mesh is 2 separate pieces)");

@@ -132,7 +132,21 @@ elseif(CASE STREQUAL "bad_arguments")
   expect_match("${err}" "--triangles: a cube-sphere needs at least 48 triangles")
   run(1 make-mesh rbc --radius 3 -o "${WORK}/r.obj")
   expect_match("${err}" "--radius")
+  # --remesh is read where its name is known: refused before any mesh is read.
+  run(1 check-mesh "${WORK}/none.obj" --diameter 400 --remesh fast)
+  expect_match("${err}" "nanobake: error: --remesh: expected auto, off or an edge in Å > 0, got 'fast'")
+  run(1 check-mesh "${WORK}/none.obj" --diameter 400 --remesh=-5)
+  expect_match("${err}" "nanobake: error: --remesh: expected auto, off or an edge in Å > 0, got '-5'")
   expect_empty_dir("${WORK}")
+
+elseif(CASE STREQUAL "check_repair_refused")
+  # An octahedron with a fin (a third face on one edge): "repair" will not guess which faces belong
+  # together, and says so from the mesh file and the compartment, naming the edge and its faces.
+  file(WRITE "${WORK}/fin.obj" "v 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\nv 2 2 2\n"
+             "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 2 1 6\nf 3 2 6\nf 4 3 6\nf 1 4 6\nf 1 2 7\n")
+  run(1 check-mesh "${WORK}/fin.obj" --diameter 1000 --repair)
+  expect_match("${out}" "fin.obj:compartment 'check-mesh': cannot repair: 3 faces \\(triangles 0, 4, 8\\) share the edge between vertex 0")
+  expect_empty_dir_but("${WORK}" "fin.obj")
 
 else()
   message(FATAL_ERROR "unknown CASE ${CASE}")

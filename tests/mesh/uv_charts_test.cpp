@@ -138,7 +138,7 @@ TEST(UvCharts, MeshesOfGenusZeroToThreeGetValidUvs) {
     SCOPED_TRACE(c.name);
     ASSERT_EQ(genus(c.mesh), c.genus);
     ASSERT_FALSE(c.mesh.has_uvs());
-    const ChartAtlas atlas = generate_uv_charts(c.mesh);
+    const ChartAtlas atlas = generate_uv_charts(c.mesh, "m.obj");
     ASSERT_TRUE(c.mesh.has_uvs());
     ASSERT_EQ(c.mesh.uv_triangles.size(), c.mesh.triangles.size());
     const MeshReport report = check_mesh(c.mesh, CheckOptions{});
@@ -162,7 +162,7 @@ TEST(UvCharts, MeshesOfGenusZeroToThreeGetValidUvs) {
 
 TEST(UvCharts, AFlatRegionWithHolesIsCutIntoDisks) {
   ProxyMesh plate = plate_with_holes(2);
-  const ChartAtlas atlas = generate_uv_charts(plate);
+  const ChartAtlas atlas = generate_uv_charts(plate, "m.obj");
   // Faces of one flat side keep their shape exactly: planar charts flatten isometrically.
   EXPECT_NEAR(atlas.max_stretch, 1.0, 1e-6);
   // The top face (a 7 × 3 plate with two holes) cannot be one chart: six sides become at least
@@ -172,16 +172,16 @@ TEST(UvCharts, AFlatRegionWithHolesIsCutIntoDisks) {
 
 TEST(UvCharts, SameSeedSameUvs) {
   ProxyMesh a = torus(400.0, 150.0, 30, 12), b = a;
-  generate_uv_charts(a, {.seed = 7});
-  generate_uv_charts(b, {.seed = 7});
+  generate_uv_charts(a, "m.obj", {.seed = 7});
+  generate_uv_charts(b, "m.obj", {.seed = 7});
   EXPECT_EQ(a.uvs, b.uvs);
   EXPECT_EQ(a.uv_triangles, b.uv_triangles);
 }
 
 TEST(UvCharts, TighterNormalConeMeansMoreChartsAndLessStretch) {
   ProxyMesh wide = without_uvs(make_sphere_mesh(966, 500.0)), tight = wide;
-  const ChartAtlas w = generate_uv_charts(wide, {.max_normal_angle_degrees = 70});
-  const ChartAtlas t = generate_uv_charts(tight, {.max_normal_angle_degrees = 25});
+  const ChartAtlas w = generate_uv_charts(wide, "m.obj", {.max_normal_angle_degrees = 70});
+  const ChartAtlas t = generate_uv_charts(tight, "m.obj", {.max_normal_angle_degrees = 25});
   EXPECT_GT(t.charts.size(), w.charts.size());
   EXPECT_GT(t.seam_length, w.seam_length);
   EXPECT_LE(t.max_stretch, w.max_stretch + 1e-9);
@@ -191,13 +191,30 @@ TEST(UvCharts, RefusesNonManifoldAndDegenerateMeshes) {
   ProxyMesh fin = torus(400.0, 150.0, 12, 6);
   fin.positions.push_back({0, 0, 999});
   fin.triangles.push_back({fin.triangles[0][0], fin.triangles[0][1], std::uint32_t(fin.positions.size() - 1)});
-  EXPECT_THROW(generate_uv_charts(fin), std::invalid_argument);
+  // The mesh's own faults are input: refused from the source the caller names, the edge or triangle named.
+  try {
+    generate_uv_charts(fin, {"fin.obj", "compartment 'c'"});
+    ADD_FAILURE() << "charted a non-manifold edge";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "fin.obj");
+    EXPECT_EQ(e.where(), "compartment 'c'");
+    EXPECT_NE(e.rule().find("cannot make UV charts: edge "), std::string::npos) << e.what();
+    EXPECT_NE(e.rule().find("is non-manifold or inconsistently oriented"), std::string::npos) << e.what();
+  }
   ProxyMesh flat = torus(400.0, 150.0, 12, 6);
   flat.triangles[3] = {flat.triangles[3][0], flat.triangles[3][0], flat.triangles[3][1]};
-  EXPECT_THROW(generate_uv_charts(flat), std::invalid_argument);
+  try {
+    generate_uv_charts(flat, "flat.obj");
+    ADD_FAILURE() << "charted a zero-area triangle";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "flat.obj: cannot make UV charts: triangle 3 has zero area");
+  }
+  ProxyMesh none;
+  EXPECT_THROW(generate_uv_charts(none, "none.obj"), InputError);
+  // Bad options are the caller's bug (the baker's own constants), not input.
   ProxyMesh sphere = without_uvs(make_sphere_mesh(200, 100.0));
-  EXPECT_THROW(generate_uv_charts(sphere, {.max_normal_angle_degrees = 95}), std::invalid_argument);
-  EXPECT_THROW(generate_uv_charts(sphere, {.max_stretch = 0.5}), std::invalid_argument);
+  EXPECT_THROW(generate_uv_charts(sphere, "s.obj", {.max_normal_angle_degrees = 95}), std::invalid_argument);
+  EXPECT_THROW(generate_uv_charts(sphere, "s.obj", {.max_stretch = 0.5}), std::invalid_argument);
 }
 
 }  // namespace

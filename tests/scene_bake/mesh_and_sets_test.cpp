@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bake/mesh/mesh_reader.hpp"
 #include "bake/mesh/sphere_mesh.hpp"
 #include "bake/scene_bake/compartment_mesh.hpp"
 #include "bake/scene_bake/mesh_packing.hpp"
@@ -230,6 +231,42 @@ TEST(CompartmentMesh, OpenMeshWithoutUvsIsRefusedForItsHole) {
   const std::string what = load_error(tetrahedron(tetrahedron_file("nano_scene_bake_open.obj", true)));
   EXPECT_NE(what.find("border edge"), std::string::npos) << what;
   EXPECT_EQ(what.find("no UVs"), std::string::npos) << what;
+}
+
+// A mesh "repair" will not mend (a fin: three faces on one edge) is refused by the repair itself,
+// from the mesh file and the compartment it was read for.
+TEST(CompartmentMesh, RepairRefusalNamesTheFileAndTheCompartment) {
+  const fs::path path = fs::temp_directory_path() / "nano_scene_bake_fin.obj";
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 2 3 5\n";
+  scene::CompartmentDescription c = tetrahedron(path);
+  c.mesh.repair = true;
+  try {
+    scene_bake::load_compartment_mesh(c);
+    ADD_FAILURE() << "repaired a fin";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path.string());
+    EXPECT_EQ(e.where(), "compartment 'tetra'");
+    EXPECT_EQ(e.rule().rfind("cannot repair: 3 faces (triangles 0, 2, 4) share the edge", 0), 0u) << e.what();
+  }
+}
+
+// A mesh that needs remeshing for its membrane (a tetrahedron's sharp creases) but has a hole is
+// refused with every problem of its own listed, not only the first the remeshing would name.
+TEST(CompartmentMesh, MeshToRemeshWithAHoleIsRefusedWithItsProblemsListed) {
+  scene::CompartmentDescription c = tetrahedron(tetrahedron_file("nano_scene_bake_open_remesh.obj", true));
+  c.mesh.diameter = 1000.0;
+  // The point of the test: at that size it needs remeshing (else the chart stage refuses it alike).
+  mesh::ProxyMesh sized = mesh::read_proxy_mesh(c.mesh.file);
+  scene_bake::scale_mesh(sized, 1000.0 / mesh::largest_side(sized));
+  ASSERT_TRUE(mesh::remesh_needed(sized, mesh::check_mesh(sized, {}), mesh::RemeshPolicy{}).has_value());
+  try {
+    scene_bake::load_compartment_mesh(c, 40.0);
+    ADD_FAILURE() << "accepted an open mesh for a membrane";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.file().find("nano_scene_bake_open_remesh.obj"), std::string::npos) << e.what();
+    EXPECT_EQ(e.rule().rfind("mesh is not usable for compartment 'tetra':", 0), 0u) << e.what();
+    EXPECT_NE(e.rule().find("border edge"), std::string::npos) << e.what();
+  }
 }
 
 // "repair": the open tetrahedron is closed by one triangle, then charted; the report says so.
