@@ -257,9 +257,11 @@ ScriptCommand parse_line(std::string_view line, const InputSource& source) {
   std::string_view rest;
   const std::string_view word = next_word(line, rest);
   const auto command = std::find_if(std::begin(kCommands), std::end(kCommands), [&](const auto& entry) { return entry.first == word; });
-  if (command == std::end(kCommands))
-    source.fail("unknown command '" + std::string(word) +
-                "' (camera, clip, effect, time, wait, pick, screenshot, size, keyframe, path, quit)");
+  if (command == std::end(kCommands)) {
+    std::string known;
+    for (const auto& entry : kCommands) known += (known.empty() ? "" : ", ") + std::string(entry.first);
+    source.fail("unknown command '" + std::string(word) + "' (" + known + ")");
+  }
   command->second(word, rest, source, c);
   return c;
 }

@@ -139,6 +139,8 @@ void expect_error(const std::string& text, const std::string& line, const std::s
 
 TEST(Script, ErrorsNameFileLineAndProblem) {
   expect_error("wait 1\nfly away\n", "line 2", "unknown command 'fly'");
+  // Every command is offered, as the table holds them.
+  expect_error("fly away\n", "line 1", "(camera, clip, effect, preset, show, hide, time, wait, pick, screenshot, size, keyframe, path, quit)");
   expect_error("camera\n", "line 1", "camera needs a spec");
   expect_error("camera pos=1,2\n", "line 1", "pos");
   expect_error("camera pos=0,0,0;at=0,0,0\n", "line 1", "same point");
