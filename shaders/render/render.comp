@@ -272,6 +272,94 @@ uint recipe_cell(uint recipe, ivec3 cell) {
   return recipe_indices[r.first_index + uint(w.x) + r.dims.x * (uint(w.y) + r.dims.y * uint(w.z))];
 }
 
+// One µLAS candidate is a prism (its membrane copies, tile by tile of the triangle's replication area)
+// or a core grid (its soluble copies, box by box). Both are walked by one loop that yields elements —
+// a replication slot or a core-grid box — and every element is traced by the one mLAS query of
+// trace_element, which calls the one nLAS query of trace_molecule. Each ray-query loop thus appears
+// once in the shader: a driver inlines every call, and a traversal loop is the bulk of the compiled
+// code (issue #26: 11 to 22 inlined loops took 9–29 s to compile on lavapipe).
+const uint kWalkSlotBoxes = 0u;  // a small replication area: each slot's box by a slab test
+const uint kWalkRepLas = 1u;     // the slots the area's repLAS query meets
+const uint kWalkAllSlots = 2u;   // every slot (no repLAS: bench knob)
+
+// What a prism's slots share: the triangle, its chart, the ray's part inside the prism [t_lo, t_hi]
+// (where every copy the prism owns lies) and the replication area.
+struct ShellWalk {
+  MembraneTriangle mt;
+  TriangleChart chart;
+  float t_lo;
+  float t_hi;
+  ivec2 origin;  // the area's first tile
+  ivec2 extent;  // its slots, x by y
+  uint mode;     // kWalkSlotBoxes, kWalkRepLas or kWalkAllSlots
+  vec3 ot;       // the ray in the origin tile's space (slot boxes, repLAS)
+  vec3 dt;
+  uint squares;  // the triangle's distortion class: its first square mLAS, relative to frame.levels.x
+  mat3 lift;             // the smooth surface's lift (chart_smooth_lift_coefficients); zero: not sheared
+  mat3 lift_directions;  // chart_lift_directions
+};
+
+// Where the copies of one element can be hit: its mLAS (`entry` in `levels`) and its tile's first
+// molecule instance, the ray in the tile's space on [q_lo, q_hi], and what the copies' placement needs.
+struct ElementQuery {
+  uint entry;
+  uint first;
+  vec3 ot;
+  vec3 dt;
+  float q_lo;
+  float q_hi;
+  vec2 g;        // membrane: the tile's UV origin
+  vec3 box_min;  // core: the box's corner
+  uint mask;     // core: the boundary box's keep-mask
+};
+
+// Defined below, after both levels' element queries it calls; declared here so the membrane and core
+// walks, which come before it, can call it.
+bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool membrane, uint tl, ShellWalk w,
+                   uint slot_or_box, ivec3 cell, vec3 o, vec3 d);
+
+bool triangle_flattened(uint bit) {
+  return (bit >> 5) < uint(flat_triangles.length()) && ((flat_triangles[bit >> 5] >> (bit & 31u)) & 1u) != 0u;
+}
+
+// A candidate of the flat level (a TLAS of copies, each an instance of its molecule type's nLAS BLAS,
+// so every candidate is an atom box in molecule space: the ray the hardware transformed, as explicit
+// instancing traces): copy `c`, primitive `p`, the molecule-space ray (om, dm) and the copy's
+// transforms. True iff it is the nearest hit so far (ids recorded). Every index read from the level is
+// checked against the buffer it names.
+bool flat_atom_hit(uint c, uint p, vec3 om, vec3 dm, mat4x3 object_to_world, mat4x3 world_to_object) {
+  count_work(NANO_RC_FLAT_CANDIDATES);
+  if (c >= uint(flat_copies.length())) return false;
+  FlatCopy fc = flat_copies[c];
+  if (fc.molecule_type >= frame.levels.z) return false;
+  RenderLevel level = levels[fc.molecule_type];
+  if (p >= level.count) return false;
+  uint a = orders[level.order_first + p];
+  vec4 cr = atoms[a].centre_radius;
+  float tn;
+  float tf;
+  count_work(NANO_RC_SPHERE_TESTS);
+  if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) return false;
+  float t = tn >= 0.0 ? tn : tf;
+  if (!(t >= 0.0) || !(t < best_t)) return false;
+  // An atom is clipped whole, by its centre (clip_c is in the level's space: see trace_scene).
+  if (kClipping && clip_removes_point(object_to_world * vec4(cr.xyz, 1.0))) return false;
+  best_t = t;
+  best.compartment_instance = fc.compartment_instance;
+  best.element = fc.element;
+  best.kind = fc.kind;
+  best.cell = fc.cell;
+  best.instance = fc.instance;
+  best.atom = a;
+  best.copy_number_lo = fc.number_lo;
+  best.copy_number_hi = fc.number_hi;
+  best_type = fc.molecule_type;
+  // World normal by the inverse transpose (an instance may scale); the hit's "compartment" is the world.
+  best_normal_c = normalize(transpose(mat3(world_to_object)) * (om + t * dm - cr.xyz));
+  best_to_world = mat4x3(1.0);
+  return true;
+}
+
 // True iff the baker listed the copy `key` (membrane_copy_key) of the triangle (dropped, or an
 // alternate shown): binary search over its strictly ascending keys (the validator checks the order
 // and the range).
@@ -349,49 +437,6 @@ bool trace_atom_tile(uint inst, uint ci, uint tl, MembraneTriangle mt, TriangleC
   return found;
 }
 
-uint occupancy_of(uint byte_index) { return (occupancy_words[byte_index >> 2] >> (8u * (byte_index & 3u))) & 0xFFu; }
-
-// The record of BOUNDARY box `box` in boundary_boxes and kept_boxes (binary search over the
-// compartment's sorted records), or NANO_NO_INDEX when the package lists none (the validator makes
-// that impossible).
-uint boundary_record(Compartment c, uint box) {
-  uint lo = c.core_masks.x;
-  uint hi = c.core_masks.x + c.core_masks.y;
-  while (lo < hi) {
-    uint mid = (lo + hi) >> 1;
-    if (boundary_boxes[mid].box < box) lo = mid + 1u; else hi = mid;
-  }
-  if (lo < c.core_masks.x + c.core_masks.y && lo < uint(kept_boxes.length()) && boundary_boxes[lo].box == box) return lo;
-  return NANO_NO_INDEX;
-}
-
-// One µLAS candidate is a prism (its membrane copies, tile by tile of the triangle's replication area)
-// or a core grid (its soluble copies, box by box). Both are walked by one loop that yields elements —
-// a replication slot or a core-grid box — and every element is traced by the one mLAS query of
-// trace_element, which calls the one nLAS query of trace_molecule. Each ray-query loop thus appears
-// once in the shader: a driver inlines every call, and a traversal loop is the bulk of the compiled
-// code (issue #26: 11 to 22 inlined loops took 9–29 s to compile on lavapipe).
-const uint kWalkSlotBoxes = 0u;  // a small replication area: each slot's box by a slab test
-const uint kWalkRepLas = 1u;     // the slots the area's repLAS query meets
-const uint kWalkAllSlots = 2u;   // every slot (no repLAS: bench knob)
-
-// What a prism's slots share: the triangle, its chart, the ray's part inside the prism [t_lo, t_hi]
-// (where every copy the prism owns lies) and the replication area.
-struct ShellWalk {
-  MembraneTriangle mt;
-  TriangleChart chart;
-  float t_lo;
-  float t_hi;
-  ivec2 origin;  // the area's first tile
-  ivec2 extent;  // its slots, x by y
-  uint mode;     // kWalkSlotBoxes, kWalkRepLas or kWalkAllSlots
-  vec3 ot;       // the ray in the origin tile's space (slot boxes, repLAS)
-  vec3 dt;
-  uint squares;  // the triangle's distortion class: its first square mLAS, relative to frame.levels.x
-  mat3 lift;             // the smooth surface's lift (chart_smooth_lift_coefficients); zero: not sheared
-  mat3 lift_directions;  // chart_lift_directions
-};
-
 // The prism of triangle `tl` (local index in the mesh) of compartment `ci`: false when the ray misses
 // it or clipping removes all it holds.
 bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
@@ -467,20 +512,6 @@ bool shell_walk_begin(uint ci, uint tl, vec3 o, vec3 d, out ShellWalk w) {
   return true;
 }
 
-// Where the copies of one element can be hit: its mLAS (`entry` in `levels`) and its tile's first
-// molecule instance, the ray in the tile's space on [q_lo, q_hi], and what the copies' placement needs.
-struct ElementQuery {
-  uint entry;
-  uint first;
-  vec3 ot;
-  vec3 dt;
-  float q_lo;
-  float q_hi;
-  vec2 g;        // membrane: the tile's UV origin
-  vec3 box_min;  // core: the box's corner
-  uint mask;     // core: the boundary box's keep-mask
-};
-
 // Replication slot `cell` (tile `tile` of the membrane recipe) of the prism walk w.
 void membrane_element_query(RenderCompartment rc, ShellWalk w, uint tile, ivec2 cell, vec3 o, vec3 d, inout ElementQuery e) {
   float s_over_S = rc.membrane.y;
@@ -493,6 +524,84 @@ void membrane_element_query(RenderCompartment rc, ShellWalk w, uint tile, ivec2 
   chart_lift_shear_ray(chart_smooth_lift_plane(w.chart, w.lift, w.lift_directions, e.g, s_over_S, centre), centre, e.ot, e.dt);
   e.q_lo = w.t_lo;
   e.q_hi = min(best_t, w.t_hi);
+}
+
+// The next slot of the prism walk w's area from `step` on, in order: every one (kWalkAllSlots) or each
+// whose box the ray meets (kWalkSlotBoxes). False when none is left.
+bool next_slot_in_order(RenderCompartment rc, ShellWalk w, inout uint step, inout ivec2 element) {
+  while (step < uint(w.extent.x * w.extent.y)) {
+    ivec2 sxy = ivec2(int(step % uint(w.extent.x)), int(step / uint(w.extent.x)));
+    ++step;
+    if (w.mode == kWalkSlotBoxes) {
+      vec3 shift = vec3(float(sxy.x) * rc.slot_lo.w, float(sxy.y) * rc.slot_lo.w, 0.0);
+      float tn;
+      float tf;
+      if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, w.ot, w.dt, w.t_lo, min(best_t, w.t_hi), tn, tf)) continue;
+    }
+    element = sxy;
+    return true;
+  }
+  return false;
+}
+
+// The membrane copies of prism `prim` of instance `inst` (compartment `ci`) on the ray (o, od): the
+// slots of its triangle's replication area the ray meets, each traced by trace_element. False when
+// the triangle is in the flat level, the ray misses its prism or it found no nearer hit.
+bool trace_prism(uint inst, uint ci, Compartment c, RenderCompartment rc, uint prim, bool use_flat, vec3 o, vec3 od) {
+  uint tl = orders[rc.counts.w + prim];
+  if (use_flat && triangle_flattened(render_instances[inst].base.w + tl)) return false;  // its copies are in the flat level
+  ShellWalk w;
+  if (!shell_walk_begin(ci, tl, o, od, w)) return false;
+  bool found = false;
+  rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
+  if (kRepLasWalk && w.mode == kWalkRepLas) {
+    RenderLevel a = levels[rc.span.w];
+    count_work(NANO_RC_REPLAS_QUERIES);
+    rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
+  }
+  uint step = 0u;  // slots walked
+  while (true) {
+    // The next slot of the area.
+    ivec2 element = ivec2(0);
+    bool next = false;
+    if (kRepLasWalk && w.mode == kWalkRepLas) {
+      while (!next && rayQueryProceedEXT(area)) {
+        uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
+        RenderLevel a = levels[rc.span.w];
+        if (p >= a.count) continue;
+        uint slot = orders[a.order_first + p];
+        ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
+        if (sxy.x >= w.extent.x || sxy.y >= w.extent.y) continue;
+        element = sxy;
+        next = true;
+      }
+    } else {
+      next = next_slot_in_order(rc, w, step, element);
+    }
+    if (!next) break;
+    count_work(NANO_RC_SLOTS_TRIED);
+    uint slot = uint(element.x) + c.replication_width * uint(element.y);
+    if (!trace_element(inst, ci, c, rc, true, tl, w, slot, ivec3(replication_tile_index(w.origin, element), 0), o, od)) continue;
+    found = true;
+    if (kRepLasWalk && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
+  }
+  return found;
+}
+
+uint occupancy_of(uint byte_index) { return (occupancy_words[byte_index >> 2] >> (8u * (byte_index & 3u))) & 0xFFu; }
+
+// The record of BOUNDARY box `box` in boundary_boxes and kept_boxes (binary search over the
+// compartment's sorted records), or NANO_NO_INDEX when the package lists none (the validator makes
+// that impossible).
+uint boundary_record(Compartment c, uint box) {
+  uint lo = c.core_masks.x;
+  uint hi = c.core_masks.x + c.core_masks.y;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1;
+    if (boundary_boxes[mid].box < box) lo = mid + 1u; else hi = mid;
+  }
+  if (lo < c.core_masks.x + c.core_masks.y && lo < uint(kept_boxes.length()) && boundary_boxes[lo].box == box) return lo;
+  return NANO_NO_INDEX;
 }
 
 // Core-grid box `box` (grid cell `cell`): false when the ray misses what the box can hold, clipping
@@ -523,6 +632,53 @@ bool core_element_query(Compartment c, RenderCompartment rc, uint box, ivec3 cel
   e.q_lo = 0.0;
   e.q_hi = best_t;
   return true;
+}
+
+// The soluble copies of instance `inst`'s core grid (compartment `ci`) on the ray (o, od): its own
+// walk (its own mLAS and nLAS loops once compiled), cells in ray order, at each the boxes within one
+// step not traced at the cell before. False when it found no nearer hit.
+bool trace_core_grid(uint inst, uint ci, Compartment c, RenderCompartment rc, vec3 o, vec3 od) {
+  if (rc.span.z == 0u) return false;
+  float B = c.grid_min.w;
+  if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(ivec3(c.grid_dims.xyz) + ivec3(1)) * B)) return false;
+  // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
+  // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
+  GridDda it;
+  dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), ivec3(c.grid_dims.xyz) + ivec3(2), o, od, 0.0, best_t);
+  ShellWalk w;  // trace_element's membrane state, unused by a core box
+  bool found = false;
+  ivec3 dims = ivec3(c.grid_dims.xyz);
+  ivec3 cell;
+  float ta;
+  ivec3 previous = ivec3(-1000000);
+  ivec3 cells = dims + ivec3(2);
+  while (dda_current(it, cell, ta)) {
+    if (ta > best_t) break;  // a cell beyond the best hit ends the walk
+    count_work(NANO_RC_CORE_STEPS);
+    uint skip_index = rc.core_skip.x + uint(cell.x) + uint(cells.x) * (uint(cell.y) + uint(cells.y) * uint(cell.z));
+    uint skip = core_skip_level_in_word(core_skip_words[skip_index >> 3], skip_index);
+    if (skip != 0u) {
+      // Nothing to trace within one step of any cell of the block: the walk resumes beyond it.
+      // `cell`'s own boxes are dead, so it may stand as the cell before for the de-duplication.
+      ivec3 block_lo = core_skip_block_lo(cell, skip);
+      dda_skip_block(it, block_lo, core_skip_block_hi(block_lo, skip, cells));
+    } else {
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
+            if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
+            ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
+            if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
+            count_work(NANO_RC_CORE_BOXES);
+            uint box = uint(ijk.x) + uint(dims.x) * (uint(ijk.y) + uint(dims.y) * uint(ijk.z));
+            if (trace_element(inst, ci, c, rc, false, 0u, w, box, ijk, o, od)) found = true;
+          }
+    }
+    previous = cell;
+    dda_advance(it);  // the one step of the walk, after a skip out of the block
+  }
+  return found;
 }
 
 // Copy m (instance mi) of the element placed and numbered: false when the membrane's ownership,
@@ -610,48 +766,6 @@ bool trace_element(uint inst, uint ci, Compartment c, RenderCompartment rc, bool
     if (best_t >= e.q_lo) rayQueryGenerateIntersectionEXT(q, best_t);  // a hit must lie in the query's range
   }
   return found;
-}
-
-bool triangle_flattened(uint bit) {
-  return (bit >> 5) < uint(flat_triangles.length()) && ((flat_triangles[bit >> 5] >> (bit & 31u)) & 1u) != 0u;
-}
-
-// A candidate of the flat level (a TLAS of copies, each an instance of its molecule type's nLAS BLAS,
-// so every candidate is an atom box in molecule space: the ray the hardware transformed, as explicit
-// instancing traces): copy `c`, primitive `p`, the molecule-space ray (om, dm) and the copy's
-// transforms. True iff it is the nearest hit so far (ids recorded). Every index read from the level is
-// checked against the buffer it names.
-bool flat_atom_hit(uint c, uint p, vec3 om, vec3 dm, mat4x3 object_to_world, mat4x3 world_to_object) {
-  count_work(NANO_RC_FLAT_CANDIDATES);
-  if (c >= uint(flat_copies.length())) return false;
-  FlatCopy fc = flat_copies[c];
-  if (fc.molecule_type >= frame.levels.z) return false;
-  RenderLevel level = levels[fc.molecule_type];
-  if (p >= level.count) return false;
-  uint a = orders[level.order_first + p];
-  vec4 cr = atoms[a].centre_radius;
-  float tn;
-  float tf;
-  count_work(NANO_RC_SPHERE_TESTS);
-  if (!sphere_intersect(om, dm, cr.xyz, cr.w, tn, tf)) return false;
-  float t = tn >= 0.0 ? tn : tf;
-  if (!(t >= 0.0) || !(t < best_t)) return false;
-  // An atom is clipped whole, by its centre (clip_c is in the level's space: see trace_scene).
-  if (kClipping && clip_removes_point(object_to_world * vec4(cr.xyz, 1.0))) return false;
-  best_t = t;
-  best.compartment_instance = fc.compartment_instance;
-  best.element = fc.element;
-  best.kind = fc.kind;
-  best.cell = fc.cell;
-  best.instance = fc.instance;
-  best.atom = a;
-  best.copy_number_lo = fc.number_lo;
-  best.copy_number_hi = fc.number_hi;
-  best_type = fc.molecule_type;
-  // World normal by the inverse transpose (an instance may scale); the hit's "compartment" is the world.
-  best_normal_c = normalize(transpose(mat3(world_to_object)) * (om + t * dm - cr.xyz));
-  best_to_world = mat4x3(1.0);
-  return true;
 }
 
 // Whether the medium copy centred at region-space c (medium_copy_centre) with radius r stands clear
@@ -772,115 +886,6 @@ void trace_medium(vec3 origin, vec3 d) {
     dda_advance(it);
   }
   if (found) best_to_world = mat4x3(vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, 1.0), -render_medium.eye_hi.xyz);
-}
-
-// The next slot of the prism walk w's area from `step` on, in order: every one (kWalkAllSlots) or each
-// whose box the ray meets (kWalkSlotBoxes). False when none is left.
-bool next_slot_in_order(RenderCompartment rc, ShellWalk w, inout uint step, inout ivec2 element) {
-  while (step < uint(w.extent.x * w.extent.y)) {
-    ivec2 sxy = ivec2(int(step % uint(w.extent.x)), int(step / uint(w.extent.x)));
-    ++step;
-    if (w.mode == kWalkSlotBoxes) {
-      vec3 shift = vec3(float(sxy.x) * rc.slot_lo.w, float(sxy.y) * rc.slot_lo.w, 0.0);
-      float tn;
-      float tf;
-      if (!aabb_intersect(rc.slot_lo.xyz + shift, rc.slot_hi.xyz + shift, w.ot, w.dt, w.t_lo, min(best_t, w.t_hi), tn, tf)) continue;
-    }
-    element = sxy;
-    return true;
-  }
-  return false;
-}
-
-// The soluble copies of instance `inst`'s core grid (compartment `ci`) on the ray (o, od): its own
-// walk (its own mLAS and nLAS loops once compiled), cells in ray order, at each the boxes within one
-// step not traced at the cell before. False when it found no nearer hit.
-bool trace_core_grid(uint inst, uint ci, Compartment c, RenderCompartment rc, vec3 o, vec3 od) {
-  if (rc.span.z == 0u) return false;
-  float B = c.grid_min.w;
-  if (kClipping && clip_removes_box(c.grid_min.xyz - vec3(B), c.grid_min.xyz + vec3(ivec3(c.grid_dims.xyz) + ivec3(1)) * B)) return false;
-  // The grid widened by one box on every side: a molecule reaches at most one box beyond its own,
-  // so every point where a copy can be hit lies in a cell of this grid within one step of its box.
-  GridDda it;
-  dda_init(it, c.grid_min.xyz - vec3(B), vec3(B), ivec3(c.grid_dims.xyz) + ivec3(2), o, od, 0.0, best_t);
-  ShellWalk w;  // trace_element's membrane state, unused by a core box
-  bool found = false;
-  ivec3 dims = ivec3(c.grid_dims.xyz);
-  ivec3 cell;
-  float ta;
-  ivec3 previous = ivec3(-1000000);
-  ivec3 cells = dims + ivec3(2);
-  while (dda_current(it, cell, ta)) {
-    if (ta > best_t) break;  // a cell beyond the best hit ends the walk
-    count_work(NANO_RC_CORE_STEPS);
-    uint skip_index = rc.core_skip.x + uint(cell.x) + uint(cells.x) * (uint(cell.y) + uint(cells.y) * uint(cell.z));
-    uint skip = core_skip_level_in_word(core_skip_words[skip_index >> 3], skip_index);
-    if (skip != 0u) {
-      // Nothing to trace within one step of any cell of the block: the walk resumes beyond it.
-      // `cell`'s own boxes are dead, so it may stand as the cell before for the de-duplication.
-      ivec3 block_lo = core_skip_block_lo(cell, skip);
-      dda_skip_block(it, block_lo, core_skip_block_hi(block_lo, skip, cells));
-    } else {
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            ivec3 ijk = cell - ivec3(1) + ivec3(dx, dy, dz);
-            if (any(lessThan(ijk, ivec3(0))) || any(greaterThanEqual(ijk, dims))) continue;
-            ivec3 from_previous = abs(ijk - (previous - ivec3(1)));
-            if (max(from_previous.x, max(from_previous.y, from_previous.z)) <= 1) continue;
-            count_work(NANO_RC_CORE_BOXES);
-            uint box = uint(ijk.x) + uint(dims.x) * (uint(ijk.y) + uint(dims.y) * uint(ijk.z));
-            if (trace_element(inst, ci, c, rc, false, 0u, w, box, ijk, o, od)) found = true;
-          }
-    }
-    previous = cell;
-    dda_advance(it);  // the one step of the walk, after a skip out of the block
-  }
-  return found;
-}
-
-// The membrane copies of prism `prim` of instance `inst` (compartment `ci`) on the ray (o, od): the
-// slots of its triangle's replication area the ray meets, each traced by trace_element. False when
-// the triangle is in the flat level, the ray misses its prism or it found no nearer hit.
-bool trace_prism(uint inst, uint ci, Compartment c, RenderCompartment rc, uint prim, bool use_flat, vec3 o, vec3 od) {
-  uint tl = orders[rc.counts.w + prim];
-  if (use_flat && triangle_flattened(render_instances[inst].base.w + tl)) return false;  // its copies are in the flat level
-  ShellWalk w;
-  if (!shell_walk_begin(ci, tl, o, od, w)) return false;
-  bool found = false;
-  rayQueryEXT area;  // kWalkRepLas: the replication area's tile boxes
-  if (kRepLasWalk && w.mode == kWalkRepLas) {
-    RenderLevel a = levels[rc.span.w];
-    count_work(NANO_RC_REPLAS_QUERIES);
-    rayQueryInitializeEXT(area, accelerationStructureEXT(a.address), kAabbOnly, 0xFF, w.ot, w.t_lo, w.dt, min(best_t, w.t_hi));
-  }
-  uint step = 0u;  // slots walked
-  while (true) {
-    // The next slot of the area.
-    ivec2 element = ivec2(0);
-    bool next = false;
-    if (kRepLasWalk && w.mode == kWalkRepLas) {
-      while (!next && rayQueryProceedEXT(area)) {
-        uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(area, false));
-        RenderLevel a = levels[rc.span.w];
-        if (p >= a.count) continue;
-        uint slot = orders[a.order_first + p];
-        ivec2 sxy = ivec2(int(slot % c.replication_width), int(slot / c.replication_width));
-        if (sxy.x >= w.extent.x || sxy.y >= w.extent.y) continue;
-        element = sxy;
-        next = true;
-      }
-    } else {
-      next = next_slot_in_order(rc, w, step, element);
-    }
-    if (!next) break;
-    count_work(NANO_RC_SLOTS_TRIED);
-    uint slot = uint(element.x) + c.replication_width * uint(element.y);
-    if (!trace_element(inst, ci, c, rc, true, tl, w, slot, ivec3(replication_tile_index(w.origin, element), 0), o, od)) continue;
-    found = true;
-    if (kRepLasWalk && w.mode == kWalkRepLas && best_t >= w.t_lo) rayQueryGenerateIntersectionEXT(area, best_t);
-  }
-  return found;
 }
 
 // Forgets the best hit: nothing met yet up to t_max.
