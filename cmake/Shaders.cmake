@@ -5,7 +5,10 @@
 function(nano_add_shaders)
   cmake_parse_arguments(ARG "" "TARGET" "SOURCES" ${ARGN})
   set(generated)
-  file(GLOB_RECURSE shared_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/shaders/shared/*.h ${PROJECT_SOURCE_DIR}/shaders/*.glsl)
+  # Every file a shader may #include is a dependency of every shader: shared/*.h and the .glsl files
+  # in any folder under shaders/ (each level's render/<level>.glsl). CONFIGURE_DEPENDS globs again
+  # at build time, so a new include file counts without re-running cmake by hand.
+  file(GLOB_RECURSE includes CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/shaders/shared/*.h ${PROJECT_SOURCE_DIR}/shaders/*.glsl)
   foreach(entry IN LISTS ARG_SOURCES)
     # "path.comp" or "path.comp@DEFINE": a variant compiled with -DDEFINE, named path_define.comp.
     string(REPLACE "@" ";" parts ${entry})
@@ -28,7 +31,7 @@ function(nano_add_shaders)
     add_custom_command(
       OUTPUT ${spv}
       COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.2 -V ${defines} -I${PROJECT_SOURCE_DIR}/shaders -o ${spv} ${abs}
-      DEPENDS ${abs} ${shared_headers}
+      DEPENDS ${abs} ${includes}
       COMMENT "glslang ${name}"
       VERBATIM)
     add_custom_command(

@@ -6,7 +6,8 @@
 // medium numbers its copies after the µLAS's instances), writes each row's descriptor bindings and
 // hands each row a new eye. A level is added by one row here and its file in this folder, with its
 // records in shaders/shared/render_scene.h and bindings.h and its traversal in
-// shaders/render/render.comp (docs/layout.md, "The files an acceleration level touches").
+// shaders/render/<level>.glsl, included by render.comp (docs/layout.md, "The files an acceleration
+// level touches").
 #include <cstdint>
 #include <span>
 #include <string_view>
