@@ -12,22 +12,14 @@
 namespace nano::scene {
 namespace {
 
-// The same vector scaled by the power of two that brings its largest component into [1, 2).
-// Exact, so whatever is normalised from it has the bits it had from `v` (when that did not
-// overflow), yet one written as [1e-200, 0, 0] or [1e300, 1e300, 0] no longer under- or overflows.
-glm::dvec3 rescaled(const glm::dvec3& v) {
-  const int e = std::ilogb(std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}));
-  return {std::ldexp(v.x, -e), std::ldexp(v.y, -e), std::ldexp(v.z, -e)};
-}
-
 // Stored with a unit normal, so that n·p + d is a signed distance in Å.
 glm::dvec4 parse_plane(const JsonCursor& c) {
   const glm::dvec4 p = c.vec4();
   const glm::dvec3 normal(p);
   if (normal == glm::dvec3(0.0)) c.fail("the plane normal [nx, ny, nz] must be non-zero, got " + c.shown());
-  // n and d scaled alike (by the power of two of `rescaled`), then divided by |n|.
+  // n and d scaled alike (by the power of two of `rescaled_by_power_of_two`), then divided by |n|.
   const int e = std::ilogb(std::max({std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)}));
-  const glm::dvec3 n = rescaled(normal);
+  const glm::dvec3 n = rescaled_by_power_of_two(normal);
   const double length = glm::length(n);
   const glm::dvec4 plane(n / length, std::ldexp(p.w, -e) / length);
   if (!std::isfinite(plane.w)) c.fail("the plane's offset d / |n| is beyond a double, got " + c.shown());
@@ -190,7 +182,7 @@ Camera parse_camera(const JsonCursor& c) {
     look_at.fail("look_at is too far from position: look_at - position overflows a double");
   const auto up = c.optional("up");
   if (up) cam.up = up->unit_vec3();
-  const glm::dvec3 view = glm::normalize(rescaled(towards));
+  const glm::dvec3 view = glm::normalize(rescaled_by_power_of_two(towards));
   // Nearly parallel up and view directions leave the camera's roll undefined.
   if (glm::length(glm::cross(view, cam.up)) < 1e-6) {
     if (up) up->fail("up must not be parallel to the view direction");

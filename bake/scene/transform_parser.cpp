@@ -5,15 +5,13 @@
 #include <sstream>
 
 namespace nano::scene {
-namespace {
 
-// The same vector scaled by the power of two that brings its largest component into [1, 2).
-// Exact, so whatever is normalised from it has the bits it had from `v` (when that did not
-// overflow), yet one written as [1e-200, 0, 0] or [1e300, 1e300, 0] no longer under- or overflows.
-glm::dvec3 rescaled(const glm::dvec3& v) {
+glm::dvec3 rescaled_by_power_of_two(const glm::dvec3& v) {
   const int e = std::ilogb(std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}));
   return {std::ldexp(v.x, -e), std::ldexp(v.y, -e), std::ldexp(v.z, -e)};
 }
+
+namespace {
 
 Matrix3x4 parse_translate_rotate_scale(const JsonCursor& c) {
   c.only_keys({"translate", "rotate", "scale"});
@@ -22,7 +20,7 @@ Matrix3x4 parse_translate_rotate_scale(const JsonCursor& c) {
   double degrees = 0.0;
   if (const auto rotate = c.optional("rotate")) {
     rotate->only_keys({"axis", "degrees"});
-    axis = rescaled(rotate->required("axis").non_zero_vec3());
+    axis = rescaled_by_power_of_two(rotate->required("axis").non_zero_vec3());
     degrees = rotate->required("degrees").number();
   }
   const double scale = c.has("scale") ? c.required("scale").number_greater_than(0.0) : 1.0;

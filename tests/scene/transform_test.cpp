@@ -1,6 +1,9 @@
 #include "bake/scene/transform.hpp"
+#include "bake/scene/transform_parser.hpp"
 
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include <cmath>
 
@@ -62,6 +65,21 @@ TEST(Transform, LargestStretchOfDiagonalRotatedAndShearedMatrices) {
   // The shear [[1, 1], [0, 1]] has singular values φ and 1/φ (φ the golden ratio).
   const Matrix3x4 shear = {glm::dvec4(1, 1, 0, 0), glm::dvec4(0, 1, 0, 0), glm::dvec4(0, 0, 1, 0)};
   EXPECT_NEAR(largest_stretch(shear), (1.0 + std::sqrt(5.0)) / 2.0, 1e-12);
+}
+
+TEST(Transform, RescaledByPowerOfTwoIsExactAndBringsTheLargestComponentIntoOneToTwo) {
+  // Exact: only the exponent moves, so the components keep their ratios bit for bit.
+  EXPECT_EQ(rescaled_by_power_of_two({3.0, -0.75, 0.0}), glm::dvec3(1.5, -0.375, 0.0));
+  EXPECT_EQ(rescaled_by_power_of_two({1.0, 1.0, 1.0}), glm::dvec3(1.0, 1.0, 1.0));
+  // Components that would under- or overflow when squared for a length come back into range.
+  const glm::dvec3 tiny = rescaled_by_power_of_two({1e-200, 0.0, 0.0});
+  EXPECT_GE(tiny.x, 1.0);
+  EXPECT_LT(tiny.x, 2.0);
+  const glm::dvec3 huge = rescaled_by_power_of_two({1e300, -1e300, 0.0});
+  EXPECT_TRUE(std::isfinite(glm::dot(huge, huge)));
+  EXPECT_EQ(huge.x, -huge.y);
+  EXPECT_GE(std::abs(huge.x), 1.0);
+  EXPECT_LT(std::abs(huge.x), 2.0);
 }
 
 }  // namespace
