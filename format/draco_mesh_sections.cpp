@@ -132,10 +132,10 @@ EncodedMesh encode_mesh(const MeshArrays& m, int speed) {
   return out;
 }
 
-template <class T> void put(std::vector<std::byte>& out, std::uint64_t at, const T& value) {
+template <class T> void store(std::vector<std::byte>& out, std::uint64_t at, const T& value) {
   std::memcpy(out.data() + at, &value, sizeof(T));
 }
-template <class T> T get(std::span<const std::byte> in, std::uint64_t at) {
+template <class T> T load(std::span<const std::byte> in, std::uint64_t at) {
   T value;
   std::memcpy(&value, in.data() + at, sizeof(T));
   return value;
@@ -380,13 +380,13 @@ DracoEncoding encode_draco_meshes(std::span<const gpu::Mesh> meshes, std::span<c
   for (const EncodedMesh& e : encoded) size += e.stream.size();
   if (size > std::numeric_limits<std::uint32_t>::max()) return result.why = "the streams exceed 4 GiB", result;
   std::vector<std::byte> section(size);
-  put(section, 0, static_cast<std::uint32_t>(meshes.size()));
-  put(section, 4, std::uint32_t{0});
+  store(section, 0, static_cast<std::uint32_t>(meshes.size()));
+  store(section, 4, std::uint32_t{0});
   std::uint64_t cursor = kDirectoryHead + sizeof(DirectoryEntry) * meshes.size();
   for (std::size_t i = 0; i < encoded.size(); ++i) {
     const DirectoryEntry entry{static_cast<std::uint32_t>(cursor), static_cast<std::uint32_t>(encoded[i].stream.size()),
                                encoded[i].position_step, encoded[i].uv_step};
-    put(section, kDirectoryHead + sizeof(DirectoryEntry) * i, entry);
+    store(section, kDirectoryHead + sizeof(DirectoryEntry) * i, entry);
     std::memcpy(section.data() + cursor, encoded[i].stream.data(), encoded[i].stream.size());
     cursor += encoded[i].stream.size();
   }
@@ -409,17 +409,17 @@ DracoEncoding encode_draco_meshes(std::span<const gpu::Mesh> meshes, std::span<c
 MeshArrays decode_draco_meshes(std::span<const std::byte> section, std::span<const gpu::Mesh> meshes,
                                std::uint64_t max_vertices, std::uint64_t max_triangles) {
   if (section.size() < kDirectoryHead) throw DracoSectionError(0, "the section is shorter than its 8-byte directory head");
-  const std::uint32_t count = get<std::uint32_t>(section, 0);
+  const std::uint32_t count = load<std::uint32_t>(section, 0);
   if (count != meshes.size())
     throw DracoSectionError(0, "the directory lists " + std::to_string(count) + " streams for " + std::to_string(meshes.size()) + " meshes");
-  if (get<std::uint32_t>(section, 4) != 0) throw DracoSectionError(4, "the reserved word of the directory is not zero");
+  if (load<std::uint32_t>(section, 4) != 0) throw DracoSectionError(4, "the reserved word of the directory is not zero");
   const std::uint64_t streams_begin = kDirectoryHead + sizeof(DirectoryEntry) * std::uint64_t{count};
   if (streams_begin > section.size()) throw DracoSectionError(0, "the directory runs past the end of the section");
   MeshArrays out;
   std::uint64_t cursor = streams_begin;
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint64_t at = kDirectoryHead + sizeof(DirectoryEntry) * i;
-    const DirectoryEntry entry = get<DirectoryEntry>(section, at);
+    const DirectoryEntry entry = load<DirectoryEntry>(section, at);
     const std::string mesh = "mesh " + std::to_string(i) + ": ";
     if (entry.offset != cursor || entry.size == 0 || entry.size > section.size() - cursor)
       throw DracoSectionError(at, mesh + "its stream [" + std::to_string(entry.offset) + ", +" + std::to_string(entry.size) +
