@@ -107,7 +107,10 @@ TEST(SetEffect, NamesAndDefaults) {
   const InputError preset = expect_input_error([&] { apply_preset(e, "glow", "--preset"); });
   EXPECT_EQ(preset.file(), "--preset") << preset.what();
   const InputError parameter =
-      expect_input_error([] { (void)parse_parameter(find_effect("ao")->parameters[0], "-1", "--ao-rays"); });
+      expect_input_error([] {
+        gpu::SceneEffects record = fallback_effect_record();
+        parse_parameter(record, effect_parameter(EffectId::ambient_occlusion, "rays"), "-1", "--ao-rays");
+      });
   EXPECT_EQ(parameter.file(), "--ao-rays") << parameter.what();
 }
 
