@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <new>
 #include <stdexcept>
+#include <type_traits>
 
 #include <glm/geometric.hpp>
 
@@ -144,10 +146,9 @@ std::string effect_names() {
   return names;
 }
 
-std::size_t parameter_index(EffectId id, std::string_view key) {
-  const auto parameters = effect_declaration(id).parameters;
-  for (std::size_t i = 0; i < parameters.size(); ++i)
-    if (parameters[i].key == key) return i;
+const EffectParameter& effect_parameter(EffectId id, std::string_view key) {
+  for (const EffectParameter& p : effect_declaration(id).parameters)
+    if (p.key == key) return p;
   throw std::logic_error("effect " + std::string(effect_declaration(id).name) + " has no parameter " + std::string(key));
 }
 
@@ -156,13 +157,6 @@ std::string parameter_option(const EffectDeclaration& effect, const EffectParame
   std::string key(parameter.key);
   std::replace(key.begin(), key.end(), '_', '-');
   return "--" + std::string(effect.cli_prefix) + "-" + key;
-}
-
-EffectValues fallback_effect_values() {
-  EffectValues values{};
-  for (const EffectDeclaration& e : kEffects)
-    for (std::size_t p = 0; p < e.parameters.size(); ++p) values[static_cast<std::size_t>(e.id)][p] = e.parameters[p].fallback;
-  return values;
 }
 
 std::string shown_number(double x) {
@@ -211,61 +205,62 @@ glm::dvec3 unpack_colour(std::uint32_t rgba) {
   return {double(rgba & 0xFFu) / 255.0, double((rgba >> 8) & 0xFFu) / 255.0, double((rgba >> 16) & 0xFFu) / 255.0};
 }
 
-void store_parameters(gpu::SceneEffects& record, EffectId id, const ParameterValues& values) {
-  auto* bytes = reinterpret_cast<unsigned char*>(&record);
-  const auto parameters = effect_declaration(id).parameters;
-  for (std::size_t i = 0; i < parameters.size(); ++i) {
-    const EffectParameter& p = parameters[i];
-    switch (p.kind) {
-      case ParameterKind::number:
-      case ParameterKind::whole_number: {
-        const float x = float(values[i].x);
-        std::memcpy(bytes + p.record_offset, &x, sizeof x);
-        break;
-      }
-      case ParameterKind::unit_vector: {
-        const glm::vec3 v(values[i]);
-        std::memcpy(bytes + p.record_offset, &v, sizeof v);
-        break;
-      }
-      case ParameterKind::colour: {
-        const std::uint32_t word = pack_colour(values[i]);
-        std::memcpy(bytes + p.record_offset, &word, sizeof word);
-        break;
-      }
-    }
+namespace {
+
+// The member at the parameter's offset, which the table's slots_disjoint() keeps inside the record;
+// `fits`: the parameter is of a kind the record holds as T.
+template <class T, class Record>
+auto& slot(Record& record, const EffectParameter& p, bool fits) {
+  if (!fits) throw std::logic_error("parameter " + std::string(p.key) + " is not held as this type");
+  using Byte = std::conditional_t<std::is_const_v<Record>, const unsigned char, unsigned char>;
+  using Member = std::conditional_t<std::is_const_v<Record>, const T, T>;
+  return *std::launder(reinterpret_cast<Member*>(reinterpret_cast<Byte*>(&record) + p.record_offset));
+}
+
+bool is_number(const EffectParameter& p) { return p.kind == ParameterKind::number || p.kind == ParameterKind::whole_number; }
+
+}  // namespace
+
+float& number_slot(gpu::SceneEffects& r, const EffectParameter& p) { return slot<float>(r, p, is_number(p)); }
+const float& number_slot(const gpu::SceneEffects& r, const EffectParameter& p) { return slot<float>(r, p, is_number(p)); }
+glm::vec3& direction_slot(gpu::SceneEffects& r, const EffectParameter& p) {
+  return slot<glm::vec3>(r, p, p.kind == ParameterKind::unit_vector);
+}
+const glm::vec3& direction_slot(const gpu::SceneEffects& r, const EffectParameter& p) {
+  return slot<glm::vec3>(r, p, p.kind == ParameterKind::unit_vector);
+}
+std::uint32_t& colour_slot(gpu::SceneEffects& r, const EffectParameter& p) {
+  return slot<std::uint32_t>(r, p, p.kind == ParameterKind::colour);
+}
+const std::uint32_t& colour_slot(const gpu::SceneEffects& r, const EffectParameter& p) {
+  return slot<std::uint32_t>(r, p, p.kind == ParameterKind::colour);
+}
+
+void set_parameter(gpu::SceneEffects& record, const EffectParameter& p, const glm::dvec3& value) {
+  switch (p.kind) {
+    case ParameterKind::number:
+    case ParameterKind::whole_number: number_slot(record, p) = float(value.x); break;
+    case ParameterKind::unit_vector: direction_slot(record, p) = glm::vec3(value); break;
+    case ParameterKind::colour: colour_slot(record, p) = pack_colour(value); break;
   }
 }
 
-ParameterValues load_parameters(const gpu::SceneEffects& record, EffectId id) {
-  const auto* bytes = reinterpret_cast<const unsigned char*>(&record);
-  const auto parameters = effect_declaration(id).parameters;
-  ParameterValues values{};
-  for (std::size_t i = 0; i < parameters.size(); ++i) {
-    const EffectParameter& p = parameters[i];
-    switch (p.kind) {
-      case ParameterKind::number:
-      case ParameterKind::whole_number: {
-        float x;
-        std::memcpy(&x, bytes + p.record_offset, sizeof x);
-        values[i] = glm::dvec3(x, 0.0, 0.0);
-        break;
-      }
-      case ParameterKind::unit_vector: {
-        glm::vec3 v;
-        std::memcpy(&v, bytes + p.record_offset, sizeof v);
-        values[i] = glm::dvec3(v);
-        break;
-      }
-      case ParameterKind::colour: {
-        std::uint32_t word;
-        std::memcpy(&word, bytes + p.record_offset, sizeof word);
-        values[i] = unpack_colour(word);
-        break;
-      }
-    }
-  }
-  return values;
+gpu::SceneEffects fallback_effect_record() {
+  gpu::SceneEffects record{};
+  for (const EffectDeclaration& e : kEffects)
+    for (const EffectParameter& p : e.parameters) set_parameter(record, p, p.fallback);
+  return record;
+}
+
+void set_preset_parameters(gpu::SceneEffects& record, const PresetEffect& effect) {
+  const auto parameters = effect_declaration(effect.id).parameters;
+  for (std::size_t i = 0; i < parameters.size(); ++i) set_parameter(record, parameters[i], effect.values[i]);
+}
+
+void copy_parameters(gpu::SceneEffects& to, const gpu::SceneEffects& from, EffectId id) {
+  for (const EffectParameter& p : effect_declaration(id).parameters)
+    std::memcpy(reinterpret_cast<unsigned char*>(&to) + p.record_offset, reinterpret_cast<const unsigned char*>(&from) + p.record_offset,
+                slot_bytes(p.kind));
 }
 
 }  // namespace nano

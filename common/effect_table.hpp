@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string>
 #include <string_view>
@@ -68,14 +69,30 @@ inline std::uint32_t package_flag(EffectId id) { return effect_declaration(id).p
 const EffectDeclaration* find_effect(std::string_view name);
 // "clipping, animation, jitter, ao, shadows, outlines, fog": the choices an error message lists.
 std::string effect_names();
-// Index of the parameter `key` of effect `id`; throws std::logic_error for a key it does not have.
-std::size_t parameter_index(EffectId id, std::string_view key);
+// The parameter `key` of effect `id`; throws std::logic_error for a key it does not have.
+const EffectParameter& effect_parameter(EffectId id, std::string_view key);
 // "--ao-rays"; empty when the effect has no parameter options.
 std::string parameter_option(const EffectDeclaration& effect, const EffectParameter& parameter);
 
-// Every effect's parameter values, numbers in x; starts at the table's fallbacks.
-using EffectValues = std::array<std::array<glm::dvec3, kMaxEffectParameters>, kEffectCount>;  // [effect][parameter]
-EffectValues fallback_effect_values();
+// A parameter's slot in an effects record, typed as the record holds it: a number (or whole number)
+// is one float, a unit vector a vec3, a colour one RGBA8 word. The package's section, the settings
+// that the options, the panel and the script edit, and the frame's copy the shader reads are one
+// gpu::SceneEffects each, so a parameter is read and edited at its member, never converted on the
+// way. Each throws std::logic_error for a parameter of another kind.
+float& number_slot(gpu::SceneEffects& record, const EffectParameter& parameter);
+const float& number_slot(const gpu::SceneEffects& record, const EffectParameter& parameter);
+glm::vec3& direction_slot(gpu::SceneEffects& record, const EffectParameter& parameter);
+const glm::vec3& direction_slot(const gpu::SceneEffects& record, const EffectParameter& parameter);
+std::uint32_t& colour_slot(gpu::SceneEffects& record, const EffectParameter& parameter);
+const std::uint32_t& colour_slot(const gpu::SceneEffects& record, const EffectParameter& parameter);
+
+// Writes a value as scene.json, an option or the table gives it (numbers in x; unit vectors as
+// given, every parser normalises in double; colours in [0, 1]) into the parameter's slot.
+void set_parameter(gpu::SceneEffects& record, const EffectParameter& parameter, const glm::dvec3& value);
+// Every table parameter at its fallback; every other member zero.
+gpu::SceneEffects fallback_effect_record();
+// Copies effect `id`'s parameter slots from `from` into `to`; the rest of `to` stays as it is.
+void copy_parameters(gpu::SceneEffects& to, const gpu::SceneEffects& from, EffectId id);
 
 // A number's range as messages and --help print it: "> 0 Å", "in [1, 8] px".
 std::string parameter_range(const EffectParameter& parameter);
@@ -88,20 +105,16 @@ std::string parameter_problem(const EffectParameter& parameter, const glm::dvec3
 std::uint32_t pack_colour(const glm::dvec3& rgb);
 glm::dvec3 unpack_colour(std::uint32_t rgba);
 
-// One effect's parameters in the package's effects record (and in the frame's copy of it): floats
-// (unit vectors as given: every parser normalises in double), colours packed; and read back.
-using ParameterValues = std::array<glm::dvec3, kMaxEffectParameters>;
-void store_parameters(gpu::SceneEffects& record, EffectId id, const ParameterValues& values);
-ParameterValues load_parameters(const gpu::SceneEffects& record, EffectId id);
-
 // A named combination of effects with parameters chosen by looking at every bundled scene from afar
 // and close (docs/effects.md): the scene's "effects": {"preset": NAME}, --preset NAME, the viewer's
 // panel and its script's `preset NAME`. A preset turns its effects on with its values; what the scene
 // or the options set explicitly wins.
 struct PresetEffect {
   EffectId id;
-  ParameterValues values;  // every parameter of the effect, in table order
+  std::array<glm::dvec3, kMaxEffectParameters> values;  // every parameter of the effect, in table order, as scene.json gives it
 };
+// Writes the preset's values of one effect into `record`'s slots.
+void set_preset_parameters(gpu::SceneEffects& record, const PresetEffect& effect);
 struct EffectPreset {
   std::string_view name;
   std::string_view summary;
@@ -112,3 +125,8 @@ const EffectPreset* find_preset(std::string_view name);  // nullptr for another 
 std::string preset_names();                               // "illustrative": the choices a message lists
 
 }  // namespace nano
+
+namespace nano::gpu {
+// Records compare by their bytes (a scene description with its effects' record compares whole).
+inline bool operator==(const SceneEffects& a, const SceneEffects& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+}  // namespace nano::gpu

@@ -719,7 +719,6 @@ private:
     std::memcpy(words.data(), &e, sizeof e);
     for (const EffectDeclaration& effect : effect_table()) {
       const bool on = (flags & effect.package_flag) != 0;
-      const ParameterValues values = load_parameters(e, effect.id);
       for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
         const EffectParameter& p = effect.parameters[i];
         const std::uint32_t first = p.record_offset / 4, count = p.kind == ParameterKind::unit_vector ? 3 : 1;
@@ -730,10 +729,10 @@ private:
         }
         if (!on) continue;
         if (p.kind == ParameterKind::unit_vector) {
-          unit(c, p.record_offset, glm::vec3(values[i]), what.c_str());
+          unit(c, p.record_offset, direction_slot(e, p), what.c_str());
         } else if (p.kind == ParameterKind::colour) {
-          if (words[first] >> 24 != 255u) fail(c, p.record_offset, Rule::bad_value, what + ": a colour's alpha byte must be 255");
-        } else if (const std::string problem = parameter_problem(p, values[i]); !problem.empty()) {
+          if (colour_slot(e, p) >> 24 != 255u) fail(c, p.record_offset, Rule::bad_value, what + ": a colour's alpha byte must be 255");
+        } else if (const std::string problem = parameter_problem(p, glm::dvec3(number_slot(e, p), 0.0, 0.0)); !problem.empty()) {
           fail(c, p.record_offset, Rule::bad_value, what + " " + problem);
         }
       }

@@ -75,34 +75,34 @@ std::vector<InstanceKeyframes> parse_keyframes(const JsonCursor& c, std::size_t 
   return all;
 }
 
-// A plain effect (common/effect_table.hpp): each parameter by its kind and range; absent ones take
-// `base` (a preset's values: then none is required), else the table's fallback.
-ParameterValues parse_plain_effect(const JsonCursor& c, const EffectDeclaration& effect, const ParameterValues* base = nullptr) {
+// A plain effect (common/effect_table.hpp): each parameter by its kind and range, written at its slot
+// of `record`; an absent one keeps what `record` holds when `under_preset` (then none is required),
+// else takes the table's fallback.
+void parse_plain_effect(const JsonCursor& c, const EffectDeclaration& effect, gpu::SceneEffects& record, bool under_preset = false) {
   std::array<std::string_view, kMaxEffectParameters> keys{};
   for (std::size_t i = 0; i < effect.parameters.size(); ++i) keys[i] = effect.parameters[i].key;
   c.only_keys(std::span<const std::string_view>(keys.data(), effect.parameters.size()));
-  ParameterValues values{};
-  for (std::size_t i = 0; i < effect.parameters.size(); ++i) {
-    const EffectParameter& p = effect.parameters[i];
-    values[i] = base ? (*base)[i] : p.fallback;
-    const std::optional<JsonCursor> field = p.required && !base ? std::optional(c.required(p.key)) : c.optional(p.key);
+  for (const EffectParameter& p : effect.parameters) {
+    if (!under_preset) set_parameter(record, p, p.fallback);
+    const std::optional<JsonCursor> field = p.required && !under_preset ? std::optional(c.required(p.key)) : c.optional(p.key);
     if (!field) continue;
+    glm::dvec3 value(0.0);
     switch (p.kind) {
       case ParameterKind::whole_number:
-        values[i].x = double(field->integer_between(std::int64_t(p.min), std::int64_t(p.max)));
+        value.x = double(field->integer_between(std::int64_t(p.min), std::int64_t(p.max)));
         break;
       case ParameterKind::number:
-        if (std::isinf(p.max)) values[i].x = p.min_exclusive ? field->number_greater_than(p.min) : field->number_at_least(p.min);
-        else if (!p.min_exclusive) values[i].x = field->number_between(p.min, p.max);
-        else values[i].x = field->number_greater_than(p.min);
+        if (std::isinf(p.max)) value.x = p.min_exclusive ? field->number_greater_than(p.min) : field->number_at_least(p.min);
+        else if (!p.min_exclusive) value.x = field->number_between(p.min, p.max);
+        else value.x = field->number_greater_than(p.min);
         break;
-      case ParameterKind::unit_vector: values[i] = field->unit_vec3(); break;
-      case ParameterKind::colour: values[i] = field->vec3(); break;
+      case ParameterKind::unit_vector: value = field->unit_vec3(); break;
+      case ParameterKind::colour: value = field->vec3(); break;
     }
-    if (const std::string problem = parameter_problem(p, values[i]); !problem.empty())
+    if (const std::string problem = parameter_problem(p, value); !problem.empty())
       field->fail("expected a value that " + problem + ", got " + field->shown());
+    set_parameter(record, p, value);
   }
-  return values;
 }
 
 // Validated in full even when disabled, so a typo never hides behind "enabled": false. The jitter
@@ -119,8 +119,9 @@ std::optional<Animation> parse_animation(const JsonCursor& c, std::size_t instan
     else a.keyframes = parse_keyframes(motion->required("keyframes"), instance_count);
   }
   if (const auto jitter = c.optional("jitter")) {
-    const ParameterValues values = parse_plain_effect(*jitter, effect_declaration(EffectId::jitter));
-    if (enabled) effects[EffectId::jitter] = values;
+    gpu::SceneEffects disabled{};  // checked, then dropped
+    parse_plain_effect(*jitter, effect_declaration(EffectId::jitter), enabled ? effects.parameters : disabled);
+    if (enabled) effects.plain[static_cast<std::size_t>(EffectId::jitter)] = true;
   }
   if (!c.has("proxy_motion") && !c.has("jitter")) c.fail("expected \"proxy_motion\", \"jitter\" or both");
   if (!enabled) return std::nullopt;
@@ -156,15 +157,18 @@ Effects parse_effects(const JsonCursor& c, std::size_t instance_count) {
     const std::string name = preset->string();
     const EffectPreset* found = find_preset(name);
     if (!found) preset->fail("unknown preset \"" + name + "\" (" + preset_names() + ")");
-    for (const PresetEffect& effect : found->effects) e[effect.id] = effect.values;
+    for (const PresetEffect& effect : found->effects) {
+      e.plain[static_cast<std::size_t>(effect.id)] = true;
+      set_preset_parameters(e.parameters, effect);
+    }
   }
   if (const auto clipping = c.optional("clipping")) e.clipping = parse_clipping(*clipping);
   if (const auto animation = c.optional("animation")) e.animation = parse_animation(*animation, instance_count, e);
   for (const EffectDeclaration& effect : effect_table()) {
     if (!effect.structured.empty() || effect.scene_key.find('.') != std::string_view::npos) continue;
     if (const auto object = c.optional(effect.scene_key)) {
-      const std::optional<ParameterValues> base = e[effect.id];
-      e[effect.id] = parse_plain_effect(*object, effect, base ? &*base : nullptr);
+      parse_plain_effect(*object, effect, e.parameters, e.sets(effect.id));
+      e.plain[static_cast<std::size_t>(effect.id)] = true;
     }
   }
   return e;

@@ -223,13 +223,14 @@ struct Animation {
 };
 
 // Each absent effect is off. Clipping and proxy motion are structured; every other effect is a row
-// of common/effect_table.hpp, present here with its parameter values when the scene sets it.
+// of common/effect_table.hpp, on when the scene sets it, its parameters at their slots of the
+// package's effects record, as the baker writes it.
 struct Effects {
   std::optional<Clipping> clipping;
   std::optional<Animation> animation;
-  std::array<std::optional<ParameterValues>, kEffectCount> plain;
-  const std::optional<ParameterValues>& operator[](EffectId id) const { return plain[static_cast<std::size_t>(id)]; }
-  std::optional<ParameterValues>& operator[](EffectId id) { return plain[static_cast<std::size_t>(id)]; }
+  std::array<bool, kEffectCount> plain{};  // the table's effects the scene sets
+  gpu::SceneEffects parameters{};          // their parameters; every other member zero
+  bool sets(EffectId id) const { return plain[static_cast<std::size_t>(id)]; }
   bool operator==(const Effects&) const = default;
 };
 

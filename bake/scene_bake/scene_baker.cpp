@@ -146,7 +146,7 @@ std::uint32_t effect_flags(const scene::Effects& effects) {
   if (effects.clipping) flags |= effect_declaration(EffectId::clipping).package_flag;
   if (effects.animation && effects.animation->moves()) flags |= effect_declaration(EffectId::animation).package_flag;
   for (const EffectDeclaration& effect : effect_table())
-    if (effects[effect.id]) flags |= effect.package_flag;
+    if (effects.sets(effect.id)) flags |= effect.package_flag;
   return flags;
 }
 
@@ -173,7 +173,7 @@ std::vector<gpu::SceneEffects> scene_effects(const scene::Effects& effects) {
     }
   }
   for (const EffectDeclaration& effect : effect_table())
-    if (const auto& values = effects[effect.id]) store_parameters(e, effect.id, *values);
+    if (effects.sets(effect.id)) copy_parameters(e, effects.parameters, effect.id);
   return {e};
 }
 

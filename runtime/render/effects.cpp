@@ -40,10 +40,12 @@ EffectSettings package_effects(const format::Package& package) {
   if (package.record_count(SectionKind::effects) != 1 || package.record_count(SectionKind::scene) != 1) return e;
   const std::uint32_t flags = package.records<SectionKind::scene>()[0].effect_flags;
   const gpu::SceneEffects& r = package.records<SectionKind::effects>()[0];
+  e.record = r;  // validated when the package was opened
+  // The package holds zeros for an effect it leaves off; switched on later, it starts at the table's fallbacks.
+  const gpu::SceneEffects fallbacks = fallback_effect_record();
   for (const EffectDeclaration& effect : effect_table()) {
-    if (!(flags & effect.package_flag)) continue;
-    e.flag(effect.id) = true;
-    if (!effect.parameters.empty()) e.parameters(effect.id) = load_parameters(r, effect.id);
+    e.flag(effect.id) = (flags & effect.package_flag) != 0;
+    if (!e.flag(effect.id)) copy_parameters(e.record, fallbacks, effect.id);
   }
   if (e.flag(EffectId::clipping)) {
     for (std::uint32_t k = 0; k < r.clip_plane_count && k < gpu::NANO_MAX_CLIP_PLANES; ++k)
@@ -67,25 +69,25 @@ void apply_preset(EffectSettings& effects, std::string_view name, const InputSou
 void apply_preset(EffectSettings& effects, const EffectPreset& preset) {
   for (const PresetEffect& effect : preset.effects) {
     effects.flag(effect.id) = true;
-    effects.parameters(effect.id) = effect.values;
+    set_preset_parameters(effects.record, effect);
   }
 }
 
 gpu::SceneEffects effect_record(const EffectSettings& effects) {
   gpu::SceneEffects record{};
   for (const EffectDeclaration& effect : effect_table())
-    if (effects.flag(effect.id) && !effect.parameters.empty()) store_parameters(record, effect.id, effects.parameters(effect.id));
+    if (effects.flag(effect.id)) copy_parameters(record, effects.record, effect.id);
   return record;
 }
 
-glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view text, const InputSource& source) {
+void parse_parameter(gpu::SceneEffects& record, const EffectParameter& parameter, std::string_view text, const InputSource& source) {
   const bool vector = parameter.kind == ParameterKind::unit_vector || parameter.kind == ParameterKind::colour;
   const std::vector<double> v = numbers(text, vector ? 3 : 1, vector ? "x,y,z" : "a number", source);
   glm::dvec3 value = vector ? glm::dvec3(v[0], v[1], v[2]) : glm::dvec3(v[0], 0.0, 0.0);
   if (const std::string problem = parameter_problem(parameter, value); !problem.empty())
     source.fail(std::string(parameter.key) + " " + problem + ", got '" + std::string(text) + "'");
   if (parameter.kind == ParameterKind::unit_vector) value = glm::normalize(value);
-  return value;
+  set_parameter(record, parameter, value);
 }
 
 std::string parameter_help(const EffectDeclaration& effect, const EffectParameter& p) {

@@ -29,28 +29,29 @@ struct Clipping {
 };
 inline constexpr std::size_t kMaxClipPlanes = 8;  // user planes; the box adds 6 half-spaces
 
-// The effects of common/effect_table.hpp, switched on or off, with their parameters (the table's
-// fallbacks until the scene or the user sets them), plus clipping's planes and box and the moment.
+// The effects of common/effect_table.hpp, switched on or off, with their parameters, plus clipping's
+// planes and box and the moment. The parameters are held in the package's own record, copied from
+// the mapped section when opened (an effect the package leaves off starts at the table's fallbacks),
+// edited at their slots by the options, the panel and the script, and handed to the shader in that
+// same layout (effect_record).
 struct EffectSettings {
   std::array<bool, kEffectCount> on{};
-  EffectValues values = fallback_effect_values();
+  gpu::SceneEffects record = fallback_effect_record();  // its clipping and proxy-motion members are not read
   Clipping clipping;
   double time = 0;                 // seconds: proxy animation and jitter are evaluated at this time
   std::uint32_t sample_index = 0;  // seeds the AO directions; progressive refinement varies it
 
   bool& flag(EffectId id) { return on[static_cast<std::size_t>(id)]; }
   bool flag(EffectId id) const { return on[static_cast<std::size_t>(id)]; }
-  ParameterValues& parameters(EffectId id) { return values[static_cast<std::size_t>(id)]; }
-  const ParameterValues& parameters(EffectId id) const { return values[static_cast<std::size_t>(id)]; }
-  double number(EffectId id, std::string_view key) const { return parameters(id)[parameter_index(id, key)].x; }
-  glm::dvec3 vector(EffectId id, std::string_view key) const { return parameters(id)[parameter_index(id, key)]; }
+  float& number(EffectId id, std::string_view key) { return number_slot(record, effect_parameter(id, key)); }
+  float number(EffectId id, std::string_view key) const { return number_slot(record, effect_parameter(id, key)); }
 
   // The parameters the renderer reads by meaning.
   std::uint32_t ao_rays() const { return std::uint32_t(number(EffectId::ambient_occlusion, "rays")); }
-  float ao_radius() const { return float(number(EffectId::ambient_occlusion, "radius")); }
+  float ao_radius() const { return number(EffectId::ambient_occlusion, "radius"); }
   double jitter_degrees() const { return number(EffectId::jitter, "amplitude_degrees"); }
   double jitter_hz() const { return number(EffectId::jitter, "frequency_hz"); }
-  glm::dvec3 light_direction() const { return vector(EffectId::shadows, "light_direction"); }
+  glm::vec3 light_direction() const { return direction_slot(record, effect_parameter(EffectId::shadows, "light_direction")); }
 };
 
 // The effects the package's scene asks for (all off when it has no "effects" section).
@@ -66,13 +67,13 @@ inline void set_effect(EffectSettings& effects, std::string_view name, bool on, 
 // throws an InputError against `source` naming the choices.
 void apply_preset(EffectSettings& effects, std::string_view name, const InputSource& source);
 void apply_preset(EffectSettings& effects, const EffectPreset& preset);
-// The on effects' parameters in the package's record layout, as the shader reads them
-// (RenderFrame::effect_record).
+// What the shader reads (RenderFrame::effect_record): the settings' record with the parameters of the
+// effects that are on, every other member zero, as in the package.
 gpu::SceneEffects effect_record(const EffectSettings& effects);
 
-// A parameter option's text ("16", "0.2,0.5,1"): the value, unit vectors normalised; throws
-// an InputError against `source` saying what the parameter accepts.
-glm::dvec3 parse_parameter(const EffectParameter& parameter, std::string_view text, const InputSource& source);
+// Sets `parameter` in `record` from an option's text ("16", "0.2,0.5,1"; unit vectors normalised);
+// throws an InputError against `source` saying what the parameter accepts.
+void parse_parameter(gpu::SceneEffects& record, const EffectParameter& parameter, std::string_view text, const InputSource& source);
 // --help's line for a parameter option.
 std::string parameter_help(const EffectDeclaration& effect, const EffectParameter& parameter);
 

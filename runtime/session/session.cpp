@@ -74,7 +74,7 @@ render::EffectSettings EffectOptions::settings(const format::Package& package) c
       const std::string& text = parameters[static_cast<std::size_t>(effect.id)][i];
       if (text.empty()) continue;
       const EffectParameter& p = effect.parameters[i];
-      e.parameters(effect.id)[i] = render::parse_parameter(p, text, parameter_option(effect, p));
+      render::parse_parameter(e.record, p, text, parameter_option(effect, p));
     }
   return e;
 }

@@ -117,8 +117,9 @@ void clipping_section(ViewerState& s, const PanelContext& c) {
   if (changed) s.touch();
 }
 
-// The widget the effect table names for a parameter; true when the user changed it.
-bool parameter_widget(const EffectParameter& p, glm::dvec3& value) {
+// The widget the effect table names for a parameter, on its slot of the settings' record; true when
+// the user changed it.
+bool parameter_widget(const EffectParameter& p, gpu::SceneEffects& record) {
   std::string label(p.key);
   if (!p.unit.empty()) label += " (" + std::string(p.unit) + ")";
   switch (p.widget) {
@@ -126,20 +127,23 @@ bool parameter_widget(const EffectParameter& p, glm::dvec3& value) {
     case PanelWidget::log_slider: {
       const ImGuiSliderFlags flags = p.widget == PanelWidget::log_slider ? ImGuiSliderFlags_Logarithmic : 0;
       const char* format = p.kind == ParameterKind::whole_number ? "%.0f" : "%.2f";
-      if (!ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &value.x, &p.panel_min, &p.panel_max, format, flags)) return false;
-      if (p.kind == ParameterKind::whole_number) value.x = std::round(value.x);
+      float& value = number_slot(record, p);
+      if (!ImGui::SliderFloat(label.c_str(), &value, float(p.panel_min), float(p.panel_max), format, flags)) return false;
+      if (p.kind == ParameterKind::whole_number) value = std::round(value);
       return true;
     }
     case PanelWidget::direction: {
-      glm::vec3 v(value);
+      glm::vec3& direction = direction_slot(record, p);
+      glm::vec3 v = direction;
       if (!ImGui::SliderFloat3(label.c_str(), &v.x, float(p.panel_min), float(p.panel_max), "%.2f")) return false;
-      if (glm::length(v) > 0) value = glm::normalize(glm::dvec3(v));  // a zero vector keeps the last direction
+      if (glm::length(v) > 0) direction = glm::vec3(glm::normalize(glm::dvec3(v)));  // a zero vector keeps the last direction
       return true;
     }
     case PanelWidget::colour_picker: {
-      glm::vec3 v(value);
+      std::uint32_t& colour = colour_slot(record, p);
+      glm::vec3 v(unpack_colour(colour));
       if (!ImGui::ColorEdit3(label.c_str(), &v.x)) return false;
-      value = glm::clamp(glm::dvec3(v), 0.0, 1.0);
+      colour = pack_colour(glm::dvec3(v));  // clamps to [0, 1]
       return true;
     }
   }
@@ -185,8 +189,8 @@ void effects_section(ViewerState& s, const PanelContext& c) {
   }
   for (const EffectDeclaration& effect : effect_table()) {
     if (effect.parameters.empty() || !ImGui::TreeNode(std::string(effect.name).c_str())) continue;
-    for (std::size_t i = 0; i < effect.parameters.size(); ++i)
-      if (parameter_widget(effect.parameters[i], e.parameters(effect.id)[i])) s.touch();
+    for (const EffectParameter& p : effect.parameters)
+      if (parameter_widget(p, e.record)) s.touch();
     if (effect.id == EffectId::ambient_occlusion) {
       const std::uint32_t samples_min = 1, samples_max = 256;
       ImGui::SliderScalar("samples", ImGuiDataType_U32, &s.ao_samples, &samples_min, &samples_max);

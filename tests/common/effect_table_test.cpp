@@ -30,10 +30,10 @@ TEST(EffectTable, NamesFlagsAndConstantsAreDistinct) {
 
 TEST(EffectTable, OptionNamesFollowPrefixAndKey) {
   const EffectDeclaration& ao = effect_declaration(EffectId::ambient_occlusion);
-  EXPECT_EQ(parameter_option(ao, ao.parameters[parameter_index(EffectId::ambient_occlusion, "rays")]), "--ao-rays");
+  EXPECT_EQ(parameter_option(ao, effect_parameter(EffectId::ambient_occlusion, "rays")), "--ao-rays");
   const EffectDeclaration& outlines = effect_declaration(EffectId::outlines);
   EXPECT_EQ(parameter_option(outlines, outlines.parameters[0]), "--outlines-width-pixels");
-  EXPECT_THROW(parameter_index(EffectId::shadows, "colour"), std::logic_error);
+  EXPECT_THROW((void)effect_parameter(EffectId::shadows, "colour"), std::logic_error);
 }
 
 TEST(EffectTable, RangesAcceptTheBoundsTheyNameAndNothingBeyond) {
@@ -61,24 +61,39 @@ TEST(EffectTable, ColoursPackToRgba8) {
   EXPECT_EQ(unpack_colour(0xffff00ffu), glm::dvec3(1, 0, 1));
 }
 
-TEST(EffectTable, ParametersRoundTripThroughTheRecordAtTheirSlots) {
+// Each parameter's slot is the member of gpu::SceneEffects (the struct render.comp reads) that the
+// format documents, typed as the member is; nothing else of the record is written.
+TEST(EffectTable, ParametersLandAtTheirMembers) {
   gpu::SceneEffects record{};
-  store_parameters(record, EffectId::ambient_occlusion, {glm::dvec3(16, 0, 0), glm::dvec3(12.5, 0, 0)});
+  set_parameter(record, effect_parameter(EffectId::ambient_occlusion, "rays"), glm::dvec3(16, 0, 0));
+  number_slot(record, effect_parameter(EffectId::ambient_occlusion, "radius")) = 12.5f;
   EXPECT_EQ(record.ambient_occlusion, glm::vec2(16, 12.5));  // the slots the 2.1 format documents
-  store_parameters(record, EffectId::outlines, {glm::dvec3(3, 0, 0), glm::dvec3(2.5, 0, 0), glm::dvec3(1, 0, 0)});
+  number_slot(record, effect_parameter(EffectId::outlines, "width_pixels")) = 3;
+  set_parameter(record, effect_parameter(EffectId::outlines, "crease_depth"), glm::dvec3(2.5, 0, 0));
+  set_parameter(record, effect_parameter(EffectId::outlines, "colour"), glm::dvec3(1, 0, 0));
   EXPECT_EQ(record.outline_width_pixels, 3.f);
   EXPECT_EQ(record.outline_crease_depth, 2.5f);
   EXPECT_EQ(record.outline_colour, 0xff0000ffu);
-  const ParameterValues back = load_parameters(record, EffectId::outlines);
-  EXPECT_EQ(back[0].x, 3.0);
-  EXPECT_EQ(back[1].x, 2.5);
-  EXPECT_EQ(back[2], glm::dvec3(1, 0, 0));
+  EXPECT_EQ(colour_slot(record, effect_parameter(EffectId::outlines, "colour")), 0xff0000ffu);
+  set_parameter(record, effect_parameter(EffectId::shadows, "light_direction"), glm::dvec3(0, 0.6, 0.8));
+  EXPECT_EQ(&direction_slot(record, effect_parameter(EffectId::shadows, "light_direction")), &record.shadow_light);
   EXPECT_EQ(record.jitter, glm::vec2(0.f));  // nothing else written
   EXPECT_EQ(record.ao_radius_pixels, 0.f);
   EXPECT_EQ(record.fog_range, glm::vec2(0.f));
-  const EffectValues fallbacks = fallback_effect_values();
-  EXPECT_EQ(fallbacks[std::size_t(EffectId::ambient_occlusion)][0].x, 8.0);
-  EXPECT_EQ(fallbacks[std::size_t(EffectId::outlines)][0].x, 1.0);
+  // A slot is read as its kind only.
+  EXPECT_THROW((void)number_slot(record, effect_parameter(EffectId::outlines, "colour")), std::logic_error);
+  EXPECT_THROW((void)direction_slot(record, effect_parameter(EffectId::fog, "start")), std::logic_error);
+  const gpu::SceneEffects fallbacks = fallback_effect_record();
+  EXPECT_EQ(fallbacks.ambient_occlusion, glm::vec2(8, 40));
+  EXPECT_EQ(fallbacks.outline_width_pixels, 1.f);
+  EXPECT_EQ(fallbacks.outline_colour, 0xff000000u);
+  EXPECT_EQ(fallbacks.clip_plane_count, 0u);
+  // copy_parameters moves one effect's slots and nothing else.
+  gpu::SceneEffects copy{};
+  copy_parameters(copy, record, EffectId::outlines);
+  EXPECT_EQ(copy.outline_width_pixels, 3.f);
+  EXPECT_EQ(copy.outline_colour, 0xff0000ffu);
+  EXPECT_EQ(copy.ambient_occlusion, glm::vec2(0.f));
 }
 
 // Every preset names distinct effects that take parameters, each value accepted by the table's range.
@@ -104,14 +119,15 @@ TEST(EffectTable, PresetsHoldValuesTheTableAccepts) {
 // The new parameters sit in words older formats kept zero: each at its member of gpu::SceneEffects.
 TEST(EffectTable, FogAndScaleParametersAtTheirMembers) {
   gpu::SceneEffects record{};
-  store_parameters(record, EffectId::fog, {glm::dvec3(0.5, 0, 0), glm::dvec3(2, 0, 0), glm::dvec3(0.25, 0, 0)});
+  set_parameter(record, effect_parameter(EffectId::fog, "start"), glm::dvec3(0.5, 0, 0));
+  set_parameter(record, effect_parameter(EffectId::fog, "span"), glm::dvec3(2, 0, 0));
+  set_parameter(record, effect_parameter(EffectId::fog, "strength"), glm::dvec3(0.25, 0, 0));
   EXPECT_EQ(record.fog_range, glm::vec2(0.5, 2));
   EXPECT_EQ(record.fog_strength, 0.25f);
-  store_parameters(record, EffectId::ambient_occlusion, {glm::dvec3(8, 0, 0), glm::dvec3(40, 0, 0), glm::dvec3(6, 0, 0)});
+  set_parameter(record, effect_parameter(EffectId::ambient_occlusion, "radius_pixels"), glm::dvec3(6, 0, 0));
   EXPECT_EQ(record.ao_radius_pixels, 6.f);
-  store_parameters(record, EffectId::outlines, {glm::dvec3(1, 0, 0), glm::dvec3(5, 0, 0), glm::dvec3(0), glm::dvec3(9, 0, 0)});
+  set_parameter(record, effect_parameter(EffectId::outlines, "fade_pixels"), glm::dvec3(9, 0, 0));
   EXPECT_EQ(record.outline_fade_pixels, 9.f);
-  EXPECT_EQ(load_parameters(record, EffectId::fog)[1].x, 2.0);
 }
 
 }  // namespace

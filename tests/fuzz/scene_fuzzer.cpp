@@ -130,7 +130,11 @@ void check_parsed(const SceneDescription& s) {
     for (const InstanceKeyframes& k : s.effects.animation->keyframes)
       for (const Keyframe& key : k.keys) check_finite(key.transform, "keyframe transform");
   }
-  if (const auto& shadows = s.effects[EffectId::shadows]) check_unit((*shadows)[0], "light direction");
+  if (s.effects.sets(EffectId::shadows)) {
+    // Held as the package holds it, a float vec3: unit to within a float's rounding.
+    const glm::dvec3 light(direction_slot(s.effects.parameters, effect_parameter(EffectId::shadows, "light_direction")));
+    if (!(std::abs(glm::length(light) - 1.0) <= 1e-6)) finding("accepted scene holds a non-unit light direction");
+  }
   if (s.camera) check_unit(s.camera->up, "camera up");
 }
 

@@ -2,6 +2,8 @@
 // and script syntax of clip planes and boxes, animation poses against analytic rigid motions, and
 // the jitter / ray-offset / sampling functions of shared/effects.h.
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <set>
 
 #include <glm/gtc/quaternion.hpp>
@@ -11,6 +13,7 @@
 #include "runtime/render/animation.hpp"
 #include "runtime/render/effects.hpp"
 #include "shared/effects.h"
+#include "shared/render_scene.h"
 #include "tests/format/sample_scene.hpp"
 #include "tests/scene/input_error_matchers.hpp"
 
@@ -45,6 +48,46 @@ TEST(PackageEffects, ReadsWhatTheSectionsHold) {
   EXPECT_EQ(e.ao_radius(), 40.f);
   EXPECT_TRUE(e.flag(EffectId::shadows));
   EXPECT_NEAR(e.light_direction().y, 0.6, 1e-7);
+}
+
+// One record from the package to the shader: the package's outline parameters are what the settings
+// hold, an edit by name through the table lands in the frame's record at the std430 offset
+// render.comp reads (docs/format.md, section "effects": outline_width_pixels at byte 244), and an
+// effect switched off reaches the shader as zeros while the settings keep its values.
+TEST(PackageEffects, OneRecordFromThePackageToTheFrame) {
+  format::test::SampleScene s = format::test::make_sample_scene();
+  s.scene[0].effect_flags |= package_flag(EffectId::outlines);
+  s.effects[0].outline_width_pixels = 2;
+  s.effects[0].outline_crease_depth = 7.5f;
+  s.effects[0].outline_colour = 0xff0000ffu;
+  s.effects[0].outline_fade_pixels = 4;
+  const Opened p(s);
+  EffectSettings e = package_effects(p.package);
+  ASSERT_TRUE(e.flag(EffectId::outlines));
+  EXPECT_EQ(e.number(EffectId::outlines, "width_pixels"), 2.f);
+  EXPECT_EQ(e.number(EffectId::outlines, "crease_depth"), 7.5f);
+  EXPECT_EQ(colour_slot(e.record, effect_parameter(EffectId::outlines, "colour")), 0xff0000ffu);
+  EXPECT_EQ(e.number(EffectId::fog, "strength"), 0.6f);  // off in the package: the table's fallback
+
+  parse_parameter(e.record, effect_parameter(EffectId::outlines, "width_pixels"), "5", "--outlines-width-pixels");
+  e.number(EffectId::outlines, "fade_pixels") = 9;  // as the panel's slider writes it
+  gpu::RenderFrame frame{};
+  frame.effect_record = effect_record(e);
+  const auto word_at = [&](std::size_t record_byte) {
+    float x;
+    std::memcpy(&x, reinterpret_cast<const unsigned char*>(&frame) + offsetof(gpu::RenderFrame, effect_record) + record_byte, 4);
+    return x;
+  };
+  EXPECT_EQ(word_at(244), 5.f);    // outline_width_pixels
+  EXPECT_EQ(word_at(248), 7.5f);   // outline_crease_depth, the package's
+  EXPECT_EQ(word_at(236), 9.f);    // outline_fade_pixels
+  EXPECT_EQ(word_at(208), 8.f);    // ambient_occlusion.x: rays, on in the package
+  EXPECT_EQ(word_at(220), 0.f);    // fog_strength: fog is off
+  EXPECT_EQ(frame.effect_record.clip_plane_count, 0u);  // clipping reaches the shader as RenderFrame::clip
+
+  e.flag(EffectId::outlines) = false;
+  EXPECT_EQ(effect_record(e).outline_width_pixels, 0.f);
+  EXPECT_EQ(e.number(EffectId::outlines, "width_pixels"), 5.f);  // kept for when it is switched on again
 }
 
 TEST(PackageEffects, AllOffWithoutTheSection) {
@@ -107,7 +150,10 @@ TEST(SetEffect, NamesAndDefaults) {
   const InputError preset = expect_input_error([&] { apply_preset(e, "glow", "--preset"); });
   EXPECT_EQ(preset.file(), "--preset") << preset.what();
   const InputError parameter =
-      expect_input_error([] { (void)parse_parameter(find_effect("ao")->parameters[0], "-1", "--ao-rays"); });
+      expect_input_error([] {
+        gpu::SceneEffects record = fallback_effect_record();
+        parse_parameter(record, effect_parameter(EffectId::ambient_occlusion, "rays"), "-1", "--ao-rays");
+      });
   EXPECT_EQ(parameter.file(), "--ao-rays") << parameter.what();
 }
 

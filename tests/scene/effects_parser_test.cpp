@@ -16,6 +16,9 @@ Effects effects_from(const char* text, std::size_t instance_count = 3) {
   return parse_effects(JsonCursor(doc, file).required("effects"), instance_count);
 }
 
+// A parameter as the package's effects record holds it.
+float number(const Effects& e, EffectId id, std::string_view key) { return number_slot(e.parameters, effect_parameter(id, key)); }
+
 Camera camera_from(const char* text) {
   const Json doc = parse_json_text(text, file);
   return parse_camera(JsonCursor(doc, file).required("camera"));
@@ -31,7 +34,7 @@ TEST(EffectsParser, SteadyMotion) {
   ASSERT_TRUE(e.animation.has_value());
   EXPECT_EQ(e.animation->steady, (SteadyMotion{{0, 0.6, 0.8}, 12.0, {1, 2, 3}}));
   EXPECT_TRUE(e.animation->keyframes.empty());
-  EXPECT_FALSE(e[EffectId::jitter].has_value());
+  EXPECT_FALSE(e.sets(EffectId::jitter));
   // Velocity alone keeps the default axis and no spin.
   const Effects drift = effects_from(R"({"effects": {"animation": {"proxy_motion": {"steady": {"velocity": [5, 0, 0]}}}}})");
   EXPECT_EQ(drift.animation->steady, (SteadyMotion{{0, 0, 1}, 0.0, {5, 0, 0}}));
@@ -86,14 +89,11 @@ TEST(EffectsParser, ClippingAmbientOcclusionShadows) {
       "ambient_occlusion": {"rays": 16, "radius": 12.5},
       "shadows": {"light_direction": [1, 1, 0]}}})");
   EXPECT_EQ(e.clipping, (Clipping{{glm::dvec4(0.6, 0, 0.8, 2), glm::dvec4(0, -1, 0, 0)}, std::nullopt}));
-  ASSERT_TRUE(e[EffectId::ambient_occlusion].has_value());
-  EXPECT_EQ((*e[EffectId::ambient_occlusion])[0].x, 16.0);
-  EXPECT_EQ((*e[EffectId::ambient_occlusion])[1].x, 12.5);
-  ASSERT_TRUE(e[EffectId::shadows].has_value());
-  const glm::dvec3 light = (*e[EffectId::shadows])[0];
-  EXPECT_NEAR(light.x, std::sqrt(0.5), 1e-15);
-  EXPECT_NEAR(light.y, std::sqrt(0.5), 1e-15);
-  EXPECT_EQ(light.z, 0.0);
+  ASSERT_TRUE(e.sets(EffectId::ambient_occlusion));
+  EXPECT_EQ(number(e, EffectId::ambient_occlusion, "rays"), 16.f);
+  EXPECT_EQ(number(e, EffectId::ambient_occlusion, "radius"), 12.5f);
+  ASSERT_TRUE(e.sets(EffectId::shadows));
+  EXPECT_EQ(e.parameters.shadow_light, glm::vec3(float(std::sqrt(0.5)), float(std::sqrt(0.5)), 0.f));  // normalised in double
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"clipping": {}}})"), "effects.clipping", "\"planes\", \"box\" or both");
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"clipping": {"planes": []}}})"), "effects.clipping.planes",
                      "at least 1 element");
@@ -108,10 +108,10 @@ TEST(EffectsParser, ClippingAmbientOcclusionShadows) {
 
 TEST(EffectsParser, FogTakesTheTableFallbacksAndRanges) {
   const Effects e = effects_from(R"({"effects": {"fog": {"strength": 0.5}}})");
-  ASSERT_TRUE(e[EffectId::fog].has_value());
-  EXPECT_EQ((*e[EffectId::fog])[0].x, 0.0);  // start: the nearest depth the frame shows
-  EXPECT_EQ((*e[EffectId::fog])[1].x, 1.0);  // span: the whole depth range
-  EXPECT_EQ((*e[EffectId::fog])[2].x, 0.5);
+  ASSERT_TRUE(e.sets(EffectId::fog));
+  EXPECT_EQ(number(e, EffectId::fog, "start"), 0.f);  // the nearest depth the frame shows
+  EXPECT_EQ(number(e, EffectId::fog, "span"), 1.f);   // the whole depth range
+  EXPECT_EQ(number(e, EffectId::fog, "strength"), 0.5f);
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"fog": {"span": 0}}})"), "effects.fog.span", "> 0");
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"fog": {"strength": 1.5}}})"), "effects.fog.strength", "[0, 1]");
 }
@@ -121,19 +121,22 @@ TEST(EffectsParser, FogTakesTheTableFallbacksAndRanges) {
 TEST(EffectsParser, PresetThenTheScenesOwnKeys) {
   const Effects plain = effects_from(R"({"effects": {"preset": "illustrative"}})");
   const EffectPreset& preset = *find_preset("illustrative");
+  gpu::SceneEffects expected{};
   for (const PresetEffect& effect : preset.effects) {
-    ASSERT_TRUE(plain[effect.id].has_value()) << effect_declaration(effect.id).name;
-    EXPECT_EQ(*plain[effect.id], effect.values);
+    EXPECT_TRUE(plain.sets(effect.id)) << effect_declaration(effect.id).name;
+    set_preset_parameters(expected, effect);
   }
-  EXPECT_FALSE(plain[EffectId::shadows].has_value());
+  EXPECT_EQ(plain.parameters, expected);
+  EXPECT_EQ(plain.parameters.outline_fade_pixels, 12.f);
+  EXPECT_FALSE(plain.sets(EffectId::shadows));
   const Effects tuned = effects_from(R"({"effects": {"preset": "illustrative", "outlines": {"width_pixels": 2},
                                                      "ambient_occlusion": {"rays": 4}, "shadows": {"light_direction": [0, 1, 0]}}})");
-  ParameterValues outlines = *plain[EffectId::outlines];
-  outlines[0].x = 2;
-  EXPECT_EQ(*tuned[EffectId::outlines], outlines);
-  EXPECT_EQ((*tuned[EffectId::ambient_occlusion])[0].x, 4.0);
-  EXPECT_EQ((*tuned[EffectId::ambient_occlusion])[1], (*plain[EffectId::ambient_occlusion])[1]);
-  EXPECT_TRUE(tuned[EffectId::shadows].has_value());
+  EXPECT_EQ(tuned.parameters.outline_width_pixels, 2.f);
+  EXPECT_EQ(tuned.parameters.outline_crease_depth, plain.parameters.outline_crease_depth);
+  EXPECT_EQ(tuned.parameters.outline_fade_pixels, plain.parameters.outline_fade_pixels);
+  EXPECT_EQ(number(tuned, EffectId::ambient_occlusion, "rays"), 4.f);
+  EXPECT_EQ(number(tuned, EffectId::ambient_occlusion, "radius"), number(plain, EffectId::ambient_occlusion, "radius"));
+  EXPECT_TRUE(tuned.sets(EffectId::shadows));
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"preset": "ilustrative"}})"), "effects.preset", "unknown preset \"ilustrative\" (illustrative)");
   EXPECT_INPUT_ERROR(effects_from(R"({"effects": {"preset": 3}})"), "effects.preset", "string");
 }

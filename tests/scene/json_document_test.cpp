@@ -233,7 +233,7 @@ TEST(JsonDocument, DirectionsWrittenWithExtremeNumbersKeepTheirMeaning) {
       "clipping": {"planes": [[3e300, 0, 4e300, 5e300], [0, -2e-300, 0, 1e-300]]},
       "animation": {"proxy_motion": {"steady": {"spin_axis": [1e200, 0, 0], "spin_degrees_per_second": 1}}}},
     "camera": {"position": [0, 0, -1e300], "look_at": [0, 0, 1e300], "up": [0, 1e-300, 0]})");
-  EXPECT_EQ((*s.effects[EffectId::shadows])[0], glm::dvec3(0, 1, 0));
+  EXPECT_EQ(direction_slot(s.effects.parameters, effect_parameter(EffectId::shadows, "light_direction")), glm::vec3(0, 1, 0));
   EXPECT_EQ(s.effects.clipping->planes[0], glm::dvec4(0.6, 0, 0.8, 1));
   EXPECT_EQ(s.effects.clipping->planes[1], glm::dvec4(0, -1, 0, 0.5));
   EXPECT_EQ(s.effects.animation->steady->spin_axis, glm::dvec3(1, 0, 0));

@@ -110,11 +110,18 @@ SceneDescription expected_scene() {
   animation.keyframes = {{6,
                           {{0.0, identity_transform()},
                            {2.5, {glm::dvec4(2, 0, 0, 1), glm::dvec4(0, 2, 0, 2), glm::dvec4(0, 0, 2, 3)}}}}};
-  s.effects[EffectId::jitter] = ParameterValues{glm::dvec3(5.0, 0, 0), glm::dvec3(2.0, 0, 0)};
+  const auto set = [&](EffectId id, std::string_view key, const glm::dvec3& value) {
+    s.effects.plain[static_cast<std::size_t>(id)] = true;
+    set_parameter(s.effects.parameters, effect_parameter(id, key), value);
+  };
+  set(EffectId::jitter, "amplitude_degrees", glm::dvec3(5.0, 0, 0));
+  set(EffectId::jitter, "frequency_hz", glm::dvec3(2.0, 0, 0));
   s.effects.clipping = Clipping{{glm::dvec4(0, 0, 1, -2)}, Box{{-1, -2, -3}, {4, 5, 6}}};
   s.effects.animation = animation;
-  s.effects[EffectId::ambient_occlusion] = ParameterValues{glm::dvec3(8, 0, 0), glm::dvec3(30.0, 0, 0)};
-  s.effects[EffectId::shadows] = ParameterValues{glm::dvec3(0, -1, 0)};
+  set(EffectId::ambient_occlusion, "rays", glm::dvec3(8, 0, 0));
+  set(EffectId::ambient_occlusion, "radius", glm::dvec3(30.0, 0, 0));
+  set(EffectId::ambient_occlusion, "radius_pixels", glm::dvec3(0.0));  // the table's fallback
+  set(EffectId::shadows, "light_direction", glm::dvec3(0, -1, 0));
   s.camera = Camera{{0, 0, -5000}, {0, 0, 0}, {0, 1, 0}, 60.0};
   return s;
 }
@@ -134,6 +141,7 @@ TEST(SceneParser, CompleteSceneMatchesHandWrittenValues) {
   EXPECT_EQ(actual.effects.clipping, expected.effects.clipping);
   EXPECT_EQ(actual.effects.animation, expected.effects.animation);
   EXPECT_EQ(actual.effects.plain, expected.effects.plain);
+  EXPECT_EQ(actual.effects.parameters, expected.effects.parameters);
   EXPECT_EQ(actual.camera, expected.camera);
   EXPECT_EQ(actual, expected);
 }

@@ -74,7 +74,11 @@ TEST(ScriptRunner, PresetTurnsItsEffectsOnWithItsValues) {
   const render::EffectSettings& e = host.state_.settings.effects;
   for (const PresetEffect& effect : find_preset("illustrative")->effects) {
     EXPECT_EQ(e.flag(effect.id), effect.id != EffectId::fog) << effect_declaration(effect.id).name;
-    EXPECT_EQ(e.parameters(effect.id), effect.values);
+    const auto parameters = effect_declaration(effect.id).parameters;
+    for (std::size_t i = 0; i < parameters.size(); ++i) {
+      if (parameters[i].kind == ParameterKind::colour) EXPECT_EQ(colour_slot(e.record, parameters[i]), pack_colour(effect.values[i]));
+      else EXPECT_EQ(number_slot(e.record, parameters[i]), float(effect.values[i].x)) << parameters[i].key;
+    }
   }
   EXPECT_FALSE(e.flag(EffectId::shadows));
 }
