@@ -32,8 +32,9 @@ void ExplicitScene::for_each_membrane_copy(std::uint32_t i, std::uint32_t triang
 
 bool ExplicitScene::has_medium() const { return impl_->copies.has_medium(); }
 
-void ExplicitScene::for_each_medium_copy(const glm::ivec3& box, const std::function<void(const Copy&)>& visit) const {
-  impl_->copies.for_each_medium_copy(box, WorldBox::everything(), visit);
+void ExplicitScene::for_each_medium_copy(const glm::ivec3& box, const std::function<void(const Copy&)>& visit,
+                                         const placement::CopyEnumerator::SphereTest& may_meet) const {
+  impl_->copies.for_each_medium_copy(box, WorldBox::everything(), visit, may_meet);
 }
 
 namespace {

@@ -55,7 +55,8 @@ public:
   void for_each_membrane_copy(std::uint32_t instance, std::uint32_t triangle, const std::function<void(const Copy&)>& visit) const;
   // The medium's kept copies of region box `box` (placement::CopyEnumerator::for_each_medium_copy).
   bool has_medium() const;
-  void for_each_medium_copy(const glm::ivec3& box, const std::function<void(const Copy&)>& visit) const;
+  void for_each_medium_copy(const glm::ivec3& box, const std::function<void(const Copy&)>& visit,
+                            const placement::CopyEnumerator::SphereTest& may_meet = {}) const;
   // Every atom whose centre lies in `box`; atoms of a copy are consecutive, in the type's order.
   // The medium's atoms come last; a box spanning more than `max_medium_boxes` of its region boxes
   // is refused (InputError): they would hold billions of copies.

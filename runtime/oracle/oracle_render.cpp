@@ -357,8 +357,12 @@ NearestHit trace_medium_ray(const ExplicitScene& scene, const format::PackageVie
     if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, boxes))) return;
     const std::uint64_t key = std::uint64_t(b.x) + std::uint64_t(boxes.x) * (std::uint64_t(b.y) + std::uint64_t(boxes.y) * std::uint64_t(b.z));
     if (!seen.insert(key).second) return;
+    // The ray must meet a copy's sphere: asked before its keep test (the enumerator's costly part).
+    const auto ray_meets = [&](const dvec3& origin, double radius) {
+      return sphere_hit(ray, origin, radius * std::max(1.0, options.radius_scale)) != kInf;
+    };
     scene.for_each_medium_copy(b, [&](const Copy& c) {
-      if (sphere_hit(ray, c.origin, c.radius * std::max(1.0, options.radius_scale)) == kInf) return;
+      if (!ray_meets(c.origin, c.radius)) return;
       const gpu::MoleculeType& type = p.molecules[c.molecule_type];
       for (std::uint32_t a = type.first_atom; a < type.first_atom + type.atom_count; ++a) {
         const dvec3 centre_a = c.origin + c.linear * dvec3(p.atoms[a].centre_radius);
@@ -367,7 +371,7 @@ NearestHit trace_medium_ray(const ExplicitScene& scene, const format::PackageVie
         if (clipped) continue;
         best.offer(sphere_hit(ray, centre_a, p.atoms[a].centre_radius.w * c.stretch * options.radius_scale), a, c.id, c.number);
       }
-    });
+    }, ray_meets);
   };
   for (double t = t0; t <= t1 && t <= best.t + B / 2; t += B / 4) {
     const glm::ivec3 cell(glm::floor((ray.o + t * ray.d - dvec3(m.region_min)) / B));

@@ -164,7 +164,8 @@ struct CopyEnumerator::Impl : format::PackageView {
     }
   }
 
-  void walk_medium_box(const ivec3& ijk, const WorldBox& cull, const std::function<void(const Copy&)>& visit) const {
+  void walk_medium_box(const ivec3& ijk, const WorldBox& cull, const std::function<void(const Copy&)>& visit,
+                       const CopyEnumerator::SphereTest& may_meet = {}) const {
     const gpu::Medium& m = medium[0];
     if (glm::any(glm::lessThan(ijk, ivec3(0))) || glm::any(glm::greaterThanEqual(ijk, ivec3(glm::uvec3(m.boxes))))) return;
     const float B = m.region_min.w;
@@ -191,6 +192,10 @@ struct CopyEnumerator::Impl : format::PackageView {
     for (std::uint32_t k = 0; k < cube.instance_count; ++k) {
       const gpu::MoleculeInstance& inst = instances[cube.first_instance + k];
       if (options.visibility.molecule_type_hidden(inst.molecule_type)) continue;  // before its keep test, the costly part
+      // The sphere the Emitter gives the copy (jitter turns a copy about its origin, never moves it).
+      const dvec3 origin = dvec3(gpu::core_soluble_molecule(vec3(0.0f), vec3(inst.position), inst.rotation).translation) + ip.translation;
+      const double radius = type_radius[inst.molecule_type] * ip.stretch;
+      if (!cull.meets_sphere(origin, radius) || (may_meet && !may_meet(origin, radius))) continue;
       const vec3 c = gpu::medium_copy_centre(ijk, B, vec3(inst.position));
       near_instances(c, candidates, near);
       if (!medium_copy_kept(*this, medium_records, near, c, molecules[inst.molecule_type].aabb_min.w)) continue;
@@ -556,8 +561,9 @@ std::uint64_t CopyEnumerator::copy_number_limit() const { return impl_->number_l
 
 bool CopyEnumerator::has_medium() const { return impl_->medium_on; }
 
-void CopyEnumerator::for_each_medium_copy(const glm::ivec3& box, const WorldBox& cull, const std::function<void(const Copy&)>& visit) const {
-  if (impl_->medium_on) impl_->walk_medium_box(box, cull, visit);
+void CopyEnumerator::for_each_medium_copy(const glm::ivec3& box, const WorldBox& cull, const std::function<void(const Copy&)>& visit,
+                                          const SphereTest& may_meet) const {
+  if (impl_->medium_on) impl_->walk_medium_box(box, cull, visit, may_meet);
 }
 
 void CopyEnumerator::for_each_medium_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit,

@@ -114,9 +114,13 @@ public:
   // The medium (shaders/shared/medium.h; not part of for_each_copy, whose boxes would hold
   // billions of its copies): the copies of region box `box` that its keep rule keeps, none beyond
   // the region or without a medium; and the ones whose sphere meets `box`, refusing (InputError)
-  // a box of more than `max_boxes` region boxes.
+  // a box of more than `max_boxes` region boxes. A copy whose bounding sphere (origin, radius, as the
+  // Copy will hold them) misses `cull` or fails `may_meet` is passed over before its keep test, the
+  // costly part: `visit` sees the copies it would see if it rejected those itself.
   bool has_medium() const;
-  void for_each_medium_copy(const glm::ivec3& box, const WorldBox& cull, const std::function<void(const Copy&)>& visit) const;
+  using SphereTest = std::function<bool(const glm::dvec3& origin, double radius)>;
+  void for_each_medium_copy(const glm::ivec3& box, const WorldBox& cull, const std::function<void(const Copy&)>& visit,
+                            const SphereTest& may_meet = {}) const;
   void for_each_medium_copy(const WorldBox& box, const std::function<void(const Copy&)>& visit,
                             std::uint64_t max_boxes = 100'000'000) const;
 
