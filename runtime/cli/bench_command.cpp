@@ -56,6 +56,7 @@ struct Options {
   std::string package, size, camera, path, json, markdown, plot;
   unsigned frames = 0;
   unsigned matrix_cameras = 4;
+  std::vector<std::string> matrix_knobs;  // empty: every knob
   bool effects = false, matrix = false, explicit_instancing = false, counters = false, compile = false, medium = false;
   std::string close_up;  // --medium's close-up camera (empty: chosen on the scene camera's axis)
   bool warm = false;  // with --compile: the caches as they are (the rows checked, not measured cold)
@@ -331,7 +332,10 @@ void run_effects(const Options& o, session::RenderSession& session, nlohmann::or
 void run_matrix(const Options& o, session::RenderSession& session, nlohmann::ordered_json& out) {
   const auto [w, h] = parse_size(o.size.empty() ? "96x96" : o.size);
   const unsigned rounds = o.frames ? o.frames : 3;
-  // The verify views: chosen so the oracle can resolve them, the hard cases first.
+  if (o.variant.shell != "adaptive-overlap" || o.variant.levels != "3+rep" || o.variant.prism != "exact")
+    throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
+  std::vector<session::MatrixVariant> variants = session::matrix_variants(o.variant.render_settings(), session.package);
+  if (!o.matrix_knobs.empty()) variants = session::select_matrix_knobs(std::move(variants), o.matrix_knobs, "--matrix-knobs");
   const oracle::ExplicitScene scene(session.package);
   // The verify views (near: the hard cases first) and the package's own camera (far: the overview,
   // where the level of detail acts) when the CPU oracle can resolve it (a whole cell cannot).
@@ -349,9 +353,6 @@ void run_matrix(const Options& o, session::RenderSession& session, nlohmann::ord
   } catch (const InputError& e) {
     std::fprintf(stderr, "matrix: far view left out: %s\n", e.what());
   }
-  if (o.variant.shell != "adaptive-overlap" || o.variant.levels != "3+rep" || o.variant.prism != "exact")
-    throw InputError("--matrix", "", "measures every knob against the defaults; leave --shell, --levels and --prism out");
-  const std::vector<session::MatrixVariant> variants = session::matrix_variants(o.variant.render_settings(), session.package);
   const std::vector<session::MatrixRow> rows = session::run_accuracy_matrix(
       session.device, session.package, *session.scene, cameras, variants, rounds, effect_free,
       [](const std::string& what) { std::fprintf(stderr, "matrix: %s\n", what.c_str()); });
@@ -460,6 +461,10 @@ void add_bench_command(CLI::App& app) {
                   "with --medium: the close-up's camera (default: 600 Å before the first atom on the scene camera's axis)");
   cmd->add_flag("--matrix", o->matrix, "every accuracy knob against the default: time ratio and pixels differing from the oracle");
   cmd->add_option("--matrix-cameras", o->matrix_cameras, "verify views of the matrix")->capture_default_str()->check(CLI::Range(1u, 16u));
+  cmd->add_option("--matrix-knobs", o->matrix_knobs,
+                  "with --matrix: only these knobs' rows beside the default (comma-separated, as the table names them, "
+                  "'-' for a space: flat-level; a name it lacks lists them)")
+      ->delimiter(',');
   cmd->add_option("--markdown", o->markdown, "with --matrix: write the table as Markdown");
   cmd->add_option("--plot", o->plot, "with --matrix: write error against time as SVG");
   add_variant_options(*cmd, o->variant);
@@ -469,6 +474,7 @@ void add_bench_command(CLI::App& app) {
       throw InputError("--effects/--matrix/--explicit/--counters/--compile/--medium", "", "choose one mode");
     if (!o->close_up.empty() && !o->medium) throw InputError("--close-up", "", "needs --medium");
     if ((!o->markdown.empty() || !o->plot.empty()) && !o->matrix) throw InputError("--markdown/--plot", "", "need --matrix");
+    if (!o->matrix_knobs.empty() && !o->matrix) throw InputError("--matrix-knobs", "", "needs --matrix");
     session::SessionOptions session_options = o->variant.scene_options();
     if (o->warm && !o->compile) throw InputError("--warm", "", "needs --compile");
     if (o->compile && !o->warm) {

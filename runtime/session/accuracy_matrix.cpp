@@ -1,10 +1,12 @@
 #include "common/effect_table.hpp"
+#include "common/error.hpp"
 #include "runtime/session/accuracy_matrix.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 
 #include "runtime/bench/frame_stats.hpp"
@@ -199,6 +201,28 @@ std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, c
     }, std::string(effect.oracle));
   }
   return v;
+}
+
+std::vector<MatrixVariant> select_matrix_knobs(std::vector<MatrixVariant> variants, const std::vector<std::string>& knobs,
+                                               const std::string& option) {
+  const auto spoken = [](std::string name) {
+    std::replace(name.begin(), name.end(), '-', ' ');
+    return name;
+  };
+  std::set<std::string> wanted;
+  for (const std::string& name : knobs) {
+    const bool known = std::any_of(variants.begin(), variants.end(), [&](const MatrixVariant& v) { return v.knob == spoken(name); });
+    if (!known || spoken(name) == "default") {
+      std::string offered;
+      for (const MatrixVariant& v : variants)
+        if (!v.is_default && offered.find("'" + v.knob + "'") == std::string::npos)
+          offered += (offered.empty() ? "'" : ", '") + v.knob + "'";
+      throw InputError(option, name, "no such knob in the matrix (the default row is always there); its knobs: " + offered);
+    }
+    wanted.insert(spoken(name));
+  }
+  std::erase_if(variants, [&](const MatrixVariant& v) { return !v.is_default && !wanted.contains(v.knob); });
+  return variants;
 }
 
 std::vector<MatrixRow> run_accuracy_matrix(const vk::Device& device, const format::Package& package,

@@ -31,6 +31,13 @@ struct MatrixVariant {
 // default knobs. Clipping gets one plane per view, 400 Å ahead of its eye, keeping the near side.
 std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, const format::Package& package);
 
+// The default row and the rows of the knobs named (a knob's name as the table prints it, or with
+// '-' for its spaces: "flat-level"), in the matrix's order: a matrix of what one is tuning, minutes
+// shorter than every knob on a large scene. Throws InputError (key `option`) for a name no row has,
+// listing the knobs there are.
+std::vector<MatrixVariant> select_matrix_knobs(std::vector<MatrixVariant> variants, const std::vector<std::string>& knobs,
+                                               const std::string& option);
+
 struct MatrixRow {
   MatrixVariant variant;
   double seconds_median = 0;          // per frame, over cameras × rounds

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Checks a `nanoview bench --json` file holds every key docs/benchmarks.md promises for its mode, with
-values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit|counters|compile|medium"""
+values of the right kind and in range: check_bench_json.py FILE frames|effects|matrix|explicit|counters|compile|medium
+[KNOBS: with matrix, the --matrix-knobs asked for]"""
 import json, math, sys
 
 path, mode = sys.argv[1], sys.argv[2]
@@ -64,9 +65,14 @@ elif mode == "effects":
 elif mode == "matrix":
     rows = need(d, "matrix", "top", list) or []
     knobs = {r.get("knob") for r in rows}
-    for k in ("default", "hierarchy", "shell", "prism test", "precision", "lod", "flat level", "effect"):
+    # The knobs asked for (bench --matrix-knobs), or every knob of DESIGN.md's table.
+    asked = ["default"] + sys.argv[3].replace("-", " ").split(",") if len(sys.argv) > 3 else [
+        "default", "hierarchy", "shell", "prism test", "precision", "lod", "flat level", "effect"]
+    for k in asked:
         if k not in knobs:
             problems.append(f"matrix: no row for knob {k!r}")
+    for k in knobs - set(asked):
+        problems.append(f"matrix: a row for knob {k!r}, which was not asked for")
     for r in rows:
         where = f"{r.get('knob')}={r.get('value')}"
         need(r, "time_ratio", where, positive=True)
