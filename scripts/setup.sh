@@ -87,5 +87,6 @@ elif ((need_update)); then
 fi
 
 if [[ ${NANO_SETUP_ONLY:-0} == 1 ]]; then exit 0; fi
-cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" >/dev/null
+cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" \
+  -DCMAKE_UNITY_BUILD="${NANO_UNITY_BUILD:-ON}" >/dev/null
 cmake --build "$build_dir" -j "${NANO_JOBS:-2}"

@@ -10,7 +10,7 @@
 namespace nano::cellpack {
 namespace {
 
-std::string error_of(const std::string& text) {
+std::string sphere_tree_error(const std::string& text) {
   try {
     parse_sphere_tree(text, "t.sph");
   } catch (const InputError& e) {
@@ -37,14 +37,14 @@ TEST(SphereTree, LevelsWithChildIndicesAndComments) {
 }
 
 TEST(SphereTree, MalformedFilesNameTheLine) {
-  EXPECT_NE(error_of("").find("t.sph:end: the file ends before \"rmin rmax\""), std::string::npos);
-  EXPECT_NE(error_of("1 2\n1\n2\n0 0 0 1\n").find("t.sph:end: the file ends before \"x y z r\""), std::string::npos);
-  EXPECT_NE(error_of("1 2\n1\n1\n0 0 zero 1\n").find("t.sph:line 4: expected \"x y z r\""), std::string::npos);
-  EXPECT_NE(error_of("1 2\n1\n1\n0 0 0 -1\n").find("line 4: expected a sphere radius > 0"), std::string::npos);
-  EXPECT_NE(error_of("1 2\n1.5\n").find("line 2: the number of levels must be a whole number"), std::string::npos);
-  EXPECT_NE(error_of("1 2\n1\n1e9\n").find("line 3: a sphere count must be a whole number in [0, 1000000]"), std::string::npos);
-  EXPECT_NE(error_of("1 nan\n").find("line 1"), std::string::npos);
-  EXPECT_NE(error_of("1 2\n1\n1\n0 0 0 1e999\n").find("line 4"), std::string::npos);
+  EXPECT_NE(sphere_tree_error("").find("t.sph:end: the file ends before \"rmin rmax\""), std::string::npos);
+  EXPECT_NE(sphere_tree_error("1 2\n1\n2\n0 0 0 1\n").find("t.sph:end: the file ends before \"x y z r\""), std::string::npos);
+  EXPECT_NE(sphere_tree_error("1 2\n1\n1\n0 0 zero 1\n").find("t.sph:line 4: expected \"x y z r\""), std::string::npos);
+  EXPECT_NE(sphere_tree_error("1 2\n1\n1\n0 0 0 -1\n").find("line 4: expected a sphere radius > 0"), std::string::npos);
+  EXPECT_NE(sphere_tree_error("1 2\n1.5\n").find("line 2: the number of levels must be a whole number"), std::string::npos);
+  EXPECT_NE(sphere_tree_error("1 2\n1\n1e9\n").find("line 3: a sphere count must be a whole number in [0, 1000000]"), std::string::npos);
+  EXPECT_NE(sphere_tree_error("1 nan\n").find("line 1"), std::string::npos);
+  EXPECT_NE(sphere_tree_error("1 2\n1\n1\n0 0 0 1e999\n").find("line 4"), std::string::npos);
   EXPECT_THROW(read_sphere_tree("absent.sph"), InputError);
 }
 

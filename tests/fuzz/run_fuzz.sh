@@ -24,7 +24,7 @@ sessions=(package scene recipe obj off ply stl draco collada pdb mmcif gzip)
 
 build_fuzzers() {
   CC=clang-14 CXX=clang++-14 cmake -S "$src" -B "$build" -G Ninja -DNANO_FUZZ_ONLY=ON \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_UNITY_BUILD="${NANO_UNITY_BUILD:-ON}" >/dev/null
   cmake --build "$build" --target "${sessions[@]/%/_fuzzer}" -j2
 }
 

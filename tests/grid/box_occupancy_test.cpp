@@ -13,7 +13,7 @@
 namespace nano::grid {
 namespace {
 
-double cube(double x) { return x * x * x; }
+double cubed(double x) { return x * x * x; }
 
 // The mesh's surface lies in the shell R − δ ≤ |p| ≤ R (vertices on the sphere, flat triangles).
 double sphere_deviation(const mesh::ProxyMesh& m, double radius) {
@@ -60,10 +60,10 @@ TEST(BoxOccupancy, SphereAgainstAnalyticSphere) {
     }
   }
   // INSIDE volume: at most the ball R − C, at least the ball R − δ − C − 2·hd; close to R − C.
-  const double volume = static_cast<double>(occ.inside) * cube(S), ball = 4.0 / 3.0 * std::numbers::pi;
-  EXPECT_LE(volume, ball * cube(R - C));
-  EXPECT_GE(volume, ball * cube(R - delta - C - 2.0 * hd));
-  EXPECT_NEAR(volume / (ball * cube(R - C)), 1.0, 0.12);
+  const double volume = static_cast<double>(occ.inside) * cubed(S), ball = 4.0 / 3.0 * std::numbers::pi;
+  EXPECT_LE(volume, ball * cubed(R - C));
+  EXPECT_GE(volume, ball * cubed(R - delta - C - 2.0 * hd));
+  EXPECT_NEAR(volume / (ball * cubed(R - C)), 1.0, 0.12);
   // Thread count does not change the result.
   EXPECT_EQ(classify_boxes(surface, g, C, 1).classes, occ.classes);
 }

@@ -14,7 +14,7 @@
 namespace {
 using namespace placement_test;
 namespace g = nano::gpu;
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Interval of t ∈ [t0, t1] where o + t d is in the closed box [lo, hi] (double). Empty: a > b.
 void box_interval(dvec3 lo, dvec3 hi, dvec3 o, dvec3 d, double t0, double t1, double& a, double& b) {
@@ -22,7 +22,7 @@ void box_interval(dvec3 lo, dvec3 hi, dvec3 o, dvec3 d, double t0, double t1, do
   b = t1;
   for (int i = 0; i < 3; ++i) {
     if (d[i] == 0) {
-      if (o[i] < lo[i] || o[i] > hi[i]) { a = kInf; b = -kInf; return; }
+      if (o[i] < lo[i] || o[i] > hi[i]) { a = kInfinity; b = -kInfinity; return; }
       continue;
     }
     double x = (lo[i] - o[i]) / d[i], y = (hi[i] - o[i]) / d[i];
@@ -36,11 +36,11 @@ struct Grid {
   glm::ivec3 res;
 };
 
-struct Stats {
+struct DdaStats {
   long rays = 0, cells = 0, ambiguous = 0, hits = 0;
 };
 
-void check_ray(const Grid& gr, glm::vec3 o, glm::vec3 d, float t0, float t1, Stats& st) {
+void check_ray(const Grid& gr, glm::vec3 o, glm::vec3 d, float t0, float t1, DdaStats& st) {
   ++st.rays;
   g::GridDda it;
   g::dda_init(it, gr.gmin, gr.cs, gr.res, o, d, t0, t1);
@@ -60,7 +60,7 @@ void check_ray(const Grid& gr, glm::vec3 o, glm::vec3 d, float t0, float t1, Sta
   struct OC { glm::ivec3 c; double a; };
   std::vector<OC> solid;
   std::set<std::tuple<int, int, int>> possible;
-  double cover_a = kInf, cover_b = -kInf;
+  double cover_a = kInfinity, cover_b = -kInfinity;
   for (int z = 0; z < gr.res.z; ++z)
     for (int y = 0; y < gr.res.y; ++y)
       for (int x = 0; x < gr.res.x; ++x) {
@@ -131,7 +131,7 @@ glm::vec3 grid_point(const Grid& gr, dvec3 u) { return glm::vec3(D(gr.gmin) + u 
 
 TEST(GridDda, RandomRaysMatchBruteForce) {
   Rng rng(61);
-  Stats st;
+  DdaStats st;
   for (int i = 0; i < 6000; ++i) {
     Grid gr = random_grid(rng, i % 2 == 0);
     dvec3 r(gr.res);
@@ -150,7 +150,7 @@ TEST(GridDda, RandomRaysMatchBruteForce) {
 
 TEST(GridDda, AxisAlignedRaysWithSignedZerosAndOriginsOnBoundaries) {
   Rng rng(62);
-  Stats st;
+  DdaStats st;
   for (int i = 0; i < 6000; ++i) {
     Grid gr = random_grid(rng, true);
     dvec3 u;
@@ -177,7 +177,7 @@ TEST(GridDda, AxisAlignedRaysWithSignedZerosAndOriginsOnBoundaries) {
 
 TEST(GridDda, RaysThroughLatticeCornersAndEdges) {
   Rng rng(63);
-  Stats st;
+  DdaStats st;
   for (int i = 0; i < 6000; ++i) {
     Grid gr = random_grid(rng, true);
     // a lattice corner (or edge point) inside the grid and a direction with small integer ratios, so

@@ -106,11 +106,11 @@ std::vector<Tri> fan_tessellation(Rng& rng, I2 c) {
   return t;
 }
 
-struct Stats {
+struct OwnershipStats {
   long points = 0, on_edge = 0, on_vertex = 0, outside = 0;
 };
 
-void check(const std::vector<Tri>& tris, Rng& rng, int samples, Stats& st) {
+void check(const std::vector<Tri>& tris, Rng& rng, int samples, OwnershipStats& st) {
   // Quantised float triangles, as the renderer would see them.
   std::vector<std::array<glm::vec2, 3>> ft;
   for (const Tri& t : tris) ft.push_back({to_uv(t[0]), to_uv(t[1]), to_uv(t[2])});
@@ -166,7 +166,7 @@ void check(const std::vector<Tri>& tris, Rng& rng, int samples, Stats& st) {
 
 TEST(Ownership, JitteredGridTessellationExactlyOneOwner) {
   Rng rng(21);
-  Stats st;
+  OwnershipStats st;
   for (int rep = 0; rep < 3; ++rep) check(grid_tessellation(rng, 12, 1024 * 64), rng, 4000, st);
   EXPECT_GT(st.on_edge, 3000);
   EXPECT_GT(st.on_vertex, 1500);
@@ -175,14 +175,14 @@ TEST(Ownership, JitteredGridTessellationExactlyOneOwner) {
 TEST(Ownership, AxisAlignedGridTessellationExactlyOneOwner) {
   // Horizontal and vertical shared edges and 6-valent vertices: the tie rule's hardest cases.
   Rng rng(22);
-  Stats st;
+  OwnershipStats st;
   for (int rep = 0; rep < 2; ++rep) check(grid_tessellation(rng, 8, 0), rng, 5000, st);
   EXPECT_GT(st.on_edge, 3000);
 }
 
 TEST(Ownership, SliverFanWithZeroAreaTrianglesExactlyOneOwner) {
   Rng rng(23);
-  Stats st;
+  OwnershipStats st;
   check(fan_tessellation(rng, {N / 2 + 3, N / 2 - 5}), rng, 6000, st);
   check(fan_tessellation(rng, {1024, 2048}), rng, 6000, st);  // centre near a corner: tiny triangles
   EXPECT_GT(st.on_edge, 3000);

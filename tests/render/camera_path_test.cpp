@@ -16,12 +16,12 @@ namespace {
 
 using namespace nano;
 using namespace nano::render;
-using json = nano::Json;
+using PathJson = nano::Json;
 using namespace std::string_view_literals;
 
 // Unequal key spacing, turning up vectors, a changing field of view, both key syntaxes.
-json sample_json() {
-  return json::parse(R"({"format": "nanouniverse-camera-path", "version": 1, "fps": 24, "keyframes": [
+PathJson sample_json() {
+  return PathJson::parse(R"({"format": "nanouniverse-camera-path", "version": 1, "fps": 24, "keyframes": [
     {"time": 0, "camera": "pos=900,700,1300;at=0,0,0;up=0,1,0;fov=40"},
     {"time": 0.5, "position": [1200, -100, 600], "look_at": [50, 20, -10], "up": [0.2, 1, 0], "fov_degrees": 30},
     {"time": 2, "position": [-300, 400, 1500], "look_at": [0, 0, 0]},
@@ -122,7 +122,7 @@ TEST(CameraPath, UpIsUnitAndFovBetweenKeys) {
 }
 
 TEST(CameraPath, TwoKeyframesMoveLinearly) {
-  const CameraPath p = parse_camera_path(json::parse(R"({"format": "nanouniverse-camera-path", "version": 1, "keyframes": [
+  const CameraPath p = parse_camera_path(PathJson::parse(R"({"format": "nanouniverse-camera-path", "version": 1, "keyframes": [
     {"time": 0, "position": [0, 0, 100], "look_at": [0, 0, 0]}, {"time": 4, "position": [40, 0, 100], "look_at": [40, 0, 0]}]})"),
                                          "p.json");
   EXPECT_EQ(p.fps, 30);  // the default
@@ -131,7 +131,7 @@ TEST(CameraPath, TwoKeyframesMoveLinearly) {
   EXPECT_NEAR(c.look_at.x, 10, 1e-12);
 }
 
-void expect_error(const json& j, const std::string& where, const std::string& part) {
+void expect_error(const PathJson& j, const std::string& where, const std::string& part) {
   try {
     parse_camera_path(j, "movie.json");
     ADD_FAILURE() << "accepted: " << j.dump();
@@ -143,7 +143,7 @@ void expect_error(const json& j, const std::string& where, const std::string& pa
 }
 
 TEST(CameraPath, StrictErrorsNameFileAndKeyPath) {
-  json j = sample_json();
+  PathJson j = sample_json();
   j["speed"] = 1;
   expect_error(j, "speed", "unknown key");
   j = sample_json(), j["format"] = "nanouniverse-scene";
@@ -152,7 +152,7 @@ TEST(CameraPath, StrictErrorsNameFileAndKeyPath) {
   expect_error(j, "version", "expected 1");
   j = sample_json(), j["fps"] = 0;
   expect_error(j, "fps", "(0, 1000]");
-  j = sample_json(), j["keyframes"] = json::array();
+  j = sample_json(), j["keyframes"] = PathJson::array();
   expect_error(j, "keyframes", "at least 1 element");
   j = sample_json(), j["keyframes"][1]["zoom"] = 2;
   expect_error(j, "keyframes[1].zoom", "unknown key");
@@ -175,7 +175,7 @@ TEST(CameraPath, StrictErrorsNameFileAndKeyPath) {
   j = sample_json(), j["keyframes"][1]["up"] = {0, -1, 0};
   expect_error(j, "keyframes[1].up", "180°");
   // Every keyframe valid, but the eye passes through the target between them, at frame 12.
-  expect_error(json::parse(R"({"format": "nanouniverse-camera-path", "version": 1, "fps": 24, "keyframes": [
+  expect_error(PathJson::parse(R"({"format": "nanouniverse-camera-path", "version": 1, "fps": 24, "keyframes": [
     {"time": 0, "position": [-100, 0, 0], "look_at": [0, 0, 0]}, {"time": 1, "position": [100, 0, 0], "look_at": [0, 0, 0]}]})"),
                "keyframes", "frame 12");
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "bake/mesh/sphere_mesh.hpp"
 #include "bake/scene_bake/bake_estimate.hpp"
@@ -14,7 +15,6 @@
 namespace nano::scene_bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 structure::Atom atom(glm::dvec3 p, double r) {
   structure::Atom a;
@@ -25,12 +25,12 @@ structure::Atom atom(glm::dvec3 p, double r) {
 
 TEST(MoleculeMeasures, UnionVolumeOfOneSphereAndOfTwoOverlapping) {
   // Counted on a 0.5 Å grid: within 5 % for one atom-sized sphere, within 1 % for a large one.
-  const auto ball = [](double r) { return 4.0 / 3.0 * kPi * r * r * r; };
+  const auto ball = [](double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; };
   EXPECT_NEAR(union_volume({atom({0, 0, 0}, 2.0)}), ball(2.0), 0.05 * ball(2.0));
   EXPECT_NEAR(union_volume({atom({0.3, 0.1, 0.7}, 20.0)}), ball(20.0), 0.01 * ball(20.0));
   // Two spheres d apart overlap in a lens of pi (4r + d)(2r - d)^2 / 12.
   const double r = 2.0, d = 2.0;
-  const double two = 2 * ball(r) - kPi * (4 * r + d) * (2 * r - d) * (2 * r - d) / 12.0;
+  const double two = 2 * ball(r) - std::numbers::pi * (4 * r + d) * (2 * r - d) * (2 * r - d) / 12.0;
   EXPECT_NEAR(union_volume({atom({0, 0, 0}, r), atom({d, 0, 0}, r)}), two, 0.05 * two);
   EXPECT_EQ(union_volume({}), 0.0);
 }
@@ -64,7 +64,7 @@ TEST(MoleculeMeasures, AStandingRodMeasuresItsLengthItsReachAndItsDiscInEachLeaf
   EXPECT_NEAR(m.lateral_radius, 1.7, 1e-9);
   EXPECT_NEAR(m.bounding_radius, 5.7, 1e-9);
   // Standing in the bilayer, it cuts both leaflets in a disc of radius 1.7 Å.
-  EXPECT_NEAR(m.outer_footprint, kPi * 1.7 * 1.7, 0.1 * kPi * 1.7 * 1.7);
+  EXPECT_NEAR(m.outer_footprint, std::numbers::pi * 1.7 * 1.7, 0.1 * std::numbers::pi * 1.7 * 1.7);
   EXPECT_NEAR(m.inner_footprint, m.outer_footprint, 1e-9);
   // Lying down (up along x), its shadow on the membrane is the whole rod, 11.4 x 3.4 Å at most.
   const auto lying = measure_molecules(one_molecule_scene(0.0), {rod_molecule({1, 0, 0})});
@@ -96,7 +96,7 @@ TEST(BakeEstimate, CopiesFollowTheDensityTimesTheAreaAndTheConcentrationTimesThe
   const BakeEstimate e = estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0}}, 2);
   ASSERT_EQ(e.compartments.size(), 1u);
   EXPECT_NEAR(e.compartments[0].area_um2, measure.area / 1e8, 1e-12);
-  EXPECT_NEAR(e.compartments[0].area_um2, 4 * kPi * 1e6 / 1e8, 0.01 * 4 * kPi * 1e6 / 1e8);
+  EXPECT_NEAR(e.compartments[0].area_um2, 4 * std::numbers::pi * 1e6 / 1e8, 0.01 * 4 * std::numbers::pi * 1e6 / 1e8);
   ASSERT_GE(e.compartments[0].copies.size(), 1u);
   EXPECT_EQ(e.compartments[0].copies[0].first, "rod");
   // 1000 per µm² on the surface plus 1 mM (6.02e-7 per Å³) in the volume inside the membrane: the

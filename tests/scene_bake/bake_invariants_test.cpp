@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "bake/mesh/sphere_mesh.hpp"
@@ -16,7 +17,6 @@
 namespace nano::scene_bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // An axis-aligned box, outward triangles.
 mesh::ProxyMesh box_mesh(glm::dvec3 size) {
@@ -40,7 +40,7 @@ TEST(BakeInvariants, NoPointInsideAMeshLiesDeeperThanTheBound) {
   const scene::CompartmentMeasure measure = measure_compartment(sphere);
   const double deepest = deepest_inside(sphere, measure.volume);
   EXPECT_LE(deepest, 450.0);
-  EXPECT_NEAR(deepest, std::cbrt(3.0 * measure.volume / (4.0 * kPi)), 1e-9);
+  EXPECT_NEAR(deepest, std::cbrt(3.0 * measure.volume / (4.0 * std::numbers::pi)), 1e-9);
   EXPECT_GT(deepest, 440.0);
   EXPECT_EQ(deepest_inside(mesh::ProxyMesh{}, 1.0), 0.0);
 }

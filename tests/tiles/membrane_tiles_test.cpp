@@ -7,13 +7,13 @@
 namespace nano::tiles {
 namespace {
 
-constexpr float kEdge = 120.f;
-constexpr double kProteinPerUm2 = 0.5 / (kEdge * kEdge * 1e-8);  // one copy per two tiles
+constexpr float kTileEdge = 120.f;
+constexpr double kProteinPerUm2 = 0.5 / (kTileEdge * kTileEdge * 1e-8);  // one copy per two tiles
 
 MembraneTileRequest membrane_request(uint64_t seed) {
   MembraneTileRequest r;
   r.types = {test::make_protein(), test::make_lipid()};
-  r.edge = kEdge;
+  r.edge = kTileEdge;
   r.molecules = {{0, kProteinPerUm2, 0.f}};
   r.lipids = LipidFill{1, 65.f, 16.f};
   r.seed = seed;
@@ -152,7 +152,7 @@ TEST(MembraneTiles, ExplicitDensityMatchesRequestAndReport) {
     const WangSet set = make_membrane_tiles(req);
     const TilingRecipe recipe = make_tiling_recipe(set.colouring, {64, 64, 1}, seed, false);
     const test::ExplicitTiling tiling = test::instantiate(set, recipe, req.types, false);
-    const double area_um2 = 64.0 * 64.0 * kEdge * kEdge * 1e-8;
+    const double area_um2 = 64.0 * 64.0 * kTileEdge * kTileEdge * 1e-8;
     const double protein = tiling.copies_per_type[0] / area_um2, lipid = tiling.copies_per_type[1] / area_um2;
     EXPECT_NEAR(protein, kProteinPerUm2, 0.1 * kProteinPerUm2);
     ASSERT_EQ(set.densities.size(), 2u);
@@ -207,7 +207,7 @@ TEST(MembraneTiles, TileAtomBoxesAndOverhang) {
       }
     EXPECT_NEAR(glm::length(lo - t.atoms_min), 0.f, 1e-3f);
     EXPECT_NEAR(glm::length(hi - t.atoms_max), 0.f, 1e-3f);
-    overhang = std::max({overhang, -lo.x, -lo.y, hi.x - kEdge, hi.y - kEdge});
+    overhang = std::max({overhang, -lo.x, -lo.y, hi.x - kTileEdge, hi.y - kTileEdge});
   }
   EXPECT_NEAR(set.max_overhang(), overhang, 1e-3f);
   EXPECT_GT(overhang, 0.f);  // copies do straddle tile edges
@@ -273,7 +273,7 @@ TEST(MembraneTiles, LipidPatchIsCollisionFreeAndDense) {
   }
   const TilingRecipe recipe = make_tiling_recipe(set.colouring, {64, 64, 1}, 13, false);
   const test::ExplicitTiling counts = test::instantiate(set, recipe, req.types, false);
-  const double lipids = counts.copies_per_type[1] / (64.0 * 64.0 * kEdge * kEdge * 1e-8);
+  const double lipids = counts.copies_per_type[1] / (64.0 * 64.0 * kTileEdge * kTileEdge * 1e-8);
   const double in_patch = 50.0 / (39.5 * 39.5 * 1e-8);
   ASSERT_EQ(set.densities.size(), 2u);
   EXPECT_EQ(set.densities[1].type, 1u);
@@ -385,7 +385,7 @@ TEST(MembraneTiles, LipidMixTakesPlacesWithoutOpeningHoles) {
   const auto under_a_protein = [&](const Instance& in) {
     return std::any_of(proteins.begin(), proteins.end(), [&](const glm::vec3& p) {
       glm::vec2 d = glm::vec2(p - in.position);
-      for (int k = 0; k < 2; ++k) d[k] -= kEdge * std::round(d[k] / kEdge);  // the nearest image
+      for (int k = 0; k < 2; ++k) d[k] -= kTileEdge * std::round(d[k] / kTileEdge);  // the nearest image
       return glm::length(d) < reach(0) + reach(in.type);
     });
   };
@@ -478,7 +478,7 @@ namespace {
 TEST(MembraneTiles, ASparseProteinIsPlacedAsCloseAsWholeCopiesAllow) {
   for (uint64_t seed : {1u, 2u, 3u, 4u}) {
     MembraneTileRequest r = membrane_request(seed);
-    const double set_um2 = 16 * kEdge * kEdge * 1e-8;
+    const double set_um2 = 16 * kTileEdge * kTileEdge * 1e-8;
     r.molecules = {{0, 1.17 / set_um2, 0.f}};
     r.lipids.reset();
     const WangSet set = make_membrane_tiles(r);

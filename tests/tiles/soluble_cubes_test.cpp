@@ -7,12 +7,12 @@
 namespace nano::tiles {
 namespace {
 
-constexpr float kEdge = 150.f;
+constexpr float kCubeEdge = 150.f;
 
 SolubleCubeRequest haemoglobin_request(uint64_t seed) {
   SolubleCubeRequest r;
   r.types = {test::make_haemoglobin()};
-  r.edge = kEdge;
+  r.edge = kCubeEdge;
   r.molecules = {{0, copies_per_um3_from_millimolar(5.0)}};
   r.seed = seed;
   return r;
@@ -37,7 +37,7 @@ TEST_P(SolubleCubesSeeds, HaemoglobinAt5mMIsCollisionFreeInRandomTilings) {
     const test::ClosePair p = test::find_close_pair(tiling.atoms, 0.6f);
     EXPECT_FALSE(p.found) << "seed " << seed << ": atoms " << p.distance << " Å apart, limit " << p.limit;
     // Concentration over the explicit 4x4x4 block: within 10% of 5 mM.
-    const double um3 = 64.0 * kEdge * kEdge * kEdge * 1e-12;
+    const double um3 = 64.0 * kCubeEdge * kCubeEdge * kCubeEdge * 1e-12;
     EXPECT_NEAR(tiling.copies / um3, req.molecules[0].copies_per_um3, 0.1 * req.molecules[0].copies_per_um3);
     EXPECT_NEAR(set.densities[0].achieved, req.molecules[0].copies_per_um3, 0.1 * req.molecules[0].copies_per_um3);
   }
@@ -79,7 +79,7 @@ TEST(SolubleCubes, StraddlingCopiesFillFacesEdgesAndCorners) {
   for (const WangTile& t : set.tiles)
     for (const Instance& in : t.instances) {
       int near = 0;
-      for (int a = 0; a < 3; ++a) near += std::min(in.position[a], kEdge - in.position[a]) < 25.f;
+      for (int a = 0; a < 3; ++a) near += std::min(in.position[a], kCubeEdge - in.position[a]) < 25.f;
       near_corner += near == 3;
     }
   EXPECT_GT(near_corner, 0);
@@ -107,7 +107,7 @@ TEST(SolubleCubes, DensificationReachesWhatSequentialAdditionCannot) {
   EXPECT_FALSE(p.found) << "atoms " << p.distance << " Å apart, limit " << p.limit;
   const TilingRecipe large = make_tiling_recipe(set.colouring, {16, 16, 16}, 10, false);
   const test::ExplicitTiling counts = test::instantiate(set, large, req.types, false);
-  const double um3 = 4096.0 * kEdge * kEdge * kEdge * 1e-12;
+  const double um3 = 4096.0 * kCubeEdge * kCubeEdge * kCubeEdge * 1e-12;
   EXPECT_NEAR(counts.copies / um3, wanted, 0.04 * wanted);
 }
 
