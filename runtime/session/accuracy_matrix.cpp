@@ -205,21 +205,19 @@ std::vector<MatrixVariant> matrix_variants(const render::RenderSettings& base, c
 
 std::vector<MatrixVariant> select_matrix_knobs(std::vector<MatrixVariant> variants, const std::vector<std::string>& knobs,
                                                const std::string& option) {
-  const auto spoken = [](std::string name) {
-    std::replace(name.begin(), name.end(), '-', ' ');
-    return name;
-  };
+  std::vector<std::string> table;  // the knobs beside the default, in the matrix's order
+  for (const MatrixVariant& v : variants)
+    if (!v.is_default && std::find(table.begin(), table.end(), v.knob) == table.end()) table.push_back(v.knob);
   std::set<std::string> wanted;
-  for (const std::string& name : knobs) {
-    const bool known = std::any_of(variants.begin(), variants.end(), [&](const MatrixVariant& v) { return v.knob == spoken(name); });
-    if (!known || spoken(name) == "default") {
+  for (std::string name : knobs) {
+    const std::string asked = name;
+    std::replace(name.begin(), name.end(), '-', ' ');
+    if (std::find(table.begin(), table.end(), name) == table.end()) {
       std::string offered;
-      for (const MatrixVariant& v : variants)
-        if (!v.is_default && offered.find("'" + v.knob + "'") == std::string::npos)
-          offered += (offered.empty() ? "'" : ", '") + v.knob + "'";
-      throw InputError(option, name, "no such knob in the matrix (the default row is always there); its knobs: " + offered);
+      for (const std::string& knob : table) offered += (offered.empty() ? "'" : ", '") + knob + "'";
+      throw InputError(option, asked, "no such knob in the matrix (the default row is always there); its knobs: " + offered);
     }
-    wanted.insert(spoken(name));
+    wanted.insert(name);
   }
   std::erase_if(variants, [&](const MatrixVariant& v) { return !v.is_default && !wanted.contains(v.knob); });
   return variants;
