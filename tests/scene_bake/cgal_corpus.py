@@ -35,13 +35,18 @@ CGAL_DATA = "usr/share/doc/libcgal-dev/data.tar.gz"
 # How a refusal says the mesh was judged again at growing sizes (bake/mesh/membrane_fit.cpp).
 LADDER_TEXT = "prepared and judged again at up to"
 
+# Each diameter is a small one at which the case's verdict is its own (the bakes scale with the area):
+# fandisk and the bunny bake at 3000 Å as at 4500 and 4000, the mushroom is refused at 2000 Å as at
+# 3000 (its size ladder then reaches 8,562 Å in a minute, not 7,719 Å in two and a half: the ladder
+# starts from the rim's growth, not from the diameter). At 1500 Å the mushroom crashes inside CGAL
+# 5.5's tangential relaxation during isotropic remeshing (a null halfedge): not yet worked around.
 CASES = {
     # name: (file in data/meshes, mesh keys, expectation, why)
-    "cad_fandisk_creases": ("fandisk.off", {"diameter": 4500}, ("bakes",),
+    "cad_fandisk_creases": ("fandisk.off", {"diameter": 3000}, ("bakes",),
                             "a CAD part of 12,946 triangles with 90° creases: remeshed, creases rounded, flat faces coarser"),
     "knot_tube": ("knot1.off", {"diameter": 3000}, ("bakes",),
                   "a trefoil-knot tube of 6,400 triangles whose facets turn by 26°: remeshed, checked everywhere"),
-    "scanned_bunny": ("bunny00.off", {"diameter": 4000}, ("bakes",), "a 75,408-triangle scan, creased by its noise"),
+    "scanned_bunny": ("bunny00.off", {"diameter": 3000}, ("bakes",), "a 75,408-triangle scan, creased by its noise"),
     "genus2_polygons": ("double-torus-example.off", {"diameter": 3000}, ("bakes",),
                         "a genus-2 model of 4- to 7-sided faces, cut inside themselves"),
     "genus3_open_repaired": ("double-torus-3-holes.off", {"diameter": 3000, "repair": True}, ("bakes",),
@@ -51,7 +56,7 @@ CASES = {
     "cow_non_manifold_vertex": ("cow.off", {"diameter": 3000, "repair": True},
                                 ("refused", "self-intersection"),
                                 "its non-manifold vertex is split by \"repair\"; what stays is a surface crossing itself, face by face"),
-    "mushroom_open_border": ("mushroom.off", {"diameter": 3000, "repair": True},
+    "mushroom_open_border": ("mushroom.off", {"diameter": 2000, "repair": True},
                              ("refused", "places where a bilayer", "still does not take the bilayer"),
                              "its 64-edge border is closed by \"repair\"; its cap's thin rim stays too tight at any size "
                              "tried up to 8 times: the places are named, no size"),
