@@ -184,14 +184,6 @@ std::string complaint(const std::exception& e) {
   return input_error ? input_error->rule() : e.what();
 }
 
-std::optional<std::filesystem::path> absolute_path_from(const char* variable) {
-  const char* value = std::getenv(variable);
-  if (value == nullptr || *value == '\0') return std::nullopt;
-  std::filesystem::path path(value);
-  if (!path.is_absolute()) return std::nullopt;
-  return path;
-}
-
 }  // namespace
 
 PipelineCacheKey pipeline_cache_key(VkPhysicalDevice physical_device, std::uint64_t shader_hash) {
@@ -208,12 +200,6 @@ PipelineCacheKey pipeline_cache_key(VkPhysicalDevice physical_device, std::uint6
   key.driver_uuid = to_uuid(ids.driverUUID);
   key.shader_hash = shader_hash;
   return key;
-}
-
-std::optional<std::filesystem::path> user_cache_directory() {
-  if (auto xdg = absolute_path_from("XDG_CACHE_HOME")) return xdg;
-  if (auto home = absolute_path_from("HOME")) return *home / ".cache";
-  return std::nullopt;
 }
 
 std::optional<std::filesystem::path> pipeline_cache_file(const PipelineCacheKey& key) {

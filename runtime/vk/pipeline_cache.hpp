@@ -31,6 +31,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "common/user_cache_directory.hpp"
+
 namespace nano::vk {
 
 inline constexpr std::uint32_t kPipelineCacheFormatVersion = 1;
@@ -49,10 +51,8 @@ struct PipelineCacheKey {
 // The key of `physical_device` (Vulkan 1.1 device ID properties) for shaders hashing to `shader_hash`.
 PipelineCacheKey pipeline_cache_key(VkPhysicalDevice physical_device, std::uint64_t shader_hash);
 
-// The user's cache directory as the XDG base directory spec has it: $XDG_CACHE_HOME when it is an
-// absolute path (a relative one is ignored, as the spec demands), else $HOME/.cache when HOME is
-// absolute; nullopt when neither is usable.
-std::optional<std::filesystem::path> user_cache_directory();
+// The user's cache directory: common/user_cache_directory.hpp.
+using nano::user_cache_directory;
 
 // <user_cache_directory()>/nanouniverse/pipelines-<16 hex digits of a hash of the key>.bin, or
 // nullopt without a usable cache directory.
