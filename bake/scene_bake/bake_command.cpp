@@ -12,6 +12,7 @@
 #include "bake/scene_bake/bake_report.hpp"
 #include "bake/scene_bake/scene_baker.hpp"
 #include "common/atomic_file.hpp"
+#include "common/user_cache_directory.hpp"
 #include "common/error.hpp"
 #include "common/json_document.hpp"
 #include "format/validator.hpp"
@@ -53,6 +54,33 @@ cellpack::HeldCopies held_copies(const BakedScene& baked) {
   return held;
 }
 
+// --cache-dir as given, else the user's cache directory's nanouniverse/bake; none with --no-cache or
+// without a usable home (the bake then computes every stage, as it would with an empty cache).
+std::optional<std::filesystem::path> bake_cache_directory(const std::string& given, bool no_cache) {
+  if (no_cache) return std::nullopt;
+  if (!given.empty()) return std::filesystem::absolute(given);
+  if (const auto home = user_cache_directory()) return *home / "nanouniverse" / "bake";
+  return std::nullopt;
+}
+
+void add_cache_options(CLI::App& cmd, std::string& cache_dir, bool& no_cache) {
+  cmd.add_option("--cache-dir", cache_dir,
+                 "where the shells stage is kept between bakes, under a fingerprint of its inputs (default: "
+                 "$XDG_CACHE_HOME or ~/.cache, folder nanouniverse/bake)");
+  cmd.add_flag("--no-cache", no_cache, "neither read nor keep the shells stage: every bake computes it")->excludes("--cache-dir");
+}
+
+// --max-memory as given, else what the machine has available (none when it cannot tell).
+std::optional<double> memory_budget(const std::string& given) {
+  if (!given.empty()) {
+    const std::optional<double> bytes = parse_byte_size(given);
+    if (!bytes) throw CLI::ValidationError("--max-memory", "expected a size such as 8G, 512M or 2000000000, got " + given);
+    return bytes;
+  }
+  if (const double available = available_memory_bytes(); available > 0.0) return available;
+  return std::nullopt;
+}
+
 }  // namespace
 
 void add_bake_command(CLI::App& app) {
@@ -61,7 +89,8 @@ void add_bake_command(CLI::App& app) {
     std::uint64_t seed = 0;
     int jobs = 2;
     std::string max_memory;
-    bool dry_run = false, quiet = false;
+    bool dry_run = false, quiet = false, no_cache = false;
+    std::string cache_dir;
     MeshCodec mesh_codec = MeshCodec::automatic;
     cellpack::ImportArguments recipe;
   };
@@ -79,6 +108,7 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--max-memory", options->max_memory,
                   "refuse a bake whose estimated peak memory passes this (e.g. 8G, 512M; default: what the machine has available)");
   cmd->add_flag("-q,--quiet", options->quiet, "print no progress");
+  add_cache_options(*cmd, options->cache_dir, options->no_cache);
   cmd->add_option("--mesh-codec", options->mesh_codec,
                   "mesh sections: auto (Draco where smaller than zstd, meshes on Draco's exact grids), draco, or zstd "
                   "(meshes exactly as read)")
@@ -94,13 +124,8 @@ void add_bake_command(CLI::App& app) {
     bake_options.jobs = options->jobs;
     bake_options.mesh_codec = options->mesh_codec;
     bake_options.estimate_only = options->dry_run;
-    if (!options->max_memory.empty()) {
-      bake_options.max_memory = parse_byte_size(options->max_memory);
-      if (!bake_options.max_memory)
-        throw CLI::ValidationError("--max-memory", "expected a size such as 8G, 512M or 2000000000, got " + options->max_memory);
-    } else if (const double available = available_memory_bytes(); available > 0.0) {
-      bake_options.max_memory = available;
-    }
+    bake_options.cache_directory = bake_cache_directory(options->cache_dir, options->no_cache);
+    bake_options.max_memory = memory_budget(options->max_memory);
     ProgressDisplay display(options->quiet ? ProgressDisplay::Mode::quiet : ProgressDisplay::mode_for(stderr), stderr);
     bake_options.on_stage_begin = [&display](const std::string& stage) { display.begin(stage); };
     bake_options.on_stage_end = [&display](const std::string& stage, double seconds) { display.end(stage, seconds); };

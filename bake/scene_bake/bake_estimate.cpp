@@ -147,6 +147,7 @@ double estimate_membrane(const EstimateInputs& in, std::size_t membrane, const E
   }
   const double lipid_copies = kPatchLipidsKept * l.per_a2 * measure.area;
   for (const auto& [name, share] : l.share) named_entry(out.copies, name) += share * lipid_copies;
+  if (mesh.shells_cached) return 0.0;
   // The shells check the copies the triangles own before any is dropped: every place of the patch.
   const double owned = copies + l.per_a2 * measure.area;
   // The checked triangles (all of a membrane checked everywhere) and a band along the seams elsewhere.

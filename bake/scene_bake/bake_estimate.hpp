@@ -53,6 +53,7 @@ struct EstimatedMesh {
   scene::CompartmentMeasure measure;  // with the bilayer thickness of its membrane (0: none)
   double seam_length = 0.0;           // Å of UV seams: where a large membrane is checked copy by copy
   double checked_share = 1.0;         // of its area, the triangles whose copies are all checked (membrane_surface.hpp)
+  bool shells_cached = false;         // its shells stage comes from the bake cache: nothing checked, no memory for it
 };
 
 // The copies a membrane puts on `area` Å² at the requested densities (a lipid patch at its own),

@@ -140,6 +140,18 @@ void write_medium_summary(std::ostringstream& out, const MediumSummary& m) {
   }
 }
 
+nlohmann::ordered_json estimate_json(const BakeEstimate& e) {
+  nlohmann::ordered_json estimate;
+  estimate["cpu_seconds"] = e.cpu_seconds;
+  estimate["wall_seconds"] = e.wall_seconds;
+  estimate["peak_memory_bytes"] = e.peak_bytes;
+  for (const StageEstimate& s : e.stages) estimate["stages"][s.stage] = {{"work", s.work}, {"cpu_seconds", s.cpu_seconds}};
+  for (const MemoryTerm& t : e.memory) estimate["memory"][t.what] = t.bytes;
+  for (const CompartmentEstimate& c : e.compartments)
+    for (const auto& [name, copies] : c.copies) estimate["copies"][c.name][name] = copies;
+  return estimate;
+}
+
 }  // namespace
 
 nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Package& package) {
@@ -160,6 +172,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
     compartments.back()["mesh_scale"] = c.mesh_scale;
     compartments.back()["uvs"] = c.uv_origin;
     compartments.back()["mesh_storage"] = c.mesh_storage;
+    if (c.membrane) compartments.back()["shells_from_cache"] = c.shells_from_cache;
     if (c.bilayer_thickness > 0.0)
       compartments.back()["membrane_fit"] = {{"bilayer_thickness_A", c.bilayer_thickness},
                                              {"thinnest_wall_A", std::isfinite(c.thinnest_wall) ? nlohmann::ordered_json(c.thinnest_wall) : nlohmann::ordered_json(nullptr)}};
@@ -210,14 +223,11 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
   auto& stages_peak = j["stages_peak_memory_bytes"] = nlohmann::ordered_json::object();
   for (const auto& [name, bytes] : scene.stage_peak_bytes) stages_peak[name] = bytes;
   // The estimate made before the heavy stages beside what they then took (bake_estimate.hpp).
-  auto& estimate = j["estimate"];
-  estimate["cpu_seconds"] = scene.estimate.cpu_seconds;
-  estimate["wall_seconds"] = scene.estimate.wall_seconds;
-  estimate["peak_memory_bytes"] = scene.estimate.peak_bytes;
-  for (const StageEstimate& s : scene.estimate.stages) estimate["stages"][s.stage] = {{"work", s.work}, {"cpu_seconds", s.cpu_seconds}};
-  for (const MemoryTerm& t : scene.estimate.memory) estimate["memory"][t.what] = t.bytes;
-  for (const CompartmentEstimate& c : scene.estimate.compartments)
-    for (const auto& [name, copies] : c.copies) estimate["copies"][c.name][name] = copies;
+  j["estimate"] = estimate_json(scene.estimate);
+  if (const auto& cached = scene.estimate_with_cache)
+    j["estimate_with_cache"] = {{"cpu_seconds", cached->cpu_seconds},
+                                {"peak_memory_bytes", cached->peak_bytes},
+                                {"why", "the same estimate with the shells the bake cache served left out"}};
   j["measured"] = {{"cpu_seconds_after_estimate", process_cpu_seconds() - scene.cpu_seconds_at_estimate},
                    {"peak_memory_bytes", peak_resident_bytes()}};
   return j;
@@ -272,7 +282,7 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
         std::snprintf(line, sizeof line, "    %.3g %s left out where the surface folds too tightly for it (placed elsewhere if counted per compartment)\n",
                       static_cast<double>(n), name.c_str());
         out << line;
-      }
+      }      if (c.shells_from_cache) out << "    shells and pruning read from the bake cache (the same inputs were baked before; --no-cache bakes them)\n";
     }
   }
   if (scene.medium) write_medium_summary(out, *scene.medium);

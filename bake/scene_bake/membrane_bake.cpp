@@ -7,6 +7,7 @@
 #include "bake/mesh/uv_distortion.hpp"
 #include "bake/shell/membrane_mapping.hpp"
 #include "bake/shell/shell_offsets.hpp"
+#include "bake/scene_bake/shell_cache.hpp"
 #include "common/error.hpp"
 
 namespace nano::scene_bake {
@@ -125,31 +126,31 @@ shell::PrunedMembrane prune(const MembraneSurface& m, shell::ShellResult& shells
 }
 
 // Per library molecule: copies kept, dropped, alternates shown and proteins no prism held.
-void count_by_molecule(const MembraneSurface& m, const shell::ShellResult& shells, BakedMembrane& baked) {
+void count_by_molecule(const MembraneSurface& m, const ShellStage& stage, BakedMembrane& baked) {
   const std::vector<std::uint32_t>& molecule_of_type = m.tiles.molecule_of_type;
   baked.unfit_by_molecule.assign(m.library.size(), 0);
   baked.copies_by_molecule.assign(m.library.size(), 0);
   baked.dropped_by_molecule.assign(m.library.size(), 0);
   baked.alternates_by_molecule.assign(m.library.size(), 0);
   for (std::size_t i = 0; i < m.types.size(); ++i) {
-    baked.unfit_by_molecule[molecule_of_type[i]] += shells.dropped_by_type[i];
+    baked.unfit_by_molecule[molecule_of_type[i]] += stage.unfit_by_type[i];
     baked.copies_by_molecule[molecule_of_type[i]] +=
-        shells.owned_by_type[i] - baked.pruning.dropped_by_type[i] + baked.pruning.alternates_by_type[i];
+        stage.owned_by_type[i] - baked.pruning.dropped_by_type[i] + baked.pruning.alternates_by_type[i];
     baked.dropped_by_molecule[molecule_of_type[i]] += baked.pruning.dropped_by_type[i];
     baked.alternates_by_molecule[molecule_of_type[i]] += baked.pruning.alternates_by_type[i];
   }
 }
 
-void store_shells(const shell::MembraneMapping& mapping, const shell::ShellResult& shells, BakedMembrane& baked) {
+void store_shells(const shell::MembraneMapping& mapping, const ShellStage& stage, BakedMembrane& baked) {
   baked.shells.resize(mapping.triangle_count());
-  baked.reach = shells.reach;
+  baked.reach = stage.reach;
   for (std::size_t t = 0; t < mapping.triangle_count(); ++t) {
     const shell::TriangleMapping& tm = mapping.triangle(t);
     gpu::TriangleShell& s = baked.shells[t];
     s.uv_min_max = glm::vec4(tm.uv_min, tm.uv_max);
-    s.h_plus = shells.offsets[t].h_plus;
-    s.h_minus = shells.offsets[t].h_minus;
-    s.side_offset = shells.offsets[t].side;
+    s.h_plus = stage.offsets[t].h_plus;
+    s.h_minus = stage.offsets[t].h_minus;
+    s.side_offset = stage.offsets[t].side;
     s.seam_edges = mapping.seam_edges(t);
     baked.inner_height = std::max(baked.inner_height, double(s.h_minus));
   }
@@ -158,11 +159,68 @@ void store_shells(const shell::MembraneMapping& mapping, const shell::ShellResul
   baked.replication_height = static_cast<std::uint32_t>(area.y);
 }
 
+
+// Everything compute_shells and prune read, in bytes: the snapped mesh, the set as the mapping
+// reads it (tiles, types, recipe, scale, surface shape), what the pruning checks and keeps, and the
+// baker itself. Field by field, never a struct's padding.
+ShellStageKey shell_stage_key(const MembraneSurface& m, const tiles::TilingRecipe& recipe, double k, float smooth,
+                              const PerCompartment& per_compartment) {
+  ShellStageKey key;
+  key.add(baker_build_hash());
+  const mesh::ProxyMesh& mesh = m.mesh;
+  key.add_all(mesh.positions), key.add_all(mesh.triangles), key.add_all(mesh.uvs), key.add_all(mesh.uv_triangles);
+  key.add_all(mesh.normals), key.add_all(mesh.normal_triangles);
+  key.add(k), key.add(smooth), key.add(recipe.dims), key.add(recipe.size), key.add(recipe.periodic), key.add_all(recipe.cells);
+  key.add(m.tiles.set.dims), key.add(m.tiles.set.edge), key.add(std::uint64_t(m.tiles.set.tiles.size()));
+  for (const tiles::WangTile& tile : m.tiles.set.tiles) {
+    key.add(std::uint64_t(tile.instances.size()));
+    for (const tiles::Instance& i : tile.instances)
+      key.add(i.type), key.add(i.position), key.add(i.rotation), key.add(i.alternate), key.add(i.has_alternate);
+  }
+  key.add(std::uint64_t(m.types.size()));
+  for (const tiles::MoleculeType& t : m.types)
+    key.add_text(t.name), key.add_all(t.atoms), key.add(t.bounding_radius), key.add(t.up_axis);
+  key.add(m.tiles.flat_clearance), key.add_all(m.tiles.laid_through), key.add_all(m.tiles.protein_types);
+  key.add(m.checks.whole_surface), key.add(m.checks.plan.tile_scale), key.add_all(m.checks.plan.checked);
+  // Counts per compartment by the set's types they limit (library indices differ between scenes).
+  for (const auto& [molecule, count] : per_compartment) {
+    key.add(count);
+    for (std::uint32_t i = 0; i < m.tiles.molecule_of_type.size(); ++i) key.add(m.tiles.molecule_of_type[i] == molecule);
+  }
+  return key;
+}
+
+ShellStage compute_shell_stage(const MembraneSurface& m, const PerCompartment& per_compartment) {
+  shell::ShellResult shells = compute_shells(m);
+  ShellStage stage;
+  stage.pruning = prune(m, shells, per_compartment);
+  stage.offsets = std::move(shells.offsets);
+  stage.reach = std::move(shells.reach);
+  stage.owned_by_type.assign(shells.owned_by_type.begin(), shells.owned_by_type.end());
+  stage.unfit_by_type.assign(shells.dropped_by_type.begin(), shells.dropped_by_type.end());
+  return stage;
+}
+
+// The stage from the cache when it holds this key's, else computed (and kept when there is a cache).
+ShellStage shell_stage(const MembraneSurface& m, const tiles::TilingRecipe& recipe, double k, float smooth,
+                       const PerCompartment& per_compartment, const std::optional<std::filesystem::path>& cache,
+                       bool& from_cache) {
+  from_cache = false;
+  if (!cache || baker_build_hash() == 0) return compute_shell_stage(m, per_compartment);
+  const ShellStageKey key = shell_stage_key(m, recipe, k, smooth, per_compartment);
+  if (std::optional<ShellStage> kept = load_shell_stage(*cache, key, m.mapping.triangle_count(), m.types.size())) {
+    from_cache = true;
+    return std::move(*kept);
+  }
+  ShellStage stage = compute_shell_stage(m, per_compartment);
+  store_shell_stage(*cache, key, stage);
+  return stage;
+}
 }  // namespace
 
 BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const SurfaceChecks& checks,
                             const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads,
-                            const PerCompartment& per_compartment) {
+                            const PerCompartment& per_compartment, const std::optional<std::filesystem::path>& cache) {
   BakedMembrane baked;
   const double k = tile_scale(checks);
   baked.tile_size = tiles.set.edge;
@@ -180,11 +238,11 @@ BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, co
   for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = glm::dvec2(snapped[i]);
 
   const MembraneSurface surface{checks, mapping, mesh, types, tiles, library, threads};
-  shell::ShellResult shells = compute_shells(surface);
-  baked.pruning = prune(surface, shells, per_compartment);
+  ShellStage stage = shell_stage(surface, baked.recipe, k, baked.smooth, per_compartment, cache, baked.shells_from_cache);
+  baked.pruning = std::move(stage.pruning);
   baked.dropped = std::move(baked.pruning.dropped);
-  count_by_molecule(surface, shells, baked);
-  store_shells(mapping, shells, baked);
+  count_by_molecule(surface, stage, baked);
+  store_shells(mapping, stage, baked);
   return baked;
 }
 

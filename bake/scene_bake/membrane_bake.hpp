@@ -2,6 +2,8 @@
 // A compartment's shell space: the membrane's tiles mapped through the mesh's UV chart, the
 // adaptive prism of every triangle, and how many copies that represents.
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "bake/mesh/proxy_mesh.hpp"
@@ -35,6 +37,7 @@ struct BakedMembrane {
   std::vector<std::uint64_t> unfit_by_molecule;  // proteins left out where no prism could hold them (counted in dropped too)
   double inner_height = 0.0;                      // largest h₋: how deep the shell reaches
   shell::PrunedMembrane pruning;                  // what the clash pruning looked at (dropped moved out)
+  bool shells_from_cache = false;                 // the shells stage read from the bake cache (shell_cache.hpp)
 };
 
 // The float UV scale k stored in the package: float(S) / k == s exactly, as the renderer computes it.
@@ -51,10 +54,13 @@ struct SurfaceChecks {
 
 // Snaps the mesh's UVs in place (the ownership contract) and computes everything above. On a
 // membrane not checked everywhere, the triangles holding what `per_compartment` keeps are checked
-// too (those proteins stand in the lipid patch, laid through them).
+// too (those proteins stand in the lipid patch, laid through them). With a `cache` directory the
+// shells and the pruning are read from it when it holds them for these very inputs, and kept there
+// otherwise (shell_cache.hpp).
 BakedMembrane bake_membrane(mesh::ProxyMesh& mesh, const BakedWangSet& tiles, const SurfaceChecks& checks,
                             const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads,
-                            const PerCompartment& per_compartment = {});
+                            const PerCompartment& per_compartment = {},
+                            const std::optional<std::filesystem::path>& cache = std::nullopt);
 
 // Shells of a compartment without a membrane: flat prisms of zero height, so the core renderer
 // still has the mesh's front/back intervals and no membrane copy is ever looked for.

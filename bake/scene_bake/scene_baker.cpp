@@ -313,12 +313,14 @@ void check_placements(const scene::SceneDescription& scene, const Molecules& mol
   scene::check_medium_region(scene, molecules.measures, scene::instance_spheres(trial, measured.radii));
 }
 
+// Before the heavy stages; again after the shells when the bake cache served some (their flag set).
 BakeEstimate estimate(const BakeInputs& in, const Molecules& molecules, const std::vector<CompartmentBake>& compartments,
                       const MeshMeasures& measured) {
   std::vector<EstimatedMesh> meshes;
   for (std::size_t c = 0; c < compartments.size(); ++c)
     meshes.push_back({measured.measures[c], compartments[c].mesh.report.seam_length,
-                      compartments[c].surface.area > 0.0 ? compartments[c].surface.checked_area / compartments[c].surface.area : 1.0});
+                      compartments[c].surface.area > 0.0 ? compartments[c].surface.checked_area / compartments[c].surface.area : 1.0,
+                      compartments[c].membrane && compartments[c].membrane->shells_from_cache});
   return estimate_bake(in.scene, molecules.library, molecules.patches, meshes, in.threads);
 }
 
@@ -394,7 +396,8 @@ BakedMembrane bake_shell(const BakeInputs& in, const Molecules& molecules, const
     if (p.per_compartment) per_compartment.emplace_back(static_cast<std::uint32_t>(p.molecule.index), *p.per_compartment);
   try {
     return bake_membrane(bake.mesh.mesh, sets.membrane[membrane], {bake.surface, bake.surface_whole}, molecules.library,
-                         derive_seed(in.seed, SeedTag::membrane_recipe, c), in.threads, per_compartment);
+                         derive_seed(in.seed, SeedTag::membrane_recipe, c), in.threads, per_compartment,
+                         in.options.cache_directory);
   } catch (const InputError& e) {
     // What the membrane cannot do on this mesh is the mesh's file's business, not an anonymous input's.
     if (!e.file().empty()) throw;
@@ -560,6 +563,7 @@ CompartmentContent compartment_content(PackageContent& content, const PackageInp
   out.copies.assign(library.size(), 0);
   out.summary = mesh_summary(description.name, bake.mesh);
   if (bake.membrane) {
+    out.summary.shells_from_cache = bake.membrane->shells_from_cache;
     const std::size_t m = description.membrane->index;
     add_membrane(content, *bake.membrane, ranges.membrane[m], out);
     out.summary.membrane = membrane_summary(bake.mesh.mesh, *bake.membrane, p.sets.membrane[m], library,
@@ -658,6 +662,9 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
     if (scene.compartments[c].soluble)
       bake.core = clock.run("core grids", [&] { return bake_core_grid(in, molecules, sets, c, bake); });
   }
+
+  if (std::any_of(compartments.begin(), compartments.end(), [](const CompartmentBake& c) { return c.membrane && c.membrane->shells_from_cache; }))
+    baked.estimate_with_cache = estimate(in, molecules, compartments, measured);
 
   const std::vector<scene::PlacedInstance> placed =
       clock.run("instances", [&] { return place_instances(scene, compartments, measured); });

@@ -2,6 +2,7 @@
 // nanobake's pipeline, in the stages the bake report times: molecules -> meshes -> (the estimate)
 // -> tile sets -> per compartment shells, core grids -> instances -> package content.
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -33,6 +34,8 @@ struct BakeOptions {
   // Refuse, before the heavy stages, a bake whose estimated peak memory passes this (bytes).
   std::optional<double> max_memory;
   bool estimate_only = false;  // stop after the estimate (--dry-run): BakedScene holds only it
+  // Where the shells stage is kept between bakes (shell_cache.hpp); absent: always computed.
+  std::optional<std::filesystem::path> cache_directory;
 };
 
 // The bilayer the bake lines compartment `c` of `scene` with (molecule_library.hpp:
@@ -82,6 +85,7 @@ struct CompartmentSummary {
   std::vector<std::pair<std::string, std::uint64_t>> copies;  // molecule name -> copies (one compartment)
   std::uint64_t core_boxes_inside = 0, core_boxes_boundary = 0;
   std::uint32_t replication_width = 0, replication_height = 0;
+  bool shells_from_cache = false;  // its shells stage read from the bake cache
 };
 
 struct InstanceSummary {
@@ -123,6 +127,9 @@ struct BakedScene {
   std::vector<std::pair<std::string, double>> stage_cpu_seconds;  // every thread's
   std::vector<std::pair<std::string, double>> stage_peak_bytes;   // the process's peak memory when each ended
   BakeEstimate estimate;  // made before the heavy stages
+  // The same estimate once the bake cache served some compartments' shells (their checking not
+  // counted): what the stages after the estimate are to be held against. Absent: none did.
+  std::optional<BakeEstimate> estimate_with_cache;
   double cpu_seconds_at_estimate = 0.0;  // process_cpu_seconds() then: what came after is what was estimated
 };
 

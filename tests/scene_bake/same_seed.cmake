@@ -1,10 +1,11 @@
 # Same seed -> byte-identical package, whatever the number of jobs (tile sets and shells run on
-# threads); another seed -> a different one. The package baked with 2 jobs is bake.virion's (PACKAGE).
-execute_process(COMMAND ${NANOBAKE} ${SCENE} -o ${WORK}/seed-one-job.nup --jobs 1 RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+# threads); another seed -> a different one. The package baked with 2 jobs is bake.virion's (PACKAGE);
+# these two bakes compute every stage (--no-cache).
+execute_process(COMMAND ${NANOBAKE} ${SCENE} -o ${WORK}/seed-one-job.nup --jobs 1 --no-cache RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the bake with 1 job failed (${rc})")
 endif()
-execute_process(COMMAND ${NANOBAKE} ${SCENE} -o ${WORK}/seed-other.nup --seed 6 --jobs 2 RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+execute_process(COMMAND ${NANOBAKE} ${SCENE} -o ${WORK}/seed-other.nup --seed 6 --jobs 2 --no-cache RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the bake with seed 6 failed (${rc})")
 endif()
