@@ -28,7 +28,40 @@ double exit_distance(const WorldBox& box, const glm::dvec3& eye, const glm::dvec
   return far >= near ? far : 0.0;
 }
 
+// Where a ray from `eye` along unit `dir` first meets the sphere ahead of the eye: its entry, or
+// where it leaves it when the eye is inside; infinity for none.
+double first_meeting(const glm::dvec3& eye, const glm::dvec3& dir, const glm::dvec3& centre, double radius) {
+  const glm::dvec3 oc = centre - eye;
+  const double tc = glm::dot(oc, dir);
+  const double d2 = std::max(0.0, glm::dot(oc, oc) - tc * tc);
+  if (d2 > radius * radius) return INFINITY;
+  const double half = std::sqrt(radius * radius - d2);
+  if (tc - half >= 0) return tc - half;
+  return tc + half >= 0 ? tc + half : INFINITY;
+}
+
 }  // namespace
+
+bool explained_as_tie(const ExplicitScene& scene, const glm::dvec3& eye, const glm::dvec3& direction,
+                      const gpu::PixelHit& test, const gpu::PixelHit& reference, double largest_atom) {
+  for (const gpu::PixelHit* hit : {&test, &reference})
+    if (hit->atom == gpu::kNoHit || !(std::isfinite(hit->depth) && hit->depth > 0)) return false;
+  const double tol = depth_tolerance(reference.depth);
+  if (std::abs(double(test.depth) - double(reference.depth)) > tol) return false;
+  const glm::dvec3 dir = glm::normalize(direction);
+  const glm::dvec3 at = eye + double(reference.depth) * dir;
+  const WorldBox box{at - (largest_atom + 2 * tol), at + (largest_atom + 2 * tol)};
+  const auto number = [](const gpu::PixelHit& h) { return std::uint64_t{h.copy_number_hi} << 32 | h.copy_number_lo; };
+  bool test_met = false, reference_met = false;
+  scene.for_each_atom(box, [&](const AtomSample& s) {
+    for (const gpu::PixelHit* hit : {&test, &reference}) {
+      if (s.atom != hit->atom || s.copy->number != number(*hit)) continue;
+      const double t = first_meeting(eye, dir, s.position, s.radius);
+      if (std::abs(t - double(hit->depth)) <= tol) (hit == &test ? test_met : reference_met) = true;
+    }
+  });
+  return test_met && reference_met;
+}
 
 bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds, const glm::dvec3& eye,
                              const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,

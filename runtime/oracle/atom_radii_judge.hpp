@@ -32,4 +32,12 @@ bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds,
                              const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,
                              double largest_atom, std::span<const glm::dvec4> clip = {}, double medium_ulps = 0);
 
+// True when the device's atom (`test`) and the oracle's (`reference`) are both met by the ray, in
+// the explicit scene, at the depth each reports, and those depths agree within depth_tolerance: two
+// atom surfaces crossing the ray at one point (to 10⁻³ Å), which the device's float placement may
+// order either way. A ray starting inside a sphere meets it where it leaves it (the oracle's rule),
+// so this also judges the views whose eye stands inside an atom.
+bool explained_as_tie(const ExplicitScene& scene, const glm::dvec3& eye, const glm::dvec3& direction,
+                      const gpu::PixelHit& test, const gpu::PixelHit& reference, double largest_atom);
+
 }  // namespace nano::oracle

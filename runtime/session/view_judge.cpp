@@ -63,11 +63,12 @@ std::uint64_t ViewJudge::unexplained_pixels(const oracle::OracleRenderOptions& o
     if (!clip_.empty() && (oracle::classify(clipped_more[i], hits[i]) == oracle::PixelDifference::none ||
                            oracle::classify(clipped_less[i], hits[i]) == oracle::PixelDifference::none))
       continue;
-    // Per-atom radii: two grazing touches on one ray, one shrunk and one grown.
+    // Per-atom radii: two grazing touches on one ray, one shrunk and one grown; or two atoms met at one depth.
     const std::uint32_t x = std::uint32_t(i % width), y = std::uint32_t(i / width);
-    if (!oracle::explained_by_atom_radii(scene_, bounds_, glm::dvec3(glm::vec3(camera.position)),
-                                         glm::dvec3(gpu::camera_ray_direction(camera, x, y)), hits[i], kRadiusEpsilon,
-                                         largest_atom_, clip_, kPlacementUlps))
+    const glm::dvec3 eye(glm::vec3(camera.position)), direction(gpu::camera_ray_direction(camera, x, y));
+    if (!oracle::explained_by_atom_radii(scene_, bounds_, eye, direction, hits[i], kRadiusEpsilon, largest_atom_, clip_,
+                                         kPlacementUlps) &&
+        !oracle::explained_as_tie(scene_, eye, direction, hits[i], reference[i], largest_atom_))
       ++unexplained;
   }
   return unexplained;

@@ -105,6 +105,41 @@ TEST_F(AtomRadiiJudge, EyeInsideAnAtomIsNeverExplained) {
   EXPECT_FALSE(oracle::explained_by_atom_radii(scene, bounds, eye, {1, 0, 0}, oracle::background_pixel(), kEpsilon, largest));
 }
 
+// Two atoms of a copy whose spheres overlap, and a ray entering both at one point of the circle where
+// their surfaces meet: a tie, whichever of the two is named. Apart by more than the tolerance, or a
+// third atom named, it is not.
+TEST_F(AtomRadiiJudge, TwoSurfacesMeetingTheRayAtOnePointAreATie) {
+  Topmost other;
+  double nearest = INFINITY;
+  scene.for_each_atom(oracle::WorldBox::everything(), [&](const oracle::AtomSample& a) {
+    const double d = glm::length(a.position - top.centre);
+    if (a.copy->number == top.copy && a.atom != top.atom && d < a.radius + top.radius && d > 0.1 && d < nearest)
+      nearest = d, other = {a.position, a.radius, a.copy->number, a.atom};
+  });
+  ASSERT_TRUE(std::isfinite(nearest)) << "the hand scene's topmost atom overlaps none of its copy";
+  const glm::dvec3 u = (other.centre - top.centre) / nearest;
+  const double along = (nearest * nearest + top.radius * top.radius - other.radius * other.radius) / (2 * nearest);
+  const double ring = std::sqrt(top.radius * top.radius - along * along);
+  const glm::dvec3 v = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 meet = top.centre + along * u + ring * v;
+  const glm::dvec3 dir = -glm::normalize((meet - top.centre) / top.radius + (meet - other.centre) / other.radius);
+  const glm::dvec3 eye = meet - 5.0 * dir;
+  EXPECT_TRUE(oracle::explained_as_tie(scene, eye, dir, hit(other, 5.0), hit(top, 5.0), largest));
+  EXPECT_TRUE(oracle::explained_as_tie(scene, eye, dir, hit(top, 5.0), hit(other, 5.0), largest));
+  EXPECT_FALSE(oracle::explained_as_tie(scene, eye, dir, hit(other, 5.01), hit(top, 5.0), largest));
+  Topmost third = other;
+  third.atom = other.atom + 1 == top.atom ? other.atom + 2 : other.atom + 1;
+  EXPECT_FALSE(oracle::explained_as_tie(scene, eye, dir, hit(third, 5.0), hit(top, 5.0), largest));
+  EXPECT_FALSE(oracle::explained_as_tie(scene, eye, dir, oracle::background_pixel(), hit(top, 5.0), largest));
+}
+
+TEST_F(AtomRadiiJudge, AnEyeInsideAnAtomMeetsItWhereTheRayLeavesIt) {
+  // From the topmost atom's centre along +z nothing stands above it: the ray leaves it at its radius.
+  const glm::dvec3 eye = top.centre;
+  EXPECT_TRUE(oracle::explained_as_tie(scene, eye, {0, 0, 1}, hit(top, top.radius), hit(top, top.radius), largest));
+  EXPECT_FALSE(oracle::explained_as_tie(scene, eye, {0, 0, 1}, hit(top, top.radius - 0.01), hit(top, top.radius), largest));
+}
+
 // The device places the medium relative to the eye's box in float, so 10^5 Å from the eye a medium
 // atom may stand a few float steps (0.0078 Å each) apart: medium_ulps widens it by that many.
 TEST(AtomRadiiJudgeMedium, FarMediumAtomsMayStandTheirFloatStepsApart) {
