@@ -35,6 +35,8 @@ def scene_in(folder, source):
     return path
 
 
+# Every bake here runs --no-cache: it must do the work whose progress, budget and interruption this
+# tests (through the cache the second bake of the scene would end before the signal).
 def run(args, **kw):
     return subprocess.run(args, capture_output=True, text=True, timeout=120, **kw)
 
@@ -46,7 +48,7 @@ def files_in(folder):
 def check_lines(nanobake, scene, work, problems):
     out = os.path.join(work, "lines")
     os.mkdir(out)
-    r = run([nanobake, "bake", scene, "-o", os.path.join(out, "p.nup")])
+    r = run([nanobake, "bake", scene, "--no-cache", "-o", os.path.join(out, "p.nup")])
     stages = [m.group(1) for m in map(STAGE_LINE.match, r.stderr.splitlines()) if m]
     print("piped stderr:", stages)
     for stage in ("molecules", "meshes", "tile sets", "shells", "core grids", "package content", "writing the package"):
@@ -59,7 +61,7 @@ def check_lines(nanobake, scene, work, problems):
 def check_quiet(nanobake, scene, work, problems):
     out = os.path.join(work, "quiet")
     os.mkdir(out)
-    r = run([nanobake, "bake", scene, "-o", os.path.join(out, "p.nup"), "--quiet"])
+    r = run([nanobake, "bake", scene, "--no-cache", "-o", os.path.join(out, "p.nup"), "--quiet"])
     print("quiet stderr:", repr(r.stderr))
     if r.returncode != 0 or r.stderr:
         problems.append(f"--quiet: exit {r.returncode}, stderr {r.stderr!r}")
@@ -69,7 +71,7 @@ def check_terminal(nanobake, scene, work, problems):
     out = os.path.join(work, "terminal")
     os.mkdir(out)
     leader, follower = pty.openpty()
-    p = subprocess.Popen([nanobake, "bake", scene, "-o", os.path.join(out, "p.nup")], stdout=subprocess.DEVNULL,
+    p = subprocess.Popen([nanobake, "bake", scene, "--no-cache", "-o", os.path.join(out, "p.nup")], stdout=subprocess.DEVNULL,
                          stderr=follower)
     os.close(follower)
     seen = b""
@@ -101,7 +103,7 @@ def check_terminal(nanobake, scene, work, problems):
 def check_dry_run(nanobake, scene, work, problems):
     out = os.path.join(work, "dry")
     os.mkdir(out)
-    r = run([nanobake, "bake", scene, "-o", os.path.join(out, "p.nup"), "--dry-run", "-q"])
+    r = run([nanobake, "bake", scene, "--no-cache", "-o", os.path.join(out, "p.nup"), "--dry-run", "-q"])
     print("dry run:", r.stdout.strip().replace("\n", " | "))
     if r.returncode != 0 or not r.stdout.startswith("estimate:") or "virion:" not in r.stdout or "vesicle:" not in r.stdout:
         problems.append(f"--dry-run: exit {r.returncode}, stdout {r.stdout!r}, stderr {r.stderr!r}")
@@ -112,13 +114,13 @@ def check_dry_run(nanobake, scene, work, problems):
 def check_budget(nanobake, scene, work, problems):
     out = os.path.join(work, "budget")
     os.mkdir(out)
-    r = run([nanobake, "bake", scene, "-o", os.path.join(out, "p.nup"), "--max-memory", "1M", "-q"])
+    r = run([nanobake, "bake", scene, "--no-cache", "-o", os.path.join(out, "p.nup"), "--max-memory", "1M", "-q"])
     print("budget:", r.stderr.strip().splitlines()[0] if r.stderr.strip() else "")
     if r.returncode != 1 or "more than the 1 MB allowed (--max-memory" not in r.stderr:
         problems.append(f"--max-memory 1M: exit {r.returncode}, stderr {r.stderr!r}")
     if files_in(out):
         problems.append(f"--max-memory refusal wrote {files_in(out)}")
-    bad = run([nanobake, "bake", scene, "-o", os.path.join(out, "p.nup"), "--max-memory", "lots"])
+    bad = run([nanobake, "bake", scene, "--no-cache", "-o", os.path.join(out, "p.nup"), "--max-memory", "lots"])
     if bad.returncode == 0 or "--max-memory" not in bad.stderr:
         problems.append(f"--max-memory lots: exit {bad.returncode}, stderr {bad.stderr!r}")
 
@@ -130,7 +132,7 @@ def check_interrupt(nanobake, scene, work, signal_number, after, problems):
     package = os.path.join(out, "p.nup")
     with open(package, "wb") as f:
         f.write(PREVIOUS)
-    p = subprocess.Popen([nanobake, "bake", scene, "-o", package, "-q"], stdout=subprocess.DEVNULL,
+    p = subprocess.Popen([nanobake, "bake", scene, "--no-cache", "-o", package, "-q"], stdout=subprocess.DEVNULL,
                          stderr=subprocess.DEVNULL)
     time.sleep(after)
     if p.poll() is not None:
