@@ -63,6 +63,32 @@ bool explained_as_tie(const ExplicitScene& scene, const glm::dvec3& eye, const g
   return test_met && reference_met;
 }
 
+bool explained_by_placement(const ExplicitScene& scene, const glm::dvec3& eye, const glm::dvec3& direction,
+                            const gpu::PixelHit& test, double slack, double largest_atom) {
+  if (test.atom == gpu::kNoHit || !(std::isfinite(test.depth) && test.depth > 0)) return false;
+  const glm::dvec3 dir = glm::normalize(direction);
+  const double depth = test.depth, tol = depth_tolerance(depth);
+  const glm::dvec3 at = eye + depth * dir;
+  const WorldBox box{at - (largest_atom + 2 * slack + tol), at + (largest_atom + 2 * slack + tol)};
+  const std::uint64_t number = std::uint64_t{test.copy_number_hi} << 32 | test.copy_number_lo;
+  bool met = false;
+  scene.for_each_atom(box, [&](const AtomSample& s) {
+    if (met || s.atom != test.atom || s.copy->number != number) return;
+    const glm::dvec3 oc = s.position - eye;
+    const double tc = glm::dot(oc, dir);
+    const double d = std::sqrt(std::max(0.0, glm::dot(oc, oc) - tc * tc));
+    const double reach = s.radius + slack;
+    if (glm::dot(oc, oc) <= reach * reach || d >= reach) return;  // the eye within reach, or no centre nearby meets the ray
+    // The earliest entry: the ball of every shifted sphere; the latest: shifted away along the ray
+    // and sideways, each by up to `slack` (tangent at worst).
+    const double earliest = tc - std::sqrt(reach * reach - d * d);
+    const double side = d + slack;
+    const double latest = (side >= s.radius ? tc : tc - std::sqrt(s.radius * s.radius - side * side)) + slack;
+    met = depth >= earliest - tol && depth <= latest + tol;
+  });
+  return met;
+}
+
 bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds, const glm::dvec3& eye,
                              const glm::dvec3& direction, const gpu::PixelHit& test, double epsilon,
                              double largest_atom, std::span<const glm::dvec4> clip, double medium_ulps) {

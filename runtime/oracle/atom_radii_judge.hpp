@@ -40,4 +40,11 @@ bool explained_by_atom_radii(const ExplicitScene& scene, const WorldBox& bounds,
 bool explained_as_tie(const ExplicitScene& scene, const glm::dvec3& eye, const glm::dvec3& direction,
                       const gpu::PixelHit& test, const gpu::PixelHit& reference, double largest_atom);
 
+// True when `test` names an atom the ray meets, in the explicit scene, at a depth its sphere gives
+// with its centre moved by at most `slack` Å: the device places copies in float (a few float steps
+// at the scene's largest coordinate), and a small shift of a sphere moves its entry by more than the
+// shift where the ray meets it obliquely. No claim for an eye within reach of the atom.
+bool explained_by_placement(const ExplicitScene& scene, const glm::dvec3& eye, const glm::dvec3& direction,
+                            const gpu::PixelHit& test, double slack, double largest_atom);
+
 }  // namespace nano::oracle

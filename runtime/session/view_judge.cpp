@@ -57,15 +57,16 @@ std::uint64_t ViewJudge::unexplained_pixels(const oracle::OracleRenderOptions& o
     if (oracle::classify(reference[i], hits[i]) == oracle::PixelDifference::none ||
         oracle::explained_by_radius_change(hits[i], reference[i], shrunk[i], grown[i], grazing_slack_))
       continue;
+    const std::uint32_t x = std::uint32_t(i % width), y = std::uint32_t(i / width);
+    const glm::dvec3 eye(glm::vec3(camera.position)), direction(gpu::camera_ray_direction(camera, x, y));
     if (oracle::classify(reference[i], hits[i]) == oracle::PixelDifference::depth_only &&
-        std::abs(double(hits[i].depth) - double(reference[i].depth)) <= placement_slack_ + oracle::depth_tolerance(reference[i].depth))
+        (std::abs(double(hits[i].depth) - double(reference[i].depth)) <= placement_slack_ + oracle::depth_tolerance(reference[i].depth) ||
+         oracle::explained_by_placement(scene_, eye, direction, hits[i], placement_slack_, largest_atom_)))
       continue;
     if (!clip_.empty() && (oracle::classify(clipped_more[i], hits[i]) == oracle::PixelDifference::none ||
                            oracle::classify(clipped_less[i], hits[i]) == oracle::PixelDifference::none))
       continue;
     // Per-atom radii: two grazing touches on one ray, one shrunk and one grown; or two atoms met at one depth.
-    const std::uint32_t x = std::uint32_t(i % width), y = std::uint32_t(i / width);
-    const glm::dvec3 eye(glm::vec3(camera.position)), direction(gpu::camera_ray_direction(camera, x, y));
     if (!oracle::explained_by_atom_radii(scene_, bounds_, eye, direction, hits[i], kRadiusEpsilon, largest_atom_, clip_,
                                          kPlacementUlps) &&
         !oracle::explained_as_tie(scene_, eye, direction, hits[i], reference[i], largest_atom_))

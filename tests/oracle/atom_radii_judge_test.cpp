@@ -140,6 +140,38 @@ TEST_F(AtomRadiiJudge, AnEyeInsideAnAtomMeetsItWhereTheRayLeavesIt) {
   EXPECT_FALSE(oracle::explained_as_tie(scene, eye, {0, 0, 1}, hit(top, top.radius - 0.01), hit(top, top.radius), largest));
 }
 
+// A copy placed a few float steps off: straight down onto the topmost atom its entry moves by the
+// shift; met obliquely, by more; beyond what a shift of `slack` gives, nothing is explained.
+TEST_F(AtomRadiiJudge, ACentreShiftedByTheSlackExplainsTheDepthsItGives) {
+  constexpr double kSlack = 0.016;
+  const glm::dvec3 down_eye = top.centre + glm::dvec3(0, 0, 30);
+  const auto down = [&](double depth) {
+    return oracle::explained_by_placement(scene, down_eye, {0, 0, -1}, hit(top, depth), kSlack, largest);
+  };
+  const double entry = 30 - top.radius;
+  EXPECT_TRUE(down(entry));
+  EXPECT_TRUE(down(entry + 0.9 * kSlack));
+  EXPECT_TRUE(down(entry - 0.9 * kSlack));
+  EXPECT_FALSE(down(entry + 3 * kSlack));
+  EXPECT_FALSE(down(entry - 3 * kSlack));
+  // 0.9 r off the centre the ray meets the sphere obliquely: a sideways shift of the slack moves the
+  // entry by several times the slack, the most the rule grants.
+  const double d = 0.9 * top.radius;
+  const glm::dvec3 side_eye = top.centre + glm::dvec3(-20, 0, d);
+  const auto side = [&](double depth) {
+    return oracle::explained_by_placement(scene, side_eye, {1, 0, 0}, hit(top, depth), kSlack, largest);
+  };
+  const double oblique = 20 - std::sqrt(top.radius * top.radius - d * d);
+  const double shifted = 20 - std::sqrt(top.radius * top.radius - (d + kSlack) * (d + kSlack));
+  EXPECT_GT(shifted - oblique, 2 * kSlack);
+  EXPECT_TRUE(side(shifted));
+  EXPECT_FALSE(side(shifted + 3 * kSlack));
+  Topmost other = top;
+  other.atom += 1;
+  EXPECT_FALSE(oracle::explained_by_placement(scene, down_eye, {0, 0, -1}, hit(other, entry), kSlack, largest));
+  EXPECT_FALSE(oracle::explained_by_placement(scene, top.centre, {0, 0, -1}, hit(top, top.radius), kSlack, largest));
+}
+
 // The device places the medium relative to the eye's box in float, so 10^5 Å from the eye a medium
 // atom may stand a few float steps (0.0078 Å each) apart: medium_ulps widens it by that many.
 TEST(AtomRadiiJudgeMedium, FarMediumAtomsMayStandTheirFloatStepsApart) {
