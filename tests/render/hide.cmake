@@ -1,16 +1,16 @@
 # render --hide, checked by check_hidden against the same view without it (see check_hidden.cpp).
-# Two views of a blood scene: its cut-away (CUTAWAY_CAMERA and CUTAWAY_CLIP: a red cell's haemoglobin
-# in the plasma) hiding the red cells and albumin; and CELLS_CAMERA without the plasma hiding the
-# membranes' lipids and the red cells' aquaporin.
+# Two views of blood: its cut-away (a red cell's haemoglobin in the plasma) hiding the red cells and
+# albumin; and the scene's camera without the plasma hiding the membranes' lipids and the red cells' aquaporin.
+set(cutaway_camera "position=41159,42886,60000;look_at=41159,42886,0;up=0,1,0;fov_degrees=40")
 foreach(view cutaway cells)
   if(view STREQUAL "cutaway")
     set(names rbc albumin)
-    set(base --clip-plane ${CUTAWAY_CLIP})
-    set(camera "${CUTAWAY_CAMERA}")
+    set(base --clip-plane 0,0,-1,5300)
+    set(camera "${cutaway_camera}")
   else()
     set(names POPC POPE aquaporin)
     set(base --hide medium)
-    set(camera "${CELLS_CAMERA}")
+    set(camera "fov_degrees=40")  # the scene's camera, a little wider
   endif()
   set(hides)
   foreach(name IN LISTS names)
