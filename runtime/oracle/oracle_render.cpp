@@ -323,8 +323,24 @@ struct NearestHit {
   }
 };
 
-NearestHit trace_medium_ray(const ExplicitScene& scene, const format::PackageView& p, const Ray& ray,
-                           const OracleRenderOptions& options) {
+// The kept copies of the medium's boxes, each box enumerated once for a chunk of neighbouring rays
+// (which visit mostly the same boxes) instead of once per ray: the same copies, in the same order.
+class MediumBoxCopies {
+public:
+  explicit MediumBoxCopies(const ExplicitScene& scene) : scene_(scene) {}
+  const std::vector<Copy>& of(const glm::ivec3& box, std::uint64_t key) {
+    auto [entry, fresh] = kept_.try_emplace(key);
+    if (fresh) scene_.for_each_medium_copy(box, [&](const Copy& c) { entry->second.push_back(c); });
+    return entry->second;
+  }
+
+private:
+  const ExplicitScene& scene_;
+  std::unordered_map<std::uint64_t, std::vector<Copy>> kept_;
+};
+
+NearestHit trace_medium_ray(const format::PackageView& p, const Ray& ray, const OracleRenderOptions& options,
+                            MediumBoxCopies& box_copies) {
   const gpu::Medium& m = p.medium[0];
   const double B = m.region_min.w;
   const dvec3 lo = dvec3(m.region_min) - 2.0 * B, hi = dvec3(m.region_max) + 2.0 * B;
@@ -357,12 +373,8 @@ NearestHit trace_medium_ray(const ExplicitScene& scene, const format::PackageVie
     if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, boxes))) return;
     const std::uint64_t key = std::uint64_t(b.x) + std::uint64_t(boxes.x) * (std::uint64_t(b.y) + std::uint64_t(boxes.y) * std::uint64_t(b.z));
     if (!seen.insert(key).second) return;
-    // The ray must meet a copy's sphere: asked before its keep test (the enumerator's costly part).
-    const auto ray_meets = [&](const dvec3& origin, double radius) {
-      return sphere_hit(ray, origin, radius * std::max(1.0, options.radius_scale)) != kInf;
-    };
-    scene.for_each_medium_copy(b, [&](const Copy& c) {
-      if (!ray_meets(c.origin, c.radius)) return;
+    for (const Copy& c : box_copies.of(b, key)) {
+      if (sphere_hit(ray, c.origin, c.radius * std::max(1.0, options.radius_scale)) == kInf) continue;
       const gpu::MoleculeType& type = p.molecules[c.molecule_type];
       for (std::uint32_t a = type.first_atom; a < type.first_atom + type.atom_count; ++a) {
         const dvec3 centre_a = c.origin + c.linear * dvec3(p.atoms[a].centre_radius);
@@ -371,7 +383,7 @@ NearestHit trace_medium_ray(const ExplicitScene& scene, const format::PackageVie
         if (clipped) continue;
         best.offer(sphere_hit(ray, centre_a, p.atoms[a].centre_radius.w * c.stretch * options.radius_scale), a, c.id, c.number);
       }
-    }, ray_meets);
+    }
   };
   for (double t = t0; t <= t1 && t <= best.t + B / 2; t += B / 4) {
     const glm::ivec3 cell(glm::floor((ray.o + t * ray.d - dvec3(m.region_min)) / B));
@@ -387,10 +399,11 @@ std::vector<gpu::PixelHit> trace_medium(const ExplicitScene& scene, const format
                                         const OracleRenderOptions& options) {
   std::vector<gpu::PixelHit> image(rays.size(), background_pixel());
   const format::PackageView p(package);
-  constexpr std::size_t kChunk = 16;
+  constexpr std::size_t kChunk = 64;
   parallel_for((rays.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
+    MediumBoxCopies box_copies(scene);
     for (std::size_t i = chunk * kChunk; i < std::min(rays.size(), (chunk + 1) * kChunk); ++i) {
-      const NearestHit hit = trace_medium_ray(scene, p, rays[i], options);
+      const NearestHit hit = trace_medium_ray(p, rays[i], options, box_copies);
       if (hit.t != kInf) image[i] = make_hit(hit.t, hit.atom, hit.id, hit.number);
     }
   });
