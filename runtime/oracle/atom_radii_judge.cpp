@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "runtime/oracle/oracle_render.hpp"
 #include "runtime/oracle/render_compare.hpp"
 
 namespace nano::oracle {
@@ -28,18 +29,6 @@ double exit_distance(const WorldBox& box, const glm::dvec3& eye, const glm::dvec
   return far >= near ? far : 0.0;
 }
 
-// Where a ray from `eye` along unit `dir` first meets the sphere ahead of the eye: its entry, or
-// where it leaves it when the eye is inside; infinity for none.
-double first_meeting(const glm::dvec3& eye, const glm::dvec3& dir, const glm::dvec3& centre, double radius) {
-  const glm::dvec3 oc = centre - eye;
-  const double tc = glm::dot(oc, dir);
-  const double d2 = std::max(0.0, glm::dot(oc, oc) - tc * tc);
-  if (d2 > radius * radius) return INFINITY;
-  const double half = std::sqrt(radius * radius - d2);
-  if (tc - half >= 0) return tc - half;
-  return tc + half >= 0 ? tc + half : INFINITY;
-}
-
 }  // namespace
 
 bool explained_as_tie(const ExplicitScene& scene, const glm::dvec3& eye, const glm::dvec3& direction,
@@ -56,7 +45,7 @@ bool explained_as_tie(const ExplicitScene& scene, const glm::dvec3& eye, const g
   scene.for_each_atom(box, [&](const AtomSample& s) {
     for (const gpu::PixelHit* hit : {&test, &reference}) {
       if (s.atom != hit->atom || s.copy->number != number(*hit)) continue;
-      const double t = first_meeting(eye, dir, s.position, s.radius);
+      const double t = first_sphere_hit(eye, dir, s.position, s.radius);
       if (std::abs(t - double(hit->depth)) <= tol) (hit == &test ? test_met : reference_met) = true;
     }
   });

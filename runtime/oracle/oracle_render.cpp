@@ -159,24 +159,7 @@ struct Ray {
   dvec3 o, d, inv;
 };
 
-// Smallest root t ≥ 0 of the ray (unit d) against the sphere, or +inf. The discriminant from the
-// perpendicular distance and the roots from q = −(β + sign β·√Δ), so grazing and distant rays
-// keep their digits (Ray Tracing Gems ch. 7), even though this runs in double.
-double sphere_hit(const Ray& ray, const dvec3& centre, double radius) {
-  const dvec3 f = ray.o - centre;
-  const double beta = glm::dot(f, ray.d);
-  const dvec3 l = f - beta * ray.d;
-  const double dist = glm::length(l);
-  if (dist > radius) return kInf;
-  const double disc = (radius - dist) * (radius + dist);
-  const double c = glm::dot(f, f) - radius * radius;
-  const double q = -(beta + (beta >= 0 ? std::sqrt(disc) : -std::sqrt(disc)));
-  double t0 = -beta, t1 = -beta;
-  if (q != 0) t0 = c / q, t1 = q;
-  if (t0 > t1) std::swap(t0, t1);
-  if (t0 >= 0) return t0;
-  return t1 >= 0 ? t1 : kInf;
-}
+double sphere_hit(const Ray& ray, const dvec3& centre, double radius) { return first_sphere_hit(ray.o, ray.d, centre, radius); }
 
 // A median-split BVH over atom spheres: enough for ≤ 3e7 spheres and a few hundred thousand rays.
 class AtomBvh {
@@ -698,6 +681,22 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
     if (!r.medium_hits.empty() && r.medium_hits[p].atom != gpu::kNoHit) image[p] = r.medium_hits[p];
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return image;
+}
+
+double first_sphere_hit(const glm::dvec3& origin, const glm::dvec3& direction, const glm::dvec3& centre, double radius) {
+  const dvec3 f = origin - centre;
+  const double beta = glm::dot(f, direction);
+  const dvec3 l = f - beta * direction;
+  const double dist = glm::length(l);
+  if (dist > radius) return kInf;
+  const double disc = (radius - dist) * (radius + dist);
+  const double c = glm::dot(f, f) - radius * radius;
+  const double q = -(beta + (beta >= 0 ? std::sqrt(disc) : -std::sqrt(disc)));
+  double t0 = -beta, t1 = -beta;
+  if (q != 0) t0 = c / q, t1 = q;
+  if (t0 > t1) std::swap(t0, t1);
+  if (t0 >= 0) return t0;
+  return t1 >= 0 ? t1 : kInf;
 }
 
 }  // namespace nano::oracle

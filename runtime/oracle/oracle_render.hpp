@@ -63,6 +63,12 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
 // The background pixel: depth +inf, every id kNoHit (cell: all bits set).
 gpu::PixelHit background_pixel();
 
+// Smallest root t ≥ 0 of the ray (unit direction) against the sphere, or +inf: the entry, or where
+// the ray leaves the sphere when it starts inside. The discriminant from the perpendicular distance
+// and the roots from q = −(β + sign β·√Δ), so grazing and distant rays keep their digits (Ray
+// Tracing Gems ch. 7), even though this runs in double.
+double first_sphere_hit(const glm::dvec3& origin, const glm::dvec3& direction, const glm::dvec3& centre, double radius);
+
 // A conservative world AABB of everything the package can place (atoms included); used to know
 // when a ray has left the scene. Built from vertices, grid dims and atoms, not from stored AABBs.
 // With `scene`, its instances stand where it put them (animation); else where the package does.
