@@ -47,7 +47,6 @@ public:
   }
   void add_text(const std::string& text);
   std::string hex() const;  // 32 hex digits
-  bool operator==(const ShellStageKey&) const = default;
 
 private:
   std::vector<std::byte> material_;
