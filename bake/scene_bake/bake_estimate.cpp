@@ -30,13 +30,15 @@ struct StageCost {
   double seconds_per_work;
   double seconds;  // fixed
 };
-constexpr StageCost kTileSets{"tile sets", 2.2e-6, 0.3};    // per atom of the copies in the sets
+// Tile sets: per atom of the copies the packers place (proteins and solubles). A patch's lipids cost
+// next to nothing: a set of POPC with four spikes takes 0.03 CPU s for 10^6 lipid atoms.
+constexpr StageCost kTileSets{"tile sets", 2.2e-6, 0.05};
 constexpr StageCost kShells{"shells", 2.0e-5, 0.1};           // per membrane copy checked on the surface
 constexpr StageCost kCoreGrids{"core grids", 3e-7, 0.05};     // per soluble copy in a boundary box
-constexpr StageCost kPackage{"package content", 2e-9, 0.3};   // per atom of the copies in the sets (and writing)
+constexpr StageCost kPackage{"package content", 2.5e-8, 0.05};  // per atom of the copies in the sets (and writing)
 // per node of the medium's exclusion fields (one a compartment, grid::ExclusionFieldRequest's
-// budget): blood's two fields of ~10^6 nodes took 14.8 CPU s.
-constexpr StageCost kMedium{"medium", 7e-6, 0.1};
+// budget): blood's two fields of ~10^6 nodes took 36-40 CPU s, an RBC microvesicle's one 9.8 s.
+constexpr StageCost kMedium{"medium", 1.3e-5, 0.1};
 // Of a patch's lipids, the share kept once the clashes of an equilibrated patch are resolved
 // (clearance 0.6: the bundled scenes keep 72-78 %).
 constexpr double kPatchLipidsKept = 0.75;
@@ -102,9 +104,15 @@ std::string gigabytes(double bytes) {
   return text;
 }
 
+// The atoms of the copies in every tile and cube set: all of them (what the sets hold), and those the
+// packers place one by one (proteins and solubles; a patch's lipids are laid as the patch has them).
+struct SetAtoms {
+  double all = 0.0, packed = 0.0;
+};
+
 // The work of the stages after the meshes, each in its own measure.
 struct StageWork {
-  double tile_atoms = 0.0;  // atoms of the copies in every tile and cube set
+  SetAtoms tile_atoms;
   double checked_copies = 0.0, core_box_copies = 0.0, core_boxes = 0.0, triangles = 0.0;
   double medium_nodes = 0.0;  // of the exclusion fields (none without a medium)
 };
@@ -116,20 +124,25 @@ struct EstimateInputs {
   std::vector<MembraneLipids> lipids;  // per membrane
 };
 
-double tile_set_atoms(const EstimateInputs& in) {
+SetAtoms tile_set_atoms(const EstimateInputs& in) {
   const scene::SceneDescription& scene = in.scene;
-  double atoms = 0.0;
+  SetAtoms atoms;
   for (std::size_t i = 0; i < scene.membranes.size(); ++i) {
     const scene::MembraneDescription& m = scene.membranes[i];
-    double atoms_per_a2 = in.lipids[i].per_a2 * in.lipids[i].atoms;
+    const double area = m.tiles * m.tile_size * m.tile_size;
+    double protein_atoms_per_a2 = 0.0;
     for (const scene::MembraneProtein& p : m.proteins)
-      atoms_per_a2 += scene::copies_per_a2(m, p.abundance) * static_cast<double>(in.library[p.molecule.index].atoms.size());
-    atoms += m.tiles * m.tile_size * m.tile_size * atoms_per_a2;
+      protein_atoms_per_a2 += scene::copies_per_a2(m, p.abundance) * static_cast<double>(in.library[p.molecule.index].atoms.size());
+    atoms.packed += area * protein_atoms_per_a2;
+    atoms.all += area * (protein_atoms_per_a2 + in.lipids[i].per_a2 * in.lipids[i].atoms);
   }
   for (const scene::SolubleDescription& s : scene.solubles)
-    for (const scene::SolubleMolecule& molecule : s.molecules)
-      atoms += s.cubes * std::pow(s.cube_size, 3) * scene::copies_per_a3(molecule.abundance) *
-               static_cast<double>(in.library[molecule.molecule.index].atoms.size());
+    for (const scene::SolubleMolecule& molecule : s.molecules) {
+      const double n = s.cubes * std::pow(s.cube_size, 3) * scene::copies_per_a3(molecule.abundance) *
+                       static_cast<double>(in.library[molecule.molecule.index].atoms.size());
+      atoms.packed += n;
+      atoms.all += n;
+    }
   return atoms;
 }
 
@@ -210,10 +223,10 @@ void add_stage_costs(const StageWork& work, BakeEstimate& e) {
   const auto stage = [&](const StageCost& cost, double amount) {
     e.stages.push_back({cost.stage, amount, cost.seconds + cost.seconds_per_work * amount});
   };
-  stage(kTileSets, work.tile_atoms);
+  stage(kTileSets, work.tile_atoms.packed);
   stage(kShells, work.checked_copies);
   stage(kCoreGrids, work.core_box_copies);
-  stage(kPackage, work.tile_atoms);
+  stage(kPackage, work.tile_atoms.all);
   if (work.medium_nodes > 0) stage(kMedium, work.medium_nodes);
   const double threads = e.jobs;
   for (const StageEstimate& s : e.stages) {
@@ -226,7 +239,7 @@ std::vector<MemoryTerm> memory_terms(const StageWork& w, std::uint64_t instances
   return {
       {"the baker itself", kBaseBytes, ""},
       {"compressing the package", kCompressionBytes, ""},
-      {"tile and cube sets (" + count_text(w.tile_atoms) + " atoms of copies)", kBytesPerTileAtom * w.tile_atoms,
+      {"tile and cube sets (" + count_text(w.tile_atoms.all) + " atoms of copies)", kBytesPerTileAtom * w.tile_atoms.all,
        "lower densities or concentrations, a smaller tile_size or cube_size, or fewer tiles or cubes"},
       {"meshes (" + count_text(w.triangles) + " triangles)", kBytesPerTriangle * w.triangles,
        "fewer triangles (\"triangles\", or \"remesh\": {\"edge\": ...} with a longer edge)"},

@@ -134,6 +134,35 @@ TEST(BakeEstimate, ShellsCheckWhatTheCheckedTrianglesOwn) {
   EXPECT_NEAR(shells_work(0.25), 0.25 * owned, 1e-6 * owned);
 }
 
+// The tile sets' time follows the atoms the packers place one by one (the membrane's proteins), not
+// a lipid fill's, which are laid in rows; the package's work and the memory count both.
+TEST(BakeEstimate, TileSetsCostThePackedAtomsNotTheLipids) {
+  scene::SceneDescription s = one_molecule_scene(0.0);
+  s.membranes[0].proteins[0].abundance = {scene::SurfaceAbundance::Unit::per_um2, 1000.0};
+  scene::CompartmentDescription c;
+  c.name = "cell";
+  c.membrane = scene::NameRef{"m", 0};
+  s.compartments.push_back(c);
+  s.instances.push_back(scene::ExplicitInstance{.compartment = {"cell", 0}});
+  const scene::CompartmentMeasure measure = measure_compartment(mesh::make_sphere_mesh(5000, 1000.0));
+  const auto work = [&](const std::string& name) {
+    const BakeEstimate e = estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0}}, 2);
+    for (const StageEstimate& stage : e.stages)
+      if (stage.stage == name) return stage.work;
+    return -1.0;
+  };
+  const scene::MembraneDescription& m = s.membranes[0];
+  const double set_area = m.tiles * m.tile_size * m.tile_size;
+  const double atoms = static_cast<double>(rod_molecule({0, 0, 1}).atoms.size());
+  const double protein_atoms = set_area * 1000.0 / 1e8 * atoms;
+  EXPECT_NEAR(work("tile sets"), protein_atoms, 1e-9 * protein_atoms);
+  EXPECT_NEAR(work("package content"), protein_atoms, 1e-9 * protein_atoms);
+  s.membranes[0].lipids = scene::LipidFill{.molecule = {"rod", 0}, .area_per_lipid = 65.0};
+  EXPECT_NEAR(work("tile sets"), protein_atoms, 1e-9 * protein_atoms);
+  const double with_lipids = protein_atoms + set_area * 2.0 / 65.0 * atoms;
+  EXPECT_NEAR(work("package content"), with_lipids, 1e-9 * with_lipids);
+}
+
 TEST(BakeEstimate, MembraneCopiesForPruningAddTheLipidsAndEveryProtein) {
   // 1e6 Å² (0.01 µm²) with 65 Å² lipids in two leaflets, 1000 per µm² and 0.5 per 100 Å tile.
   scene::MembraneDescription m = one_molecule_scene(0.0).membranes[0];
