@@ -277,12 +277,16 @@ struct FlatLevel::Impl : format::PackageView {
       std::sort(choice.begin(), choice.end());
     }
     // Host memory: forget enumerated triangles the choice does not hold once they outgrow it.
-    if (cached_copies > 4 * room + 100'000)
-      for (auto it = cache.begin(); it != cache.end();)
-        if (!std::binary_search(choice.begin(), choice.end(), it->first))
-          cached_copies -= it->second.size(), it = cache.erase(it);
-        else
+    if (cached_copies > 4 * room + 100'000) {
+      for (auto it = cache.begin(); it != cache.end();) {
+        if (std::binary_search(choice.begin(), choice.end(), it->first)) {
           ++it;
+          continue;
+        }
+        cached_copies -= it->second.size();
+        it = cache.erase(it);
+      }
+    }
     const bool changed = choice != chosen;
     if (changed) chosen = std::move(choice);
     rebuilt = changed || (copy_count > 0 && eye != anchor);

@@ -20,7 +20,9 @@ TEST(EffectTable, NamesFlagsAndConstantsAreDistinct) {
     EXPECT_TRUE(keys.insert(e.scene_key).second) << e.scene_key;
     EXPECT_TRUE(flags.insert(e.package_flag).second) << e.name;
     EXPECT_EQ(e.package_flag & (e.package_flag - 1), 0u) << e.name << ": one bit";
-    if (e.spec_constant >= 0) EXPECT_TRUE(constants.insert(e.spec_constant).second) << e.name;
+    if (e.spec_constant >= 0) {
+      EXPECT_TRUE(constants.insert(e.spec_constant).second) << e.name;
+    }
     EXPECT_EQ(find_effect(e.name), &e);
     EXPECT_EQ(&effect_declaration(e.id), &e);
   }

@@ -197,7 +197,9 @@ TEST_F(Instanced, FrameInPartsEqualsWholeFrame) {
     EXPECT_THROW(renderer.trace_part(budget), std::logic_error);  // nothing left: the frame must be finished
     const render::Frame f = renderer.finish();
     EXPECT_EQ(traced, 60u * 60u) << "budget " << budget;
-    if (budget == 1) EXPECT_EQ(parts, 8u * 8u);  // one workgroup of 8×8 at a time (60 = 7·8 + 4)
+    if (budget == 1) {  // one workgroup of 8×8 at a time (60 = 7·8 + 4)
+      EXPECT_EQ(parts, 8u * 8u);
+    }
     ASSERT_EQ(f.hits.size(), whole.hits.size());
     EXPECT_EQ(0, std::memcmp(f.hits.data(), whole.hits.data(), whole.hits.size() * sizeof(gpu::PixelHit))) << "budget " << budget;
     EXPECT_EQ(f.rgba, whole.rgba) << "budget " << budget;
@@ -228,7 +230,9 @@ TEST_F(Instanced, CountersObeyTheTraversal) {
                   c[gpu::NANO_RC_MASK_REJECTS],
               c[gpu::NANO_RC_MLAS_CANDIDATES]) << p;
     ASSERT_LE(c[gpu::NANO_RC_SPHERE_TESTS], c[gpu::NANO_RC_NLAS_CANDIDATES]) << p;
-    if (counted.hits[p].atom != gpu::kNoHit) ASSERT_GE(c[gpu::NANO_RC_SPHERE_TESTS], 1u) << p;
+    if (counted.hits[p].atom != gpu::kNoHit) {
+      ASSERT_GE(c[gpu::NANO_RC_SPHERE_TESTS], 1u) << p;
+    }
     if (counted.hits[p].atom != gpu::kNoHit && counted.hits[p].kind == 0u) ++membrane_pixels;
   }
   EXPECT_GT(membrane_pixels, 0u);  // the view reaches the membrane, so the shell counters were exercised
@@ -262,8 +266,9 @@ TEST_F(Instanced, BeadsHoldTheirAtoms) {
     if (a.atom == gpu::kNoHit) continue;
     ASSERT_NE(b.atom, gpu::kNoHit) << p;
     ASSERT_LE(b.depth, a.depth * (1 + 1e-5f) + 1e-3f) << p;
-    if (b.copy_number_lo == a.copy_number_lo && b.copy_number_hi == a.copy_number_hi)
+    if (b.copy_number_lo == a.copy_number_lo && b.copy_number_hi == a.copy_number_hi) {
       EXPECT_EQ(type_of(b.atom), type_of(a.atom)) << p;
+    }
     changed += b.atom != a.atom || b.depth != a.depth;
   }
   EXPECT_GT(changed, 0u);
@@ -399,7 +404,9 @@ TEST_F(Instanced, FlatLevelGrowsWithinItsEnumerationBound) {
     EXPECT_EQ(a.missed + a.different_ids, 0u) << "frame " << frames;
     EXPECT_GE(now, previous);
     if (now == previous && frames > 0) break;
-    if (frames == 0) EXPECT_LT(now, all) << "the bound held back nothing";
+    if (frames == 0) {
+      EXPECT_LT(now, all) << "the bound held back nothing";
+    }
     previous = now;
   }
   EXPECT_EQ(previous, all);

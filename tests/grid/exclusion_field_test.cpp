@@ -136,7 +136,9 @@ void expect_rule_safe_and_tight(const Shape& s, const ExclusionField& f, const s
     const double rule = interpolated_clearance(f, p) - f.margin;
     // Deep inside, interpolation across the medial axis overstates, harmlessly: the rule only ever
     // asks whether the value reaches a threshold in [0, reach].
-    if (rule >= 0) ASSERT_GE(truth, std::min(rule, reach) - 1e-3) << "at " << p.x << "," << p.y << "," << p.z << " (rule " << rule << ")";
+    if (rule >= 0) {
+      ASSERT_GE(truth, std::min(rule, reach) - 1e-3) << "at " << p.x << "," << p.y << "," << p.z << " (rule " << rule << ")";
+    }
     if (truth >= 0 && truth <= reach) {
       ++decided;
       worst_under = std::max(worst_under, truth - rule);

@@ -272,8 +272,9 @@ TEST(CameraPath, RefusesWhatTheSceneReaderRefusesInTheSameWords) {
     }
     EXPECT_EQ(std::string(in_scene.rule()).rfind(c.rule, 0), 0u) << in_scene.what();
     EXPECT_EQ(std::string(in_path.rule()).rfind(c.rule, 0), 0u) << in_path.what();
-    if (std::string_view(c.rule).find("unknown key") == std::string_view::npos)  // the allowed keys differ
+    if (std::string_view(c.rule).find("unknown key") == std::string_view::npos) {  // the allowed keys differ
       EXPECT_EQ(std::string(in_scene.rule()), std::string(in_path.rule()));
+    }
   }
   std::filesystem::remove_all(dir);
 }

@@ -104,7 +104,9 @@ TEST(CollisionShape, StretchRuleCoversEveryStretchInItsRange) {
     const bool rule = copies_collide(sa, pose(ia), sb, pose(ib), ClashRule{1.f, {e, 0.f, 0.f}});
     ASSERT_EQ(rule, copies_collide(sb, pose(ib), sa, pose(ia), ClashRule{1.f, {e, 0.f, 0.f}})) << i;
     const bool rigid = brute_force_collide(a, ia, b, ib, 1.f);
-    if (rigid) ASSERT_TRUE(rule) << i;  // the identity is one of the stretches
+    if (rigid) {  // the identity is one of the stretches
+      ASSERT_TRUE(rule) << i;
+    }
     // Extremes and interior points of the eigenvalue range; pairs only the rule rejects get a
     // finer search for the stretch that makes them clash.
     const int samples = rule && !rigid ? 2000 : 24;
@@ -114,7 +116,9 @@ TEST(CollisionShape, StretchRuleCoversEveryStretchInItsRange) {
       const float major = k % 3 == 0 ? 1.f + e : 1.f + e * float(rng.uniform(0, 1));
       const float minor = k % 6 == 0 ? 1.f : 1.f + (major - 1.f) * float(rng.uniform(0, 1));
       const bool clash = brute_force_collide(a, stretched(ia, angle, major, minor), b, stretched(ib, angle, major, minor), 1.f);
-      if (!rule) ASSERT_FALSE(clash) << "pair " << i << " clashes under a stretch the rule cleared";
+      if (!rule) {
+        ASSERT_FALSE(clash) << "pair " << i << " clashes under a stretch the rule cleared";
+      }
       some_stretch_clashes |= clash;
     }
     flagged += rule && !rigid;
