@@ -56,6 +56,25 @@ scene::SceneDescription one_molecule_scene(double depth) {
   return s;
 }
 
+// one_molecule_scene with the rod at 1000 per µm² on a membrane worn by one compartment, one instance.
+scene::SceneDescription one_membrane_cell_scene() {
+  scene::SceneDescription s = one_molecule_scene(0.0);
+  s.membranes[0].proteins[0].abundance = {scene::SurfaceAbundance::Unit::per_um2, 1000.0};
+  scene::CompartmentDescription c;
+  c.name = "cell";
+  c.membrane = scene::NameRef{"m", 0};
+  s.compartments.push_back(c);
+  s.instances.push_back(scene::ExplicitInstance{.compartment = {"cell", 0}});
+  return s;
+}
+
+// The work the estimate gives the stage named, or -1 when it has no such stage.
+double stage_work(const BakeEstimate& e, const std::string& stage_name) {
+  for (const StageEstimate& stage : e.stages)
+    if (stage.stage == stage_name) return stage.work;
+  return -1.0;
+}
+
 TEST(MoleculeMeasures, AStandingRodMeasuresItsLengthItsReachAndItsDiscInEachLeaflet) {
   const auto measures = measure_molecules(one_molecule_scene(0.0), {rod_molecule({0, 0, 1})});
   ASSERT_EQ(measures.size(), 1u);
@@ -114,42 +133,24 @@ TEST(BakeEstimate, CopiesFollowTheDensityTimesTheAreaAndTheConcentrationTimesThe
 // not only those kept), on a membrane checked everywhere; a quarter of them on one checked on a
 // quarter of its area (membrane_surface.hpp) and without seams.
 TEST(BakeEstimate, ShellsCheckWhatTheCheckedTrianglesOwn) {
-  scene::SceneDescription s = one_molecule_scene(0.0);
-  s.membranes[0].proteins[0].abundance = {scene::SurfaceAbundance::Unit::per_um2, 1000.0};
+  scene::SceneDescription s = one_membrane_cell_scene();
   s.membranes[0].lipids = scene::LipidFill{.molecule = {"rod", 0}, .area_per_lipid = 65.0};
-  scene::CompartmentDescription c;
-  c.name = "cell";
-  c.membrane = scene::NameRef{"m", 0};
-  s.compartments.push_back(c);
-  s.instances.push_back(scene::ExplicitInstance{.compartment = {"cell", 0}});
   scene::CompartmentMeasure measure = measure_compartment(mesh::make_sphere_mesh(5000, 1000.0));
   const double owned = measure.area * (2.0 / 65.0 + 1000.0 / 1e8);
   const auto shells_work = [&](double checked_share) {
-    const BakeEstimate e = estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0, checked_share}}, 2);
-    for (const StageEstimate& stage : e.stages)
-      if (stage.stage == "shells") return stage.work;
-    return -1.0;
+    return stage_work(estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0, checked_share}}, 2), "shells");
   };
   EXPECT_NEAR(shells_work(1.0), owned, 1e-6 * owned);
   EXPECT_NEAR(shells_work(0.25), 0.25 * owned, 1e-6 * owned);
 }
 
 // The tile sets' time follows the atoms the packers place one by one (the membrane's proteins), not
-// a lipid fill's, which are laid in rows; the package's work and the memory count both.
+// a lipid fill's, which are laid in rows; the package's work counts both.
 TEST(BakeEstimate, TileSetsCostThePackedAtomsNotTheLipids) {
-  scene::SceneDescription s = one_molecule_scene(0.0);
-  s.membranes[0].proteins[0].abundance = {scene::SurfaceAbundance::Unit::per_um2, 1000.0};
-  scene::CompartmentDescription c;
-  c.name = "cell";
-  c.membrane = scene::NameRef{"m", 0};
-  s.compartments.push_back(c);
-  s.instances.push_back(scene::ExplicitInstance{.compartment = {"cell", 0}});
+  scene::SceneDescription s = one_membrane_cell_scene();
   const scene::CompartmentMeasure measure = measure_compartment(mesh::make_sphere_mesh(5000, 1000.0));
   const auto work = [&](const std::string& name) {
-    const BakeEstimate e = estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0}}, 2);
-    for (const StageEstimate& stage : e.stages)
-      if (stage.stage == name) return stage.work;
-    return -1.0;
+    return stage_work(estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0}}, 2), name);
   };
   const scene::MembraneDescription& m = s.membranes[0];
   const double set_area = m.tiles * m.tile_size * m.tile_size;
