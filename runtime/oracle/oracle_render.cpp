@@ -7,7 +7,6 @@
 #include <numeric>
 #include <optional>
 #include <atomic>
-#include <unordered_set>
 
 #include "common/error.hpp"
 #include "common/parallel_for.hpp"
@@ -283,12 +282,13 @@ gpu::PixelHit make_hit(double t, std::uint32_t atom, const CopyId& id, std::uint
 }
 
 // The medium along each pixel's ray, traced apart from the rounds (their pyramid boxes would hold
-// billions of its copies) and independently of the renderer's DDA: the ray is sampled every B/4
+// billions of its copies) and independently of the renderer's DDA: the ray is sampled every box B
 // within the region grown by two boxes and on the kept side of every clip half-space; each sample's
-// box and the boxes within two of it (a copy reaches one box beyond its own, so a copy the ray meets
-// stands within two boxes of a sampled one) give their kept copies (the shared keep rule) and every
-// atom of a copy whose sphere the ray meets (the enumerator skips boxes wholly inside an
-// instance). Sampling stops half a box beyond the nearest hit.
+// box and the boxes within two of it give their kept copies (the shared keep rule) and every atom
+// of a copy whose sphere the ray meets (the enumerator skips boxes wholly inside an instance).
+// Why two: a copy reaches one box beyond its own, so a point of the ray inside one of its atoms lies
+// in a box within one of the copy's, and the sample nearest that point (at most B/2 along the ray,
+// so per axis) in a box within one more. Sampling stops half a box beyond the nearest hit.
 }  // namespace
 gpu::PixelHit background_pixel();
 namespace {
@@ -307,93 +307,33 @@ struct NearestHit {
 };
 
 // The kept copies of the medium's boxes, each box enumerated once for a chunk of neighbouring rays
-// (which visit mostly the same boxes) instead of once per ray: the same copies, in the same order.
+// (which visit mostly the same boxes) instead of once per ray: the same copies, in the same order,
+// with the box that holds their spheres (grown by `grow`, the radius scale beyond 1), so a ray that
+// misses it skips the box's copies without a test each.
 class MediumBoxCopies {
 public:
-  explicit MediumBoxCopies(const ExplicitScene& scene) : scene_(scene) {}
-  const std::vector<Copy>& of(const glm::ivec3& box, std::uint64_t key) {
+  struct Box {
+    std::vector<Copy> copies;
+    WorldBox spheres{dvec3(kInf), dvec3(-kInf)};
+  };
+  MediumBoxCopies(const ExplicitScene& scene, double grow) : scene_(scene), grow_(grow) {}
+  const Box& of(const glm::ivec3& box, std::uint64_t key) {
     auto [entry, fresh] = kept_.try_emplace(key);
-    if (fresh) scene_.for_each_medium_copy(box, [&](const Copy& c) { entry->second.push_back(c); });
+    if (fresh)
+      scene_.for_each_medium_copy(box, [&](const Copy& c) {
+        entry->second.copies.push_back(c);
+        WorldBox& spheres = entry->second.spheres;
+        spheres.min = glm::min(spheres.min, c.origin - c.radius * grow_);
+        spheres.max = glm::max(spheres.max, c.origin + c.radius * grow_);
+      });
     return entry->second;
   }
 
 private:
   const ExplicitScene& scene_;
-  std::unordered_map<std::uint64_t, std::vector<Copy>> kept_;
+  double grow_;
+  std::unordered_map<std::uint64_t, Box> kept_;
 };
-
-NearestHit trace_medium_ray(const format::PackageView& p, const Ray& ray, const OracleRenderOptions& options,
-                            MediumBoxCopies& box_copies) {
-  const gpu::Medium& m = p.medium[0];
-  const double B = m.region_min.w;
-  const dvec3 lo = dvec3(m.region_min) - 2.0 * B, hi = dvec3(m.region_max) + 2.0 * B;
-  double t0 = 0, t1 = kInf;
-  for (int a = 0; a < 3; ++a) {
-    if (ray.d[a] == 0) {
-      if (ray.o[a] < lo[a] || ray.o[a] > hi[a]) return {};
-      continue;
-    }
-    double ta = (lo[a] - ray.o[a]) * ray.inv[a], tb = (hi[a] - ray.o[a]) * ray.inv[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta), t1 = std::min(t1, tb);
-  }
-  // The kept side of each half-space, widened by two boxes (a kept atom's copy may stand beyond it).
-  for (const glm::dvec4& h : options.clip) {
-    const double along = glm::dot(dvec3(h), ray.d), at = glm::dot(dvec3(h), ray.o) + h.w + 4.0 * B;
-    if (along == 0) {
-      if (at < 0) return {};
-    } else if (along > 0) {
-      t0 = std::max(t0, -at / along);
-    } else {
-      t1 = std::min(t1, -at / along);
-    }
-  }
-  if (!(t0 <= t1)) return {};
-  NearestHit best;
-  std::unordered_set<std::uint64_t> seen;
-  const glm::ivec3 boxes(glm::uvec3(m.boxes));
-  const auto visit_box = [&](const glm::ivec3& b) {
-    if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, boxes))) return;
-    const std::uint64_t key = std::uint64_t(b.x) + std::uint64_t(boxes.x) * (std::uint64_t(b.y) + std::uint64_t(boxes.y) * std::uint64_t(b.z));
-    if (!seen.insert(key).second) return;
-    for (const Copy& c : box_copies.of(b, key)) {
-      if (sphere_hit(ray, c.origin, c.radius * std::max(1.0, options.radius_scale)) == kInf) continue;
-      const gpu::MoleculeType& type = p.molecules[c.molecule_type];
-      for (std::uint32_t a = type.first_atom; a < type.first_atom + type.atom_count; ++a) {
-        const dvec3 centre_a = c.origin + c.linear * dvec3(p.atoms[a].centre_radius);
-        bool clipped = false;
-        for (const glm::dvec4& h : options.clip) clipped = clipped || !(glm::dot(dvec3(h), centre_a) + h.w >= 0);
-        if (clipped) continue;
-        best.offer(sphere_hit(ray, centre_a, p.atoms[a].centre_radius.w * c.stretch * options.radius_scale), a, c.id, c.number);
-      }
-    }
-  };
-  for (double t = t0; t <= t1 && t <= best.t + B / 2; t += B / 4) {
-    const glm::ivec3 cell(glm::floor((ray.o + t * ray.d - dvec3(m.region_min)) / B));
-    for (int dz = -2; dz <= 2; ++dz)
-      for (int dy = -2; dy <= 2; ++dy)
-        for (int dx = -2; dx <= 2; ++dx) visit_box(cell + glm::ivec3(dx, dy, dz));
-  }
-  return best;
-}
-
-// The medium's hit of every pixel (background where it has none).
-std::vector<gpu::PixelHit> trace_medium(const ExplicitScene& scene, const format::Package& package, const std::vector<Ray>& rays,
-                                        const OracleRenderOptions& options) {
-  std::vector<gpu::PixelHit> image(rays.size(), background_pixel());
-  const format::PackageView p(package);
-  constexpr std::size_t kChunk = 64;
-  parallel_for((rays.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
-    MediumBoxCopies box_copies(scene);
-    for (std::size_t i = chunk * kChunk; i < std::min(rays.size(), (chunk + 1) * kChunk); ++i) {
-      const NearestHit hit = trace_medium_ray(p, rays[i], options, box_copies);
-      if (hit.t != kInf) image[i] = make_hit(hit.t, hit.atom, hit.id, hit.number);
-    }
-  });
-  return image;
-}
-
-std::string count(double v);
 
 // Where the ray (t ≥ 0) is inside the box: [entry, exit], or nothing.
 std::optional<std::pair<double, double>> ray_box(const Ray& ray, const WorldBox& b) {
@@ -410,6 +350,86 @@ std::optional<std::pair<double, double>> ray_box(const Ray& ray, const WorldBox&
   if (!(t0 <= t1)) return std::nullopt;
   return std::pair(t0, t1);
 }
+
+NearestHit trace_medium_ray(const format::PackageView& p, const Ray& ray, const OracleRenderOptions& options,
+                            MediumBoxCopies& box_copies) {
+  const gpu::Medium& m = p.medium[0];
+  const double B = m.region_min.w;
+  const dvec3 lo = dvec3(m.region_min) - 2.0 * B, hi = dvec3(m.region_max) + 2.0 * B;
+  const auto region = ray_box(ray, WorldBox{lo, hi});
+  if (!region) return {};
+  auto [t0, t1] = *region;
+  // The kept side of each half-space, widened by two boxes (a kept atom's copy may stand beyond it).
+  for (const glm::dvec4& h : options.clip) {
+    const double along = glm::dot(dvec3(h), ray.d), at = glm::dot(dvec3(h), ray.o) + h.w + 4.0 * B;
+    if (along == 0) {
+      if (at < 0) return {};
+    } else if (along > 0) {
+      t0 = std::max(t0, -at / along);
+    } else {
+      t1 = std::min(t1, -at / along);
+    }
+  }
+  if (!(t0 <= t1)) return {};
+  NearestHit best;
+  const glm::ivec3 boxes(glm::uvec3(m.boxes));
+  const auto visit_box = [&](const glm::ivec3& b) {
+    if (glm::any(glm::lessThan(b, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, boxes))) return;
+    const std::uint64_t key = std::uint64_t(b.x) + std::uint64_t(boxes.x) * (std::uint64_t(b.y) + std::uint64_t(boxes.y) * std::uint64_t(b.z));
+    const MediumBoxCopies::Box& box = box_copies.of(b, key);
+    if (!ray_box(ray, box.spheres)) return;
+    for (const Copy& c : box.copies) {
+      if (sphere_hit(ray, c.origin, c.radius * std::max(1.0, options.radius_scale)) == kInf) continue;
+      const gpu::MoleculeType& type = p.molecules[c.molecule_type];
+      for (std::uint32_t a = type.first_atom; a < type.first_atom + type.atom_count; ++a) {
+        const dvec3 centre_a = c.origin + c.linear * dvec3(p.atoms[a].centre_radius);
+        bool clipped = false;
+        for (const glm::dvec4& h : options.clip) clipped = clipped || !(glm::dot(dvec3(h), centre_a) + h.w >= 0);
+        if (clipped) continue;
+        best.offer(sphere_hit(ray, centre_a, p.atoms[a].centre_radius.w * c.stretch * options.radius_scale), a, c.id, c.number);
+      }
+    }
+  };
+  // A ray moves the same way along each axis, so the windows of the samples slide one way: a box in
+  // this sample's window that an earlier window held is in the previous one's (no set of seen boxes).
+  bool first = true;
+  glm::ivec3 previous(0);
+  const auto in_window = [](const glm::ivec3& b, const glm::ivec3& centre) {
+    return glm::all(glm::lessThanEqual(glm::abs(b - centre), glm::ivec3(2)));
+  };
+  for (double t = t0; t <= t1 && t <= best.t + B / 2; t += B) {
+    const glm::ivec3 cell(glm::floor((ray.o + t * ray.d - dvec3(m.region_min)) / B));
+    if (!first && cell == previous) continue;
+    for (int dz = -2; dz <= 2; ++dz)
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          const glm::ivec3 b = cell + glm::ivec3(dx, dy, dz);
+          if (first || !in_window(b, previous)) visit_box(b);
+        }
+    first = false;
+    previous = cell;
+  }
+  return best;
+}
+
+// The medium's hit of each pixel of `pixels` (background where it has none, and at every other pixel).
+std::vector<gpu::PixelHit> trace_medium(const ExplicitScene& scene, const format::Package& package, const std::vector<Ray>& rays,
+                                        const std::vector<std::uint32_t>& pixels, const OracleRenderOptions& options) {
+  std::vector<gpu::PixelHit> image(rays.size(), background_pixel());
+  const format::PackageView p(package);
+  constexpr std::size_t kChunk = 64;
+  parallel_for((pixels.size() + kChunk - 1) / kChunk, static_cast<int>(std::max(1u, options.threads)), [&](std::size_t chunk) {
+    MediumBoxCopies box_copies(scene, std::max(1.0, options.radius_scale));
+    for (std::size_t i = chunk * kChunk; i < std::min(pixels.size(), (chunk + 1) * kChunk); ++i) {
+      const NearestHit hit = trace_medium_ray(p, rays[pixels[i]], options, box_copies);
+      if (hit.t != kInf) image[pixels[i]] = make_hit(hit.t, hit.atom, hit.id, hit.number);
+    }
+  });
+  return image;
+}
+
+std::string count(double v);
+
 
 // Where the ray runs through some compartment instance's reach (boxes holding every atom, grown
 // by `grow`): sorted, overlapping spans merged. Outside them no compartment atom can be hit.
@@ -509,8 +529,8 @@ std::vector<Ray> camera_rays(const gpu::Camera& camera, const dvec3& eye) {
 
 // A ray through no instance's reach meets no compartment atom: its medium hit or nothing, now. The
 // others stay pending.
-void resolve_rays_out_of_reach(DeepeningRender& r) {
-  for (std::uint32_t p = 0; p < r.image.size(); ++p) {
+void resolve_rays_out_of_reach(DeepeningRender& r, const std::vector<std::uint32_t>& pixels) {
+  for (const std::uint32_t p : pixels) {
     if (!reach_spans(r.rays[p], r.bounds, r.grow).empty()) r.pending.push_back(p);
     else if (std::isfinite(r.medium_depth(p))) r.image[p] = r.medium_hits[p];
   }
@@ -654,8 +674,15 @@ std::vector<gpu::PixelHit> oracle_render(const ExplicitScene& scene, const forma
 
   // The medium first: a pixel whose medium hit lies within a round's depth bound is resolved by that
   // round whether or not a compartment atom comes nearer, so the rounds stop where the plasma does.
-  if (scene.has_medium()) r.medium_hits = trace_medium(scene, package, r.rays, options);
-  resolve_rays_out_of_reach(r);
+  std::vector<std::uint32_t> pixels = options.only_pixels;
+  if (pixels.empty()) {
+    pixels.resize(image.size());
+    for (std::uint32_t p = 0; p < pixels.size(); ++p) pixels[p] = p;
+  }
+  for (const std::uint32_t p : pixels)
+    if (p >= image.size()) throw InputError(package.name(), "camera " + options.camera_name, "pixel " + std::to_string(p) + " is outside the image");
+  if (scene.has_medium()) r.medium_hits = trace_medium(scene, package, r.rays, pixels, options);
+  resolve_rays_out_of_reach(r, pixels);
   if (options.tubes_only) trace_tubes(r);
   std::vector<HeldAtom> atoms;
   std::vector<HeldCopy> copies;

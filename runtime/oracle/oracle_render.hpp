@@ -42,6 +42,9 @@ struct OracleRenderOptions {
   // Clipping half-spaces (unit n, d) in world Å: an atom whose centre p has n·p + d < 0 for one of
   // them is left out whole (runtime/render/effects.hpp clip_half_spaces).
   std::vector<glm::dvec4> clip;
+  // Trace only these pixels (row-major indices; the others stay background), e.g. the few a verify
+  // view disagrees on; empty: every pixel. A traced pixel gets the hit the whole image would give it.
+  std::vector<std::uint32_t> only_pixels;
 };
 
 // What one render cost; for reports and for choosing cameras.

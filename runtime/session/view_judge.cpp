@@ -36,8 +36,12 @@ ViewVerdict ViewJudge::judge(const std::string& view_name, const gpu::Camera& ca
 std::uint64_t ViewJudge::unexplained_pixels(const oracle::OracleRenderOptions& options, const gpu::Camera& camera,
                                             const std::vector<gpu::PixelHit>& reference,
                                             const std::vector<gpu::PixelHit>& hits, std::uint32_t width) const {
-  // Which differences a relative change of every radius by ±ε flips: grazing touches and ties.
-  oracle::OracleRenderOptions shrink = options, grow = options;
+  // Which differences a relative change of every radius by ±ε flips: grazing touches and ties. Only
+  // the differing pixels are traced again (a pixel's hit does not depend on which others are traced).
+  oracle::OracleRenderOptions differing = options;
+  for (std::uint32_t i = 0; i < reference.size(); ++i)
+    if (oracle::classify(reference[i], hits[i]) != oracle::PixelDifference::none) differing.only_pixels.push_back(i);
+  oracle::OracleRenderOptions shrink = differing, grow = differing;
   shrink.radius_scale = 1 - kRadiusEpsilon;
   grow.radius_scale = 1 + kRadiusEpsilon;
   const auto shrunk = oracle::oracle_render(scene_, package_, camera, shrink);
@@ -46,7 +50,7 @@ std::uint64_t ViewJudge::unexplained_pixels(const oracle::OracleRenderOptions& o
   // with every half-space moved by ±ε says which pixels such ties decide.
   std::vector<gpu::PixelHit> clipped_more, clipped_less;
   if (!clip_.empty()) {
-    oracle::OracleRenderOptions more = options, less = options;
+    oracle::OracleRenderOptions more = differing, less = differing;
     for (glm::dvec4& h : more.clip) h.w -= kClipEpsilon;
     for (glm::dvec4& h : less.clip) h.w += kClipEpsilon;
     clipped_more = oracle::oracle_render(scene_, package_, camera, more);

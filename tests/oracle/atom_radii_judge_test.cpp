@@ -3,6 +3,7 @@
 // outside its radius.
 #include <gtest/gtest.h>
 
+#include "format/package_view.hpp"
 #include "runtime/oracle/atom_radii_judge.hpp"
 #include "runtime/oracle/oracle_render.hpp"
 #include "tests/oracle/hand_scene.hpp"
@@ -196,6 +197,50 @@ TEST(AtomRadiiJudgeMedium, FarMediumAtomsMayStandTheirFloatStepsApart) {
   EXPECT_FALSE(judge(just_beyond_radii, 0));
   EXPECT_TRUE(judge(just_beyond_radii, kUlps));
   EXPECT_FALSE(judge(top.radius * (1 + kEpsilon) + 2 * kUlps * step, kUlps));  // beyond the steps too
+}
+
+}  // namespace
+}  // namespace nano::explicit_test
+
+namespace nano::explicit_test {
+namespace {
+
+// verify traces again only the pixels it disagrees on (OracleRenderOptions::only_pixels): each gets
+// the hit the whole image gives it, compartment and medium alike, and every other pixel stays empty.
+void expect_pixels_as_in_the_whole_image(const TestPackage& pkg, const glm::vec3& eye, const glm::vec3& centre) {
+  const oracle::ExplicitScene scene(pkg.package);
+  const gpu::Camera camera = gpu::camera_look_at(eye, centre, {0, 1, 0}, 60.f, 48, 32);
+  const std::vector<gpu::PixelHit> whole = oracle::oracle_render(scene, pkg.package, camera);
+  oracle::OracleRenderOptions some;
+  for (std::uint32_t p = 0; p < whole.size(); p += 7) some.only_pixels.push_back(p);
+  const std::vector<gpu::PixelHit> part = oracle::oracle_render(scene, pkg.package, camera, some);
+  ASSERT_EQ(part.size(), whole.size());
+  std::size_t hits = 0;
+  for (std::uint32_t p = 0; p < whole.size(); ++p) {
+    const bool traced = p % 7 == 0;
+    const gpu::PixelHit& expected = traced ? whole[p] : oracle::background_pixel();
+    EXPECT_EQ(oracle::classify(expected, part[p]), oracle::PixelDifference::none) << "pixel " << p;
+    EXPECT_EQ(part[p].depth, expected.depth) << "pixel " << p;
+    hits += traced && whole[p].atom != gpu::kNoHit;
+  }
+  std::size_t whole_hits = 0;
+  for (const gpu::PixelHit& h : whole) whole_hits += h.atom != gpu::kNoHit;
+  EXPECT_GT(hits, 5u) << "the view must show atoms at some of the traced pixels (" << whole_hits << " of " << whole.size() << " in all)";
+  some.only_pixels = {std::uint32_t(whole.size())};
+  EXPECT_THROW(oracle::oracle_render(scene, pkg.package, camera, some), InputError);
+}
+
+TEST(OracleRenderPixels, TracedPixelsHitWhatTheWholeImageHits) {
+  const TestPackage pkg{hand_scene()};
+  const glm::vec3 square_centre(kL / 2, kL / 2, 0);  // the first flat membrane instance's
+  expect_pixels_as_in_the_whole_image(pkg, square_centre + glm::vec3(1, 0.5, 25), square_centre);
+}
+
+TEST(OracleRenderPixels, TracedPixelsHitTheMediumAsTheWholeImageDoes) {
+  const TestPackage pkg{format::test::medium_only_sample_scene()};
+  const gpu::Medium& medium = format::PackageView(pkg.package).medium[0];
+  const glm::vec3 lo(medium.region_min), hi(medium.region_max);
+  expect_pixels_as_in_the_whole_image(pkg, hi + 0.3f * (hi - lo), 0.5f * (lo + hi));
 }
 
 }  // namespace
