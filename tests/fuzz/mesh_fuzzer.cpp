@@ -1,9 +1,10 @@
 // libFuzzer target: arbitrary bytes through one mesh reader (parse_proxy_mesh, the path
-// read_proxy_mesh takes once it has the file's bytes). Built once per format, NANO_FUZZ_MESH_FORMAT
-// naming it (obj, off, ply, stl, draco or collada: targets obj_fuzzer ... collada_fuzzer), so that
-// each format gets a campaign and a report of its own. Collada's Assimp runs in a process of its
-// own (collada_reader.cpp): what it does not survive there is an InputError here, as it is in
-// nanobake; its time and address space are held below libFuzzer's -timeout and -rss_limit_mb. Rejection as an InputError is the expected outcome;
+// read_proxy_mesh takes once it has the file's bytes). fuzz_mesh is nano_fuzzer's reader for all six
+// formats (obj, off, ply, stl, draco, collada), the format an argument: NANO_FUZZ_READER picks one
+// per process (fuzz_main.cpp), so that each format gets a campaign and a report of its own.
+// Collada's Assimp runs in a process of its own (collada_reader.cpp): what it does not survive there
+// is an InputError here, as it is in nanobake; its time and address space are held below
+// libFuzzer's -timeout and -rss_limit_mb. Rejection as an InputError is the expected outcome;
 // anything else (another exception, a crash, a sanitizer report, a leak, an allocation over
 // -rss_limit_mb, a hang) is a finding, and so is an accepted mesh that breaks what
 // bake/mesh/proxy_mesh.hpp and mesh_reader.hpp promise: faces, indices in range, finite welded
@@ -25,15 +26,9 @@
 #include "bake/mesh/polygon_soup.hpp"
 #include "common/error.hpp"
 
-#ifndef NANO_FUZZ_MESH_FORMAT
-#error "NANO_FUZZ_MESH_FORMAT must name the format (obj, off, ply, stl, draco or collada)"
-#endif
-
 namespace {
 
 using namespace nano::mesh;
-
-constexpr MeshFormat kFormat = MeshFormat::NANO_FUZZ_MESH_FORMAT;
 
 [[noreturn]] void finding(const std::string& what) {
   std::fprintf(stderr, "mesh fuzzer: accepted mesh %s\n", what.c_str());
@@ -74,23 +69,26 @@ void check(const ProxyMesh& mesh) {
       finding("holds a normal that is not a finite unit vector");
 }
 
-ProxyMesh parse(std::span<const std::byte> bytes) {
-  if constexpr (kFormat == MeshFormat::collada) {
+ProxyMesh parse(MeshFormat format, std::span<const std::byte> bytes) {
+  if (format == MeshFormat::collada) {
     // 5 s under libFuzzer's -timeout of 10, 1 GiB under nanobake's 4 (a sanitizer build counts
     // only its large allocations against it: the small ones come from space reserved at its start).
     const ColladaImportLimits limits{.time = std::chrono::seconds(5), .address_space = std::uint64_t{1} << 30};
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     return assemble_proxy_mesh(read_collada_soup(text, "fuzz/mesh", limits), "fuzz/mesh");
   }
-  return parse_proxy_mesh(bytes, kFormat, "fuzz/mesh");
+  return parse_proxy_mesh(bytes, format, "fuzz/mesh");
 }
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+namespace nano::fuzz {
+
+void fuzz_mesh(mesh::MeshFormat format, std::span<const std::byte> bytes) {
   try {
-    check(parse(std::as_bytes(std::span(data, size))));
-  } catch (const nano::InputError&) {
+    check(parse(format, bytes));
+  } catch (const InputError&) {
   }
-  return 0;
 }
+
+}  // namespace nano::fuzz

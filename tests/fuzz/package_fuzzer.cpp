@@ -1,8 +1,9 @@
-// libFuzzer target: arbitrary bytes through the package reader and the semantic validator.
+// nano_fuzzer's reader "package": arbitrary bytes through the package reader and the semantic validator.
 // Rejection as a PackageError is the expected outcome; anything else (another exception, a crash,
 // a sanitizer report, a leak, an allocation over -rss_limit_mb) is a finding.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "format/validator.hpp"
 
@@ -22,13 +23,16 @@ template <std::size_t... I> std::uint64_t touch_all(const nano::format::Package&
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+namespace nano::fuzz {
+
+void fuzz_package(std::span<const std::byte> bytes) {
   try {
-    const auto p = nano::format::Package::from_bytes({reinterpret_cast<const std::byte*>(data), size}, "fuzz.nup");
+    const auto p = nano::format::Package::from_bytes(bytes, "fuzz.nup");
     nano::format::validate_semantics(p);
     volatile std::uint64_t sink = touch_all(p, std::make_index_sequence<std::size(nano::format::kAllSectionKinds)>());
     (void)sink;
   } catch (const nano::format::PackageError&) {
   }
-  return 0;
 }
+
+}  // namespace nano::fuzz

@@ -2,12 +2,14 @@
 // (v1 and v2; v1 includes are looked for beside a recipe path that does not exist, so each is a
 // named refusal), and through the .sph sphere tree reader. Rejection as an InputError is the expected outcome; anything else (another
 // exception, a crash, a sanitizer report, a hang, an accepted recipe holding a value the reader
-// promises never to pass on) is a finding.
+// promises never to pass on) is a finding. fuzz_recipe is nano_fuzzer's reader "recipe"
+// (fuzz_main.cpp).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -22,7 +24,7 @@ using namespace nano;
 using namespace nano::cellpack;
 
 [[noreturn]] void finding(const std::string& what) {
-  std::fprintf(stderr, "recipe_fuzzer: %s\n", what.c_str());
+  std::fprintf(stderr, "recipe fuzzer: %s\n", what.c_str());
   std::abort();
 }
 
@@ -73,15 +75,18 @@ void run_sphere_tree(std::string_view text) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string_view text(reinterpret_cast<const char*>(data), size);
+namespace nano::fuzz {
+
+void fuzz_recipe(std::span<const std::byte> bytes) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   try {
     run(text);
-  } catch (const nano::InputError&) {
+  } catch (const InputError&) {
   }
   try {
     run_sphere_tree(text);
-  } catch (const nano::InputError&) {
+  } catch (const InputError&) {
   }
-  return 0;
 }
+
+}  // namespace nano::fuzz

@@ -3,7 +3,7 @@
 // measure them) and, for scenes that pass, random instance placement. Rejection as an InputError is
 // the expected outcome; anything else (another exception, a crash, a sanitizer report, a parsed
 // scene holding a non-finite number or a non-unit axis, a hang, an allocation over -rss_limit_mb)
-// is a finding.
+// is a finding. fuzz_scene is nano_fuzzer's reader "scene" (fuzz_main.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <span>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -35,7 +36,7 @@ using namespace nano::scene;
 constexpr std::size_t kMaxCopiesPlaced = 20'000;
 
 [[noreturn]] void finding(const std::string& what) {
-  std::fprintf(stderr, "scene_fuzzer: %s\n", what.c_str());
+  std::fprintf(stderr, "scene fuzzer: %s\n", what.c_str());
   std::abort();
 }
 
@@ -165,10 +166,13 @@ void run(std::string_view text) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+namespace nano::fuzz {
+
+void fuzz_scene(std::span<const std::byte> bytes) {
   try {
-    run(std::string_view(reinterpret_cast<const char*>(data), size));
-  } catch (const nano::InputError&) {
+    run(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  } catch (const InputError&) {
   }
-  return 0;
 }
+
+}  // namespace nano::fuzz

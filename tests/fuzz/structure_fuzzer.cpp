@@ -1,9 +1,11 @@
-// libFuzzer target: arbitrary bytes through one structure reader, built once per entry
-// (NANO_FUZZ_PDB, NANO_FUZZ_MMCIF or NANO_FUZZ_GZIP defined):
-//   pdb    parse_pdb, then molecule_from_text (selection, radii) as PDB         (pdb_fuzzer)
-//   mmcif  parse_mmcif, then molecule_from_text as mmCIF                        (mmcif_fuzzer)
-//   gzip   structure_text_from_bytes (gzip inflation, binary rejection), then, when that gives a
-//          text, the format read_molecule would detect and molecule_from_text  (gzip_fuzzer)
+// libFuzzer target: arbitrary bytes through one structure reader. fuzz_structure is nano_fuzzer's
+// reader for all three entries, NANO_FUZZ_READER picking one per process (fuzz_main.cpp); the
+// entry is the format the bytes are taken to be, or none:
+//   pdb    parse_pdb, then molecule_from_text (selection, radii) as PDB
+//   mmcif  parse_mmcif, then molecule_from_text as mmCIF
+//   gzip   no format: the bytes go the way of a file whose name names none (model.gz):
+//          structure_text_from_bytes (gzip inflation, binary rejection), then, when that gives a
+//          text, the format read_molecule would detect and molecule_from_text
 // Rejection as an InputError is the expected outcome; anything else (another exception, a crash, a
 // sanitizer report, a leak, an allocation over -rss_limit_mb, a hang) is a finding, and so is an
 // accepted structure that breaks what the readers promise: atoms, finite coordinates and
@@ -15,6 +17,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -48,7 +52,7 @@ void check_atoms(const std::vector<Atom>& atoms, int model_count, std::string_vi
   }
 }
 
-[[maybe_unused]] void check_parsed(const ParsedStructure& parsed, std::string_view text) {
+void check_parsed(const ParsedStructure& parsed, std::string_view text) {
   if (parsed.atoms.empty()) finding("parser accepted a structure without atoms");
   check_atoms(parsed.atoms, parsed.model_count, text, "parser");
 }
@@ -64,29 +68,30 @@ void check_molecules(std::string_view text, StructureFormat format, const std::s
   }
 }
 
-void run(std::string_view bytes) {
-#if defined(NANO_FUZZ_PDB)
-  check_parsed(parse_pdb(bytes, "fuzz.pdb"), bytes);
-  check_molecules(bytes, StructureFormat::Pdb, "fuzz.pdb");
-#elif defined(NANO_FUZZ_MMCIF)
-  check_parsed(parse_mmcif(bytes, "fuzz.cif"), bytes);
-  check_molecules(bytes, StructureFormat::Mmcif, "fuzz.cif");
-#elif defined(NANO_FUZZ_GZIP)
-  // A name without a format of its own, so the content decides, as for "model.gz".
-  const std::string name = "fuzz.gz";
-  const std::string text = structure_text_from_bytes(std::string(bytes), name);
-  check_molecules(text, detect_structure_format(name, text), name);
-#else
-#error "define NANO_FUZZ_PDB, NANO_FUZZ_MMCIF or NANO_FUZZ_GZIP"
-#endif
+void run(std::optional<StructureFormat> format, std::string_view bytes) {
+  if (format == StructureFormat::Pdb) {
+    check_parsed(parse_pdb(bytes, "fuzz.pdb"), bytes);
+    check_molecules(bytes, StructureFormat::Pdb, "fuzz.pdb");
+  } else if (format == StructureFormat::Mmcif) {
+    check_parsed(parse_mmcif(bytes, "fuzz.cif"), bytes);
+    check_molecules(bytes, StructureFormat::Mmcif, "fuzz.cif");
+  } else {
+    // A name without a format of its own, so the content decides, as for "model.gz".
+    const std::string name = "fuzz.gz";
+    const std::string text = structure_text_from_bytes(std::string(bytes), name);
+    check_molecules(text, detect_structure_format(name, text), name);
+  }
 }
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+namespace nano::fuzz {
+
+void fuzz_structure(std::optional<structure::StructureFormat> format, std::span<const std::byte> bytes) {
   try {
-    run(std::string_view(reinterpret_cast<const char*>(data), size));
-  } catch (const nano::InputError&) {
+    run(format, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  } catch (const InputError&) {
   }
-  return 0;
 }
+
+}  // namespace nano::fuzz
