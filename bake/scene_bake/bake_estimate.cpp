@@ -122,6 +122,9 @@ struct EstimateInputs {
   const std::vector<BakedMolecule>& library;
   const std::vector<std::optional<BakedLipidPatch>>& patches;
   std::vector<MembraneLipids> lipids;  // per membrane
+  std::vector<bool> sets_cached;       // per membrane, then per soluble (empty: none)
+
+  bool set_cached(std::size_t k) const { return k < sets_cached.size() && sets_cached[k]; }
 };
 
 SetAtoms tile_set_atoms(const EstimateInputs& in) {
@@ -133,14 +136,15 @@ SetAtoms tile_set_atoms(const EstimateInputs& in) {
     double protein_atoms_per_a2 = 0.0;
     for (const scene::MembraneProtein& p : m.proteins)
       protein_atoms_per_a2 += scene::copies_per_a2(m, p.abundance) * static_cast<double>(in.library[p.molecule.index].atoms.size());
-    atoms.packed += area * protein_atoms_per_a2;
+    if (!in.set_cached(i)) atoms.packed += area * protein_atoms_per_a2;
     atoms.all += area * (protein_atoms_per_a2 + in.lipids[i].per_a2 * in.lipids[i].atoms);
   }
-  for (const scene::SolubleDescription& s : scene.solubles)
-    for (const scene::SolubleMolecule& molecule : s.molecules) {
+  for (std::size_t i = 0; i < scene.solubles.size(); ++i)
+    for (const scene::SolubleMolecule& molecule : scene.solubles[i].molecules) {
+      const scene::SolubleDescription& s = scene.solubles[i];
       const double n = s.cubes * std::pow(s.cube_size, 3) * scene::copies_per_a3(molecule.abundance) *
                        static_cast<double>(in.library[molecule.molecule.index].atoms.size());
-      atoms.packed += n;
+      if (!in.set_cached(scene.membranes.size() + i)) atoms.packed += n;
       atoms.all += n;
     }
   return atoms;
@@ -264,8 +268,8 @@ double membrane_copies_for_pruning(double area, const scene::MembraneDescription
 
 BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vector<BakedMolecule>& library,
                            const std::vector<std::optional<BakedLipidPatch>>& patches,
-                           const std::vector<EstimatedMesh>& meshes, int jobs) {
-  EstimateInputs in{scene, library, patches, {}};
+                           const std::vector<EstimatedMesh>& meshes, int jobs, const std::vector<bool>& sets_cached) {
+  EstimateInputs in{scene, library, patches, {}, sets_cached};
   for (std::size_t i = 0; i < scene.membranes.size(); ++i)
     in.lipids.push_back(membrane_lipids(scene.membranes[i], patches[i], library));
   BakeEstimate e;

@@ -62,9 +62,11 @@ double membrane_copies_for_pruning(double area, const scene::MembraneDescription
                                    const std::optional<BakedLipidPatch>& patch);
 
 // One EstimatedMesh per compartment; `patches[m]` is membrane m's lipid patch.
+// `sets_cached`: per membrane, then per soluble, whether its tile set came from the bake cache (it
+// then costs no packing); empty: none did.
 BakeEstimate estimate_bake(const scene::SceneDescription& scene, const std::vector<BakedMolecule>& library,
                            const std::vector<std::optional<BakedLipidPatch>>& patches,
-                           const std::vector<EstimatedMesh>& meshes, int jobs);
+                           const std::vector<EstimatedMesh>& meshes, int jobs, const std::vector<bool>& sets_cached = {});
 
 // The estimate as the lines `--dry-run` prints.
 std::string describe(const BakeEstimate& estimate);

@@ -188,7 +188,8 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
   auto& densities = j["densities"] = nlohmann::ordered_json::array();
   for (const WangSetSummary& s : scene.wang_sets)
     for (const tiles::MoleculeDensity& d : s.densities)
-      densities.push_back({{"set", s.name}, {"molecule", d.name}, {"requested", d.requested}, {"achieved", d.achieved}});
+      densities.push_back({{"set", s.name}, {"molecule", d.name}, {"requested", d.requested}, {"achieved", d.achieved},
+                           {"set_from_cache", s.from_cache}});
   auto& surfaces = j["membrane_surfaces"] = nlohmann::ordered_json::object();
   for (const WangSetSummary& s : scene.wang_sets)
     if (s.surface)
@@ -227,11 +228,36 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
   if (const auto& cached = scene.estimate_with_cache)
     j["estimate_with_cache"] = {{"cpu_seconds", cached->cpu_seconds},
                                 {"peak_memory_bytes", cached->peak_bytes},
-                                {"why", "the same estimate with the shells the bake cache served left out"}};
+                                {"why", "the same estimate with the shells and tile sets the bake cache served left out"}};
   j["measured"] = {{"cpu_seconds_after_estimate", process_cpu_seconds() - scene.cpu_seconds_at_estimate},
                    {"peak_memory_bytes", peak_resident_bytes()}};
   return j;
 }
+
+namespace {
+
+// Each Wang set: read from the bake cache or what it was packed to survive, and its densities.
+void describe_wang_sets(std::ostringstream& out, const BakedScene& scene) {
+  char line[512];
+  for (const WangSetSummary& s : scene.wang_sets) {
+    if (s.from_cache) out << "  " << s.name << ": tile set read from the bake cache (the same request was packed before; --no-cache packs it)\n";
+    if (s.surface) {
+      std::snprintf(line, sizeof line,
+                    "  %s: packed to stay clash-free under chart stretches up to %.3g, normals turning %.3g rad/Å "
+                    "and tilting %.3g from their faces (facets sag %.3g Å)\n",
+                    s.name.c_str(), 1.0 + s.surface->lateral_stretch, s.surface->curvature, s.surface->tilt,
+                    s.surface->max_rise);
+      out << line;
+    }
+    for (const tiles::MoleculeDensity& d : s.densities) {
+      std::snprintf(line, sizeof line, "  %s/%s: density %.4g of %.4g requested\n", s.name.c_str(), d.name.c_str(),
+                    d.achieved, d.requested);
+      out << line;
+    }
+  }
+}
+
+}  // namespace
 
 std::string bake_summary(const BakedScene& scene, const format::Package& package) {
   std::ostringstream out;
@@ -290,21 +316,7 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
                 package.has(format::SectionKind::draco_meshes) ? "Draco streams (on Draco's exact grids)" : "zstd",
                 mesh_stored_bytes(package) / 1e3);
   out << line;
-  for (const WangSetSummary& s : scene.wang_sets) {
-    if (s.surface) {
-      std::snprintf(line, sizeof line,
-                    "  %s: packed to stay clash-free under chart stretches up to %.3g, normals turning %.3g rad/Å "
-                    "and tilting %.3g from their faces (facets sag %.3g Å)\n",
-                    s.name.c_str(), 1.0 + s.surface->lateral_stretch, s.surface->curvature, s.surface->tilt,
-                    s.surface->max_rise);
-      out << line;
-    }
-    for (const tiles::MoleculeDensity& d : s.densities) {
-      std::snprintf(line, sizeof line, "  %s/%s: density %.4g of %.4g requested\n", s.name.c_str(), d.name.c_str(),
-                    d.achieved, d.requested);
-      out << line;
-    }
-  }
+  describe_wang_sets(out, scene);
   out << "  stages:";
   for (const auto& [name, seconds] : scene.stage_seconds) {
     std::snprintf(line, sizeof line, " %s %.2fs;", name.c_str(), seconds);

@@ -313,15 +313,16 @@ void check_placements(const scene::SceneDescription& scene, const Molecules& mol
   scene::check_medium_region(scene, molecules.measures, scene::instance_spheres(trial, measured.radii));
 }
 
-// Before the heavy stages; again after the shells when the bake cache served some (their flag set).
+// Before the heavy stages; again after the shells when the bake cache served some shells or tile
+// sets (their flags set: `sets_cached` per membrane, then per soluble).
 BakeEstimate estimate(const BakeInputs& in, const Molecules& molecules, const std::vector<CompartmentBake>& compartments,
-                      const MeshMeasures& measured) {
+                      const MeshMeasures& measured, const std::vector<bool>& sets_cached = {}) {
   std::vector<EstimatedMesh> meshes;
   for (std::size_t c = 0; c < compartments.size(); ++c)
     meshes.push_back({measured.measures[c], compartments[c].mesh.report.seam_length,
                       compartments[c].surface.area > 0.0 ? compartments[c].surface.checked_area / compartments[c].surface.area : 1.0,
                       compartments[c].membrane && compartments[c].membrane->shells_from_cache});
-  return estimate_bake(in.scene, molecules.library, molecules.patches, meshes, in.threads);
+  return estimate_bake(in.scene, molecules.library, molecules.patches, meshes, in.threads, sets_cached);
 }
 
 // Each membrane planned over the meshes that wear it (membrane_surface.hpp): small membranes (a
@@ -369,11 +370,12 @@ TileSets bake_tile_sets(const BakeInputs& in, const Molecules& molecules,
     if (k < membrane_count) {
       const auto& patch = molecules.patches[k];
       sets.membrane[k] = bake_membrane_tiles(scene.membranes[k], molecules.library, patch ? &*patch : nullptr,
-                                             surfaces[k], derive_seed(in.seed, SeedTag::membrane_tiles, k), in.threads);
+                                             surfaces[k], derive_seed(in.seed, SeedTag::membrane_tiles, k), in.threads,
+                                             in.options.cache_directory);
     } else {
       const std::size_t i = k - membrane_count;
-      sets.soluble[i] =
-          bake_soluble_cubes(scene.solubles[i], molecules.library, derive_seed(in.seed, SeedTag::soluble_cubes, i), in.threads);
+      sets.soluble[i] = bake_soluble_cubes(scene.solubles[i], molecules.library, derive_seed(in.seed, SeedTag::soluble_cubes, i),
+                                           in.threads, in.options.cache_directory);
     }
   });
   return sets;
@@ -382,9 +384,9 @@ TileSets bake_tile_sets(const BakeInputs& in, const Molecules& molecules,
 void summarise_tile_sets(BakedScene& baked, const scene::SceneDescription& scene, const TileSets& sets,
                          const std::vector<tiles::SurfaceDistortion>& surfaces) {
   for (std::size_t i = 0; i < sets.membrane.size(); ++i)
-    baked.wang_sets.push_back({scene.membranes[i].name, sets.membrane[i].set.densities, surfaces[i]});
+    baked.wang_sets.push_back({scene.membranes[i].name, sets.membrane[i].set.densities, surfaces[i], sets.membrane[i].from_cache});
   for (std::size_t i = 0; i < sets.soluble.size(); ++i)
-    baked.wang_sets.push_back({scene.solubles[i].name, sets.soluble[i].set.densities});
+    baked.wang_sets.push_back({scene.solubles[i].name, sets.soluble[i].set.densities, std::nullopt, sets.soluble[i].from_cache});
 }
 
 BakedMembrane bake_shell(const BakeInputs& in, const Molecules& molecules, const TileSets& sets, std::size_t c,
@@ -663,8 +665,13 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
       bake.core = clock.run("core grids", [&] { return bake_core_grid(in, molecules, sets, c, bake); });
   }
 
-  if (std::any_of(compartments.begin(), compartments.end(), [](const CompartmentBake& c) { return c.membrane && c.membrane->shells_from_cache; }))
-    baked.estimate_with_cache = estimate(in, molecules, compartments, measured);
+  std::vector<bool> sets_cached;
+  for (const auto* group : {&sets.membrane, &sets.soluble})
+    for (const BakedWangSet& set : *group) sets_cached.push_back(set.from_cache);
+  const bool shells_cached =
+      std::any_of(compartments.begin(), compartments.end(), [](const CompartmentBake& c) { return c.membrane && c.membrane->shells_from_cache; });
+  if (shells_cached || std::find(sets_cached.begin(), sets_cached.end(), true) != sets_cached.end())
+    baked.estimate_with_cache = estimate(in, molecules, compartments, measured, sets_cached);
 
   const std::vector<scene::PlacedInstance> placed =
       clock.run("instances", [&] { return place_instances(scene, compartments, measured); });

@@ -97,6 +97,7 @@ struct WangSetSummary {
   std::string name;  // membrane or soluble name
   std::vector<tiles::MoleculeDensity> densities;
   std::optional<tiles::SurfaceDistortion> surface;  // membranes only: what the tiles were packed to survive
+  bool from_cache = false;  // read from the bake cache (tile_set_cache.hpp), not packed
 };
 
 // The medium as the report gives it: region, what it holds (estimated by volume, medium_bake.hpp)

@@ -9,6 +9,7 @@
 
 #include <xxhash.h>
 
+#include "bake/scene_bake/stage_bytes.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 
@@ -22,49 +23,7 @@ constexpr std::size_t kKeyAt = 16, kSizeAt = 48, kChecksumAt = 56, kHeaderBytes 
 
 XXH128_hash_t digest(std::span<const std::byte> material) { return XXH3_128bits(material.data(), material.size()); }
 
-class Writer {
-public:
-  template <typename T>
-  void put(const T& value) {
-    const auto* p = reinterpret_cast<const std::byte*>(&value);
-    bytes.insert(bytes.end(), p, p + sizeof(T));
-  }
-  template <typename T>
-  void put_all(const std::vector<T>& values) {
-    const auto* p = reinterpret_cast<const std::byte*>(values.data());
-    bytes.insert(bytes.end(), p, p + values.size() * sizeof(T));
-  }
-  std::vector<std::byte> bytes;
-};
-
-// Reads what the writer wrote; every read checks what is left, so a truncated or hostile file is
-// a failed decode, never a read past its end.
-class Reader {
-public:
-  explicit Reader(std::span<const std::byte> bytes) : bytes_(bytes) {}
-  template <typename T>
-  bool get(T& value) {
-    if (bytes_.size() - at_ < sizeof(T)) return false;
-    std::memcpy(&value, bytes_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-    return true;
-  }
-  template <typename T>
-  bool get_all(std::vector<T>& values, std::uint64_t count) {
-    if (count > (bytes_.size() - at_) / sizeof(T)) return false;
-    values.resize(count);
-    std::memcpy(values.data(), bytes_.data() + at_, count * sizeof(T));
-    at_ += count * sizeof(T);
-    return true;
-  }
-  bool done() const { return at_ == bytes_.size(); }
-
-private:
-  std::span<const std::byte> bytes_;
-  std::size_t at_ = 0;
-};
-
-void put_pruning(Writer& w, const shell::PrunedMembrane& p) {
+void put_pruning(StageWriter& w, const shell::PrunedMembrane& p) {
   w.put(std::uint64_t(p.dropped.size()));
   for (const std::vector<std::uint32_t>& keys : p.dropped) {
     w.put(std::uint64_t(keys.size()));
@@ -77,7 +36,7 @@ void put_pruning(Writer& w, const shell::PrunedMembrane& p) {
     w.put(v);
 }
 
-std::string get_pruning(Reader& r, std::size_t triangles, std::size_t types, shell::PrunedMembrane& p) {
+std::string get_pruning(StageReader& r, std::size_t triangles, std::size_t types, shell::PrunedMembrane& p) {
   std::uint64_t lists = 0;
   if (!r.get(lists) || lists != triangles) return "its dropped copies are not one list per triangle";
   p.dropped.resize(triangles);
@@ -99,7 +58,7 @@ std::string get_pruning(Reader& r, std::size_t triangles, std::size_t types, she
 
 // The stage's payload for a mesh of `triangles` and a set of `types`, or why it is not one.
 std::string decode_payload(std::span<const std::byte> payload, std::size_t triangles, std::size_t types, ShellStage& s) {
-  Reader r(payload);
+  StageReader r(payload);
   std::uint64_t stored_triangles = 0, stored_types = 0;
   if (!r.get(stored_triangles) || !r.get(stored_types)) return "it ends before its sizes";
   if (stored_triangles != triangles || stored_types != types)
@@ -153,8 +112,20 @@ std::filesystem::path shell_cache_file(const std::filesystem::path& directory, c
   return directory / ("shells-" + key.hex() + ".bin");
 }
 
+std::vector<std::byte> wrap_cached_stage(std::string_view magic, const ShellStageKey& key, std::span<const std::byte> payload) {
+  StageWriter file;
+  for (std::size_t i = 0; i < sizeof kMagic; ++i) file.put(i < magic.size() ? magic[i] : ' ');
+  file.put(kShellCacheFormatVersion);
+  file.put(std::uint32_t{0});
+  for (const char c : key.hex()) file.put(c);
+  file.put(std::uint64_t(payload.size()));
+  file.put(std::uint64_t(XXH3_64bits(payload.data(), payload.size())));
+  file.bytes.insert(file.bytes.end(), payload.begin(), payload.end());
+  return file.bytes;
+}
+
 std::vector<std::byte> encode_shell_stage(const ShellStageKey& key, const ShellStage& stage) {
-  Writer payload;
+  StageWriter payload;
   payload.put(std::uint64_t(stage.offsets.size()));
   payload.put(std::uint64_t(stage.owned_by_type.size()));
   payload.put_all(stage.offsets);
@@ -162,25 +133,18 @@ std::vector<std::byte> encode_shell_stage(const ShellStageKey& key, const ShellS
   payload.put_all(stage.owned_by_type);
   payload.put_all(stage.unfit_by_type);
   put_pruning(payload, stage.pruning);
-  Writer file;
-  for (const char c : kMagic) file.put(c);
-  file.put(kShellCacheFormatVersion);
-  file.put(std::uint32_t{0});
-  for (const char c : key.hex()) file.put(c);
-  file.put(std::uint64_t(payload.bytes.size()));
-  file.put(std::uint64_t(XXH3_64bits(payload.bytes.data(), payload.bytes.size())));
-  file.bytes.insert(file.bytes.end(), payload.bytes.begin(), payload.bytes.end());
-  return file.bytes;
+  return wrap_cached_stage(std::string_view(kMagic, sizeof kMagic), key, payload.bytes);
 }
 
-std::optional<ShellStage> decode_shell_stage(std::span<const std::byte> bytes, const ShellStageKey& key,
-                                             std::size_t triangles, std::size_t types, std::string& why) {
+std::optional<std::span<const std::byte>> unwrap_cached_stage(std::span<const std::byte> bytes, std::string_view magic,
+                                                              const ShellStageKey& key, std::string& why) {
   if (bytes.size() < kHeaderBytes) {
     why = "shorter than its header";
     return std::nullopt;
   }
-  if (std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
-    why = "not a nanobake shell cache file";
+  std::string stored(reinterpret_cast<const char*>(bytes.data()), sizeof kMagic);
+  if (stored.substr(0, magic.size()) != magic) {
+    why = "not a nanobake cache file of this stage";
     return std::nullopt;
   }
   std::uint32_t version = 0;
@@ -206,15 +170,20 @@ std::optional<ShellStage> decode_shell_stage(std::span<const std::byte> bytes, c
     why = "its checksum does not match its bytes";
     return std::nullopt;
   }
+  return payload;
+}
+
+std::optional<ShellStage> decode_shell_stage(std::span<const std::byte> bytes, const ShellStageKey& key,
+                                             std::size_t triangles, std::size_t types, std::string& why) {
+  const auto payload = unwrap_cached_stage(bytes, std::string_view(kMagic, sizeof kMagic), key, why);
+  if (!payload) return std::nullopt;
   ShellStage stage;
-  why = decode_payload(payload, triangles, types, stage);
+  why = decode_payload(*payload, triangles, types, stage);
   if (!why.empty()) return std::nullopt;
   return stage;
 }
 
-std::optional<ShellStage> load_shell_stage(const std::filesystem::path& directory, const ShellStageKey& key,
-                                           std::size_t triangles, std::size_t types) {
-  const std::filesystem::path file = shell_cache_file(directory, key);
+std::optional<std::vector<std::byte>> read_cached_file(const std::filesystem::path& file) {
   std::error_code ignored;
   if (!std::filesystem::is_regular_file(file, ignored)) return std::nullopt;
   std::ifstream in(file, std::ios::binary);
@@ -223,10 +192,28 @@ std::optional<ShellStage> load_shell_stage(const std::filesystem::path& director
     warn(file, "cannot be read; the stage is baked again");
     return std::nullopt;
   }
+  const auto bytes = std::as_bytes(std::span<const char>(text));
+  return std::vector<std::byte>(bytes.begin(), bytes.end());
+}
+
+void cached_file_used(const std::filesystem::path& file) {
+  std::error_code ignored;
+  std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now(), ignored);
+}
+
+void cached_file_unusable(const std::filesystem::path& file, const std::string& why) {
+  warn(file, why + "; the stage is baked again and the file replaced");
+}
+
+std::optional<ShellStage> load_shell_stage(const std::filesystem::path& directory, const ShellStageKey& key,
+                                           std::size_t triangles, std::size_t types) {
+  const std::filesystem::path file = shell_cache_file(directory, key);
+  const std::optional<std::vector<std::byte>> bytes = read_cached_file(file);
+  if (!bytes) return std::nullopt;
   std::string why;
-  std::optional<ShellStage> stage = decode_shell_stage(std::as_bytes(std::span<const char>(text)), key, triangles, types, why);
-  if (!stage) warn(file, why + "; the stage is baked again and the file replaced");
-  else std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now(), ignored);  // recently used
+  std::optional<ShellStage> stage = decode_shell_stage(*bytes, key, triangles, types, why);
+  if (!stage) cached_file_unusable(file, why);
+  else cached_file_used(file);
   return stage;
 }
 
@@ -241,7 +228,8 @@ void trim_shell_cache(const std::filesystem::path& directory, std::uintmax_t bud
   std::error_code error;
   for (const auto& e : std::filesystem::directory_iterator(directory, error)) {
     const std::string name = e.path().filename().string();
-    if (!e.is_regular_file(error) || name.rfind("shells-", 0) != 0 || e.path().extension() != ".bin") continue;
+    const bool stage_file = name.rfind("shells-", 0) == 0 || name.rfind("tiles-", 0) == 0;
+    if (!e.is_regular_file(error) || !stage_file || e.path().extension() != ".bin") continue;
     const std::uintmax_t bytes = e.file_size(error);
     if (error) continue;
     entries.push_back({e.path(), e.last_write_time(error), bytes});
@@ -255,16 +243,20 @@ void trim_shell_cache(const std::filesystem::path& directory, std::uintmax_t bud
   }
 }
 
-void store_shell_stage(const std::filesystem::path& directory, const ShellStageKey& key, const ShellStage& stage) {
-  const std::filesystem::path file = shell_cache_file(directory, key);
+void write_cached_file(const std::filesystem::path& directory, const std::filesystem::path& file,
+                       const std::vector<std::byte>& bytes) {
   try {
     std::filesystem::create_directories(directory);
-    write_file_atomically(file, encode_shell_stage(key, stage));
+    write_file_atomically(file, bytes);
     trim_shell_cache(directory, kShellCacheBudgetBytes, file);
   } catch (const std::exception& e) {
     const auto* input_error = dynamic_cast<const InputError*>(&e);
     warn(file, std::string("cannot be saved (") + (input_error ? input_error->rule() : e.what()) + "); the next bake pays the stage again");
   }
+}
+
+void store_shell_stage(const std::filesystem::path& directory, const ShellStageKey& key, const ShellStage& stage) {
+  write_cached_file(directory, shell_cache_file(directory, key), encode_shell_stage(key, stage));
 }
 
 }  // namespace nano::scene_bake

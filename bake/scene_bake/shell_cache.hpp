@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bake/shell/membrane_pruning.hpp"
@@ -73,6 +74,21 @@ std::optional<ShellStage> load_shell_stage(const std::filesystem::path& director
 // Then the directory's oldest shells files (by last use: a hit touches its file) go until the rest
 // fit kShellCacheBudgetBytes, this one kept: every rebuild of the baker leaves its files unused.
 void store_shell_stage(const std::filesystem::path& directory, const ShellStageKey& key, const ShellStage& stage);
+
+// The file around any cached stage (shells, tile sets): an 8-byte magic naming the stage, the
+// format version, the key, the payload's size and checksum, the payload.
+std::vector<std::byte> wrap_cached_stage(std::string_view magic, const ShellStageKey& key, std::span<const std::byte> payload);
+// The payload when the bytes are a whole file of this stage and key; otherwise nullopt, `why` set.
+std::optional<std::span<const std::byte>> unwrap_cached_stage(std::span<const std::byte> bytes, std::string_view magic,
+                                                              const ShellStageKey& key, std::string& why);
+// A cache file's bytes: nullopt when there is none, or (with a warning naming it) when it cannot be read.
+std::optional<std::vector<std::byte>> read_cached_file(const std::filesystem::path& file);
+void cached_file_used(const std::filesystem::path& file);  // a hit: the file is recently used
+void cached_file_unusable(const std::filesystem::path& file, const std::string& why);  // the warning
+// Writes atomically, then trims the directory's stage files to kShellCacheBudgetBytes, this one
+// kept; a failure is a warning on stderr, never an error: the cache only saves time.
+void write_cached_file(const std::filesystem::path& directory, const std::filesystem::path& file,
+                       const std::vector<std::byte>& bytes);
 
 inline constexpr std::uintmax_t kShellCacheBudgetBytes = std::uintmax_t{2} << 30;
 

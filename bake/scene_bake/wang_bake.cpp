@@ -1,5 +1,7 @@
 #include "bake/scene_bake/wang_bake.hpp"
 
+#include "bake/scene_bake/tile_set_cache.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -73,7 +75,7 @@ double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size) {
 
 BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, const std::vector<BakedMolecule>& library,
                                  const BakedLipidPatch* patch, const tiles::SurfaceDistortion& surface,
-                                 std::uint64_t seed, int threads) {
+                                 std::uint64_t seed, int threads, const std::optional<std::filesystem::path>& cache) {
   if (membrane.tiles != integer_power(membrane.edge_colours, 4))
     throw InputError("", "membranes." + membrane.name + ".tiles",
                      "Wang squares are generated as the complete set of colours^4 = " +
@@ -127,7 +129,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
   baked.packed_rigid = surface.rigid();
   if (request.lipid_patch) baked.flat_clearance = std::min(baked.flat_clearance, request.lipid_patch->clearance);
   try {
-    baked.set = tiles::make_membrane_tiles(request);
+    baked.set = cached_membrane_tiles(request, cache, baked.from_cache);
   } catch (const InputError& e) {
     // A density that fits a flat tile may not fit what the meshes do to it: say so, and what helps.
     char bounds[256];
@@ -142,7 +144,8 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
 }
 
 BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
-                                const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads) {
+                                const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads,
+                                const std::optional<std::filesystem::path>& cache) {
   const int complete = integer_power(soluble.face_colours, 6);
   const int per_incoming = integer_power(soluble.face_colours, 3);
   if (soluble.cubes != complete && soluble.cubes % per_incoming != 0)
@@ -165,7 +168,7 @@ BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
     request.molecules.push_back(m);
   }
   try {
-    baked.set = tiles::make_soluble_cubes(request);
+    baked.set = cached_soluble_cubes(request, cache, baked.from_cache);
   } catch (const InputError& e) {
     rethrow_at_amount(e, soluble.molecules, soluble, "");
   }

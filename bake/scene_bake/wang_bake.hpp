@@ -3,6 +3,8 @@
 // compartment needs: a periodic 2D recipe over its UV square, a 3D recipe over its core grid.
 #include <array>
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "bake/scene/scene_description.hpp"
@@ -26,6 +28,7 @@ struct BakedWangSet {
   std::vector<std::uint32_t> laid_through;
   // Set types of the membrane's proteins (not its lipids): dropped where no prism fits them.
   std::vector<std::uint32_t> protein_types;
+  bool from_cache = false;  // the set was read from the bake cache (tile_set_cache.hpp), not packed
 };
 
 // A 2D recipe axis never needs more cells than this: beyond it the periodic recipe repeats.
@@ -42,11 +45,15 @@ double copies_per_um2_from_per_tile(double copies_per_tile, double tile_size);
 // `threads`: worker threads for the packing (the set does not depend on them).
 // `patch`: the membrane's lipid patch (load_lipid_patch) when it has one, else nullptr. Densities
 // of types sharing a name (a patch's lipids) are reported summed, under that name.
+// `cache`: the bake cache's directory, where a set packed before for the same request is read
+// (tile_set_cache.hpp); absent: always packed.
 BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, const std::vector<BakedMolecule>& library,
                                  const BakedLipidPatch* patch, const tiles::SurfaceDistortion& surface,
-                                 std::uint64_t seed, int threads = 1);
+                                 std::uint64_t seed, int threads = 1,
+                                 const std::optional<std::filesystem::path>& cache = std::nullopt);
 BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
-                                const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads = 1);
+                                const std::vector<BakedMolecule>& library, std::uint64_t seed, int threads = 1,
+                                const std::optional<std::filesystem::path>& cache = std::nullopt);
 
 // Periodic recipe covering UV [0,1]² for tiles of UV size s (capped at kMaxRecipe2DCells per axis).
 tiles::TilingRecipe membrane_recipe(const tiles::WangSet& set, double tile_uv_size, std::uint64_t seed);

@@ -164,6 +164,19 @@ TEST(BakeEstimate, TileSetsCostThePackedAtomsNotTheLipids) {
   EXPECT_NEAR(work("package content"), with_lipids, 1e-9 * with_lipids);
 }
 
+// A tile set the bake cache serves costs no packing; what it holds still goes into the package.
+TEST(BakeEstimate, ACachedTileSetCostsNoPacking) {
+  const scene::SceneDescription s = one_membrane_cell_scene();
+  const scene::CompartmentMeasure measure = measure_compartment(mesh::make_sphere_mesh(5000, 1000.0));
+  const auto work = [&](const std::string& name, const std::vector<bool>& cached) {
+    return stage_work(estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0}}, 2, cached), name);
+  };
+  ASSERT_GT(work("tile sets", {}), 0.0);
+  EXPECT_EQ(work("tile sets", {false}), work("tile sets", {}));
+  EXPECT_EQ(work("tile sets", {true}), 0.0);
+  EXPECT_EQ(work("package content", {true}), work("package content", {}));
+}
+
 TEST(BakeEstimate, MembraneCopiesForPruningAddTheLipidsAndEveryProtein) {
   // 1e6 Å² (0.01 µm²) with 65 Å² lipids in two leaflets, 1000 per µm² and 0.5 per 100 Å tile.
   scene::MembraneDescription m = one_molecule_scene(0.0).membranes[0];
