@@ -1,5 +1,5 @@
-# The scene baked again through the bake cache that baked PACKAGE: the report says its shells came
-# from the cache, and the package is byte for byte PACKAGE.
+# The scene baked again through the bake cache that baked PACKAGE: the report says its shells and
+# every tile set came from the cache, and the package is byte for byte PACKAGE.
 execute_process(COMMAND ${NANOBAKE} ${SCENE} -o ${WORK}/cached-again.nup --report ${WORK}/cached-again.json --jobs 2
                         --cache-dir ${CACHE} -q
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -16,9 +16,18 @@ foreach(c RANGE ${last})
     message(FATAL_ERROR "compartment ${name}: its shells were computed again, not read from the cache (${cached}${no_flag})")
   endif()
 endforeach()
+string(JSON densities LENGTH "${report}" densities)
+math(EXPR last "${densities} - 1")
+foreach(d RANGE ${last})
+  string(JSON set GET "${report}" densities ${d} set)
+  string(JSON cached ERROR_VARIABLE no_flag GET "${report}" densities ${d} set_from_cache)
+  if(NOT cached STREQUAL "ON" AND NOT cached STREQUAL "true")
+    message(FATAL_ERROR "set ${set}: packed again, not read from the cache (${cached}${no_flag})")
+  endif()
+endforeach()
 file(SHA256 ${PACKAGE} computed)
 file(SHA256 ${WORK}/cached-again.nup cached)
 if(NOT computed STREQUAL cached)
-  message(FATAL_ERROR "the package baked with its shells from the cache differs from the one that computed them")
+  message(FATAL_ERROR "the package baked with its shells and tile sets from the cache differs from the one that computed them")
 endif()
-message(STATUS "shells from the cache for ${compartments} compartment(s); package identical (${cached})")
+message(STATUS "shells from the cache for ${compartments} compartment(s), every tile set too; package identical (${cached})")
