@@ -157,6 +157,20 @@ std::string get_instance(StageReader& r, std::size_t types, tiles::Instance& i) 
   return "";
 }
 
+// A colouring a set can have: colours 1..255, its tile count what the colours and variants make,
+// every side colour one of them (the recipe indexes tiles by these).
+std::string check_colouring(const tiles::WangColouring& c) {
+  if (c.colours < 1 || c.colours > 255 || c.variants < 0) return "its colours or variants are not a set's";
+  std::uint64_t combinations = 1;
+  for (int side = 0; side < (c.complete() ? 2 : 1) * c.dims; ++side) combinations *= std::uint64_t(c.colours);
+  const std::uint64_t expected = c.complete() ? combinations : combinations * std::uint64_t(c.variants);
+  if (c.tiles.size() != expected) return "its colouring holds " + std::to_string(c.tiles.size()) + " tiles, not " + std::to_string(expected);
+  for (const tiles::SideColours& t : c.tiles)
+    for (int axis = 0; axis < c.dims; ++axis)
+      if (t[axis][0] >= c.colours || t[axis][1] >= c.colours) return "a tile side has a colour the set does not";
+  return "";
+}
+
 std::string get_tiles(StageReader& r, std::size_t types, tiles::WangSet& set) {
   std::uint64_t count = 0;
   if (!r.get(count) || count != set.colouring.tiles.size()) return "its tiles are not one per colouring";
@@ -205,7 +219,8 @@ std::optional<tiles::WangSet> decode_wang_set(std::span<const std::byte> bytes, 
     return std::nullopt;
   }
   set.dims = dims, set.colouring.dims = colouring_dims, set.colouring.colours = colours, set.colouring.variants = variants;
-  why = get_tiles(r, types, set);
+  why = check_colouring(set.colouring);
+  if (why.empty()) why = get_tiles(r, types, set);
   if (why.empty()) why = get_densities(r, types, set);
   if (why.empty() && !r.done()) why = "bytes follow the set";
   if (!why.empty()) return std::nullopt;

@@ -40,6 +40,12 @@ TEST(TileSetCache, HostileBytesAreRefusedWithAReason) {
     EXPECT_FALSE(why.empty());
   }
   EXPECT_FALSE(decode_wang_set(bytes, 0, why)) << "a copy of type 0 in a set of no types";
+  // A side colour beyond the set's colours (the recipe would index past its tiles): the first tile's
+  // colours follow dims, edge, colouring dims, colours, variants and the tile count (4+4+4+4+4+8 bytes).
+  std::vector<std::byte> bad_colour = bytes;
+  bad_colour[28] = std::byte{200};
+  EXPECT_FALSE(decode_wang_set(bad_colour, 1, why));
+  EXPECT_NE(why.find("colour"), std::string::npos) << why;
 }
 
 TEST(TileSetCache, TheKeyFollowsTheInputsButNotTheThreads) {
