@@ -2,10 +2,10 @@
 
 Where a compartment instance's membrane meets the scene's medium, read as a structural biologist
 would: the box of half-size HALF around the instance's first mesh vertex (box_clashes ... where)
-is exported by `nanoview export` as CSV (which copy, of which kind) and as mmCIF; gemmi reads the mmCIF
-(every atom of the CSV, at the same place) and finds, with its own neighbour search, the pairs of a
-medium atom and a membrane atom (lipid or membrane protein) whose van der Waals spheres overlap by
-0.4 Å or more: there must be none. Then the rind: for every medium copy in the box, its gap to the
+is exported by `nanoview export` as CSV (which copy, of which kind) and as mmCIF; gemmi's CIF reader
+reads the mmCIF (every atom of the CSV, at the same place), and an exact binned search over its atoms
+finds the pairs of a medium atom and a membrane atom (lipid or membrane protein) whose van der Waals
+spheres overlap by 0.4 Å or more: there must be none. Then the rind: for every medium copy in the box, its gap to the
 membrane (the least distance between its atoms' and membrane atoms' spheres). The nearest copy must
 come within the medium's clearance plus one molecule (the largest medium copy's diameter) of the
 membrane: a wider empty rind would be plasma kept away from the cell. Prints the gap distribution.
@@ -14,10 +14,11 @@ And the rind along the surface, as one would look at it: the membrane atoms that
 least gap to a medium atom, counted where the box decides it (no atom outside could be nearer).
 With --surface-rind, at least 90 % of those cells must have plasma within the clearance plus one
 molecule (a red cell's needs a box of half-size 400 Å: minutes; a virion's 300 Å).
+
+`plasma_contact.py --self-test` checks the searches against brute force on random atoms.
 """
 import argparse
 import collections
-import csv
 import json
 import math
 import subprocess
@@ -164,8 +165,93 @@ def surface_rind(xyz, radius, wall, medium, lo, hi, cell=20.0):
     return sorted(per_cell.values())
 
 
+def read_export_csv(path):
+    """The export's CSV (header: copy,type,chain,residue,atom,element,x,y,z,radius,kind) as columns:
+    each atom's copy, kind, centre and radius."""
+    header = open(path).readline().strip().split(",")
+    column = {name: i for i, name in enumerate(header)}
+    read = lambda names, dtype: numpy.loadtxt(path, delimiter=",", skiprows=1, dtype=dtype, ndmin=1,
+                                              usecols=[column[n] for n in names])
+    numbers = read(("x", "y", "z", "radius"), float).reshape(-1, 4)
+    return read(("copy",), numpy.int64), read(("kind",), str), numbers[:, :3], numbers[:, 3]
+
+
+def read_mmcif_atoms(path, csv_xyz):
+    """gemmi's CIF reader on the export's mmCIF: each atom's centre in the CSV's order (the mmCIF's
+    atom ids are the CSV rows, 1-based, grouped by chain there), and a problem when the two files
+    disagree on the atoms or on where they are (beyond the mmCIF's 3 decimals)."""
+    table = gemmi.cif.read(path).sole_block().find("_atom_site.", ["id", "Cartn_x", "Cartn_y", "Cartn_z"])
+    ids = numpy.array(list(table.column(0)), dtype=numpy.int64)
+    cif_xyz = numpy.stack([numpy.array(table.column(c), dtype=float) for c in (1, 2, 3)], axis=1).reshape(-1, 3)
+    n = len(csv_xyz)
+    if len(ids) != n or len(numpy.unique(ids)) != n or (n and (ids.min() != 1 or ids.max() != n)):
+        return csv_xyz, f"gemmi reads {len(ids)} atoms (ids {ids.min() if n else '-'}..{ids.max() if n else '-'}), the CSV holds {n}"
+    xyz = numpy.empty_like(cif_xyz)
+    xyz[ids - 1] = cif_xyz
+    off = numpy.abs(xyz - csv_xyz).max(axis=1)
+    if n and off.max() > 2e-3:
+        i = int(off.argmax())
+        return xyz, f"atom {i + 1} at {tuple(xyz[i])} in the mmCIF, {tuple(csv_xyz[i])} in the CSV"
+    return xyz, None
+
+
+def overlapping_pairs(points, point_radius, targets, target_radius, overlap):
+    """Every pair (point index, target index) whose spheres overlap by `overlap` or more, exactly: the
+    targets are binned in cubes as wide as the longest such centre distance, so each point's pairs lie
+    in the 27 cubes around it."""
+    if not len(points) or not len(targets):
+        return numpy.empty(0, numpy.int64), numpy.empty(0, numpy.int64)
+    reach = float(point_radius.max() + target_radius.max() - overlap)
+    if reach <= 0:
+        return numpy.empty(0, numpy.int64), numpy.empty(0, numpy.int64)
+    lo = numpy.minimum(points.min(axis=0), targets.min(axis=0)) - reach
+    span = numpy.floor((numpy.maximum(points.max(axis=0), targets.max(axis=0)) - lo) / reach).astype(numpy.int64) + 3
+    key = lambda c: (c[:, 0] * span[1] + c[:, 1]) * span[2] + c[:, 2]
+    order = numpy.argsort(key(numpy.floor((targets - lo) / reach).astype(numpy.int64)), kind="stable")
+    sorted_keys = key(numpy.floor((targets[order] - lo) / reach).astype(numpy.int64))
+    cells = numpy.floor((points - lo) / reach).astype(numpy.int64)
+    found_p, found_t = [], []
+    for dx in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            for dz in (-1, 0, 1):
+                k = key(cells + numpy.array([dx, dy, dz]))
+                first, last = numpy.searchsorted(sorted_keys, k, "left"), numpy.searchsorted(sorted_keys, k, "right")
+                p, place = runs(last - first)
+                t = order[first[p] + place]
+                gap = numpy.linalg.norm(points[p] - targets[t], axis=1) - point_radius[p] - target_radius[t]
+                keep = gap <= -overlap
+                found_p.append(p[keep])
+                found_t.append(t[keep])
+    return numpy.concatenate(found_p), numpy.concatenate(found_t)
+
+
 def percentiles(values):
     return {p: round(values[min(len(values) - 1, int(p / 100 * len(values)))], 1) for p in (10, 50, 90)} if values else {}
+
+
+def self_test():
+    """The searches against brute force on random atoms: overlapping_pairs finds every overlapping pair
+    and no other, nearest the argmin of every distance, candidates every weighted minimum."""
+    rng = numpy.random.default_rng(5)
+    points, targets = rng.uniform(0, 30, (400, 3)), rng.uniform(0, 30, (900, 3))
+    pr, tr = rng.uniform(1.0, 2.0, 400), rng.uniform(1.0, 2.0, 900)
+    gap = numpy.linalg.norm(points[:, None] - targets[None], axis=2) - pr[:, None] - tr[None]
+    expect = set(zip(*numpy.nonzero(gap <= -CLASH_OVERLAP)))
+    got = list(zip(*overlapping_pairs(points, pr, targets, tr, CLASH_OVERLAP)))
+    failures = []
+    if len(got) != len(set(got)) or set(got) != expect or not expect:
+        failures.append(f"overlapping_pairs: {len(got)} pairs ({len(set(got))} distinct), brute force {len(expect)}")
+    distance = numpy.linalg.norm(points[:, None] - targets[None], axis=2)
+    if not (nearest(points, targets) == distance.argmin(axis=1)).all():
+        failures.append("nearest differs from the argmin")
+    q, t = candidates(points, targets, tr)
+    weighted = distance - tr[None]
+    if not numpy.allclose(weighted[q, t], weighted.min(axis=1)[q]) or set(q.tolist()) != set(range(len(points))):
+        failures.append("candidates misses a weighted minimum")
+    for f in failures:
+        print("FAIL:", f)
+    print(f"self-test: {len(expect)} overlapping pairs, {len(points)} nearest and weighted minima checked")
+    return 1 if failures else 0
 
 
 def main(argv=None):
@@ -181,80 +267,44 @@ def main(argv=None):
     args = parser.parse_args(argv)
     box = subprocess.run([args.box_clashes, args.package, "where", args.instance, args.half], check=True,
                          capture_output=True, text=True).stdout.strip()
-    rows, structure = [], None
     for ext in ("csv", "cif"):
         out = f"{args.workdir}/plasma-contact-{args.instance}.{ext}"
         subprocess.run([args.nanoview, "export", args.package, "--box", box, "-o", out], check=True, capture_output=True)
-        if ext == "csv":
-            rows = list(csv.DictReader(open(out)))
-        else:
-            structure = gemmi.read_structure(out)
-    # mmCIF atoms carry the CSV's order as their serial (1-based): gemmi groups them by chain.
-    atoms = [None] * len(rows)
-    count = 0
-    for chain in structure[0]:
-        for res in chain:
-            for a in res:
-                count += 1
-                if 1 <= a.serial <= len(rows):
-                    atoms[a.serial - 1] = a
     problems = []
-    if count != len(rows) or any(a is None for a in atoms):
-        problems.append(f"gemmi reads {count} atoms, the CSV holds {len(rows)}")
-        atoms = [a for a in atoms if a is not None]
-    for a, r in zip(atoms, rows):
-        if max(abs(a.pos.x - float(r["x"])), abs(a.pos.y - float(r["y"])), abs(a.pos.z - float(r["z"]))) > 2e-3:
-            problems.append(f"atom {a.serial} at {a.pos} in the mmCIF, ({r['x']}, {r['y']}, {r['z']}) in the CSV")
-            break
-    kinds = [r["kind"] for r in rows]
-    medium = [i for i, k in enumerate(kinds) if k == "medium"]
-    wall = [i for i, k in enumerate(kinds) if k == "membrane"]
-    if not medium or not wall:
+    copy, kinds, csv_xyz, radius = read_export_csv(f"{args.workdir}/plasma-contact-{args.instance}.csv")
+    xyz, problem = read_mmcif_atoms(f"{args.workdir}/plasma-contact-{args.instance}.cif", csv_xyz)
+    if problem:
+        problems.append(problem)
+    medium = numpy.flatnonzero(kinds == "medium")
+    wall = numpy.flatnonzero(kinds == "membrane")
+    if not len(medium) or not len(wall):
         problems.append(f"the box holds {len(medium)} medium and {len(wall)} membrane atoms: it must straddle both")
-    radius = numpy.array([float(r["radius"]) for r in rows])
-    xyz = numpy.array([(a.pos.x, a.pos.y, a.pos.z) for a in atoms])
 
-    # gemmi's neighbour search over the membrane atoms, asked about every medium atom.
-    wall_model = gemmi.Model("wall")
-    chain = gemmi.Chain("W")
-    residue = gemmi.Residue()
-    residue.name = "WAL"
-    for i in wall:
-        a = gemmi.Atom()
-        a.name, a.element, a.serial = "X", gemmi.Element("C"), i
-        a.pos = atoms[i].pos
-        residue.add_atom(a)
-    chain.add_residue(residue)
-    wall_model.add_chain(chain)
-    search = gemmi.NeighborSearch(wall_model, gemmi.UnitCell(), 6.0).populate()
-    clashes = []
-    for i in medium:
-        for mark in search.find_atoms(atoms[i].pos, "\0", radius=6.0):
-            j = mark.to_cra(wall_model).atom.serial
-            gap = atoms[i].pos.dist(atoms[j].pos) - radius[i] - radius[j]
-            if gap <= -CLASH_OVERLAP:
-                clashes.append((rows[i]["copy"], rows[j]["copy"], round(gap, 3)))
+    # Every pair of a medium atom and a membrane atom whose spheres overlap by CLASH_OVERLAP or more.
+    m, w = overlapping_pairs(xyz[medium], radius[medium], xyz[wall], radius[wall], CLASH_OVERLAP)
+    gap = numpy.linalg.norm(xyz[medium[m]] - xyz[wall[w]], axis=1) - radius[medium[m]] - radius[wall[w]]
+    clashes = [(int(copy[medium[i]]), int(copy[wall[j]]), round(float(g), 3)) for i, j, g in zip(m, w, gap)]
     # Each medium copy's gap to the membrane, from every 8th of its atoms to every 32nd membrane atom
     # (a sampled distance: it overstates the gap by at most a few Å).
     by_copy = {}
-    for i in medium:
-        by_copy.setdefault(rows[i]["copy"], []).append(i)
+    for i in medium.tolist():
+        by_copy.setdefault(int(copy[i]), []).append(i)
     diameter = 0.0
     for members in by_copy.values():
         m = numpy.array(members)
         centre = xyz[m].mean(axis=0)
         diameter = max(diameter, 2 * float((numpy.linalg.norm(xyz[m] - centre, axis=1) + radius[m]).max()))
-    copy_gap = copy_gaps(xyz, radius, by_copy, numpy.array(wall[::32], dtype=numpy.int64))
+    copy_gap = copy_gaps(xyz, radius, by_copy, wall[::32])
     gaps = sorted(copy_gap.values())
     clearance = args.clearance
     diameter = max(diameter, args.molecule_diameter)
     nearest = gaps[0] if gaps else math.inf
     corners = [float(v) for v in box.replace(",", " ").split()]
-    cells = surface_rind(xyz, radius, wall, medium, corners[:3], corners[3:]) if medium and wall else []
+    cells = surface_rind(xyz, radius, wall, medium, corners[:3], corners[3:]) if len(medium) and len(wall) else []
     decided = [gap for gap, sure in cells if sure]
     reach = clearance + diameter
     covered = sum(1 for gap in decided if gap <= reach)
-    summary = {"box": box, "atoms": len(rows), "medium_atoms": len(medium), "membrane_atoms": len(wall),
+    summary = {"box": box, "atoms": len(copy), "medium_atoms": len(medium), "membrane_atoms": len(wall),
                "medium_copies": len(by_copy), "clashes": len(clashes), "nearest_gap_A": nearest,
                "copy_gap_percentiles_A": percentiles(gaps),
                "surface_cells": len(cells), "surface_cells_decided": len(decided),
@@ -269,7 +319,7 @@ def main(argv=None):
                         f"plus one molecule ({clearance + diameter:.1f} Å): an empty rind")
     if not args.surface_rind:
         pass
-    elif medium and wall and len(decided) < 20:
+    elif len(medium) and len(wall) and len(decided) < 20:
         problems.append(f"only {len(decided)} cells of plasma-facing membrane are decided within the box: make it larger")
     elif decided and covered < 0.9 * len(decided):
         problems.append(f"along the surface only {covered} of {len(decided)} cells have plasma within the clearance plus "
@@ -282,4 +332,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(self_test() if sys.argv[1:] == ["--self-test"] else main())
