@@ -7,6 +7,9 @@
 //                     12 n²: 1452, 5808, 12288), threads
 //   BM_MembraneMapping  building the MembraneMapping the offsets read (charts, seams, replication
 //                     areas): paid once per compartment before the offsets
+//   BM_MembranePruning  prune_membrane checking every copy on the surface (a whole cell's membrane
+//                     is mostly this: each copy's ~40 neighbours tested atom by atom); args: triangles,
+//                     threads. Counters: copies/s, atom_pairs (atom pairs of two copies measured), clashing_pairs.
 // Counters: triangles (actual), triangles/s, molecules/s (owned molecules checked per second).
 #include <algorithm>
 #include <cmath>
@@ -15,6 +18,7 @@
 
 #include "benchmarks/tile_inputs.hpp"
 #include "bake/shell/membrane_mapping.hpp"
+#include "bake/shell/membrane_pruning.hpp"
 #include "bake/shell/shell_offsets.hpp"
 #include "bake/tiles/tiling_recipe.hpp"
 
@@ -92,6 +96,24 @@ void BM_MembraneMapping(benchmark::State& state) {
   count_triangles(state, c.mesh.triangles.size());
 }
 BENCHMARK(BM_MembraneMapping)->ArgName("triangles")->Arg(1452)->Arg(12000)->Unit(benchmark::kMillisecond);
+
+void BM_MembranePruning(benchmark::State& state) {
+  const Compartment& c = compartment(static_cast<int>(state.range(0)));
+  shell::PruningSettings settings;
+  settings.whole_surface = true;
+  shell::PrunedMembrane pruned;
+  for (auto _ : state) {
+    pruned = shell::prune_membrane(*c.mapping, c.mesh, membrane().request.types, settings, static_cast<int>(state.range(1)));
+    benchmark::DoNotOptimize(pruned.dropped.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["copies/s"] =
+      benchmark::Counter(static_cast<double>(pruned.checked_copies), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["atom_pairs"] = static_cast<double>(pruned.atom_pairs);
+  state.counters["clashing_pairs"] = static_cast<double>(pruned.clashing_pairs);
+}
+BENCHMARK(BM_MembranePruning)->ArgNames({"triangles", "threads"})->Args({1452, 1})->Args({1452, 2})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace nano::bench

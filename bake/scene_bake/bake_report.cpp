@@ -60,7 +60,8 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"pruned", m.pruned_everywhere ? "everywhere" : "along UV seams and on checked triangles"},
           {"pruning_checked_triangles", m.checked_triangles},
           {"pruning_checked_copies", m.checked_copies},
-          {"pruning_atom_tests", m.atom_tests}};
+          {"pruning_atom_pairs", m.atom_pairs},
+          {"pruning_copy_pairs_tested", m.copy_pairs_tested}};
 }
 
 // What the package's mesh data takes in the file: the four mesh sections plus any Draco streams.

@@ -113,11 +113,9 @@ shell::PrunedMembrane drops_before_pruning(const MembraneSurface& m, shell::Shel
 
 shell::PrunedMembrane prune(const MembraneSurface& m, shell::ShellResult& shells, const PerCompartment& per_compartment) {
   shell::PruningSettings pruning;
-  pruning.flat_clearance = m.tiles.flat_clearance;
   pruning.whole_surface = m.checks.whole_surface;
   if (!pruning.whole_surface) pruning.checked_triangles = m.checks.plan.checked;
   pruning.owned_copies = shells.stats.owned_molecules;  // the same mapping, the same ownership
-  pruning.always_tested = m.tiles.laid_through;
   const shell::PrunedMembrane limited = drops_before_pruning(m, shells, per_compartment, pruning);
   if (shells.stats.unfit_triangles > 0 || !per_compartment.empty()) pruning.dropped_before = limited.dropped;
   shell::PrunedMembrane pruned = shell::prune_membrane(m.mapping, m.mesh, m.types, pruning, m.threads);
@@ -180,7 +178,7 @@ ShellStageKey shell_stage_key(const MembraneSurface& m, const tiles::TilingRecip
   key.add(std::uint64_t(m.types.size()));
   for (const tiles::MoleculeType& t : m.types)
     key.add_text(t.name), key.add_all(t.atoms), key.add(t.bounding_radius), key.add(t.up_axis);
-  key.add(m.tiles.flat_clearance), key.add_all(m.tiles.laid_through), key.add_all(m.tiles.protein_types);
+  key.add_all(m.tiles.protein_types);
   key.add(m.checks.whole_surface), key.add(m.checks.plan.tile_scale), key.add_all(m.checks.plan.checked);
   // Counts per compartment by the set's types they limit (library indices differ between scenes).
   for (const auto& [molecule, count] : per_compartment) {

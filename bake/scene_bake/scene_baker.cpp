@@ -120,7 +120,8 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
   s.checked_triangles = m.pruning.checked_triangles;
   s.triangles = mesh.triangles.size();
   s.checked_copies = m.pruning.checked_copies;
-  s.atom_tests = m.pruning.atom_tests;
+  s.atom_pairs = m.pruning.atom_pairs;
+  s.copy_pairs_tested = m.pruning.copy_pairs_tested;
   return s;
 }
 

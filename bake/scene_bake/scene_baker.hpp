@@ -54,7 +54,7 @@ struct MembraneSummary {
   std::vector<std::pair<std::string, std::uint64_t>> alternates;       // molecule -> alternates shown where a copy was dropped
   std::vector<std::pair<std::string, std::uint64_t>> unfit;            // molecule -> proteins left out where no prism held them
   bool pruned_everywhere = false;                                      // else along UV seams and on checked triangles
-  std::uint64_t checked_copies = 0, atom_tests = 0;
+  std::uint64_t checked_copies = 0, atom_pairs = 0, copy_pairs_tested = 0;
   std::uint64_t checked_triangles = 0, triangles = 0;  // triangles whose copies were all checked, of all
   std::uint64_t outer_lipids = 0, inner_lipids = 0;  // by leaflet (the outer one faces the mesh normals)
   // Leaflet area the kept proteins take (tiles::leaflet_footprint within kLeafletHalfThickness of

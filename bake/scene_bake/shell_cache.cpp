@@ -32,7 +32,7 @@ void put_pruning(StageWriter& w, const shell::PrunedMembrane& p) {
   w.put_all(p.dropped_by_type);
   w.put_all(p.alternates_by_type);
   for (const std::uint64_t v : {p.owned_copies, std::uint64_t(p.whole_surface), p.checked_triangles, p.checked_copies,
-                                p.candidate_pairs, p.atom_tests, p.clashing_pairs})
+                                p.atom_pairs, p.copy_pairs_tested, p.clashing_pairs})
     w.put(v);
 }
 
@@ -48,8 +48,8 @@ std::string get_pruning(StageReader& r, std::size_t triangles, std::size_t types
   }
   if (!r.get_all(p.dropped_by_type, types) || !r.get_all(p.alternates_by_type, types)) return "it ends inside the counts per type";
   std::uint64_t whole = 0;
-  for (std::uint64_t* v : {&p.owned_copies, &whole, &p.checked_triangles, &p.checked_copies, &p.candidate_pairs,
-                           &p.atom_tests, &p.clashing_pairs})
+  for (std::uint64_t* v : {&p.owned_copies, &whole, &p.checked_triangles, &p.checked_copies,
+                           &p.atom_pairs, &p.copy_pairs_tested, &p.clashing_pairs})
     if (!r.get(*v)) return "it ends inside the pruning's counts";
   if (whole > 1) return "its whole-surface flag is neither 0 nor 1";
   p.whole_surface = whole == 1;

@@ -96,7 +96,6 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
     m.depth = static_cast<float>(protein.depth);
     m.lipids_displaced_on_surface = protein.per_compartment.has_value();
     baked.protein_types.push_back(m.type);
-    if (m.lipids_displaced_on_surface && patch) baked.laid_through.push_back(m.type);
     request.molecules.push_back(m);
   }
   if (membrane.lipids) {
@@ -125,9 +124,7 @@ BakedWangSet bake_membrane_tiles(const scene::MembraneDescription& membrane, con
     }
     request.lipid_patch = std::move(lipids);
   }
-  baked.flat_clearance = request.budget.clearance;
   baked.packed_rigid = surface.rigid();
-  if (request.lipid_patch) baked.flat_clearance = std::min(baked.flat_clearance, request.lipid_patch->clearance);
   try {
     baked.set = cached_membrane_tiles(request, cache, baked.from_cache);
   } catch (const InputError& e) {
@@ -172,7 +169,6 @@ BakedWangSet bake_soluble_cubes(const scene::SolubleDescription& soluble,
   } catch (const InputError& e) {
     rethrow_at_amount(e, soluble.molecules, soluble, "");
   }
-  baked.flat_clearance = request.budget.clearance;
   return baked;
 }
 

@@ -18,14 +18,8 @@ namespace nano::scene_bake {
 struct BakedWangSet {
   tiles::WangSet set;
   std::vector<std::uint32_t> molecule_of_type;  // the set's type index -> index into the library
-  // Atoms of any two copies of any valid tiling stay >= this x (r1 + r2) apart in flat tile space:
-  // the smallest clearance the set was packed with (its budget's, its lipid patch's).
-  float flat_clearance = 1.f;
   // Packed for no surface distortion at all: only a check of every copy on the surface keeps it clash-free.
   bool packed_rigid = true;
-  // Set types the lipid patch was laid through (proteins kept per compartment): flat_clearance does
-  // not hold between them and the lipids, so the pruning tests their pairs atom by atom.
-  std::vector<std::uint32_t> laid_through;
   // Set types of the membrane's proteins (not its lipids): dropped where no prism fits them.
   std::vector<std::uint32_t> protein_types;
   bool from_cache = false;  // the set was read from the bake cache (tile_set_cache.hpp), not packed

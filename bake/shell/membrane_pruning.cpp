@@ -16,7 +16,6 @@
 namespace nano::shell {
 namespace {
 
-using glm::dmat3;
 using glm::dvec3;
 
 // One owned copy where the triangle places it. A whole 1 µm cell checks 10^7 of them at once, so
@@ -27,41 +26,10 @@ struct Placed {
   std::uint32_t triangle = 0;
   std::uint32_t key = 0;     // membrane_copy_key(slot, instance)
   std::uint32_t type = 0;
-  std::uint32_t island = 0;  // UV island of the triangle: copies of one island share one flat tiling
-  glm::ivec2 cell{0};        // its tile's cell in that island's unwrapped tiling
-  std::uint16_t tile = 0, instance = 0;
   bool alternate = false;    // tiles::Instance::alternate: shown only if it fits where its original clashes
   bool has_alternate = false;
 };
 static_assert(sizeof(Placed) <= 96);
-
-// Where the island's flat tiling has the copy: tile-space centre cell·S + position, and its turn.
-struct FlatPose {
-  dvec3 centre;
-  dmat3 rotation;
-};
-FlatPose flat_pose(const tiles::WangSet& set, const Placed& p) {
-  const tiles::Instance& in = set.tiles[p.tile].instances[p.instance];
-  return {dvec3(p.cell.x * set.edge + in.position.x, p.cell.y * set.edge + in.position.y, in.position.z),
-          dmat3(glm::mat3_cast(in.rotation))};
-}
-
-// UV islands: triangles that share a UV index lie in one connected piece of the chart.
-std::vector<std::uint32_t> uv_islands(const mesh::ProxyMesh& mesh) {
-  std::vector<std::uint32_t> parent(mesh.uvs.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto find = [&](std::uint32_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
-  for (const auto& tri : mesh.uv_triangles) {
-    const std::uint32_t root = find(tri[0]);
-    for (int c = 1; c < 3; ++c) parent[find(tri[c])] = root;
-  }
-  std::vector<std::uint32_t> island(mesh.uv_triangles.size());
-  for (std::size_t t = 0; t < island.size(); ++t) island[t] = find(mesh.uv_triangles[t][0]);
-  return island;
-}
 
 struct Segment {
   dvec3 a, b;
@@ -85,27 +53,6 @@ std::vector<Segment> seam_segments(const MembraneMapping& mapping) {
   return segments;
 }
 
-// Copy a relative to copy b, as CollisionShape poses: b's centre is formed as a difference in double
-// so compartment coordinates of tens of µm lose nothing to float.
-bool atoms_clash(const tiles::CollisionShape& sa, const Placed& a, const tiles::CollisionShape& sb, const Placed& b,
-                 float clearance) {
-  const tiles::Pose pa{glm::vec3(0.f), a.rotation};
-  const tiles::Pose pb{glm::vec3(b.centre - a.centre), b.rotation};
-  return tiles::copies_collide(sa, pa, sb, pb, tiles::ClashRule{clearance, {}});
-}
-
-// How far any atom of b moves relative to a between the flat tiling and the surface, in a's frame:
-// |u| + ‖M‖_F · r_b with u = R_aᵀ(c_b − c_a) − Q_aᵀ(T_b − T_a) and M = R_aᵀR_b − Q_aᵀQ_b.
-double relative_displacement(const tiles::WangSet& set, const Placed& a, const Placed& b, double radius_b) {
-  const FlatPose fa = flat_pose(set, a), fb = flat_pose(set, b);
-  const dmat3 ra(a.rotation), rb(b.rotation);
-  const dvec3 u = glm::transpose(ra) * (b.centre - a.centre) - glm::transpose(fa.rotation) * (fb.centre - fa.centre);
-  const dmat3 m = glm::transpose(ra) * rb - glm::transpose(fa.rotation) * fb.rotation;
-  double f = 0.0;
-  for (int c = 0; c < 3; ++c) f += glm::dot(m[c], m[c]);
-  return glm::length(u) + std::sqrt(f) * radius_b;
-}
-
 std::uint64_t cell_key(const glm::ivec3& c) {
   return (std::uint64_t(std::uint32_t(c.x) & 0x1FFFFF) << 42) | (std::uint64_t(std::uint32_t(c.y) & 0x1FFFFF) << 21) |
          std::uint64_t(std::uint32_t(c.z) & 0x1FFFFF);
@@ -124,8 +71,9 @@ namespace {
 // The molecule types as the pruning tests them, and how far the set's copies reach.
 struct TypeShapes {
   std::vector<tiles::CollisionShape> shapes;
-  std::vector<double> radius, smallest_atom;
+  std::vector<double> radius;
   double highest = 0.0, widest = 0.0;  // largest |z| of an instance and largest type radius
+  double largest_atom = 0.0;
 };
 
 TypeShapes type_shapes(const std::vector<tiles::MoleculeType>& types, const tiles::WangSet& set) {
@@ -133,9 +81,7 @@ TypeShapes type_shapes(const std::vector<tiles::MoleculeType>& types, const tile
   for (const tiles::MoleculeType& t : types) {
     out.shapes.emplace_back(t);
     out.radius.push_back(out.shapes.back().radius());
-    double r = INFINITY;
-    for (const tiles::AtomSphere& a : t.atoms) r = std::min(r, double(a.radius));
-    out.smallest_atom.push_back(r);
+    out.largest_atom = std::max(out.largest_atom, double(out.shapes.back().max_atom_radius()));
   }
   for (const tiles::WangTile& tile : set.tiles)
     for (const tiles::Instance& in : tile.instances) {
@@ -251,17 +197,12 @@ void check_key_room(const MembraneMapping& mapping) {
     throw InputError("", "membrane", "a Wang set of " + std::to_string(mapping.set().tiles.size()) + " tiles is more than 2^16");
 }
 
-Placed placed_copy(const MembraneMapping& mapping, std::size_t t, const OwnedPlace& m, std::uint32_t key,
-                   std::uint32_t island) {
+Placed placed_copy(const MembraneMapping& mapping, std::size_t t, const OwnedPlace& m, std::uint32_t key) {
   const tiles::Instance& in = mapping.set().tiles[m.tile].instances[m.instance];
   Placed p;
   p.triangle = static_cast<std::uint32_t>(t);
   p.key = key;
   p.type = m.type;
-  p.island = island;
-  p.cell = m.cell;
-  p.tile = static_cast<std::uint16_t>(m.tile);
-  p.instance = static_cast<std::uint16_t>(m.instance);
   p.alternate = in.alternate;
   p.has_alternate = in.has_alternate;
   const gpu::Affine3 transform = mapping.transform_of(t, m);
@@ -273,10 +214,9 @@ Placed placed_copy(const MembraneMapping& mapping, std::size_t t, const OwnedPla
 // The owned copies to check, in triangle order, less those dropped before. Two passes (which copies
 // of each triangle, then placing them at their offsets) so that the copies of a whole cell are
 // never held twice.
-std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh, const TypeShapes& t,
-                                    const CheckedRegion& region, const PruningSettings& settings, int threads) {
+std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const TypeShapes& t, const CheckedRegion& region,
+                                    const PruningSettings& settings, int threads) {
   const std::size_t triangles = mapping.triangle_count();
-  const std::vector<std::uint32_t> island = uv_islands(mesh);
   // Calls take(place, key) for each copy of `tri` to check.
   const auto for_each_checked = [&](std::size_t tri, const auto& take) {
     const bool whole = region.whole_surface || region.whole_triangle[tri];
@@ -310,121 +250,261 @@ std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const mesh::
   parallel_for(triangles, threads, [&](std::size_t tri) {
     std::size_t next = offset[tri];
     for_each_checked(tri, [&](const OwnedPlace& m, std::uint32_t key) {
-      copies[next++] = placed_copy(mapping, tri, m, key, island[tri]);
+      copies[next++] = placed_copy(mapping, tri, m, key);
     });
   });
   return copies;
 }
 
-// Small copies (lipids and the like) in a hash grid of cells twice their largest radius; the few
-// large ones (proteins) look through the grid within their own reach and at each other directly.
-struct CopyGrid {
-  double small_limit = 0.0, small_max = 0.0, cell = 1.0;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-  std::vector<std::uint32_t> large;
-
-  glm::ivec3 cell_of(const dvec3& c) const { return glm::ivec3(glm::floor(c / cell)); }
-  const std::vector<std::uint32_t>* at(const glm::ivec3& c) const {
-    const auto it = cells.find(cell_key(c));
-    return it == cells.end() ? nullptr : &it->second;
-  }
-};
-
-CopyGrid grid_copies(const std::vector<Placed>& copies, const std::vector<double>& radius) {
-  CopyGrid grid;
-  std::vector<double> sorted_radii;
-  for (const Placed& p : copies) sorted_radii.push_back(radius[p.type]);
-  std::nth_element(sorted_radii.begin(), sorted_radii.begin() + sorted_radii.size() / 2, sorted_radii.end());
-  grid.small_limit = 1.5 * sorted_radii[sorted_radii.size() / 2];
-  for (const Placed& p : copies)
-    if (radius[p.type] <= grid.small_limit) grid.small_max = std::max(grid.small_max, radius[p.type]);
-  grid.cell = std::max(2.0 * grid.small_max, 1.0);
-  for (std::uint32_t i = 0; i < copies.size(); ++i) {
-    if (radius[copies[i].type] <= grid.small_limit) grid.cells[cell_key(grid.cell_of(copies[i].centre))].push_back(i);
-    else grid.large.push_back(i);
-  }
-  return grid;
+// Copies larger than this (1.5 x the median radius: proteins among lipids) are indexed in every
+// chunk they reach rather than by the chunk of their centre, and go first in the independent set.
+double small_copy_limit(const std::vector<Placed>& copies, const std::vector<double>& radius) {
+  std::vector<double> radii;
+  radii.reserve(copies.size());
+  for (const Placed& p : copies) radii.push_back(radius[p.type]);
+  std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+  return 1.5 * radii[radii.size() / 2];
 }
 
-struct Found {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> clashes;
-  std::uint64_t candidates = 0, atom_tests = 0;
-};
+// Copy a relative to copy b, as CollisionShape poses: b's centre is formed as a difference in double
+// so compartment coordinates of tens of µm lose nothing to float.
+bool copies_clash(const TypeShapes& types, const Placed& a, const Placed& b, float clearance) {
+  const tiles::Pose pa{glm::vec3(0.f), a.rotation};
+  const tiles::Pose pb{glm::vec3(b.centre - a.centre), b.rotation};
+  return tiles::copies_collide(types.shapes[a.type], pa, types.shapes[b.type], pb, tiles::ClashRule{clearance, {}});
+}
 
-// Tests a pair of copies for a clash: bounding spheres first, then (unless the flat tiling vouches
-// for the pair) their atoms.
-struct PairTest {
-  const std::vector<Placed>& copies;
-  const TypeShapes& types;
-  const PruningSettings& settings;
-  std::vector<char> always_tested;  // per type
-  const tiles::WangSet& set;
+using CopyPairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
-  void operator()(std::uint32_t i, std::uint32_t j, Found& f) const {
-    const Placed& a = copies[i];
-    const Placed& b = copies[j];
-    const std::vector<double>& radius = types.radius;
-    const double reach = radius[a.type] + radius[b.type];
-    const dvec3 between = b.centre - a.centre;
-    if (glm::dot(between, between) >= reach * reach) return;
-    ++f.candidates;
-    if (a.island == b.island && settings.flat_clearance > settings.clearance && !always_tested[a.type] &&
-        !always_tested[b.type] && !a.alternate && !b.alternate) {
-      const double slack =
-          (double(settings.flat_clearance) - settings.clearance) * (types.smallest_atom[a.type] + types.smallest_atom[b.type]);
-      if (relative_displacement(set, a, b, radius[b.type]) < slack) return;
-    }
-    ++f.atom_tests;
-    if (atoms_clash(types.shapes[a.type], a, types.shapes[b.type], b, settings.clearance)) f.clashes.emplace_back(i, j);
+// Every pair of copies with atoms closer than clearance · (r1 + r2). Among the small copies (a
+// bilayer's lipids: many copies, each meeting ~40 neighbours) it is found atom by atom: space is cut
+// into cubic chunks; a chunk takes the atoms within reach of it from the small copies whose spheres
+// come that near, bins them in cells one reach wide and measures each atom against the atoms of
+// other copies in the half of the 27 cells around it that follows its own. A copy's atoms are placed
+// once per chunk its sphere meets (about twice), where a test of each pair of copies placed them once
+// per neighbour. An atom belongs to the chunk its compartment-space centre falls in; a pair is kept
+// by the chunks owning either atom (duplicates go in the final sort). A pair with a large copy (a
+// protein: few copies, each mostly atoms no neighbour comes near) is tested copy against copy
+// (tiles::copies_collide passes over the blocks of atoms out of reach).
+class ClashSearch {
+public:
+  ClashSearch(const std::vector<Placed>& copies, const TypeShapes& types, double small_limit, float clearance)
+      : copies_(copies), types_(types), clearance_(clearance), small_limit_(small_limit) {
+    double largest_small_atom = 0.0;
+    for (const Placed& p : copies)
+      if (types.radius[p.type] <= small_limit) {
+        small_max_ = std::max(small_max_, types.radius[p.type]);
+        largest_small_atom = std::max(largest_small_atom, double(types.shapes[p.type].max_atom_radius()));
+      }
+    reach_ = std::max(2.0 * clearance * largest_small_atom, 1e-3);
+    // A small copy that reaches a chunk has its centre in one of the 27 around it.
+    chunk_ = std::max(6.0 * (small_max_ + reach_), 16.0 * reach_);
+    cell_ = std::max(reach_, (chunk_ + 2.0 * reach_) / 256.0);
+    index_copies();
   }
-};
 
-// Every clashing pair, found in chunks of small copies on the jobs plus one last entry for the large ones.
-std::vector<Found> find_clashes(const std::vector<Placed>& copies, const CopyGrid& grid, const PairTest& test, int threads) {
-  constexpr std::size_t kChunk = 2048;
-  const std::vector<double>& radius = test.types.radius;
-  const std::size_t chunks = (copies.size() + kChunk - 1) / kChunk;
-  std::vector<Found> found(chunks + 1);
-  parallel_for(chunks, threads, [&](std::size_t chunk) {
-    Found& f = found[chunk];
-    for (std::size_t i = chunk * kChunk; i < std::min(copies.size(), (chunk + 1) * kChunk); ++i) {
-      if (radius[copies[i].type] > grid.small_limit) continue;
-      const glm::ivec3 c = grid.cell_of(copies[i].centre);
+  std::size_t chunk_count() const { return chunks_.size(); }
+  const std::vector<std::uint32_t>& large() const { return large_; }
+
+  // The clashing pairs (i < j) of small copies with an atom chunk `c` owns; `measured` counts the
+  // atom pairs of two copies whose distance was taken.
+  void search_chunk(std::size_t c, CopyPairs& clashes, std::uint64_t& measured) const {
+    const glm::ivec3 chunk = chunks_[c];
+    const ChunkAtoms atoms = gather(chunk);
+    // Most chunks around a membrane own nothing (they hold the reach of their neighbours' copies only);
+    // a chunk that owns atoms bins them over the box they fill, not over the whole chunk.
+    if (std::find(atoms.owned.begin(), atoms.owned.end(), 1) == atoms.owned.end()) return;
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::vec3& p : atoms.position) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const float per_cell = static_cast<float>(1.0 / cell_);
+    const glm::ivec3 n = glm::ivec3((hi - lo) * per_cell) + 1;
+    const auto cell_of = [&](const glm::vec3& p) { return glm::min(glm::ivec3((p - lo) * per_cell), n - 1); };
+    const auto index = [&](int x, int y, int z) { return std::uint32_t((z * n.y + y) * n.x + x); };
+    // Atoms sorted by cell, x fastest: the cells x-1..x+1 of a row hold one run of atoms.
+    const std::size_t count = atoms.position.size();
+    std::vector<std::uint32_t> start(std::size_t(n.x) * n.y * n.z + 1, 0), cell(count), order(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::ivec3 g = cell_of(atoms.position[i]);
+      ++start[(cell[i] = index(g.x, g.y, g.z)) + 1];
+    }
+    for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < count; ++i) order[fill[cell[i]]++] = i;
+    const ChunkAtoms sorted = atoms.permuted(order);
+    std::uint64_t pairs = 0;
+    // Atoms i and j (j after i in the run) of two copies, kept when the chunk owns either.
+    const auto measure = [&](std::uint32_t i, std::uint32_t j) {
+      if (sorted.copy[i] == sorted.copy[j] || !(sorted.owned[i] | sorted.owned[j])) return;
+      ++pairs;
+      const float limit = clearance_ * (sorted.radius[i] + sorted.radius[j]);
+      const glm::vec3 d = sorted.position[i] - sorted.position[j];
+      if (glm::dot(d, d) < limit * limit)
+        clashes.emplace_back(std::min(sorted.copy[i], sorted.copy[j]), std::max(sorted.copy[i], sorted.copy[j]));
+    };
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const glm::ivec3 g = cell_of(sorted.position[i]);
+      const int x0 = std::max(g.x - 1, 0), x1 = std::min(g.x + 1, n.x - 1);
+      // The half of the neighbourhood after the atom: the rest of its own cell and the next one in x,
+      // the next row (y + 1), the next plane (z + 1).
+      for (std::uint32_t j = i + 1; j < start[index(std::min(g.x + 1, n.x - 1), g.y, g.z) + 1]; ++j) measure(i, j);
+      if (g.y + 1 < n.y)
+        for (std::uint32_t j = start[index(x0, g.y + 1, g.z)]; j < start[index(x1, g.y + 1, g.z) + 1]; ++j) measure(i, j);
+      if (g.z + 1 < n.z)
+        for (int y = std::max(g.y - 1, 0); y <= std::min(g.y + 1, n.y - 1); ++y)
+          for (std::uint32_t j = start[index(x0, y, g.z + 1)]; j < start[index(x1, y, g.z + 1) + 1]; ++j) measure(i, j);
+    }
+    measured += pairs;
+  }
+
+  // The clashing pairs of large copy large()[k] with the small copies and the later large ones;
+  // `tested` counts the pairs of copies tested whole.
+  void search_large(std::size_t k, CopyPairs& clashes, std::uint64_t& tested) const {
+    const std::uint32_t i = large_[k];
+    const Placed& a = copies_[i];
+    const double r = types_.radius[a.type];
+    const auto test = [&](std::uint32_t j) {
+      const Placed& b = copies_[j];
+      const double reach = r + types_.radius[b.type];
+      const dvec3 between = b.centre - a.centre;
+      if (glm::dot(between, between) >= reach * reach) return;
+      ++tested;
+      if (copies_clash(types_, a, b, clearance_)) clashes.emplace_back(std::min(i, j), std::max(i, j));
+    };
+    for (std::size_t l = k + 1; l < large_.size(); ++l) test(large_[l]);
+    const glm::ivec3 lo = chunk_of(a.centre - (r + small_max_)), hi = chunk_of(a.centre + (r + small_max_));
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x)
+          if (const auto run = runs_.find(cell_key({x, y, z})); run != runs_.end())
+            for (std::size_t s = run->second.first; s < run->second.second; ++s) test(small_[s]);
+  }
+
+private:
+  // The atoms a chunk takes, as columns: place from the chunk's corner, radius, copy, owned by the chunk.
+  struct ChunkAtoms {
+    std::vector<glm::vec3> position;
+    std::vector<float> radius;
+    std::vector<std::uint32_t> copy;
+    std::vector<char> owned;
+
+    ChunkAtoms permuted(const std::vector<std::uint32_t>& order) const {
+      ChunkAtoms out;
+      out.position.reserve(order.size()), out.radius.reserve(order.size());
+      out.copy.reserve(order.size()), out.owned.reserve(order.size());
+      for (const std::uint32_t i : order)
+        out.position.push_back(position[i]), out.radius.push_back(radius[i]), out.copy.push_back(copy[i]),
+            out.owned.push_back(owned[i]);
+      return out;
+    }
+  };
+
+  // Float rounding of an atom's place relative to a chunk stays far below this (Å).
+  static constexpr float kFaceHair = 1e-2f;
+
+  glm::ivec3 chunk_of(const dvec3& p) const { return glm::ivec3(glm::floor(p / chunk_)); }
+
+  // Small copies sorted by the chunk of their centre, each chunk's run found by its key; the large
+  // ones listed apart; the chunks that may own an atom (those around a chunk holding a small copy).
+  void index_copies() {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
+    for (std::uint32_t i = 0; i < copies_.size(); ++i)
+      if (types_.radius[copies_[i].type] <= small_limit_) keyed.emplace_back(cell_key(chunk_of(copies_[i].centre)), i);
+      else large_.push_back(i);
+    std::sort(keyed.begin(), keyed.end());
+    small_.resize(keyed.size());
+    for (std::size_t k = 0; k < keyed.size(); ++k) {
+      small_[k] = keyed[k].second;
+      auto [it, first] = runs_.try_emplace(keyed[k].first, k, k + 1);
+      if (!first) {
+        it->second.second = k + 1;
+        continue;
+      }
+      const glm::ivec3 c = chunk_of(copies_[keyed[k].second].centre);
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            if (const std::vector<std::uint32_t>* cell = grid.at(c + glm::ivec3(dx, dy, dz)))
-              for (const std::uint32_t j : *cell)
-                if (j > i) test(std::uint32_t(i), j, f);
+          for (int dx = -1; dx <= 1; ++dx) chunks_.push_back(c + glm::ivec3(dx, dy, dz));
     }
-  });
-  Found& f = found[chunks];
-  for (std::size_t k = 0; k < grid.large.size(); ++k) {
-    const std::uint32_t i = grid.large[k];
-    for (std::size_t l = k + 1; l < grid.large.size(); ++l) test(i, grid.large[l], f);
-    const int span = static_cast<int>(std::ceil((radius[copies[i].type] + grid.small_max) / grid.cell));
-    const glm::ivec3 c = grid.cell_of(copies[i].centre);
-    for (int dz = -span; dz <= span; ++dz)
-      for (int dy = -span; dy <= span; ++dy)
-        for (int dx = -span; dx <= span; ++dx)
-          if (const std::vector<std::uint32_t>* cell = grid.at(c + glm::ivec3(dx, dy, dz)))
-            for (const std::uint32_t j : *cell) test(i, j, f);
+    const auto less = [](const glm::ivec3& a, const glm::ivec3& b) {
+      return a.z != b.z ? a.z < b.z : a.y != b.y ? a.y < b.y : a.x < b.x;
+    };
+    std::sort(chunks_.begin(), chunks_.end(), less);
+    chunks_.erase(std::unique(chunks_.begin(), chunks_.end()), chunks_.end());
   }
-  return found;
+
+  // The atoms within reach of the chunk, of every small copy whose sphere comes that near.
+  ChunkAtoms gather(const glm::ivec3& chunk) const {
+    const dvec3 origin = dvec3(chunk) * chunk_;
+    const float extent = static_cast<float>(chunk_), margin = static_cast<float>(reach_) + kFaceHair;
+    ChunkAtoms atoms;
+    const auto take = [&](std::uint32_t i) {
+      const Placed& p = copies_[i];
+      const double r = types_.radius[p.type];
+      const dvec3 gap = glm::max(glm::max(origin - p.centre, p.centre - (origin + chunk_)), dvec3(0.0));
+      if (glm::dot(gap, gap) >= (r + reach_) * (r + reach_)) return;
+      const glm::vec3 centre(p.centre - origin);
+      for (const tiles::AtomSphere& a : types_.shapes[p.type].atoms()) {
+        const glm::vec3 offset = p.rotation * a.centre;
+        const glm::vec3 local = centre + offset;
+        if (glm::any(glm::lessThan(local, glm::vec3(-margin))) || glm::any(glm::greaterThan(local, glm::vec3(extent + margin))))
+          continue;
+        // Within a hair of a face, float rounding differs from chunk to chunk: decide in double.
+        const glm::vec3 face = glm::min(glm::abs(local), glm::abs(local - extent));
+        const bool owned = std::min({face.x, face.y, face.z}) > kFaceHair
+                               ? glm::all(glm::greaterThanEqual(local, glm::vec3(0.f))) && glm::all(glm::lessThan(local, glm::vec3(extent)))
+                               : chunk_of(p.centre + dvec3(offset)) == chunk;
+        atoms.position.push_back(local), atoms.radius.push_back(a.radius), atoms.copy.push_back(i), atoms.owned.push_back(owned);
+      }
+    };
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (const auto run = runs_.find(cell_key(chunk + glm::ivec3(dx, dy, dz))); run != runs_.end())
+            for (std::size_t k = run->second.first; k < run->second.second; ++k) take(small_[k]);
+    return atoms;
+  }
+
+  const std::vector<Placed>& copies_;
+  const TypeShapes& types_;
+  float clearance_;
+  double small_limit_, small_max_ = 0.0, reach_ = 0.0, chunk_ = 1.0, cell_ = 1.0;
+  std::vector<std::uint32_t> small_, large_;
+  std::unordered_map<std::uint64_t, std::pair<std::size_t, std::size_t>> runs_;
+  std::vector<glm::ivec3> chunks_;
+};
+
+struct Found {
+  CopyPairs clashes;
+  std::uint64_t atom_pairs = 0, copy_pairs = 0;
+};
+
+// Every clashing pair once, ascending, whatever the threads: the chunks' and the large copies'.
+Found find_clashes(const ClashSearch& search, int threads) {
+  const std::size_t chunks = search.chunk_count();
+  std::vector<Found> parts(chunks + search.large().size());
+  parallel_for(parts.size(), threads, [&](std::size_t k) {
+    if (k < chunks) search.search_chunk(k, parts[k].clashes, parts[k].atom_pairs);
+    else search.search_large(k - chunks, parts[k].clashes, parts[k].copy_pairs);
+  });
+  Found all;
+  for (Found& f : parts) {
+    all.atom_pairs += f.atom_pairs;
+    all.copy_pairs += f.copy_pairs;
+    all.clashes.insert(all.clashes.end(), f.clashes.begin(), f.clashes.end());
+  }
+  std::sort(all.clashes.begin(), all.clashes.end());
+  all.clashes.erase(std::unique(all.clashes.begin(), all.clashes.end()), all.clashes.end());
+  return all;
 }
 
 // Per copy, the copies it clashes with; the counts go to `out`.
-std::vector<std::vector<std::uint32_t>> conflict_lists(const std::vector<Found>& found, std::size_t copies,
-                                                       PrunedMembrane& out) {
+std::vector<std::vector<std::uint32_t>> conflict_lists(const Found& found, std::size_t copies, PrunedMembrane& out) {
   std::vector<std::vector<std::uint32_t>> conflicts(copies);
-  for (const Found& f : found) {
-    out.candidate_pairs += f.candidates;
-    out.atom_tests += f.atom_tests;
-    out.clashing_pairs += f.clashes.size();
-    for (const auto& [i, j] : f.clashes) {
-      conflicts[i].push_back(j);
-      conflicts[j].push_back(i);
-    }
+  out.atom_pairs += found.atom_pairs;
+  out.copy_pairs_tested += found.copy_pairs;
+  out.clashing_pairs += found.clashes.size();
+  for (const auto& [i, j] : found.clashes) {
+    conflicts[i].push_back(j);
+    conflicts[j].push_back(i);
   }
   return conflicts;
 }
@@ -491,18 +571,15 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   out.checked_triangles = out.whole_surface ? triangles
                                             : std::uint64_t(std::count(region.whole_triangle.begin(), region.whole_triangle.end(), 1));
   check_key_room(mapping);
-  const std::vector<Placed> copies = copies_to_check(mapping, mesh, shapes, region, settings, threads);
+  const std::vector<Placed> copies = copies_to_check(mapping, shapes, region, settings, threads);
   out.checked_copies = copies.size();
   if (!settings.dropped_before.empty()) out.dropped = settings.dropped_before;
   if (copies.empty()) return out;
 
-  PairTest test{copies, shapes, settings, std::vector<char>(types.size(), 0), mapping.set()};
-  for (const std::uint32_t type : settings.always_tested)
-    if (type < types.size()) test.always_tested[type] = 1;
-  const CopyGrid grid = grid_copies(copies, shapes.radius);
-  const std::vector<std::vector<std::uint32_t>> conflicts =
-      conflict_lists(find_clashes(copies, grid, test, threads), copies.size(), out);
-  record_drops(copies, kept_copies(copies, conflicts, shapes.radius, grid.small_limit), out);
+  const double small_limit = small_copy_limit(copies, shapes.radius);
+  const ClashSearch search(copies, shapes, small_limit, settings.clearance);
+  const std::vector<std::vector<std::uint32_t>> conflicts = conflict_lists(find_clashes(search, threads), copies.size(), out);
+  record_drops(copies, kept_copies(copies, conflicts, shapes.radius, small_limit), out);
   return out;
 }
 

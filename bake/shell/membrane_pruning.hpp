@@ -24,10 +24,6 @@ struct PruningSettings {
   // Atoms of two kept copies stay at least clearance · (r1 + r2) apart (the bake tests check 0.6;
   // the baker keeps a hair more so float rounding of the placement can never tip a pair over).
   float clearance = 0.6012f;
-  // What the Wang set guarantees between any two copies of any valid tiling in flat tile space
-  // (the smallest of its packing clearances): a pair whose placement on the surface moves its atoms
-  // relative to each other by less than the difference needs no atom test.
-  float flat_clearance = 0.6f;
   // A membrane owning at most this many copies is checked everywhere; a larger one only within
   // reach of a UV seam, trusting its tile set to survive what its charts do elsewhere.
   std::uint64_t whole_surface_budget = 600000;
@@ -41,9 +37,6 @@ struct PruningSettings {
   // The copies the triangles own, when the caller has counted them already (the shell offsets
   // enumerate every one): spares a pass over 10^8 copies of a cell. Absent: counted here.
   std::optional<std::uint64_t> owned_copies;
-  // Molecule types whose pairs with the others the flat tiling never vouches for (a protein the
-  // lipid patch was laid through): every such pair within reach is tested atom by atom.
-  std::vector<std::uint32_t> always_tested;
   // Copies dropped before the pruning (per triangle, ascending keys: limit_copies): not placed, so
   // they take nothing from their neighbours; they are dropped in the result as well.
   std::vector<std::vector<std::uint32_t>> dropped_before;
@@ -59,9 +52,9 @@ struct PrunedMembrane {
   bool whole_surface = false;                       // all owned copies checked, not only near seams
   std::uint64_t checked_triangles = 0;              // triangles whose copies were all checked (whole_surface: all)
   std::uint64_t checked_copies = 0;                 // copies placed and tested against their neighbours
-  std::uint64_t candidate_pairs = 0;                // pairs whose bounding spheres meet
-  std::uint64_t atom_tests = 0;                     // of those, pairs the flat tiling could not vouch for
-  std::uint64_t clashing_pairs = 0;                 // of those, pairs that clash
+  std::uint64_t atom_pairs = 0;                     // pairs of atoms of two small copies whose distance was taken
+  std::uint64_t copy_pairs_tested = 0;              // pairs of copies with a large one (a protein) tested whole
+  std::uint64_t clashing_pairs = 0;                 // pairs of copies with atoms closer than the clearance
 
   std::uint64_t dropped_count() const;
 };

@@ -31,8 +31,8 @@ ShellStage sample_stage() {
   s.pruning.whole_surface = true;
   s.pruning.checked_triangles = 3;
   s.pruning.checked_copies = 105;
-  s.pruning.candidate_pairs = 900;
-  s.pruning.atom_tests = 40;
+  s.pruning.atom_pairs = 40;
+  s.pruning.copy_pairs_tested = 7;
   s.pruning.clashing_pairs = 4;
   return s;
 }
@@ -62,8 +62,8 @@ TEST(ShellCache, RoundTripKeepsEveryField) {
   EXPECT_TRUE(out->pruning.whole_surface);
   EXPECT_EQ(out->pruning.checked_triangles, 3u);
   EXPECT_EQ(out->pruning.checked_copies, 105u);
-  EXPECT_EQ(out->pruning.candidate_pairs, 900u);
-  EXPECT_EQ(out->pruning.atom_tests, 40u);
+  EXPECT_EQ(out->pruning.atom_pairs, 40u);
+  EXPECT_EQ(out->pruning.copy_pairs_tested, 7u);
   EXPECT_EQ(out->pruning.clashing_pairs, 4u);
 }
 

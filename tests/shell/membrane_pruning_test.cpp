@@ -168,20 +168,24 @@ TEST(MembranePruning, SameResultOnOneAndTwoThreads) {
   EXPECT_EQ(one.dropped_by_type, two.dropped_by_type);
 }
 
-// The flat tiling vouches for pairs it can: with a flat clearance far above the test's, most pairs
-// of one chart need no atom test, and the result is still clash-free.
-TEST(MembranePruning, FlatTilingSparesAtomTests) {
+// The pruner's clash search (atoms binned by chunk) finds exactly the pairs the brute-force double
+// check finds over every owned copy, at the pruner's clearance and at a wider one.
+TEST(MembranePruning, ClashingPairsAreExactlyTheBruteForceOnes) {
   auto sc = dense(sphere_scene());
   const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
-  PruningSettings strict;  // flat clearance = test clearance: every meeting pair is atom-tested
-  strict.flat_clearance = strict.clearance;
-  const PrunedMembrane all_tested = nano::shell::prune_membrane(map, sc->mesh, sc->types, strict, 2);
-  EXPECT_EQ(all_tested.atom_tests, all_tested.candidate_pairs);
-  PruningSettings vouched;  // the test set is packed at clearance 1.0
-  vouched.flat_clearance = 1.0f;
-  const PrunedMembrane spared = nano::shell::prune_membrane(map, sc->mesh, sc->types, vouched, 2);
-  EXPECT_LT(spared.atom_tests, all_tested.atom_tests);
-  EXPECT_EQ(spared.dropped, all_tested.dropped);
+  const std::vector<Copy> all = owned_copies(map);
+  for (const float clearance : {0.6012f, 0.9f}) {
+    PruningSettings settings;
+    settings.clearance = clearance;
+    settings.whole_surface = true;
+    const PrunedMembrane p = nano::shell::prune_membrane(map, sc->mesh, sc->types, settings, 2);
+    const auto expected = clashes(all, sc->types, clearance);
+    ASSERT_GT(expected.size(), 0u);
+    EXPECT_EQ(p.clashing_pairs, expected.size()) << "clearance " << clearance;
+    EXPECT_GT(p.atom_pairs, p.clashing_pairs);
+    EXPECT_GT(p.copy_pairs_tested, 0u) << "the proteins' pairs are tested copy against copy";
+    EXPECT_EQ(p.checked_copies, all.size());
+  }
 }
 
 // Triangles checked whole (PruningSettings::checked_triangles) on a membrane otherwise checked along
@@ -318,22 +322,6 @@ TEST(MembranePruning, CopiesDroppedBeforeTakeNothingWithThem) {
     if (dropped_now.count(j) && kept_index.count(i)) justified.insert(j);
   }
   EXPECT_EQ(justified.size(), dropped_now.size()) << "a copy was dropped for a neighbour that was dropped before";
-}
-
-// A type the flat tiling must not vouch for (a protein the lipids were laid through) has every
-// pair within reach tested atom by atom; the drops stay the same.
-TEST(MembranePruning, AlwaysTestedTypesAreNeverVouchedFor) {
-  auto sc = dense(sphere_scene());
-  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
-  PruningSettings vouched;
-  vouched.flat_clearance = 1.0f;
-  const PrunedMembrane spared = nano::shell::prune_membrane(map, sc->mesh, sc->types, vouched, 2);
-  PruningSettings lipids_tested = vouched;
-  lipids_tested.always_tested = {0};  // every meeting pair has a lipid in this scene
-  const PrunedMembrane all_tested = nano::shell::prune_membrane(map, sc->mesh, sc->types, lipids_tested, 2);
-  EXPECT_LT(spared.atom_tests, all_tested.atom_tests);
-  EXPECT_EQ(all_tested.atom_tests, all_tested.candidate_pairs);
-  EXPECT_EQ(spared.dropped, all_tested.dropped);
 }
 
 }  // namespace
