@@ -2,7 +2,7 @@
 """Is the membrane closed? Frontal close-ups from outside, as a structural biologist would look.
 
 For each sample point of a bundled surface (analytic: the virion's sphere, the red blood cell's
-Evans-Fung surface), `nanoview render --ids` looks at it from DISTANCE Å out along the outward
+Evans-Fung surface), `nanoview render --ids` (one process, the views as a camera path) looks at it from DISTANCE Å out along the outward
 normal with a FOV-degree field of view; a pixel whose ray meets a membrane copy (hit kind 0) first
 shows the membrane, a pixel that meets a soluble copy (kind 1) first sees the lumen through a hole.
 
@@ -115,34 +115,45 @@ def main():
     lipid_names = set(args.lipids.split(","))
     real_per_a2 = 2.0 / 66.0  # two leaflets, one lipid per 0.66 nm²
 
+    points = sample_points(args.scene, args.radius)
     results = []
     with tempfile.TemporaryDirectory() as tmp:
-        for name, p, n in sample_points(args.scene, args.radius):
+        # Every view in one process: a camera path whose keyframe k is view k, one second apart at one
+        # frame a second, so frame k is keyframe k (starting the renderer costs ~2 s, a 96² view far less).
+        keyframes = []
+        for k, (name, p, n) in enumerate(points):
             eye = tuple(p[i] + args.distance * n[i] for i in range(3))
             up = (0.0, 0.0, 1.0) if abs(n[2]) < 0.9 else (0.0, 1.0, 0.0)
-            camera = "position={:.3f},{:.3f},{:.3f};look_at={:.3f},{:.3f},{:.3f};up={},{},{};fov_degrees={}".format(*eye, *p, *up, args.fov)
-            ids = os.path.join(tmp, "ids.bin")
-            subprocess.run([args.nanoview, "render", args.package, "-o", os.path.join(tmp, "f.png"), "--ids", ids,
-                            "--size", f"{args.size}x{args.size}", "--camera", camera],
-                           check=True, stdout=subprocess.DEVNULL)
-            kinds = read_ids(ids)
-            hit = sum(1 for k in kinds if k is not None)
-            membrane = sum(1 for k in kinds if k == 0)
+            keyframes.append({"time": k, "position": list(eye), "look_at": list(p), "up": list(up), "fov_degrees": args.fov})
+        path = os.path.join(tmp, "views.json")
+        with open(path, "w") as f:
+            json.dump({"format": "nanouniverse-camera-path", "version": 1, "fps": 1, "keyframes": keyframes}, f)
+        subprocess.run([args.nanoview, "render", args.package, "--path", path, "-o", os.path.join(tmp, "f%05d.png"),
+                        "--ids", os.path.join(tmp, "ids%05d.bin"), "--size", f"{args.size}x{args.size}"],
+                       check=True, stdout=subprocess.DEVNULL)
+        counted = []
+        if args.density:
+            out = subprocess.run([args.density, args.package, "0", str(args.density_radius), "40",
+                                  *(f"{x:.6f}" for _, p, n in points for x in (*p, *n))],
+                                 check=True, capture_output=True, text=True)
+            counted = [json.loads(line)["copies"] for line in out.stdout.splitlines()[:len(points)]]
+        for k, (name, p, n) in enumerate(points):
+            kinds = read_ids(os.path.join(tmp, f"ids{k:05d}.bin"))
+            hit = sum(1 for kind in kinds if kind is not None)
+            membrane = sum(1 for kind in kinds if kind == 0)
             coverage = membrane / hit if hit else 0.0
             result = {"point": name, "surface_point": p, "normal": n, "hit_pixels": hit,
                       "membrane_pixels": membrane, "coverage": coverage}
             line = f"{name:28s} {membrane:6d} / {hit:6d} hit pixels show membrane: {100 * coverage:6.2f} %"
             if args.density:
-                out = subprocess.run([args.density, args.package, "0", str(args.density_radius), "40",
-                                      *(f"{x:.6f}" for x in (*p, *n))], check=True, capture_output=True, text=True)
-                copies = json.loads(out.stdout.splitlines()[0])["copies"]
-                lipids = sum(v for k, v in copies.items() if k in lipid_names)
-                proteins = {k: v for k, v in copies.items() if k not in lipid_names}
+                copies = counted[k]
+                lipids = sum(v for key, v in copies.items() if key in lipid_names)
+                proteins = {key: v for key, v in copies.items() if key not in lipid_names}
                 fraction = lipids / (real_per_a2 * math.pi * args.density_radius ** 2)
                 result.update({"lipids_in_disc": lipids, "proteins_in_disc": proteins, "of_real_bilayer": fraction})
                 line += f"; {lipids:5d} lipids in the {args.density_radius:.0f} Å disc = {100 * fraction:5.1f} % of a real bilayer"
                 if proteins:
-                    line += " (" + ", ".join(f"{k} {v}" for k, v in sorted(proteins.items())) + ")"
+                    line += " (" + ", ".join(f"{key} {v}" for key, v in sorted(proteins.items())) + ")"
             results.append(result)
             print(line)
     if args.json:
