@@ -99,12 +99,21 @@ def main():
     chosen = {atoms[len(atoms) * k // 12] for k in range(12)}  # spread over the package's molecule types
     chosen |= {next(a for a in atoms if first_pixel[a][2] == kind) for kind in (0, 1) if any(first_pixel[a][2] == kind for a in atoms)}
 
+    # Every chosen pixel in one pick (a line of JSON each, in the order asked).
+    chosen = sorted(chosen)
+    pixels = [str(v) for atom in chosen for v in first_pixel[atom][:2]]
+    lines = subprocess.run([nanoview, "pick", package, "--size", f"{SIZE}x{SIZE}", *pixels], check=True, env=env,
+                           stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.splitlines()
+    if len(lines) != len(chosen):
+        sys.exit(f"FAIL: pick printed {len(lines)} lines for {len(chosen)} pixels")
     cache, failures, sources, kinds = {}, 0, set(), set()
-    for atom in sorted(chosen):
+    for atom, out in zip(chosen, lines):
         x, y, _ = first_pixel[atom]
-        out = subprocess.run([nanoview, "pick", package, "--size", f"{SIZE}x{SIZE}", str(x), str(y)], check=True, env=env,
-                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout
         pick = json.loads(out)
+        if (pick.get("x"), pick.get("y")) != (x, y):
+            print(f"FAIL ({x}, {y}): pick answered for pixel ({pick.get('x')}, {pick.get('y')})")
+            failures += 1
+            continue
         if pick.get("hit") is not True or "error" in pick or pick["atom"]["index"] != atom:
             print(f"FAIL ({x}, {y}): pick does not name atom {atom} of the ids file: {out.strip()}")
             failures += 1
