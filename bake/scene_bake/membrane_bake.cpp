@@ -170,14 +170,8 @@ ShellStageKey shell_stage_key(const MembraneSurface& m, const tiles::TilingRecip
   key.add_all(mesh.normals), key.add_all(mesh.normal_triangles);
   key.add(k), key.add(smooth), key.add(recipe.dims), key.add(recipe.size), key.add(recipe.periodic), key.add_all(recipe.cells);
   key.add(m.tiles.set.dims), key.add(m.tiles.set.edge), key.add(std::uint64_t(m.tiles.set.tiles.size()));
-  for (const tiles::WangTile& tile : m.tiles.set.tiles) {
-    key.add(std::uint64_t(tile.instances.size()));
-    for (const tiles::Instance& i : tile.instances)
-      key.add(i.type), key.add(i.position), key.add(i.rotation), key.add(i.alternate), key.add(i.has_alternate);
-  }
-  key.add(std::uint64_t(m.types.size()));
-  for (const tiles::MoleculeType& t : m.types)
-    key.add_text(t.name), key.add_all(t.atoms), key.add(t.bounding_radius), key.add(t.up_axis);
+  for (const tiles::WangTile& tile : m.tiles.set.tiles) key.add_instances(tile.instances);
+  key.add_types(m.types);
   key.add_all(m.tiles.protein_types);
   key.add(m.checks.whole_surface), key.add(m.checks.plan.tile_scale), key.add_all(m.checks.plan.checked);
   // Counts per compartment by the set's types they limit (library indices differ between scenes).

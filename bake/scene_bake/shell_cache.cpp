@@ -91,6 +91,27 @@ void ShellStageKey::add_text(const std::string& text) {
   add_bytes(std::as_bytes(std::span<const char>(text)));
 }
 
+void ShellStageKey::add_types(const std::vector<tiles::MoleculeType>& types) {
+  add(std::uint64_t(types.size()));
+  for (const tiles::MoleculeType& t : types) {
+    add_text(t.name);
+    add_all(t.atoms);
+    add(t.bounding_radius);
+    add(t.up_axis);
+  }
+}
+
+void ShellStageKey::add_instances(const std::vector<tiles::Instance>& instances) {
+  add(std::uint64_t(instances.size()));
+  for (const tiles::Instance& i : instances) {
+    add(i.type);
+    add(i.position);
+    add(i.rotation);
+    add(std::uint8_t(i.alternate));
+    add(std::uint8_t(i.has_alternate));
+  }
+}
+
 std::string ShellStageKey::hex() const {
   const XXH128_hash_t h = digest(material_);
   char text[33];

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "bake/shell/membrane_pruning.hpp"
+#include "bake/tiles/molecule_type.hpp"
 #include "shared/shell_prism.h"
 
 namespace nano::scene_bake {
@@ -47,6 +48,10 @@ public:
     add_bytes(std::as_bytes(std::span<const T>(values)));
   }
   void add_text(const std::string& text);
+  // Molecule types (name, atoms, radius, up axis) and tile instances (type, pose, alternate flags),
+  // each list led by its length: what the shells' and the tile sets' keys both read.
+  void add_types(const std::vector<tiles::MoleculeType>& types);
+  void add_instances(const std::vector<tiles::Instance>& instances);
   std::string hex() const;  // 32 hex digits
 
 private:

@@ -12,16 +12,6 @@ namespace {
 // A kind tag first, so a membrane request and a cube request never share a key.
 enum class TileSetKind : std::uint32_t { membrane_squares = 1, soluble_cubes = 2 };
 
-void add_types(ShellStageKey& key, const std::vector<tiles::MoleculeType>& types) {
-  key.add(std::uint64_t(types.size()));
-  for (const tiles::MoleculeType& t : types) {
-    key.add_text(t.name);
-    key.add_all(t.atoms);
-    key.add(t.bounding_radius);
-    key.add(t.up_axis);
-  }
-}
-
 // Every field but `threads`, which the set does not depend on.
 void add_budget(ShellStageKey& key, const tiles::GenerationBudget& b) {
   key.add(b.clearance);
@@ -30,25 +20,14 @@ void add_budget(ShellStageKey& key, const tiles::GenerationBudget& b) {
   key.add(b.relaxation_rounds);
 }
 
-void add_instances(ShellStageKey& key, const std::vector<tiles::Instance>& instances) {
-  key.add(std::uint64_t(instances.size()));
-  for (const tiles::Instance& i : instances) {
-    key.add(i.type);
-    key.add(i.position);
-    key.add(i.rotation);
-    key.add(std::uint8_t(i.alternate));
-    key.add(std::uint8_t(i.has_alternate));
-  }
-}
-
 void add_patch(ShellStageKey& key, const tiles::LipidPatch& patch) {
-  add_instances(key, patch.lipids);
+  key.add_instances(patch.lipids);
   key.add(patch.period_x);
   key.add(patch.period_y);
   key.add(patch.clearance);
   key.add(std::uint64_t(patch.mix.size()));
   for (const tiles::LipidSpecies& s : patch.mix) {
-    add_instances(key, s.conformers);
+    key.add_instances(s.conformers);
     key.add(s.outer);
     key.add(s.inner);
   }
@@ -59,7 +38,7 @@ ShellStageKey start_key(TileSetKind kind, const std::vector<tiles::MoleculeType>
   ShellStageKey key;
   key.add(kind);
   key.add(baker_build_hash());
-  add_types(key, types);
+  key.add_types(types);
   key.add(edge);
   key.add(colours);
   return key;

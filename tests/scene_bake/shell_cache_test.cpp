@@ -82,6 +82,34 @@ TEST(ShellCache, KeysDifferWithTheirBytes) {
   EXPECT_NE(d.hex(), e.hex());
 }
 
+// Types and instances: equal lists give equal keys; each field the stage reads changes it.
+TEST(ShellCache, KeysReadEveryFieldOfTypesAndInstances) {
+  const auto key_of = [](const std::vector<nano::tiles::MoleculeType>& types, const std::vector<nano::tiles::Instance>& instances) {
+    ShellStageKey k;
+    k.add_types(types);
+    k.add_instances(instances);
+    return k.hex();
+  };
+  nano::tiles::MoleculeType type{"POPC", {{{0.f, 0.f, 1.f}, 1.7f}}, 2.7f, {0.f, 0.f, 1.f}};
+  nano::tiles::Instance instance{0, {1.f, 2.f, 3.f}, glm::quat(1.f, 0.f, 0.f, 0.f)};
+  const std::string base = key_of({type}, {instance});
+  EXPECT_EQ(base, key_of({type}, {instance}));
+  std::vector<std::string> changed;
+  auto t = type;
+  t.name = "POPE", changed.push_back(key_of({t}, {instance}));
+  t = type, t.atoms[0].radius = 1.8f, changed.push_back(key_of({t}, {instance}));
+  t = type, t.bounding_radius = 2.8f, changed.push_back(key_of({t}, {instance}));
+  t = type, t.up_axis = {0.f, 1.f, 0.f}, changed.push_back(key_of({t}, {instance}));
+  auto i = instance;
+  i.type = 1, changed.push_back(key_of({type}, {i}));
+  i = instance, i.position.z = 4.f, changed.push_back(key_of({type}, {i}));
+  i = instance, i.rotation = glm::quat(0.f, 1.f, 0.f, 0.f), changed.push_back(key_of({type}, {i}));
+  i = instance, i.alternate = true, changed.push_back(key_of({type}, {i}));
+  i = instance, i.has_alternate = true, changed.push_back(key_of({type}, {i}));
+  changed.push_back(key_of({type}, {instance, instance}));
+  for (std::size_t k = 0; k < changed.size(); ++k) EXPECT_NE(changed[k], base) << "change " << k;
+}
+
 TEST(ShellCache, EveryTruncationIsRefused) {
   const std::vector<std::byte> whole = encode_shell_stage(key_of(1), sample_stage());
   for (std::size_t n = 0; n < whole.size(); ++n) {
