@@ -73,7 +73,6 @@ struct TypeShapes {
   std::vector<tiles::CollisionShape> shapes;
   std::vector<double> radius;
   double highest = 0.0, widest = 0.0;  // largest |z| of an instance and largest type radius
-  double largest_atom = 0.0;
 };
 
 TypeShapes type_shapes(const std::vector<tiles::MoleculeType>& types, const tiles::WangSet& set) {
@@ -81,7 +80,6 @@ TypeShapes type_shapes(const std::vector<tiles::MoleculeType>& types, const tile
   for (const tiles::MoleculeType& t : types) {
     out.shapes.emplace_back(t);
     out.radius.push_back(out.shapes.back().radius());
-    out.largest_atom = std::max(out.largest_atom, double(out.shapes.back().max_atom_radius()));
   }
   for (const tiles::WangTile& tile : set.tiles)
     for (const tiles::Instance& in : tile.instances) {
@@ -256,8 +254,8 @@ std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const TypeSh
   return copies;
 }
 
-// Copies larger than this (1.5 x the median radius: proteins among lipids) are indexed in every
-// chunk they reach rather than by the chunk of their centre, and go first in the independent set.
+// Copies larger than this (1.5 x the median radius: proteins among lipids) are tested copy against
+// copy rather than atom by atom, and go first in the independent set.
 double small_copy_limit(const std::vector<Placed>& copies, const std::vector<double>& radius) {
   std::vector<double> radii;
   radii.reserve(copies.size());
