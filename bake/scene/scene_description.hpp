@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -77,9 +78,25 @@ struct LipidFill {
   bool operator==(const LipidFill&) const = default;
 };
 
+// One kind of lipid in a patch of several: the patch's residues named `residue` report under `name`.
+struct LipidKind {
+  std::string residue;               // residue name in the patch file (CHL1, POPC, PSM, ...)
+  std::string name;                  // the name its copies, densities and picks report under
+  std::optional<glm::dvec3> colour;  // sRGB; absent: the baker picks one
+  bool operator==(const LipidKind&) const = default;
+};
+
+// What one leaflet of a patch is asked to hold: each kind's mole percent, and the mean area per
+// molecule of a real leaflet of that composition (the reference a bake's lipid count is judged by).
+struct LeafletComposition {
+  std::vector<std::pair<std::string, double>> mol_percent;  // kind name -> mol %, adding up to 100
+  double area_per_lipid = 0.0;                              // Å² per molecule
+  bool operator==(const LeafletComposition&) const = default;
+};
+
 // A bilayer cut from an equilibrated periodic patch (a PDB file with CRYST1 a, b and the membrane
 // normal along z): every lipid residue becomes its own molecule type (its own conformer), all named
-// `name` and coloured alike.
+// `name` and coloured alike, or, with `kinds`, named and coloured by their residue name.
 struct LipidPatchDescription {
   std::string name = "lipid";
   std::filesystem::path file;        // resolved against the scene file's folder
@@ -89,8 +106,16 @@ struct LipidPatchDescription {
   // to) and of the inner one whose places take a conformer of this species instead of the base
   // patch's. Per leaflet the mix's fractions add up to at most 1; the base species keeps the rest.
   double outer = 0.0, inner = 0.0;
+  std::vector<LipidKind> kinds;      // empty: one kind, `name`
+  // The composition asked of each leaflet (the outer one faces the mesh normals, the patch's +z);
+  // the bake is refused where a kind's share strays more than kLeafletShareTolerance from it.
+  std::optional<LeafletComposition> outer_leaflet, inner_leaflet;
   bool operator==(const LipidPatchDescription&) const = default;
 };
+
+// How far (mole percent) a kind's share of its leaflet may stray from the share asked, in the patch
+// and among the copies a bake keeps.
+inline constexpr double kLeafletShareTolerance = 5.0;
 
 struct MembraneDescription {
   std::string name;

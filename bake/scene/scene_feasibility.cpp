@@ -528,6 +528,57 @@ void check_lipid_mix_amounts(const SceneDescription& scene, std::size_t membrane
   }
 }
 
+namespace {
+
+std::uint64_t count_of(const LeafletCounts& counts, const std::string& kind) {
+  for (const auto& [name, n] : counts)
+    if (name == kind) return n;
+  return 0;
+}
+
+std::string counts_text(const LeafletCounts& counts, std::uint64_t total) {
+  std::string text;
+  for (const auto& [name, n] : counts)
+    text += (text.empty() ? "" : ", ") + name + " " + short_number(n) + " (" +
+            short_number(std::round(1000.0 * static_cast<double>(n) / static_cast<double>(total)) / 10.0) + " %)";
+  return text;
+}
+
+void check_one_leaflet(const SceneDescription& scene, const MembraneDescription& m, const LeafletComposition& asked,
+                       const LeafletCounts& counts, const char* leaflet, std::string_view whose) {
+  std::uint64_t total = 0;
+  for (const auto& [name, n] : counts) total += n;
+  const std::string key = membrane_key(m) + ".lipid_patch.leaflets." + leaflet + ".mol_percent";
+  // A kind the leaflet holds but the scene does not list is asked 0 %.
+  std::vector<std::pair<std::string, double>> shares = asked.mol_percent;
+  for (const auto& [name, n] : counts)
+    if (std::none_of(shares.begin(), shares.end(), [&](const auto& a) { return a.first == name; }))
+      shares.emplace_back(name, 0.0);
+  for (const auto& [kind, percent] : shares) {
+    const std::uint64_t n = count_of(counts, kind);
+    const double share = total > 0 ? 100.0 * static_cast<double>(n) / static_cast<double>(total) : 0.0;
+    if (percent > 0.0 && n == 0)
+      refuse(scene, key + "." + kind,
+             short_number(percent) + " % of the " + leaflet + " leaflet asked, but " + std::string(whose) + " no " + kind +
+                 " there (" + (total > 0 ? counts_text(counts, total) : "no lipid") + ")");
+    if (std::abs(share - percent) > kLeafletShareTolerance)
+      refuse(scene, key + "." + kind,
+             short_number(percent) + " % of the " + leaflet + " leaflet asked, but " + std::string(whose) + " " +
+                 short_number(std::round(share * 10.0) / 10.0) + " % (" + counts_text(counts, total) +
+                 "): more than " + short_number(kLeafletShareTolerance) + " points apart");
+  }
+}
+
+}  // namespace
+
+void check_leaflet_shares(const SceneDescription& scene, std::size_t membrane, const LeafletCounts& outer,
+                          const LeafletCounts& inner, std::string_view whose) {
+  const MembraneDescription& m = scene.membranes.at(membrane);
+  if (!m.lipid_patch || !m.lipid_patch->outer_leaflet || !m.lipid_patch->inner_leaflet) return;
+  check_one_leaflet(scene, m, *m.lipid_patch->outer_leaflet, outer, "outer", whose);
+  check_one_leaflet(scene, m, *m.lipid_patch->inner_leaflet, inner, "inner", whose);
+}
+
 void check_placement_amounts(const SceneDescription& scene, std::span<const double> bounding_radii) {
   if (bounding_radii.size() != scene.compartments.size())  // invariant: the baker measures every compartment
     throw std::invalid_argument("check_placement_amounts: one bounding radius per compartment is needed");

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "bake/scene/scene_description.hpp"
 
@@ -101,6 +102,16 @@ struct PatchPlaces {
 // Each lipid_mix species takes round(fraction x places) of each leaflet's places per tile: a
 // non-zero fraction that rounds to none is refused with the least fraction that takes a place.
 void check_lipid_mix_amounts(const SceneDescription& scene, std::size_t membrane, const PatchPlaces& places);
+
+// Lipids of each kind in one leaflet (kind name -> count): a patch's own, or the copies a bake keeps.
+using LeafletCounts = std::vector<std::pair<std::string, std::uint64_t>>;
+
+// Against the membrane's `lipid_patch.leaflets` (a membrane without them passes): in each leaflet
+// every kind's share within kLeafletShareTolerance mol % of the share asked, and a kind asked a
+// non-zero share has at least one lipid there. `whose` says what the counts are ("the patch file
+// holds", "the bake keeps"); the refusal names the leaflet, the kind, both shares and the counts.
+void check_leaflet_shares(const SceneDescription& scene, std::size_t membrane, const LeafletCounts& outer,
+                          const LeafletCounts& inner, std::string_view whose);
 
 // Random placements against their boxes (one bounding radius per compartment, Å): run before
 // expand_random_instances, whose work grows with the count.

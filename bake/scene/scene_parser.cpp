@@ -1,5 +1,7 @@
 #include "bake/scene/scene_parser.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -176,6 +178,71 @@ LipidPatchDescription parse_lipid_patch(const JsonCursor& patch, const std::file
   return p;
 }
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const std::string& n : names) joined += (joined.empty() ? "'" : ", '") + n + "'";
+  return joined;
+}
+
+// "kinds": residue name -> {"name", "colour"}; every kind's name its own.
+std::vector<LipidKind> parse_lipid_kinds(const JsonCursor& kinds) {
+  std::vector<LipidKind> parsed;
+  for (const auto& [residue, k] : kinds.members()) {
+    k.only_keys({"name", "colour"});
+    if (residue.empty() || residue.size() > 4)
+      k.fail("a kind is keyed by its residue name in the patch file (1 to 4 characters)");
+    LipidKind kind{residue, residue, std::nullopt};
+    if (const auto n = k.optional("name")) {
+      kind.name = n->string();
+      check_name(*n, kind.name);
+    }
+    if (const auto colour = k.optional("colour")) kind.colour = parse_colour(*colour);
+    for (const LipidKind& other : parsed)
+      if (other.name == kind.name) k.fail("two kinds report under the name '" + kind.name + "'");
+    parsed.push_back(kind);
+  }
+  if (parsed.empty()) kinds.fail("expected at least one kind");
+  return parsed;
+}
+
+// One leaflet of "leaflets": {"mol_percent": {kind: %}, "area_per_lipid": Å²}, its shares adding up to 100.
+LeafletComposition parse_leaflet(const JsonCursor& leaflet, const std::vector<std::string>& kind_names) {
+  leaflet.only_keys({"mol_percent", "area_per_lipid"});
+  LeafletComposition composition;
+  const JsonCursor shares = leaflet.required("mol_percent");
+  double sum = 0.0;
+  for (const auto& [kind, share] : shares.members()) {
+    if (std::find(kind_names.begin(), kind_names.end(), kind) == kind_names.end())
+      share.fail("no kind of this patch is named '" + kind + "' (its kinds: " + join_names(kind_names) + ")");
+    composition.mol_percent.emplace_back(kind, share.number_between(0.0, 100.0));
+    sum += composition.mol_percent.back().second;
+  }
+  if (std::abs(sum - 100.0) > 0.5) shares.fail("the kinds' mole percents add up to " + shown_number(sum) + ", not 100");
+  composition.area_per_lipid = leaflet.required("area_per_lipid").number_between(15.0, 150.0);
+  return composition;
+}
+
+// The membrane's "lipid_patch": one kind named by `name`, or several by residue name (`kinds`), and
+// optionally the composition asked of each leaflet.
+LipidPatchDescription parse_base_patch(const JsonCursor& patch, const std::filesystem::path& folder) {
+  patch.only_keys({"file", "name", "colour", "clearance", "kinds", "leaflets"});
+  LipidPatchDescription p = parse_lipid_patch(patch, folder);
+  std::vector<std::string> kind_names{p.name};
+  if (const auto kinds = patch.optional("kinds")) {
+    for (const char* own : {"name", "colour"})
+      if (const auto key = patch.optional(own)) key->fail("a patch of several kinds names and colours each in \"kinds\"");
+    p.kinds = parse_lipid_kinds(*kinds);
+    kind_names.clear();
+    for (const LipidKind& kind : p.kinds) kind_names.push_back(kind.name);
+  }
+  if (const auto leaflets = patch.optional("leaflets")) {
+    leaflets->only_keys({"outer", "inner"});
+    p.outer_leaflet = parse_leaflet(leaflets->required("outer"), kind_names);
+    p.inner_leaflet = parse_leaflet(leaflets->required("inner"), kind_names);
+  }
+  return p;
+}
+
 MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
                                    const Defined<MoleculeDescription>& molecules, const std::filesystem::path& folder) {
   c.only_keys({"tile_size", "edge_colours", "tiles", "proteins", "lipids", "lipid_patch", "lipid_mix"});
@@ -206,11 +273,13 @@ MembraneDescription parse_membrane(const std::string& name, const JsonCursor& c,
   }
   if (const auto patch = c.optional("lipid_patch")) {
     if (m.lipids) patch->fail("give either \"lipids\" (one pose, a surface density) or \"lipid_patch\", not both");
-    patch->only_keys({"file", "name", "colour", "clearance"});
-    m.lipid_patch = parse_lipid_patch(*patch, folder);
+    m.lipid_patch = parse_base_patch(*patch, folder);
   }
   if (const auto mix = c.optional("lipid_mix")) {
     if (!m.lipid_patch) mix->fail("a \"lipid_mix\" needs the \"lipid_patch\" whose places it takes");
+    if (!m.lipid_patch->kinds.empty() || m.lipid_patch->outer_leaflet)
+      mix->fail("a \"lipid_mix\" takes places of a patch of one kind; a patch of several kinds gives its "
+                "composition in \"lipid_patch.leaflets\"");
     double outer = 0.0, inner = 0.0;
     for (const JsonCursor& e : mix->elements()) {
       e.only_keys({"file", "name", "colour", "clearance", "outer", "inner"});

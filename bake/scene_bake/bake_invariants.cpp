@@ -147,8 +147,13 @@ void check_every_molecule_placed(const scene::SceneDescription& scene, const Bak
           outer += species.outer;
           inner += species.inner;
         }
-        if ((outer < 1.0 || inner < 1.0) && !placed(m.lipid_patch->name))
+        if (m.lipid_patch->kinds.empty() && (outer < 1.0 || inner < 1.0) && !placed(m.lipid_patch->name))
           refuse(key + ".lipid_patch", "the patch", c, m.lipid_patch->name, membrane_reason(baked, mi, c, m.lipid_patch->name));
+        for (const scene::LipidKind& kind : m.lipid_patch->kinds)
+          if (!placed(kind.name))
+            refuse(key + ".lipid_patch.kinds." + kind.residue, "the patch's kind", c, kind.name,
+                   membrane_reason(baked, mi, c, kind.name));
+        if (c.membrane) scene::check_leaflet_shares(scene, mi, c.membrane->outer_kinds, c.membrane->inner_kinds, "the bake keeps");
       }
       for (std::size_t j = 0; j < m.lipid_mix.size(); ++j) {
         const scene::LipidPatchDescription& species = m.lipid_mix[j];

@@ -37,6 +37,27 @@ void write_stand_ins(std::ostream& out, const format::Package& package) {
     out << "  " << name << " is a STAND-IN, no structure: " << source.substr(kStandInSourcePrefix.size() - 1) << "\n";
 }
 
+nlohmann::ordered_json mol_percent_json(const scene::LeafletCounts& kinds) {
+  nlohmann::ordered_json shares = nlohmann::ordered_json::object();
+  double all = 0.0;
+  for (const auto& [name, n] : kinds) all += static_cast<double>(n);
+  for (const auto& [name, n] : kinds) shares[name] = all > 0.0 ? 100.0 * static_cast<double>(n) / all : 0.0;
+  return shares;
+}
+
+// "cholesterol 43.1 %, POPC 26.9 %" of one leaflet's kept copies.
+std::string mol_percent_text(const scene::LeafletCounts& kinds) {
+  double all = 0.0;
+  for (const auto& [name, n] : kinds) all += static_cast<double>(n);
+  std::string text;
+  char share[64];
+  for (const auto& [name, n] : kinds) {
+    std::snprintf(share, sizeof share, "%.1f %%", all > 0.0 ? 100.0 * static_cast<double>(n) / all : 0.0);
+    text += (text.empty() ? "" : ", ") + name + " " + share;
+  }
+  return text;
+}
+
 nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
   nlohmann::ordered_json per_species = nlohmann::ordered_json::object(), dropped = nlohmann::ordered_json::object();
   for (const auto& [name, n] : m.lipids) per_species[name] = n / m.area_um2;
@@ -49,9 +70,10 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
   return {{"area_um2", m.area_um2},
           {"lipids_per_um2", per_species},
           {"lipids_per_um2_total", lipids},
-          {"real_bilayer_lipids_per_um2", kRealBilayerLipidsPerUm2},
-          {"fraction_of_real_bilayer", lipids / kRealBilayerLipidsPerUm2},
+          {"real_bilayer_lipids_per_um2", m.real_lipids_per_um2()},
+          {"fraction_of_real_bilayer", lipids / m.real_lipids_per_um2()},
           {"lipids_by_leaflet", {{"outer", m.outer_lipids}, {"inner", m.inner_lipids}}},
+          {"mol_percent_by_leaflet", {{"outer", mol_percent_json(m.outer_kinds)}, {"inner", mol_percent_json(m.inner_kinds)}}},
           {"protein_area_um2", {{"outer", m.outer_protein_um2}, {"inner", m.inner_protein_um2}}},
           {"fraction_of_real_bilayer_beside_proteins", m.fraction_of_real_bilayer_beside_proteins()},
           {"dropped", dropped},
@@ -291,7 +313,7 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       std::snprintf(line, sizeof line,
                     "  %s membrane: %.4g µm², %.3g lipids/µm² (%.0f%% of a real bilayer's %.3g; %.0f%% beside the proteins, "
                     "which take %.0f%% / %.0f%% of the outer / inner leaflet)",
-                    c.name.c_str(), m.area_um2, lipids, 100.0 * lipids / kRealBilayerLipidsPerUm2, kRealBilayerLipidsPerUm2,
+                    c.name.c_str(), m.area_um2, lipids, 100.0 * lipids / m.real_lipids_per_um2(), m.real_lipids_per_um2(),
                     100.0 * m.fraction_of_real_bilayer_beside_proteins(), 100.0 * m.outer_protein_um2 / m.area_um2,
                     100.0 * m.inner_protein_um2 / m.area_um2);
       out << line;
@@ -305,6 +327,9 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       std::snprintf(line, sizeof line, "; %.3g copies dropped (clashing, checked %s, or beyond a count), %.3g alternates shown in their place\n",
                     static_cast<double>(total(m.dropped)), checked.c_str(), static_cast<double>(total(m.alternates)));
       out << line;
+      if (m.outer_kinds.size() > 1 || m.inner_kinds.size() > 1)
+        out << "    mol % outer leaflet: " << mol_percent_text(m.outer_kinds)
+            << "; inner leaflet: " << mol_percent_text(m.inner_kinds) << "\n";
       for (const auto& [name, n] : m.unfit) {
         std::snprintf(line, sizeof line, "    %.3g %s left out where the surface folds too tightly for it (placed elsewhere if counted per compartment)\n",
                       static_cast<double>(n), name.c_str());

@@ -112,6 +112,27 @@ BakedMolecule load_baked_molecule(const scene::MoleculeDescription& description,
 }
 
 
+namespace {
+
+// The name and linear colour a patch lipid whose first atom is `first` reports under: the patch's,
+// or its residue name's kind (each kind's default colour the next after the patch's index).
+std::pair<std::string, glm::dvec3> lipid_kind(const scene::LipidPatchDescription& patch, const structure::Atom& first,
+                                              std::size_t colour_index) {
+  if (patch.kinds.empty())
+    return {patch.name, linear_colour(patch.colour.value_or(default_molecule_colour(colour_index)))};
+  for (std::size_t k = 0; k < patch.kinds.size(); ++k)
+    if (patch.kinds[k].residue == first.residue_name)
+      return {patch.kinds[k].name,
+              linear_colour(patch.kinds[k].colour.value_or(default_molecule_colour(colour_index + k)))};
+  std::string listed;
+  for (const scene::LipidKind& kind : patch.kinds) listed += (listed.empty() ? "" : ", ") + kind.residue;
+  throw InputError(patch.file.string(), "lipid_patch.kinds",
+                   "residue " + first.residue_name + " " + std::to_string(first.residue_number) + " (chain " +
+                       first.chain + ") is none of the kinds the scene lists (" + listed + ")");
+}
+
+}  // namespace
+
 BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& description, std::size_t colour_index,
                                  std::vector<BakedMolecule>& library) {
   const std::string file = description.file.string();
@@ -127,7 +148,6 @@ BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& description
   double mid = 0.0;
   for (const structure::Atom& a : molecule.atoms) mid += a.position.z;
   mid /= static_cast<double>(molecule.atoms.size());
-  const glm::dvec3 srgb = description.colour.value_or(default_molecule_colour(colour_index));
   const glm::dvec3 up(0.0, 0.0, 1.0);
   for (std::size_t begin = 0; begin < molecule.atoms.size();) {
     const structure::Atom& first = molecule.atoms[begin];
@@ -137,20 +157,40 @@ BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& description
            molecule.atoms[end].insertion_code == first.insertion_code)
       ++end;
     BakedMolecule lipid;
-    lipid.name = description.name;
+    std::tie(lipid.name, lipid.linear_colour) = lipid_kind(description, first, colour_index);
     lipid.source = description.file.filename().string();
     lipid.atoms.assign(molecule.atoms.begin() + begin, molecule.atoms.begin() + end);
     const glm::dvec3 centroid = structure::compute_molecule_properties(lipid.atoms, up).centroid;
     for (structure::Atom& atom : lipid.atoms) atom.position -= centroid;
     lipid.properties = structure::compute_molecule_properties(lipid.atoms, up);
     lipid.up = up;
-    lipid.linear_colour = linear_colour(srgb);
     patch.molecules.push_back(static_cast<std::uint32_t>(library.size()));
     patch.positions.push_back(centroid - glm::dvec3(0.0, 0.0, mid));
     library.push_back(std::move(lipid));
     begin = end;
   }
   return patch;
+}
+
+void add_to_leaflet(scene::LeafletCounts& counts, const std::string& kind, std::uint64_t copies) {
+  for (auto& [name, n] : counts)
+    if (name == kind) {
+      n += copies;
+      return;
+    }
+  counts.emplace_back(kind, copies);
+}
+
+std::pair<scene::LeafletCounts, scene::LeafletCounts> patch_leaflet_counts(const BakedLipidPatch& patch,
+                                                                         const std::vector<BakedMolecule>& library) {
+  std::pair<scene::LeafletCounts, scene::LeafletCounts> counts;
+  const auto add = [&](const BakedLipidPatch& species) {
+    for (std::size_t i = 0; i < species.molecules.size(); ++i)
+      add_to_leaflet(species.positions[i].z >= 0.0 ? counts.first : counts.second, library[species.molecules[i]].name, 1);
+  };
+  add(patch);
+  for (const BakedLipidPatch& species : patch.mix) add(species);
+  return counts;
 }
 
 std::vector<BakedMolecule> load_molecule_library(const scene::SceneDescription& scene) {

@@ -2,14 +2,17 @@
 // The scene's molecule types, read from their structure files and put into molecule space:
 // origin at the centroid, so a rotation about the origin turns a molecule in place and the
 // bounding radius about the origin is the tight one the tile packer and the shell sizes need.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "bake/scene/scene_description.hpp"
+#include "bake/scene/scene_feasibility.hpp"
 #include "bake/structure/atom.hpp"
 #include "bake/structure/molecule_properties.hpp"
 
@@ -51,6 +54,14 @@ struct BakedLipidPatch {
 // file for a missing or skewed box, an mmCIF file or a patch without lipids.
 BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& patch, std::size_t colour_index,
                                  std::vector<BakedMolecule>& library);
+
+// Adds `copies` lipids of `kind` to its entry of `counts` (kinds in the order first met).
+void add_to_leaflet(scene::LeafletCounts& counts, const std::string& kind, std::uint64_t copies);
+
+// The patch's own lipids (its mixed species' too) by leaflet and kind: outer where a lipid's
+// centroid stands at or above the mid-plane, as the tiles lay it.
+std::pair<scene::LeafletCounts, scene::LeafletCounts> patch_leaflet_counts(const BakedLipidPatch& patch,
+                                                                         const std::vector<BakedMolecule>& library);
 
 // A stand-in's source, as the package stores it for pick and the bake summary:
 // "stand-in (FROM, N spheres)"; is_stand_in_source tells one from a structure file's name.

@@ -94,10 +94,16 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
     if (lipid[i] != 0 && m.copies_by_molecule[i] > 0) {
       named_entry(s.lipids, library[i].name) += m.copies_by_molecule[i];
       (lipid[i] > 0 ? s.outer_lipids : s.inner_lipids) += m.copies_by_molecule[i];
+      add_to_leaflet(lipid[i] > 0 ? s.outer_kinds : s.inner_kinds, library[i].name, m.copies_by_molecule[i]);
     }
     if (m.dropped_by_molecule[i] > 0) named_entry(s.dropped, library[i].name) += m.dropped_by_molecule[i];
     if (m.alternates_by_molecule[i] > 0) named_entry(s.alternates, library[i].name) += m.alternates_by_molecule[i];
     if (m.unfit_by_molecule[i] > 0) named_entry(s.unfit, library[i].name) += m.unfit_by_molecule[i];
+  }
+  s.real_outer_per_um2 = s.real_inner_per_um2 = 0.5 * kRealBilayerLipidsPerUm2;
+  if (membrane.lipid_patch && membrane.lipid_patch->outer_leaflet && membrane.lipid_patch->inner_leaflet) {
+    s.real_outer_per_um2 = 1e8 / membrane.lipid_patch->outer_leaflet->area_per_lipid;  // Å² -> µm²
+    s.real_inner_per_um2 = 1e8 / membrane.lipid_patch->inner_leaflet->area_per_lipid;
   }
   if (membrane.lipids) {  // one pose in both leaflets: split evenly
     s.inner_lipids += s.outer_lipids / 2;
@@ -264,6 +270,8 @@ Molecules load_molecules(const scene::SceneDescription& scene) {
         mixed.inner = species.inner;
         m.patches[i]->mix.push_back(std::move(mixed));
       }
+      const auto [outer, inner] = patch_leaflet_counts(*m.patches[i], m.library);
+      scene::check_leaflet_shares(scene, i, outer, inner, "the patch file holds");
     }
   m.measures = measure_molecules(scene, m.library);
   scene::check_molecule_amounts(scene, m.measures);
@@ -702,9 +710,12 @@ std::optional<double> compartment_bilayer_thickness(const scene::SceneDescriptio
   return membrane_bilayer_thickness(m, patch, library);
 }
 
+double MembraneSummary::real_lipids_per_um2() const { return real_outer_per_um2 + real_inner_per_um2; }
+
 double MembraneSummary::fraction_of_real_bilayer_beside_proteins() const {
-  const double room = std::max(0.0, 2.0 * area_um2 - outer_protein_um2 - inner_protein_um2);  // both leaflets
-  return room > 0.0 ? static_cast<double>(outer_lipids + inner_lipids) / (0.5 * kRealBilayerLipidsPerUm2 * room) : 0.0;
+  const double real = std::max(0.0, area_um2 - outer_protein_um2) * real_outer_per_um2 +
+                      std::max(0.0, area_um2 - inner_protein_um2) * real_inner_per_um2;
+  return real > 0.0 ? static_cast<double>(outer_lipids + inner_lipids) / real : 0.0;
 }
 
 }  // namespace nano::scene_bake

@@ -57,12 +57,17 @@ struct MembraneSummary {
   std::uint64_t checked_copies = 0, atom_pairs = 0, copy_pairs_tested = 0;
   std::uint64_t checked_triangles = 0, triangles = 0;  // triangles whose copies were all checked, of all
   std::uint64_t outer_lipids = 0, inner_lipids = 0;  // by leaflet (the outer one faces the mesh normals)
+  scene::LeafletCounts outer_kinds, inner_kinds;     // the same by kind (a "lipids" fill: counted outer)
+  // A real bilayer's lipids per µm² in each leaflet: of the composition the patch's leaflets ask
+  // (their area_per_lipid), else of phosphatidylcholine (half kRealBilayerLipidsPerUm2 each).
+  double real_outer_per_um2 = 0.0, real_inner_per_um2 = 0.0;
   // Leaflet area the kept proteins take (tiles::leaflet_footprint within kLeafletHalfThickness of
   // the mid-plane), µm²: a real bilayer holds its lipids in the rest.
   double outer_protein_um2 = 0.0, inner_protein_um2 = 0.0;
 
   // Lipids against a real bilayer's count in the area the proteins leave.
   double fraction_of_real_bilayer_beside_proteins() const;
+  double real_lipids_per_um2() const;  // both leaflets
 };
 
 // Phosphate to mid-plane of a POPC leaflet (~19.5 Å): where a protein's atoms take lipid room.

@@ -43,6 +43,82 @@ TEST(SceneErrors, MessageHasTheFileThePathAndTheRule) {
   EXPECT_STREQ(e.what(), "scene.json:membranes.envelope.proteins[0].density_per_um2: expected a number >= 0, got \"lots\"");
 }
 
+// A patch of several kinds with the composition asked of each leaflet (data/rbc.json's form).
+Json patch_of_kinds() {
+  return parse_json_text(R"({"file": "rbc.pdb",
+    "kinds": {"CHL1": {"name": "cholesterol", "colour": "#f0e060"}, "POPC": {}, "PSM": {"name": "SM"}},
+    "leaflets": {"outer": {"mol_percent": {"cholesterol": 43, "POPC": 30, "SM": 27}, "area_per_lipid": 42},
+                 "inner": {"mol_percent": {"cholesterol": 43, "POPC": 57}, "area_per_lipid": 44}}})", "scene.json");
+}
+
+// The base scene with `lipid_patch` (and its lipids fill removed), `change` applied to the patch.
+Json scene_with_patch(const std::function<void(Json&)>& change) {
+  Json d = valid_scene();
+  d["membranes"]["envelope"].erase("lipids");
+  Json patch = patch_of_kinds();
+  change(patch);
+  d["membranes"]["envelope"]["lipid_patch"] = patch;
+  return d;
+}
+
+TEST(SceneErrors, APatchOfKindsParsesItsKindsAndLeaflets) {
+  const SceneDescription s = parse_scene_description(scene_with_patch([](Json&) {}), "/scenes/scene.json");
+  const LipidPatchDescription& p = *s.membranes.at(0).lipid_patch;
+  ASSERT_EQ(p.kinds.size(), 3u);
+  EXPECT_EQ(p.kinds[0].residue, "CHL1");
+  EXPECT_EQ(p.kinds[0].name, "cholesterol");
+  ASSERT_TRUE(p.kinds[0].colour.has_value());
+  EXPECT_EQ(p.kinds[1].name, "POPC");  // a kind without a name reports under its residue name
+  EXPECT_FALSE(p.kinds[1].colour.has_value());
+  ASSERT_TRUE(p.outer_leaflet && p.inner_leaflet);
+  EXPECT_EQ(p.outer_leaflet->mol_percent,
+            (std::vector<std::pair<std::string, double>>{{"cholesterol", 43}, {"POPC", 30}, {"SM", 27}}));
+  EXPECT_DOUBLE_EQ(p.outer_leaflet->area_per_lipid, 42);
+  EXPECT_DOUBLE_EQ(p.inner_leaflet->area_per_lipid, 44);
+}
+
+TEST(SceneErrors, APatchOfKindsNamesWhatIsWrongInItsKindsAndLeaflets) {
+  const auto parse_with = [](const std::function<void(Json&)>& change) {
+    return parse_scene_description(scene_with_patch(change), "scene.json");
+  };
+  const std::string patch = "membranes.envelope.lipid_patch";
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["name"] = "lipid"; }), patch + ".name", "each in \"kinds\"");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["colour"] = "#ffffff"; }), patch + ".colour", "each in \"kinds\"");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["kinds"]["POPC"]["name"] = "SM"; }), patch + ".kinds.PSM",
+                     "two kinds report under the name 'SM'");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["kinds"]["TOOLONG"] = Json::object(); }), patch + ".kinds.TOOLONG",
+                     "1 to 4 characters");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["kinds"] = Json::object(); }), patch + ".kinds", "at least one kind");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["leaflets"]["outer"]["mol_percent"]["chol"] = 0; }),
+                     patch + ".leaflets.outer.mol_percent.chol", "no kind of this patch is named 'chol' (its kinds: 'cholesterol', 'POPC', 'SM')");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["leaflets"]["inner"]["mol_percent"]["POPC"] = 50; }),
+                     patch + ".leaflets.inner.mol_percent", "add up to 93, not 100");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["leaflets"]["inner"]["mol_percent"]["POPC"] = -1; }),
+                     patch + ".leaflets.inner.mol_percent.POPC", "");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["leaflets"]["inner"].erase("area_per_lipid"); }),
+                     patch + ".leaflets.inner.area_per_lipid", "missing required key");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["leaflets"]["outer"]["area_per_lipid"] = 5; }),
+                     patch + ".leaflets.outer.area_per_lipid", "");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["leaflets"].erase("inner"); }), patch + ".leaflets.inner",
+                     "missing required key");
+  EXPECT_INPUT_ERROR(parse_with([](Json& p) { p["leaflets"]["middle"] = Json::object(); }), patch + ".leaflets.middle",
+                     "unknown key");
+  // Without kinds the one kind is the patch's name.
+  EXPECT_NO_THROW(parse_with([](Json& p) {
+    p.erase("kinds");
+    p["name"] = "POPC";
+    p["leaflets"]["outer"]["mol_percent"] = Json{{"POPC", 100}};
+    p["leaflets"]["inner"]["mol_percent"] = Json{{"POPC", 100}};
+  }));
+  EXPECT_INPUT_ERROR(parse_scene_description([] {
+                       Json d = scene_with_patch([](Json&) {});
+                       d["membranes"]["envelope"]["lipid_mix"] =
+                           Json::array({Json{{"file", "e.pdb"}, {"name", "POPE"}, {"outer", 0.2}, {"inner", 0.2}}});
+                       return d;
+                     }(), "scene.json"),
+                     "membranes.envelope.lipid_mix", "a patch of several kinds gives its composition");
+}
+
 TEST(SceneErrors, UnknownKeysAtEveryDepth) {
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["colour"] = 1; }), "colour", "unknown key; allowed here: format");
   EXPECT_INPUT_ERROR(parse_modified([](Json& d) { d["membranes"]["envelope"]["thickness"] = 40; }),

@@ -365,6 +365,33 @@ TEST(SceneFeasibility, ALipidMixShareThatRoundsToNoPlaceIsRefused) {
                      "membranes.envelope.lipid_mix[0].inner", "the patch has no lipid in the inner leaflet");
 }
 
+TEST(SceneFeasibility, LeafletSharesMoreThanFivePointsFromTheRequestAreRefusedByKind) {
+  const SceneDescription scene = scene_with([](Json& d) {
+    auto& m = d["membranes"]["envelope"];
+    m.erase("lipids");
+    m["lipid_patch"] = Json{{"file", "rbc.pdb"},
+                            {"kinds", Json{{"CHL1", Json{{"name", "cholesterol"}}}, {"POPC", Json::object()}}},
+                            {"leaflets", Json{{"outer", Json{{"mol_percent", Json{{"cholesterol", 40}, {"POPC", 60}}}, {"area_per_lipid", 45}}},
+                                              {"inner", Json{{"mol_percent", Json{{"cholesterol", 0}, {"POPC", 100}}}, {"area_per_lipid", 60}}}}}};
+  });
+  const LeafletCounts inner{{"POPC", 100}};
+  EXPECT_NO_THROW(check_leaflet_shares(scene, 0, {{"cholesterol", 45}, {"POPC", 55}}, inner, "the bake keeps"));
+  EXPECT_NO_THROW(check_leaflet_shares(scene, 0, {{"POPC", 65}, {"cholesterol", 35}}, inner, "the bake keeps"));
+  EXPECT_INPUT_ERROR(check_leaflet_shares(scene, 0, {{"cholesterol", 34}, {"POPC", 66}}, inner, "the bake keeps"),
+                     "membranes.envelope.lipid_patch.leaflets.outer.mol_percent.cholesterol",
+                     "40 % of the outer leaflet asked, but the bake keeps 34 % (cholesterol 34 (34 %), POPC 66 (66 %)): "
+                     "more than 5 points apart");
+  EXPECT_INPUT_ERROR(check_leaflet_shares(scene, 0, {{"POPC", 100}}, inner, "the patch file holds"),
+                     "membranes.envelope.lipid_patch.leaflets.outer.mol_percent.cholesterol",
+                     "40 % of the outer leaflet asked, but the patch file holds no cholesterol there (POPC 100 (100 %))");
+  // A kind the scene asks nothing of (or does not list) may hold at most 5 % of its leaflet.
+  EXPECT_NO_THROW(check_leaflet_shares(scene, 0, {{"cholesterol", 40}, {"POPC", 60}}, {{"POPC", 95}, {"cholesterol", 5}}, ""));
+  EXPECT_INPUT_ERROR(check_leaflet_shares(scene, 0, {{"cholesterol", 36}, {"POPC", 57}, {"POPS", 7}}, inner, "it holds"),
+                     "membranes.envelope.lipid_patch.leaflets.outer.mol_percent.POPS", "0 % of the outer leaflet asked, but it holds 7 %");
+  // A membrane that asks no composition passes whatever it holds.
+  EXPECT_NO_THROW(check_leaflet_shares(scene_with([](Json&) {}), 0, {{"x", 1}}, {}, ""));
+}
+
 TEST(SceneFeasibility, AmountKeysAreInTheUnitTheSceneWrote) {
   const auto s = scene_with([](Json& d) {
     auto& p = d["membranes"]["envelope"]["proteins"][0];

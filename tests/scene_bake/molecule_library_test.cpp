@@ -203,6 +203,53 @@ TEST(LipidPatch, BoxAndFormatErrorsNameTheFile) {
   EXPECT_TRUE(library.empty());
 }
 
+// Three lipids of two kinds: a POPC and a cholesterol (CHL1) above the mid-plane, a POPC below.
+constexpr const char* kTwoKindPatch =
+    "CRYST1   40.000   50.000   60.000  90.00  90.00  90.00 P 1           1\n"
+    "ATOM      1  C1  POPCA   1       0.000   2.000  15.000  1.00  0.00           C\n"
+    "ATOM      2  C2  POPCA   1       2.000   2.000  13.000  1.00  0.00           C\n"
+    "ATOM      3  C1  CHL1A   2      10.000   2.000  14.000  1.00  0.00           C\n"
+    "ATOM      4  O3  CHL1A   2      10.000   4.000  16.000  1.00  0.00           O\n"
+    "ATOM      5  C1  POPCB   3       5.000   5.000   2.000  1.00  0.00           C\n"
+    "ATOM      6  C2  POPCB   3       5.000   7.000   2.000  1.00  0.00           C\n"
+    "END\n";
+
+nano::scene::LipidPatchDescription two_kind_description() {
+  nano::scene::LipidPatchDescription d;
+  d.file = write_temp("nano_two_kinds.pdb", kTwoKindPatch);
+  d.kinds = {{"CHL1", "cholesterol", glm::dvec3(1.0, 1.0, 0.0)}, {"POPC", "POPC", std::nullopt}};
+  return d;
+}
+
+TEST(LipidPatch, KindsNameAndColourEachLipidByItsResidueName) {
+  std::vector<nano::scene_bake::BakedMolecule> library;
+  const auto patch = load_lipid_patch(two_kind_description(), 0, library);
+  ASSERT_EQ(library.size(), 3u);
+  EXPECT_EQ(library[0].name, "POPC");
+  EXPECT_EQ(library[1].name, "cholesterol");
+  EXPECT_EQ(library[1].linear_colour, glm::dvec3(1.0, 1.0, 0.0));  // sRGB 1 is linear 1
+  EXPECT_EQ(library[2].name, "POPC");
+  EXPECT_EQ(library[0].linear_colour, library[2].linear_colour);  // one kind, one colour
+  EXPECT_NE(library[0].linear_colour, library[1].linear_colour);
+  const auto [outer, inner] = nano::scene_bake::patch_leaflet_counts(patch, library);
+  EXPECT_EQ(outer, (nano::scene::LeafletCounts{{"POPC", 1}, {"cholesterol", 1}}));
+  EXPECT_EQ(inner, (nano::scene::LeafletCounts{{"POPC", 1}}));
+}
+
+TEST(LipidPatch, AResidueNoKindNamesIsRefusedNamingItAndTheFile) {
+  std::vector<nano::scene_bake::BakedMolecule> library;
+  nano::scene::LipidPatchDescription d = two_kind_description();
+  d.kinds.pop_back();
+  try {
+    load_lipid_patch(d, 0, library);
+    FAIL() << "expected an InputError";
+  } catch (const nano::InputError& e) {
+    EXPECT_EQ(e.file(), d.file.string());
+    EXPECT_EQ(e.where(), "lipid_patch.kinds");
+    EXPECT_EQ(e.rule(), "residue POPC 1 (chain A) is none of the kinds the scene lists (CHL1)");
+  }
+}
+
 // A stand-in is its spheres as pseudo-atoms, centred like any molecule, and says what it is.
 TEST(MoleculeLibrary, AStandInIsItsSpheresAndSaysSo) {
   nano::scene::MoleculeDescription description;
