@@ -12,7 +12,9 @@ shows the membrane, a pixel that meets a soluble copy (kind 1) first sees the lu
 Prints one line per sample point (membrane pixels / hit pixels) and exits 1 when --require is given
 and any point's coverage is below it. With --density (the membrane_density tool of the build), also
 counts the lipid copies whose origins stand within --density-radius Å of the normal through the
-point (explicit instancing) against a real bilayer's 2 leaflets x 1 lipid per 0.66 nm² of that disc.
+point (explicit instancing) against a real bilayer's count in that disc: one molecule per
+--area-per-lipid Å² in each leaflet (default 66, POPC's; a cholesterol-rich composition packs closer,
+the scene's lipid_patch.leaflets give its outer and inner areas).
 """
 import argparse
 import json
@@ -109,11 +111,16 @@ def main():
     ap.add_argument("--density", default=None, help="the membrane_density tool: also count lipids at each point")
     ap.add_argument("--density-radius", type=float, default=100.0)
     ap.add_argument("--lipids", default="POPC,POPE", help="molecule names counted as lipids")
+    ap.add_argument("--area-per-lipid", default="66",
+                    help="Å² per molecule of a real leaflet: one number for both, or OUTER,INNER")
     ap.add_argument("--require-density", type=float, default=None,
                     help="with --density: smallest share of a real bilayer's lipids accepted at every point")
     args = ap.parse_args()
     lipid_names = set(args.lipids.split(","))
-    real_per_a2 = 2.0 / 66.0  # two leaflets, one lipid per 0.66 nm²
+    areas = [float(a) for a in args.area_per_lipid.split(",")]
+    if len(areas) not in (1, 2) or min(areas) <= 0:
+        ap.error(f"--area-per-lipid: expected one or two positive numbers (Å²), got '{args.area_per_lipid}'")
+    real_per_a2 = 1.0 / areas[0] + 1.0 / areas[-1]  # both leaflets
 
     points = sample_points(args.scene, args.radius)
     results = []

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""Renders docs/membranes.md's close-up of the red blood cell's membrane: its leaflets side by side.
+
+Three panels of one patch of membrane at the centre of the cell's upper dimple, each about 150 Å
+across, from a package baked from data/rbc.json (or blood.json, whose red cells wear the same
+membrane):
+  1. the outer leaflet, seen from the plasma side (2000 Å out along the normal);
+  2. the inner leaflet, seen from inside the cell with the haemoglobin left out (--hide);
+  3. the bilayer cut open by the plane x = 0 and seen edge-on: the outer leaflet above the inner one.
+Each kind of lipid keeps the colour the scene gives it (cholesterol its own). Standard library only.
+
+    scripts/membrane_closeup.py --nanoview build/runtime/nanoview --package out/rbc.nup \
+        --out docs/images/rbc-leaflets.png [--size 320x320] [--hide haemoglobin]
+"""
+import argparse
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import effects_gallery  # noqa: E402  (render, read_png, sheet)
+import membrane_coverage  # noqa: E402  (the Evans-Fung surface of the red cell)
+
+DISTANCE = 2000.0  # Å from the membrane's mid-surface to the eye
+FOV = 4.3          # degrees: ~150 Å across at that distance
+
+
+def panels(hidden):
+    """(camera, extra nanoview options, what it shows) of each panel."""
+    top, normal = membrane_coverage.rbc_point(0.0, 0.0, top=True)  # dimple centre, normal +z
+    z = top[2]
+    hide = [option for name in hidden for option in ("--hide", name)]
+    outside = ((0.0, 0.0, z + DISTANCE), (0.0, 0.0, z), (0.0, 1.0, 0.0), FOV)
+    inside = ((0.0, 0.0, z - DISTANCE), (0.0, 0.0, z), (0.0, 1.0, 0.0), FOV)
+    edge_on = ((-DISTANCE, 0.0, z), (0.0, 0.0, z), (0.0, 0.0, 1.0), 0.6 * FOV)  # closer: the cut is ~45 Å thick
+    return [
+        (outside, [], "outer leaflet from the plasma"),
+        (inside, hide, "inner leaflet from the cytoplasm"),
+        # Keep x >= 0: the eye at x < 0 looks at the cut face.
+        (edge_on, ["--clip-plane", "1,0,0,0", "--effect", "clipping"] + hide, "the bilayer cut open at x = 0"),
+    ]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--nanoview", required=True)
+    parser.add_argument("--package", required=True, help="a package of data/rbc.json (or blood.json)")
+    parser.add_argument("--out", required=True, help="the PNG the three panels are written to")
+    parser.add_argument("--size", default="320x320")
+    parser.add_argument("--hide", nargs="*", default=["haemoglobin"], help="left out of the inside and cut views")
+    args = parser.parse_args()
+    rendered = []
+    with tempfile.TemporaryDirectory() as work:
+        for k, (camera, extra, what) in enumerate(panels(args.hide)):
+            out = os.path.join(work, f"panel-{k}.png")
+            effects_gallery.render(args.nanoview, args.package, camera, args.size, out, extra)
+            rendered.append(effects_gallery.read_png(out))
+            print(f"panel {k + 1}: {what}", flush=True)
+        partial = args.out + ".partial.png"
+        effects_gallery.sheet(rendered, len(rendered), partial)
+        os.replace(partial, args.out)
+
+
+if __name__ == "__main__":
+    main()
