@@ -84,7 +84,14 @@ MembraneLipids membrane_lipids(const scene::MembraneDescription& m, const std::o
       l.share.emplace_back(m.lipid_mix[k].name, share);
       mixed += share;
     }
-    l.share.insert(l.share.begin(), {m.lipid_patch->name, std::max(0.0, 1.0 - mixed)});
+    if (m.lipid_patch->kinds.empty()) {
+      l.share.insert(l.share.begin(), {m.lipid_patch->name, std::max(0.0, 1.0 - mixed)});
+    } else {  // a patch of several kinds: each kind's share of the patch's own lipids
+      const auto [outer, inner] = patch_leaflet_counts(*patch, library);
+      const double all = static_cast<double>(patch->molecules.size());
+      for (const scene::LeafletCounts* leaflet : {&outer, &inner})
+        for (const auto& [kind, n] : *leaflet) named_entry(l.share, kind) += static_cast<double>(n) / all;
+    }
   } else if (m.lipids) {
     l.per_a2 = 2.0 / m.lipids->area_per_lipid;
     l.atoms = static_cast<double>(library[m.lipids->molecule.index].atoms.size());

@@ -1,4 +1,5 @@
 #include "bake/scene_bake/molecule_library.hpp"
+#include "bake/scene_bake/named_totals.hpp"
 
 #include "bake/mesh/membrane_fit.hpp"
 
@@ -172,21 +173,12 @@ BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& description
   return patch;
 }
 
-void add_to_leaflet(scene::LeafletCounts& counts, const std::string& kind, std::uint64_t copies) {
-  for (auto& [name, n] : counts)
-    if (name == kind) {
-      n += copies;
-      return;
-    }
-  counts.emplace_back(kind, copies);
-}
-
 std::pair<scene::LeafletCounts, scene::LeafletCounts> patch_leaflet_counts(const BakedLipidPatch& patch,
                                                                          const std::vector<BakedMolecule>& library) {
   std::pair<scene::LeafletCounts, scene::LeafletCounts> counts;
   const auto add = [&](const BakedLipidPatch& species) {
     for (std::size_t i = 0; i < species.molecules.size(); ++i)
-      add_to_leaflet(species.positions[i].z >= 0.0 ? counts.first : counts.second, library[species.molecules[i]].name, 1);
+      ++named_entry(species.positions[i].z >= 0.0 ? counts.first : counts.second, library[species.molecules[i]].name);
   };
   add(patch);
   for (const BakedLipidPatch& species : patch.mix) add(species);

@@ -55,9 +55,6 @@ struct BakedLipidPatch {
 BakedLipidPatch load_lipid_patch(const scene::LipidPatchDescription& patch, std::size_t colour_index,
                                  std::vector<BakedMolecule>& library);
 
-// Adds `copies` lipids of `kind` to its entry of `counts` (kinds in the order first met).
-void add_to_leaflet(scene::LeafletCounts& counts, const std::string& kind, std::uint64_t copies);
-
 // The patch's own lipids (its mixed species' too) by leaflet and kind: outer where a lipid's
 // centroid stands at or above the mid-plane, as the tiles lay it.
 std::pair<scene::LeafletCounts, scene::LeafletCounts> patch_leaflet_counts(const BakedLipidPatch& patch,

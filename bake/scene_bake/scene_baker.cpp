@@ -94,7 +94,7 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
     if (lipid[i] != 0 && m.copies_by_molecule[i] > 0) {
       named_entry(s.lipids, library[i].name) += m.copies_by_molecule[i];
       (lipid[i] > 0 ? s.outer_lipids : s.inner_lipids) += m.copies_by_molecule[i];
-      add_to_leaflet(lipid[i] > 0 ? s.outer_kinds : s.inner_kinds, library[i].name, m.copies_by_molecule[i]);
+      named_entry(lipid[i] > 0 ? s.outer_kinds : s.inner_kinds, library[i].name) += m.copies_by_molecule[i];
     }
     if (m.dropped_by_molecule[i] > 0) named_entry(s.dropped, library[i].name) += m.dropped_by_molecule[i];
     if (m.alternates_by_molecule[i] > 0) named_entry(s.alternates, library[i].name) += m.alternates_by_molecule[i];
