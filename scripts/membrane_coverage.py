@@ -97,6 +97,25 @@ def read_ids(path):
     return kinds
 
 
+def protein_footprint(report_path):
+    """Mean leaflet area (Å²) one membrane protein copy takes, from the bake report of the first
+    compartment with a membrane: its proteins' area in the two leaflets over two, per protein copy."""
+    with open(report_path) as f:
+        report = json.load(f)
+    for compartment in report["compartments"]:
+        membrane = compartment.get("membrane")
+        if not membrane:
+            continue
+        lipids = set(membrane["lipids_per_um2"])
+        # The membrane's Wang set is the one holding its lipids; its other molecules are its proteins.
+        sets = {d["set"] for d in report["densities"] if d["molecule"] in lipids}
+        proteins = {d["molecule"] for d in report["densities"] if d["set"] in sets} - lipids
+        copies = sum(n for name, n in compartment["copies"].items() if name in proteins)
+        area = 0.5 * (membrane["protein_area_um2"]["outer"] + membrane["protein_area_um2"]["inner"]) * 1e8
+        return area / copies if copies else 0.0
+    return 0.0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("nanoview")
@@ -113,6 +132,9 @@ def main():
     ap.add_argument("--lipids", default="POPC,POPE", help="molecule names counted as lipids")
     ap.add_argument("--area-per-lipid", default="66",
                     help="Å² per molecule of a real leaflet: one number for both, or OUTER,INNER")
+    ap.add_argument("--report", default=None,
+                    help="the bake's JSON report: each protein copy in a disc then takes its mean leaflet footprint "
+                         "(the report's protein area over its protein copies) from the area the lipids are judged by")
     ap.add_argument("--require-density", type=float, default=None,
                     help="with --density: smallest share of a real bilayer's lipids accepted at every point")
     args = ap.parse_args()
@@ -122,6 +144,7 @@ def main():
         ap.error(f"--area-per-lipid: expected one or two positive numbers (Å²), got '{args.area_per_lipid}'")
     real_per_a2 = 1.0 / areas[0] + 1.0 / areas[-1]  # both leaflets
 
+    footprint = protein_footprint(args.report) if args.report else 0.0
     points = sample_points(args.scene, args.radius)
     results = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -156,9 +179,14 @@ def main():
                 copies = counted[k]
                 lipids = sum(v for key, v in copies.items() if key in lipid_names)
                 proteins = {key: v for key, v in copies.items() if key not in lipid_names}
-                fraction = lipids / (real_per_a2 * math.pi * args.density_radius ** 2)
-                result.update({"lipids_in_disc": lipids, "proteins_in_disc": proteins, "of_real_bilayer": fraction})
+                disc = math.pi * args.density_radius ** 2
+                fraction = lipids / (real_per_a2 * disc)
+                beside = lipids / (real_per_a2 * max(1.0, disc - footprint * sum(proteins.values())))
+                result.update({"lipids_in_disc": lipids, "proteins_in_disc": proteins, "of_real_bilayer": fraction,
+                               "of_real_bilayer_beside_proteins": beside})
                 line += f"; {lipids:5d} lipids in the {args.density_radius:.0f} Å disc = {100 * fraction:5.1f} % of a real bilayer"
+                if args.report:
+                    line += f", {100 * beside:5.1f} % beside the proteins"
                 if proteins:
                     line += " (" + ", ".join(f"{key} {v}" for key, v in sorted(proteins.items())) + ")"
             results.append(result)
@@ -170,8 +198,9 @@ def main():
     print(f"smallest coverage {100 * worst:.2f} %")
     failed = args.require is not None and worst < args.require
     if args.density:
-        thinnest = min(r["of_real_bilayer"] for r in results)
-        print(f"fewest lipids {100 * thinnest:.1f} % of a real bilayer")
+        measure = "of_real_bilayer_beside_proteins" if args.report else "of_real_bilayer"
+        thinnest = min(r[measure] for r in results)
+        print(f"fewest lipids {100 * thinnest:.1f} % of a real bilayer" + (" beside the proteins" if args.report else ""))
         failed = failed or (args.require_density is not None and thinnest < args.require_density)
     if failed:
         sys.exit(1)
