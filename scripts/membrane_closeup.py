@@ -32,7 +32,10 @@ def panels(hidden):
     hide = [option for name in hidden for option in ("--hide", name)]
     outside = ((0.0, 0.0, z + DISTANCE), (0.0, 0.0, z), (0.0, 1.0, 0.0), FOV)
     inside = ((0.0, 0.0, z - DISTANCE), (0.0, 0.0, z), (0.0, 1.0, 0.0), FOV)
-    edge_on = ((-DISTANCE, 0.0, z), (0.0, 0.0, z), (0.0, 0.0, 1.0), 0.6 * FOV)  # closer: the cut is ~45 Å thick
+    # The dimple rises away from its centre: from the eye's side the cut face is the lowest membrane in
+    # view, the far dimple wall shows above it. Aimed 10 Å below the mid-surface so the inner leaflet's
+    # heads stay in the frame.
+    edge_on = ((-DISTANCE, 0.0, z - 10.0), (0.0, 0.0, z - 10.0), (0.0, 0.0, 1.0), 0.8 * FOV)
     return [
         (outside, [], "outer leaflet from the plasma"),
         (inside, hide, "inner leaflet from the cytoplasm"),
