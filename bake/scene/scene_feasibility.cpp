@@ -551,9 +551,9 @@ void check_one_leaflet(const SceneDescription& scene, const MembraneDescription&
   const std::string key = membrane_key(m) + ".lipid_patch.leaflets." + leaflet + ".mol_percent";
   // A kind the leaflet holds but the scene does not list is asked 0 %.
   std::vector<std::pair<std::string, double>> shares = asked.mol_percent;
-  for (const auto& [name, n] : counts)
-    if (std::none_of(shares.begin(), shares.end(), [&](const auto& a) { return a.first == name; }))
-      shares.emplace_back(name, 0.0);
+  for (const auto& held : counts)  // not a structured binding: clang 14 (the fuzz build) cannot capture one
+    if (std::none_of(shares.begin(), shares.end(), [&](const auto& a) { return a.first == held.first; }))
+      shares.emplace_back(held.first, 0.0);
   for (const auto& [kind, percent] : shares) {
     const std::uint64_t n = count_of(counts, kind);
     const double share = total > 0 ? 100.0 * static_cast<double>(n) / static_cast<double>(total) : 0.0;

@@ -17,6 +17,7 @@ import json
 import os
 import subprocess
 import sys
+import gzip
 import tempfile
 
 import gemmi
@@ -26,8 +27,18 @@ TOLERANCE = 1e-3
 EXTENSIONS = (".pdb", ".cif", ".ent", ".pdb.gz", ".cif.gz", ".ent.gz")
 
 
+def four_character_residue_names(path):
+    """True when ATOM/HETATM lines use column 21 (CHARMM's four-character residue names, as
+    scripts/build_lipid_patch.py writes CHL1, POPC): gemmi then reads that column as the first of a
+    two-character chain ID, nanobake as the residue name's last letter."""
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "rt", errors="replace") as f:
+        return any(line.startswith(("ATOM  ", "HETATM")) and len(line) > 21 and line[20] != " " for line in f)
+
+
 def expected_from_gemmi(path):
     st = gemmi.read_structure(path)
+    one_letter_chains = four_character_residue_names(path)
     if len(st) == 0:
         raise ValueError("gemmi reads no model from it")
     model = st[0]
@@ -37,9 +48,10 @@ def expected_from_gemmi(path):
             if residue.name in WATERS:
                 continue
             for atom in residue:  # gemmi keeps every altloc as its own atom
-                key = (chain.name, residue.seqid.num, residue.seqid.icode.strip(), atom.name)
+                chain_name = chain.name[-1:] if one_letter_chains else chain.name
+                key = (chain_name, residue.seqid.num, residue.seqid.icode.strip(), atom.name)
                 element = "H" if atom.element.name == "D" else atom.element.name
-                entry = [atom.occ, atom.pos, element, chain.name, atom.serial]
+                entry = [atom.occ, atom.pos, element, chain_name, atom.serial]
                 if key not in kept:
                     kept[key] = entry
                 elif atom.occ > kept[key][0]:
