@@ -3,7 +3,7 @@
 
   build_lipid_patch.py --outer CHL1=43,POPC=27,PSM=24,POPE=6 --inner CHL1=43,POPE=26,POPS=17,POPC=8,PSM=6
                        --out data/structures/rbc_bilayer.pdb.gz [--per-leaflet 100] [--seed 1]
-                       [--area-per-molecule A] [--md-ps 6] [--threads 2] [--reference auto|rbc|popc|none]
+                       [--area-per-molecule A] [--target-dpp D] [--md-ps 9] [--threads 1] [--reference auto|rbc|popc|none]
   build_lipid_patch.py --measure FILE.pdb[.gz] [--reference ...]
 
 --outer is the leaflet at larger z (chain A), --inner the one at smaller z (chain B); each is a list of
@@ -11,18 +11,24 @@ CHARMM36 residue names with mole percentages adding up to 100 (± 0.5). Known re
 (run --help). Both leaflets get --per-leaflet molecules, whole numbers whose fractions must stay within
 2 percentage points of the request (the error names sizes that work).
 
-How a patch is made (python3-rdkit, packmol, python3-simtk = OpenMM 7.7, python3-networkx):
+How a patch is made (Debian: python3-rdkit, packmol, python3-simtk + libopenmm-plugins = OpenMM 7.7,
+python3-networkx; run with the Debian python3):
   1. each species from its SMILES (stereo included): RDKit ETKDG conformers (fixed seed), tails set all-trans
-     (the cis/trans double bonds kept) and MMFF-relaxed with those torsions held; the straightest kept;
+     (double bonds untouched, so cis stays cis), linker torsions searched so the tails lie side by side,
+     MMFF-relaxed with the tail torsions held; the slimmest ones that can stand upright are kept;
   2. atom names from the charmm36.xml residue template by graph matching (elements + bonds, networkx);
-  3. packmol packs each leaflet in a periodic box (heads above a plane, tail ends below one), TIP3P water
-     above and below, and Na+ to neutralise anionic lipids;
-  4. OpenMM CHARMM36 (PME, H bonds constrained): minimise, a short Langevin MD at 310 K under a
-     membrane barostat (tension 0), minimise again;
-  5. heavy lipid atoms written as PDB (CRYST1 = the box, residues wrapped by centroid into [0,a)x[0,b)),
-     REMARKs with the provenance and measurements, gzip -n -9, written under a temporary name then renamed.
-The build fails (exit 1) when the written patch has any clash at 0.6 x (r1 + r2) or a residue whose
-stereochemistry or bonds did not survive. --measure only measures an existing patch.
+  3. packmol packs each leaflet upright at 1.25 x the target area (heads in a height band, tail ends below
+     a plane; packmol 20.14 has no periodic boxes, so atoms keep 1 A off the box faces), TIP3P water above
+     and below, Na+ beside each leaflet to neutralise its anionic lipids; its best try is taken as it is;
+  4. OpenMM CHARMM36 on the CPU: minimise; squeeze the box to the target area in steps while a restraint
+     pulls the heads to the target P-P thickness (all-trans lipids start too thick); Langevin MD at 310 K
+     under a membrane barostat (tension 0), steered, then free for the last --release-ps; minimise again;
+  5. heavy lipid atoms written as PDB (CRYST1 = the box, residues wrapped by centroid into [0,a)x[0,b),
+     chain A outer, chain B inner), REMARKs with the provenance and measurements, gzip -n -9, written under
+     a temporary name and renamed.
+The build writes nothing and exits 1 when the patch has any clash at 0.6 x (r1 + r2), a lipid whose R/S or
+cis/trans configuration changed, a stretched bond, a bond through a ring or a lipid on the wrong side.
+--measure only measures an existing patch (area per lipid, D_PP, clashes at 0.6/0.8/1.0 x).
 Exit status: 0 fine, 1 failed check, 2 bad arguments or missing packages.
 """
 import argparse
@@ -30,7 +36,6 @@ import collections
 import gzip
 import math
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -162,12 +167,11 @@ def import_build_packages():
     try:
         import networkx  # noqa: F401
         import numpy  # noqa: F401
-        import openmm  # noqa: F401
+        import openmm
         import rdkit  # noqa: F401
     except ImportError as error:
         fail_usage(f"missing Python package ({error.name}); install with: apt-get install -y {APT_PACKAGES} "
                    f"(and run with the Debian python3, /usr/bin/python3)")
-    import openmm
     platforms = [openmm.Platform.getPlatform(i).getName() for i in range(openmm.Platform.getNumPlatforms())]
     if "CPU" not in platforms:
         fail_usage(f"OpenMM has no CPU platform (only {', '.join(platforms)}); install with: "
@@ -658,7 +662,7 @@ def plain_lennard_jones(system, atom_types, lennard_jones):
         system.removeForce(index)
 
 
-def create_simulation(topology, templates, atom_types, restraint, positions_a, seed, threads):
+def create_simulation(topology, templates, atom_types, restraints, positions_a, seed, threads):
     """CHARMM36 + CHARMM TIP3P, H bonds constrained, on the CPU. Electrostatics by reaction field (1.0 nm)
     and plain LJ: PME and the tabulated LJ took ~0.6 s per force evaluation on this OpenMM build, too slow
     for a build; a few ps of relaxation does not need them."""
@@ -669,7 +673,8 @@ def create_simulation(topology, templates, atom_types, restraint, positions_a, s
                                      switchDistance=0.8 * unit.nanometer, constraints=app.HBonds, rigidWater=True,
                                      residueTemplates=templates)
     plain_lennard_jones(system, atom_types, read_lennard_jones())
-    system.addForce(restraint)
+    for restraint in restraints:
+        system.addForce(restraint)
     barostat = openmm.MonteCarloMembraneBarostat(1.0 * unit.bar, 0.0 * unit.bar * unit.nanometer,
                                                  TEMPERATURE_K * unit.kelvin, openmm.MonteCarloMembraneBarostat.XYIsotropic,
                                                  openmm.MonteCarloMembraneBarostat.ZFree, 25)
@@ -701,6 +706,45 @@ def head_height_restraint(molecules, heads_of, elements_of, target_dpp):
             force.addBond([0, group], [(target_dpp / 2.0 - lowered) / 10.0])
     force.setUsesPeriodicBoundaryConditions(False)
     return force
+
+
+STEREO_HOLD = 1000.0  # kJ/mol/rad², the stereo restraint's spring while it is on
+
+
+def stereo_restraint(molecules, species_mols):
+    """Flat-bottomed (+-30°) restraints on an improper torsion at each R/S centre and on the torsion across
+    each cis/trans double bond the SMILES fixes, at the values of the species' conformer: packmol's overlaps
+    can otherwise push an atom through its neighbours in the first minimisation (CHARMM-GUI restrains the
+    same things while it equilibrates)."""
+    import openmm
+    force = openmm.CustomTorsionForce("0.5*k_stereo*max(0, abs(d) - 0.5236)^2;"
+                                      "d = theta - theta0 - 6.283185307*floor((theta - theta0 + 3.141592654)/6.283185307)")
+    force.addGlobalParameter("k_stereo", STEREO_HOLD)
+    force.addPerTorsionParameter("theta0")
+    torsions = {residue: stereo_torsions(mol) for residue, mol in species_mols.items()}
+    for m in (m for m in molecules if m.kind == "lipid"):
+        for atoms, value in torsions[m.residue]:
+            force.addTorsion(*(m.first + i for i in atoms), [value])
+    return force
+
+
+def stereo_torsions(mol):
+    """(four atom indices, radians) for each R/S centre (neighbours 1-3 and the centre) and each fixed
+    double bond (a heavy neighbour on each side), measured on the molecule's conformer."""
+    from rdkit.Chem import rdMolTransforms
+    conformer = mol.GetConformer()
+    atoms, bonds = smiles_stereo(mol)
+    torsions = []
+    for centre in atoms:
+        n = sorted(a.GetIdx() for a in mol.GetAtomWithIdx(centre).GetNeighbors())
+        torsions.append((n[0], n[1], n[2], centre))
+    for index in bonds:
+        bond = mol.GetBondWithIdx(index)
+        b, c = bond.GetBeginAtom(), bond.GetEndAtom()
+        a = next(x.GetIdx() for x in b.GetNeighbors() if x.GetIdx() != c.GetIdx() and x.GetSymbol() != "H")
+        d = next(x.GetIdx() for x in c.GetNeighbors() if x.GetIdx() != b.GetIdx() and x.GetSymbol() != "H")
+        torsions.append((a, b.GetIdx(), c.GetIdx(), d))
+    return [(t, rdMolTransforms.GetDihedralRad(conformer, *t)) for t in torsions]
 
 
 def positions_and_box(simulation):
@@ -738,7 +782,6 @@ def squeeze_to_area(simulation, molecules, target_area, steps, per_leaflet, log)
     """Deflate the loosely packed box to the target area in `steps` equal steps: move every molecule's
     centre (not its shape) towards the origin in x and y, minimise, and let the membrane barostat (z free)
     settle the water for 0.2 ps."""
-    import numpy
     from openmm import Vec3, unit
     positions, box = positions_and_box(simulation)
     factor = math.sqrt(target_area / (box.a * box.b)) ** (1.0 / steps)
@@ -775,6 +818,7 @@ def relax(simulation, molecules, target_area, args, log):
     log(f"  MD {args.md_ps - args.release_ps:g} ps steered ({steered} steps of 2 fs): D_PP "
         f"{phosphate_thickness(simulation, molecules):.1f} A; {time.time() - started:.0f} s")
     simulation.context.setParameter("k_head", 0.0)
+    simulation.context.setParameter("k_stereo", 0.0)
     simulation.step(free)
     log(f"  MD {args.release_ps:g} ps free: D_PP {phosphate_thickness(simulation, molecules):.1f} A; "
         f"{time.time() - started:.0f} s")
@@ -1102,13 +1146,13 @@ def canonical_arguments(args):
              f"--min-steps {args.min_steps}", f"--squeeze-steps {args.squeeze_steps}", f"--md-ps {args.md_ps:g}",
              f"--release-ps {args.release_ps:g}", f"--target-dpp {args.target_dpp:g}",
              f"--final-min-steps {args.final_min_steps}", f"--threads {args.threads}",
-             f"--reference {args.reference}", f"--out {os.path.basename(args.out)}"]
-    return " ".join(parts)
+             f"--reference {args.reference}"] + [f"--note '{note}'" for note in args.note]
+    return " ".join(parts + [f"--out {os.path.basename(args.out)}"])
 
 
 def provenance_texts(args, leaflets, requests, versions, checks):
-    texts = [f"LIPID BILAYER PATCH BUILT BY scripts/build_lipid_patch.py (Nanouniverse), heavy atoms only;"
-             f" chain A = outer leaflet (+z), chain B = inner leaflet; normal along z",
+    texts = ["LIPID BILAYER PATCH BUILT BY scripts/build_lipid_patch.py (Nanouniverse), heavy atoms only;"
+             " chain A = outer leaflet (+z), chain B = inner leaflet; normal along z",
              f"ARGUMENTS: {canonical_arguments(args)}",
              f"SEED: {args.seed}",
              "PACKAGES (Debian): " + ", ".join(f"{p} {v}" for p, v in versions.items()),
@@ -1122,10 +1166,14 @@ def provenance_texts(args, leaflets, requests, versions, checks):
              f"(1 bar, tension 0, xy isotropic, z free), minimise <= {args.final_min_steps} iterations. "
              f"During the squeeze and the first {args.md_ps - args.release_ps:g} ps a flat-bottomed restraint "
              f"({HEAD_PULL:g} kJ/mol/nm2, flat within +-0.5 A) held P at +-{args.target_dpp / 2:g} A from the mid-plane (sterol O "
-             f"4 A lower): D_PP is steered, not predicted; the last {args.release_ps:g} ps ran free. "
+             f"4 A lower): D_PP is steered, not predicted. Until then flat-bottomed (+-30 deg, "
+             f"{STEREO_HOLD:g} kJ/mol/rad2) torsion restraints also held every R/S centre and cis/trans bond "
+             f"the SMILES fixes; the last {args.release_ps:g} ps ran free. "
              "Electrostatics by reaction field (1.0 nm cut-off), LJ switched 0.8-1.0 nm with Lorentz-Berthelot "
              "mixing (CHARMM NBFIX pairs not applied), for speed on this OpenMM CPU build",
-             f"TARGET AREA PER LIPID: {args.area_per_molecule:.1f} A2 (from the species' single-lipid areas)"]
+             f"TARGET AREA PER LIPID: {args.area_per_molecule:.1f} A2 ("
+             f"{'given' if args.area_given else 'mean of the species areas the script lists'})"]
+    texts += [f"NOTE: {note}" for note in args.note]
     for chain, counts in leaflets:
         request = " ".join(f"{SPECIES[r].pdb_name}={p:g}" for r, p in requests[chain].items())
         texts.append(f"REQUEST {chain}: {request}")
@@ -1142,8 +1190,7 @@ def species_notes(residues):
 
 
 def build_patch(args, requests, leaflets, log):
-    """Conformers -> packmol -> OpenMM; returns the PDB text and whether every check passed."""
-    import numpy
+    """Conformers -> packmol -> OpenMM: the PDB lines (CRYST1, atoms, END) and (check texts, all sound?)."""
     started = time.time()
     residues = sorted(set().union(*(set(c) for _, c in leaflets)))
     templates = read_templates(set(residues))
@@ -1161,7 +1208,8 @@ def build_patch(args, requests, leaflets, log):
     topology, molecules, residue_templates, atom_types = build_topology(placements, box)
     restraint = head_height_restraint(molecules, {r: c[0].heads for r, c in conformers.items()},
                                       {r: c[0].elements for r, c in conformers.items()}, args.target_dpp)
-    simulation = create_simulation(topology, residue_templates, atom_types, restraint, packed, args.seed, args.threads)
+    restraints = [restraint, stereo_restraint(molecules, species_mols)]
+    simulation = create_simulation(topology, residue_templates, atom_types, restraints, packed, args.seed, args.threads)
     positions, box = relax(simulation, molecules, args.area_per_molecule * args.per_leaflet, args, log)
     log(f"OpenMM done: {time.time() - started:.0f} s")
     checks = build_checks(topology, molecules, species_mols, conformers, positions, box, perfect)
@@ -1211,10 +1259,14 @@ def parse_arguments():
     parser.add_argument("--target-dpp", type=float,
                         help="P-P thickness (Å) the heads are steered to (default: middle of the reference's range)")
     parser.add_argument("--final-min-steps", type=int, default=500, help="last minimisation (default 500)")
-    parser.add_argument("--threads", type=int, default=2, help="OpenMM CPU threads (default 2)")
+    parser.add_argument("--threads", type=int, default=1,
+                        help="OpenMM CPU threads (default 1: the same bytes on every run; 2 is ~25 %% faster but "
+                        "OpenMM then sums forces in a varying order and the coordinates differ run to run)")
     parser.add_argument("--reference", default="auto", choices=["auto", "none"] + sorted(REFERENCES),
                         help="published values to compare with and steer D_PP to (auto: rbc when >= 25 %% "
                         "cholesterol, else popc)")
+    parser.add_argument("--note", action="append", default=[],
+                        help="a sentence for the REMARKs, e.g. where the composition comes from (repeatable)")
     parser.add_argument("--keep-work", metavar="DIR", help="keep packmol's files in DIR (debugging)")
     args = parser.parse_args()
     if not args.measure and not (args.outer and args.inner and args.out):
@@ -1244,6 +1296,7 @@ def main():
     requests = {"A": parse_composition(args.outer, "--outer"), "B": parse_composition(args.inner, "--inner")}
     leaflets = [("A", leaflet_counts(requests["A"], args.per_leaflet, "--outer")),
                 ("B", leaflet_counts(requests["B"], args.per_leaflet, "--inner"))]
+    args.area_given = args.area_per_molecule is not None
     if args.area_per_molecule is None:
         args.area_per_molecule = round((nominal_area(leaflets[0][1]) + nominal_area(leaflets[1][1])) / 2.0, 1)
     if args.target_dpp is None:

@@ -145,7 +145,7 @@ def check_patch(path):
 def main():
     paths = sys.argv[1:]
     if not paths or any(p.startswith("-") for p in paths):
-        print(__doc__.strip().splitlines()[2].strip(), file=sys.stderr)
+        print("usage: " + __doc__.strip().splitlines()[2].strip(), file=sys.stderr)
         return 2
     failed = False
     for path in paths:
