@@ -145,6 +145,8 @@ void add_bake_command(CLI::App& app) {
     write_file_atomically(options->output, bytes);
     display.end("writing the package", std::chrono::duration<double>(std::chrono::steady_clock::now() - written).count());
     std::fputs(bake_summary(baked, package).c_str(), stdout);
+    for (const std::string& warning : baked.warnings)
+      std::fprintf(stderr, "nanobake: warning: %s: %s\n", options->scene.c_str(), warning.c_str());
     const cellpack::HeldCopies held = held_copies(baked);
     if (to_bake.imported) {
       int off = 0;

@@ -178,4 +178,23 @@ void check_every_molecule_placed(const scene::SceneDescription& scene, const Bak
   }
 }
 
+std::vector<std::string> per_compartment_shortfalls(const scene::SceneDescription& scene, const BakedScene& baked) {
+  std::vector<std::string> shortfalls;
+  for (std::size_t ci = 0; ci < scene.compartments.size() && ci < baked.compartments.size(); ++ci) {
+    const auto& membrane = scene.compartments[ci].membrane;
+    if (!membrane) continue;
+    const scene::MembraneDescription& m = scene.membranes.at(membrane->index);
+    for (std::size_t i = 0; i < m.proteins.size(); ++i) {
+      const scene::MembraneProtein& p = m.proteins[i];
+      if (!p.per_compartment || !(p.abundance.value > 0.0)) continue;
+      const std::uint64_t kept = count_of(baked.compartments[ci].copies, p.molecule.name);
+      if (kept >= *p.per_compartment) continue;
+      shortfalls.push_back("membranes." + m.name + ".proteins[" + std::to_string(i) + "].per_compartment: compartment '" +
+                           baked.compartments[ci].name + "' keeps " + std::to_string(kept) + " of the " + std::to_string(*p.per_compartment) + " copies of '" +
+                           p.molecule.name + "' per_compartment asks: its tiles placed no more (pack them denser)");
+    }
+  }
+  return shortfalls;
+}
+
 }  // namespace nano::scene_bake

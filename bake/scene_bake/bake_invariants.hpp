@@ -11,6 +11,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "bake/mesh/proxy_mesh.hpp"
@@ -47,5 +48,10 @@ void check_nothing_emptied(const scene::SceneDescription& scene, std::span<const
 // Otherwise an InputError naming the scene file, the key of that amount and what became of the
 // copies (the set held none; all dropped where no prism fits or clashing; none inside the core).
 void check_every_molecule_placed(const scene::SceneDescription& scene, const BakedScene& baked);
+
+// A protein counted `per_compartment` that a compartment keeps fewer copies of than asked (its tiles
+// placed too few to choose from): one sentence per shortfall, naming the amount's key, the
+// compartment and both counts. Not refused (the count is an upper bound), but never silent.
+std::vector<std::string> per_compartment_shortfalls(const scene::SceneDescription& scene, const BakedScene& baked);
 
 }  // namespace nano::scene_bake

@@ -248,6 +248,7 @@ nlohmann::ordered_json bake_report(const BakedScene& scene, const format::Packag
   for (const auto& [name, bytes] : scene.stage_peak_bytes) stages_peak[name] = bytes;
   // The estimate made before the heavy stages beside what they then took (bake_estimate.hpp).
   j["estimate"] = estimate_json(scene.estimate);
+  j["warnings"] = scene.warnings;
   if (const auto& cached = scene.estimate_with_cache)
     j["estimate_with_cache"] = {{"cpu_seconds", cached->cpu_seconds},
                                 {"peak_memory_bytes", cached->peak_bytes},

@@ -688,6 +688,7 @@ BakedScene bake_described_scene(const scene::SceneDescription& scene, const Bake
   if (scene.medium) medium = clock.run("medium", [&] { return bake_scene_medium(in, molecules, sets, compartments, measured, placed); });
   clock.run("package content", [&] { fill_package_content(baked, {in, molecules, sets, compartments, medium}, placed); });
   check_every_molecule_placed(scene, baked);  // before anything is written (bake_invariants.hpp)
+  baked.warnings = per_compartment_shortfalls(scene, baked);
   return baked;
 }
 

@@ -137,6 +137,7 @@ struct BakedScene {
   // counted): what the stages after the estimate are to be held against. Absent: none did.
   std::optional<BakeEstimate> estimate_with_cache;
   double cpu_seconds_at_estimate = 0.0;  // process_cpu_seconds() then: what came after is what was estimated
+  std::vector<std::string> warnings;     // what the bake kept short of the scene's asking, by key (bake_invariants.hpp)
 };
 
 BakedScene bake_scene(const scene::SceneDescription& scene, const BakeOptions& options);

@@ -212,6 +212,21 @@ TEST(BakeInvariants, AProteinWhoseCopiesWereAllDroppedIsRefusedByItsAmountKey) {
             std::string::npos);
 }
 
+// per_compartment is an upper bound: fewer kept than asked passes, but is named, never silent.
+TEST(BakeInvariants, AProteinKeptShortOfItsPerCompartmentCountIsNamed) {
+  scene::SceneDescription counted = scene();
+  counted.membranes[0].proteins[0].per_compartment = 25;
+  EXPECT_TRUE(per_compartment_shortfalls(counted, everything_placed()).empty());  // 25 of 25
+  EXPECT_TRUE(per_compartment_shortfalls(scene(), everything_placed()).empty());  // not counted
+  BakedScene short_of_it = everything_placed();
+  short_of_it.compartments[0].copies[0] = {"spike", 19};
+  EXPECT_NO_THROW(check_every_molecule_placed(counted, short_of_it));
+  const std::vector<std::string> shortfalls = per_compartment_shortfalls(counted, short_of_it);
+  ASSERT_EQ(shortfalls.size(), 1u);
+  EXPECT_EQ(shortfalls[0], "membranes.env.proteins[0].per_compartment: compartment 'virion' keeps 19 of the 25 copies of "
+                           "'spike' per_compartment asks: its tiles placed no more (pack them denser)");
+}
+
 TEST(BakeInvariants, ASolubleMissingFromOneCompartmentIsRefusedNamingThatCompartment) {
   BakedScene baked = everything_placed();
   baked.compartments[1].copies.clear();
