@@ -24,6 +24,9 @@ import sys
 
 import gemmi
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "structure"))
+from compare_with_gemmi import four_character_residue_names  # noqa: E402
+
 WATERS = {"HOH", "WAT", "DOD", "H2O"}
 SIZE = 64
 TOLERANCE = 2e-3  # Å: float32 storage of centred coordinates of a ~200 Å molecule
@@ -34,15 +37,19 @@ def selected_atoms(path):
     # Chain parts unmerged: gemmi otherwise moves a chain's HETATM records (haem, glycans) next to
     # its ATOM records, while nanobake keeps file order.
     model = gemmi.read_structure(path, merge_chain_parts=False)[0]
+    # gemmi reads a CHARMM name's fourth letter (POPC, column 21) as the first of a two-letter chain.
+    four_letters = four_character_residue_names(path)
     order, best = [], {}
     for chain in model:
+        chain_name = chain.name[-1:] if four_letters else chain.name
         for residue in chain:
-            if residue.name in WATERS:
+            residue_name = residue.name + chain.name[:1] if four_letters and len(chain.name) == 2 else residue.name
+            if residue_name in WATERS:
                 continue
             for atom in residue:
-                key = (chain.name, residue.seqid.num, residue.seqid.icode.strip(), atom.name)
+                key = (chain_name, residue.seqid.num, residue.seqid.icode.strip(), atom.name)
                 element = "H" if atom.element.name == "D" else atom.element.name
-                entry = (atom.occ, (chain.name, residue.name, residue.seqid.num, residue.seqid.icode.strip(), atom.name,
+                entry = (atom.occ, (chain_name, residue_name, residue.seqid.num, residue.seqid.icode.strip(), atom.name,
                                     element.upper(), atom.altloc.strip("\0 "), (atom.pos.x, atom.pos.y, atom.pos.z)))
                 if key not in best:
                     order.append(key)
