@@ -8,7 +8,7 @@ foreach(view cutaway cells)
     set(base --clip-plane 0,0,-1,5300)
     set(camera "${cutaway_camera}")
   else()
-    set(names POPC POPE POPS POPI cholesterol sphingomyelin cardiolipin aquaporin)
+    set(names POPC POPE cholesterol sphingomyelin aquaporin)  # the lipid kinds this 48² view shows
     set(base --hide medium)
     set(camera "fov_degrees=40")  # the scene's camera, a little wider
   endif()
