@@ -1260,8 +1260,10 @@ def parse_arguments():
                         help="P-P thickness (Å) the heads are steered to (default: middle of the reference's range)")
     parser.add_argument("--final-min-steps", type=int, default=500, help="last minimisation (default 500)")
     parser.add_argument("--threads", type=int, default=1,
-                        help="OpenMM CPU threads (default 1: the same bytes on every run; 2 is ~25 %% faster but "
-                        "OpenMM then sums forces in a varying order and the coordinates differ run to run)")
+                        help="OpenMM CPU threads (default 1; 2 is ~25 %% faster). Neither gives the same bytes on "
+                        "every run: the conformers and packmol's input are, but packmol 20.14's moving of badly placed "
+                        "molecules is not (its log prints an unset count, 'Moving *********'), so a rebuild is a patch "
+                        "of the same make under the same checks, which one run can fail where another passed")
     parser.add_argument("--reference", default="auto", choices=["auto", "none"] + sorted(REFERENCES),
                         help="published values to compare with and steer D_PP to (auto: rbc when >= 25 %% "
                         "cholesterol, else popc)")
