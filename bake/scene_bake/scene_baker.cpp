@@ -713,6 +713,14 @@ std::optional<double> compartment_bilayer_thickness(const scene::SceneDescriptio
 
 double MembraneSummary::real_lipids_per_um2() const { return real_outer_per_um2 + real_inner_per_um2; }
 
+MembraneSummary::ByLeaflet MembraneSummary::fraction_of_real_leaflets_beside_proteins() const {
+  const auto fraction = [&](std::uint64_t lipids, double protein_um2, double real_per_um2) {
+    const double real = std::max(0.0, area_um2 - protein_um2) * real_per_um2;
+    return real > 0.0 ? static_cast<double>(lipids) / real : 0.0;
+  };
+  return {fraction(outer_lipids, outer_protein_um2, real_outer_per_um2), fraction(inner_lipids, inner_protein_um2, real_inner_per_um2)};
+}
+
 double MembraneSummary::fraction_of_real_bilayer_beside_proteins() const {
   const double real = std::max(0.0, area_um2 - outer_protein_um2) * real_outer_per_um2 +
                       std::max(0.0, area_um2 - inner_protein_um2) * real_inner_per_um2;

@@ -65,8 +65,13 @@ struct MembraneSummary {
   // the mid-plane), µm²: a real bilayer holds its lipids in the rest.
   double outer_protein_um2 = 0.0, inner_protein_um2 = 0.0;
 
-  // Lipids against a real bilayer's count in the area the proteins leave.
+  // Lipids against a real bilayer's count in the area the proteins leave: both leaflets, and each
+  // leaflet against a real one of its own composition in the area its proteins leave.
   double fraction_of_real_bilayer_beside_proteins() const;
+  struct ByLeaflet {
+    double outer = 0.0, inner = 0.0;
+  };
+  ByLeaflet fraction_of_real_leaflets_beside_proteins() const;
   double real_lipids_per_um2() const;  // both leaflets
 };
 
