@@ -151,7 +151,7 @@ void check_membrane_places_some(const SceneDescription& scene, const MembraneDes
       if (m.proteins[i].abundance.value > 0.0 && m.proteins[i].per_compartment && *m.proteins[i].per_compartment == 0) {
         const std::string amount = amount_key(m, i);
         const std::string unit = amount.substr(amount.rfind('.') + 1);
-        refuse(scene, membrane_key(m) + ".proteins[" + std::to_string(i) + "].per_compartment",
+        refuse(scene, protein_key(m, i, "per_compartment"),
                "0 keeps no copy of '" + m.proteins[i].molecule.name + "' on any compartment, though its " + unit +
                    " asks for " + short_number(m.proteins[i].abundance.value) + "; at least 1 (or " + unit +
                    " 0 for none)");
@@ -193,9 +193,12 @@ double copies_per_a3(const VolumeAbundance& a) {
   return a.unit == VolumeAbundance::Unit::millimolar ? a.value * kCopiesPerA3PerMillimolar : a.value / kA3PerUm3;
 }
 
+std::string protein_key(const MembraneDescription& m, std::size_t i, const std::string& field) {
+  return membrane_key(m) + ".proteins[" + std::to_string(i) + "]." + field;
+}
+
 std::string amount_key(const MembraneDescription& m, std::size_t i) {
-  return membrane_key(m) + ".proteins[" + std::to_string(i) + "]." +
-         (m.proteins.at(i).abundance.unit == SurfaceAbundance::Unit::per_um2 ? "density_per_um2" : "copies_per_tile");
+  return protein_key(m, i, m.proteins.at(i).abundance.unit == SurfaceAbundance::Unit::per_um2 ? "density_per_um2" : "copies_per_tile");
 }
 
 std::string amount_key(const SolubleDescription& s, std::size_t i) {
@@ -376,7 +379,7 @@ void check_bilayer_reach(const SceneDescription& scene, const CompartmentDescrip
     const MoleculeMeasure& p = measure_of(molecules, protein.molecule, "check_compartment_amounts");
     const double lo = protein.depth - p.reach_below, hi = protein.depth + p.reach_above;
     if (hi >= -half && lo <= half) continue;
-    refuse(scene, membrane_key(m) + ".proteins[" + std::to_string(i) + "].depth",
+    refuse(scene, protein_key(m, i, "depth"),
            short_number(protein.depth) + " Å leaves '" + protein.molecule.name +
                "' detached from its membrane: standing along its up axis at that depth its atoms span " +
                range_text(lo, hi) + " from the mid-surface, clear of " + slab +
@@ -419,7 +422,7 @@ void check_compartment_amounts(const SceneDescription& scene, std::size_t compar
     const double need = static_cast<double>(*protein.per_compartment) * footprint;
     if (covered + need > kMaxLeafletCoverage * mesh.area) {
       const double most = std::max(0.0, std::floor((kMaxLeafletCoverage * mesh.area - covered) / footprint));
-      refuse(scene, membrane_key(m) + ".proteins[" + std::to_string(i) + "].per_compartment",
+      refuse(scene, protein_key(m, i, "per_compartment"),
              std::to_string(*protein.per_compartment) + " cannot fit on compartment '" + c.name + "': its surface is " +
                  short_number(mesh.area / kA2PerUm2) + " µm² and '" + protein.molecule.name + "' covers " +
                  short_number(footprint / kA2PerNm2) + " nm²; at most " + short_number(most));

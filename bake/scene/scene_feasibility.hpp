@@ -69,6 +69,8 @@ double copies_per_a3(const VolumeAbundance& amount);
 // in ("membranes.envelope.proteins[2].density_per_um2").
 std::string amount_key(const MembraneDescription& membrane, std::size_t protein);
 std::string amount_key(const SolubleDescription& soluble, std::size_t molecule);
+// The key path of any field of a membrane's protein entry ("membranes.envelope.proteins[0].per_compartment").
+std::string protein_key(const MembraneDescription& membrane, std::size_t protein, const std::string& field);
 
 // Checks on the description alone: tile and cube sizes, mesh sizes, instance counts, random
 // placements against their boxes. Run before any file is read.

@@ -189,9 +189,9 @@ std::vector<std::string> per_compartment_shortfalls(const scene::SceneDescriptio
       if (!p.per_compartment || !(p.abundance.value > 0.0)) continue;
       const std::uint64_t kept = count_of(baked.compartments[ci].copies, p.molecule.name);
       if (kept >= *p.per_compartment) continue;
-      shortfalls.push_back("membranes." + m.name + ".proteins[" + std::to_string(i) + "].per_compartment: compartment '" +
-                           baked.compartments[ci].name + "' keeps " + std::to_string(kept) + " of the " + std::to_string(*p.per_compartment) + " copies of '" +
-                           p.molecule.name + "' per_compartment asks: its tiles placed no more (pack them denser)");
+      shortfalls.push_back(scene::protein_key(m, i, "per_compartment") + ": compartment '" + baked.compartments[ci].name +
+                           "' keeps " + std::to_string(kept) + " of the " + std::to_string(*p.per_compartment) +
+                           " copies of '" + p.molecule.name + "' per_compartment asks: its tiles placed no more (pack them denser)");
     }
   }
   return shortfalls;

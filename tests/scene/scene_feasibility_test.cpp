@@ -405,6 +405,7 @@ TEST(SceneFeasibility, AmountKeysAreInTheUnitTheSceneWrote) {
   EXPECT_EQ(amount_key(s.membranes[0], 1), "membranes.envelope.proteins[1].density_per_um2");
   EXPECT_EQ(amount_key(s.solubles[0], 0), "solubles.lumen.molecules[0].concentration_mM");
   EXPECT_EQ(amount_key(s.solubles[0], 1), "solubles.lumen.molecules[1].copies_per_um3");
+  EXPECT_EQ(protein_key(s.membranes[0], 1, "per_compartment"), "membranes.envelope.proteins[1].per_compartment");
 }
 
 TEST(SceneFeasibility, MeasuresMustMatchTheScene) {
