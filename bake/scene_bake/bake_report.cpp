@@ -67,6 +67,7 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
   nlohmann::ordered_json unfit = nlohmann::ordered_json::object();
   for (const auto& [name, n] : m.unfit) unfit[name] = n;
   const double lipids = total(m.lipids) / m.area_um2;
+  const MembraneSummary::ByLeaflet leaflets = m.fraction_of_real_leaflets_beside_proteins();
   return {{"area_um2", m.area_um2},
           {"lipids_per_um2", per_species},
           {"lipids_per_um2_total", lipids},
@@ -76,8 +77,7 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"mol_percent_by_leaflet", {{"outer", mol_percent_json(m.outer_kinds)}, {"inner", mol_percent_json(m.inner_kinds)}}},
           {"protein_area_um2", {{"outer", m.outer_protein_um2}, {"inner", m.inner_protein_um2}}},
           {"fraction_of_real_bilayer_beside_proteins", m.fraction_of_real_bilayer_beside_proteins()},
-          {"fraction_of_real_leaflet_beside_proteins", {{"outer", m.fraction_of_real_leaflets_beside_proteins().outer},
-                                                         {"inner", m.fraction_of_real_leaflets_beside_proteins().inner}}},
+          {"fraction_of_real_leaflet_beside_proteins", {{"outer", leaflets.outer}, {"inner", leaflets.inner}}},
           {"dropped", dropped},
           {"dropped_where_no_prism_fits", unfit},
           {"alternates_shown", alternates},
@@ -313,12 +313,13 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
     if (c.membrane) {
       const MembraneSummary& m = *c.membrane;
       const double lipids = total(m.lipids) / m.area_um2;
+      const MembraneSummary::ByLeaflet leaflets = m.fraction_of_real_leaflets_beside_proteins();
       std::snprintf(line, sizeof line,
                     "  %s membrane: %.4g µm², %.3g lipids/µm² (%.0f%% of a real bilayer's %.3g; %.0f%% beside the proteins, "
                     "%.0f%% / %.0f%% in the outer / inner leaflet, which they take %.0f%% / %.0f%% of)",
                     c.name.c_str(), m.area_um2, lipids, 100.0 * lipids / m.real_lipids_per_um2(), m.real_lipids_per_um2(),
-                    100.0 * m.fraction_of_real_bilayer_beside_proteins(), 100.0 * m.fraction_of_real_leaflets_beside_proteins().outer,
-                    100.0 * m.fraction_of_real_leaflets_beside_proteins().inner, 100.0 * m.outer_protein_um2 / m.area_um2,
+                    100.0 * m.fraction_of_real_bilayer_beside_proteins(), 100.0 * leaflets.outer,
+                    100.0 * leaflets.inner, 100.0 * m.outer_protein_um2 / m.area_um2,
                     100.0 * m.inner_protein_um2 / m.area_um2);
       out << line;
       for (const auto& [name, n] : m.lipids) {

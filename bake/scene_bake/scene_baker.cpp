@@ -713,18 +713,23 @@ std::optional<double> compartment_bilayer_thickness(const scene::SceneDescriptio
 
 double MembraneSummary::real_lipids_per_um2() const { return real_outer_per_um2 + real_inner_per_um2; }
 
+namespace {
+double share(double part, double whole) { return whole > 0.0 ? part / whole : 0.0; }
+}  // namespace
+
+MembraneSummary::ByLeaflet MembraneSummary::real_lipids_beside_proteins() const {
+  return {std::max(0.0, area_um2 - outer_protein_um2) * real_outer_per_um2,
+          std::max(0.0, area_um2 - inner_protein_um2) * real_inner_per_um2};
+}
+
 MembraneSummary::ByLeaflet MembraneSummary::fraction_of_real_leaflets_beside_proteins() const {
-  const auto fraction = [&](std::uint64_t lipids, double protein_um2, double real_per_um2) {
-    const double real = std::max(0.0, area_um2 - protein_um2) * real_per_um2;
-    return real > 0.0 ? static_cast<double>(lipids) / real : 0.0;
-  };
-  return {fraction(outer_lipids, outer_protein_um2, real_outer_per_um2), fraction(inner_lipids, inner_protein_um2, real_inner_per_um2)};
+  const ByLeaflet real = real_lipids_beside_proteins();
+  return {share(static_cast<double>(outer_lipids), real.outer), share(static_cast<double>(inner_lipids), real.inner)};
 }
 
 double MembraneSummary::fraction_of_real_bilayer_beside_proteins() const {
-  const double real = std::max(0.0, area_um2 - outer_protein_um2) * real_outer_per_um2 +
-                      std::max(0.0, area_um2 - inner_protein_um2) * real_inner_per_um2;
-  return real > 0.0 ? static_cast<double>(outer_lipids + inner_lipids) / real : 0.0;
+  const ByLeaflet real = real_lipids_beside_proteins();
+  return share(static_cast<double>(outer_lipids + inner_lipids), real.outer + real.inner);
 }
 
 }  // namespace nano::scene_bake

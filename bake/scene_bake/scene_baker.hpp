@@ -71,6 +71,7 @@ struct MembraneSummary {
   struct ByLeaflet {
     double outer = 0.0, inner = 0.0;
   };
+  ByLeaflet real_lipids_beside_proteins() const;  // a real leaflet's count in the area its proteins leave
   ByLeaflet fraction_of_real_leaflets_beside_proteins() const;
   double real_lipids_per_um2() const;  // both leaflets
 };

@@ -24,6 +24,8 @@ MembraneSummary two_compositions(std::uint64_t outer, std::uint64_t inner) {
 TEST(MembraneSummary, EachLeafletIsHeldAgainstARealOneOfItsCompositionBesideItsProteins) {
   // Real: outer 0.08 µm² x 2.22e6 = 177,778; inner 0.09 µm² x 1.5625e6 = 140,625.
   const MembraneSummary full = two_compositions(177'778, 140'625);
+  EXPECT_NEAR(full.real_lipids_beside_proteins().outer, 0.08 * 1e8 / 45.0, 1e-6);
+  EXPECT_NEAR(full.real_lipids_beside_proteins().inner, 0.09 * 1e8 / 64.0, 1e-6);
   EXPECT_NEAR(full.fraction_of_real_leaflets_beside_proteins().outer, 1.0, 1e-5);
   EXPECT_NEAR(full.fraction_of_real_leaflets_beside_proteins().inner, 1.0, 1e-5);
   EXPECT_NEAR(full.fraction_of_real_bilayer_beside_proteins(), 1.0, 1e-5);
