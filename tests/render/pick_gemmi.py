@@ -25,7 +25,7 @@ import sys
 import gemmi
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "structure"))
-from compare_with_gemmi import four_character_residue_names  # noqa: E402
+from compare_with_gemmi import four_character_residue_names, names_as_written  # noqa: E402
 
 WATERS = {"HOH", "WAT", "DOD", "H2O"}
 SIZE = 64
@@ -37,13 +37,11 @@ def selected_atoms(path):
     # Chain parts unmerged: gemmi otherwise moves a chain's HETATM records (haem, glycans) next to
     # its ATOM records, while nanobake keeps file order.
     model = gemmi.read_structure(path, merge_chain_parts=False)[0]
-    # gemmi reads a CHARMM name's fourth letter (POPC, column 21) as the first of a two-letter chain.
     four_letters = four_character_residue_names(path)
     order, best = [], {}
     for chain in model:
-        chain_name = chain.name[-1:] if four_letters else chain.name
         for residue in chain:
-            residue_name = residue.name + chain.name[:1] if four_letters and len(chain.name) == 2 else residue.name
+            chain_name, residue_name = names_as_written(chain, residue, four_letters)
             if residue_name in WATERS:
                 continue
             for atom in residue:

@@ -36,19 +36,27 @@ def four_character_residue_names(path):
         return any(line.startswith(("ATOM  ", "HETATM")) and len(line) > 21 and line[20] != " " for line in f)
 
 
+def names_as_written(chain, residue, four_letters):
+    """(chain ID, residue name) as the file means them: in a file of four-character residue names
+    (four_character_residue_names), gemmi's two-character chain is the name's 4th letter + the chain."""
+    if four_letters and len(chain.name) == 2:
+        return chain.name[1], residue.name + chain.name[0]
+    return chain.name, residue.name
+
+
 def expected_from_gemmi(path):
     st = gemmi.read_structure(path)
-    one_letter_chains = four_character_residue_names(path)
+    four_letters = four_character_residue_names(path)
     if len(st) == 0:
         raise ValueError("gemmi reads no model from it")
     model = st[0]
     kept = {}  # key -> [occupancy, position, element, chain]
     for chain in model:
         for residue in chain:
-            if residue.name in WATERS:
+            chain_name, residue_name = names_as_written(chain, residue, four_letters)
+            if residue_name in WATERS:
                 continue
             for atom in residue:  # gemmi keeps every altloc as its own atom
-                chain_name = chain.name[-1:] if one_letter_chains else chain.name
                 key = (chain_name, residue.seqid.num, residue.seqid.icode.strip(), atom.name)
                 element = "H" if atom.element.name == "D" else atom.element.name
                 entry = [atom.occ, atom.pos, element, chain_name, atom.serial]
