@@ -28,6 +28,9 @@ except ImportError:
     print("lipid_patch_check: needs python3-gemmi (apt-get install -y python3-gemmi)", file=sys.stderr)
     sys.exit(2)
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "structure"))
+from compare_with_gemmi import names_as_written  # noqa: E402
+
 RADIUS = {"C": 1.70, "N": 1.55, "O": 1.52, "P": 1.80, "S": 1.80}
 CLASH_FACTOR = 0.6
 MAX_DEVIATION_PP = 2.0
@@ -50,11 +53,12 @@ def remark_compositions(text, key):
 def residue_counts(model):
     """Residues per leaflet chain and name. gemmi 0.5 reads a residue name from columns 18-20 and a chain id
     from columns 21-22, so a CHARMM name's 4th character (CHL1, POPC: column 21) arrives as the first of a
-    two-character chain id ('1A'): the name is gemmi's name plus that character, the chain its last one."""
+    two-character chain id ('1A'); names_as_written puts it back."""
     counts = collections.defaultdict(collections.Counter)
     for chain in model:
         for residue in chain:
-            counts[chain.name[-1:]][residue.name + chain.name[:-1]] += 1
+            chain_name, residue_name = names_as_written(chain, residue, True)
+            counts[chain_name][residue_name] += 1
     return counts
 
 
