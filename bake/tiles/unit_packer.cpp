@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <map>
 #include <optional>
 
 namespace nano::tiles {
@@ -295,18 +296,37 @@ private:
     }
   }
 
+  // The layer copies a hole may be refilled from: its leaflet's, of its kind.
+  class RefillPools {
+  public:
+    explicit RefillPools(const FixedLayer& layer) : kind_(layer.kind_of_type) {
+      for (const Instance& c : layer.copies)
+        if (!c.alternate) pools_[key(c)].push_back(&c);
+    }
+    const std::vector<const Instance*>& of(const Instance& hole) const {
+      const auto found = pools_.find(key(hole));
+      return found == pools_.end() ? none_ : found->second;
+    }
+
+  private:
+    std::pair<bool, uint32_t> key(const Instance& c) const {
+      return {c.position.z >= 0.f, c.type < kind_.size() ? kind_[c.type] : 0u};
+    }
+    const std::vector<uint32_t>& kind_;
+    std::map<std::pair<bool, uint32_t>, std::vector<const Instance*>> pools_;
+    std::vector<const Instance*> none_;
+  };
+
   // Where a packed copy (a protein) pushed a layer lipid out, the hole would show what lies
   // beneath the membrane. Membrane builders pack lipids right against the protein: try other
-  // conformers of the same leaflet there, turned about the normal and moved away from the
+  // conformers of the same leaflet and kind there, turned about the normal and moved away from the
   // protein, and keep the first that fits.
   // Each hole's candidates are tried side by side against what stands before any refill, each hole
   // with its own random stream; then, in order, a hole keeps its find if it still fits beside the
   // refills kept before it, else tries again alone. The same set whatever the threads.
   void refill_holes(LayerLaying& laying, const UnitCopies& refused, SplitMix64& rng) {
     if (D_ != 2 || refused.empty()) return;
-    std::vector<const Instance*> upper, lower;
-    for (const Instance& c : laying.layer.copies)
-      if (!c.alternate) (c.position.z >= 0.f ? upper : lower).push_back(&c);
+    const RefillPools pools(laying.layer);
     float layer_reach = 0.f;
     for (const Instance& c : laying.layer.copies) layer_reach = std::max(layer_reach, shapes_[c.type].radius());
     const uint64_t stream = rng.next();
@@ -314,7 +334,7 @@ private:
     std::vector<glm::vec2> away(refused.size());
     parallel_for(refused.size(), settings_.threads, [&](size_t h) {
       const auto& [a, hole] = refused[h];
-      const std::vector<const Instance*>& pool = hole.position.z >= 0.f ? upper : lower;
+      const std::vector<const Instance*>& pool = pools.of(hole);
       if (pool.empty()) return;
       away[h] = away_from_intruder(a, hole, layer_reach, laying.laid_through);
       SplitMix64 own(mix64(stream ^ mix64(h + 1)));
@@ -322,7 +342,7 @@ private:
     });
     for (size_t h = 0; h < refused.size(); ++h) {
       const auto& [a, hole] = refused[h];
-      const std::vector<const Instance*>& pool = hole.position.z >= 0.f ? upper : lower;
+      const std::vector<const Instance*>& pool = pools.of(hole);
       if (pool.empty()) continue;
       std::optional<Instance> candidate = found[h];
       if (candidate && !fits(a, *candidate, kNone, laying.rule, laying.laid_through)) {

@@ -63,7 +63,7 @@ struct PackerSettings {
 // centre, and each instance of that unit keeps it unless it touches a packed copy the unit can meet
 // in some tiling: one decision per unit instance, so neighbouring tiles always agree.
 // Where a packed copy refuses a layer copy, up to refill_attempts other layer copies of the same
-// side of z = 0 (the same leaflet), turned about z and moved up to 8 Å away from the refusing copy
+// side of z = 0 (the same leaflet) and the same kind, turned about z and moved up to 8 Å away from the refusing copy
 // (and 3 Å across), are tried in its place.
 struct FixedLayer {
   // x, y (and z for cubes) in [0, edge). Alternates (Instance::alternate) are kept where the packed
@@ -76,6 +76,11 @@ struct FixedLayer {
   // 1024: the virion's M rims take 20 % of the refused lipids back (256: 14 %; 4096: 26 % at 6× the
   // time), which adds 1.1 % of a real bilayer's lipids.
   int refill_attempts = 1024;
+  // Kind of each molecule type (the conformers of one lipid share it): a hole is refilled with a
+  // conformer of its own kind, so that the composition asked is the one kept (drawn from the whole
+  // leaflet, the sterol that fits where a four-tailed lipid does not took 11 % of a leaflet asked for
+  // 4.5 % beside the virion's M dimers). Empty: any conformer of the leaflet.
+  std::vector<uint32_t> kind_of_type;
   // Packed types the layer is laid through (neither refuses a layer copy nor is refilled around):
   // their clashes with the layer are settled later, on the real surface.
   std::vector<uint32_t> laid_through;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -378,6 +379,15 @@ void keep_base_lipids_as_alternates(const std::vector<Instance>& base_lipids, co
     }
 }
 
+// One kind per molecule name: the conformers of a lipid share their kind's name.
+std::vector<uint32_t> kinds_by_name(const std::vector<MoleculeType>& types) {
+  std::map<std::string, uint32_t> kind;
+  std::vector<uint32_t> kinds;
+  kinds.reserve(types.size());
+  for (const MoleculeType& t : types) kinds.push_back(kind.emplace(t.name, static_cast<uint32_t>(kind.size())).first->second);
+  return kinds;
+}
+
 // The patch repeated over one tile with centres rescaled to the tile edge, minus the lipids that
 // clash with kept ones (in patch order) or with their images one edge away.
 FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, const std::vector<MoleculeType>& types,
@@ -390,6 +400,7 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   layer.clearance = patch.clearance;
   const float largest = request_places(p, mixed, layer.band, requested);
   layer.copies = repeat_patch(p, largest);
+  layer.kind_of_type = kinds_by_name(types);
   layer.refused_stay_as_alternates = surface.rigid();
   if (patch.mix.empty()) return layer;
   // Only a membrane pruned on its whole surface (tiles packed rigid) can pick alternates.
