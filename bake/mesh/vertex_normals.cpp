@@ -136,4 +136,15 @@ double largest_smooth_normal_tilt(const ProxyMesh& mesh, double smooth) {
   return tilt;
 }
 
+double offset_surface_area(const ProxyMesh& mesh, double distance) {
+  double area = 0.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    std::array<glm::dvec3, 3> p;
+    for (int c = 0; c < 3; ++c)
+      p[c] = mesh.corner_position(t, c) + (mesh.has_normals() ? distance * mesh.corner_normal(t, c) : glm::dvec3(0.0));
+    area += 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+  }
+  return area;
+}
+
 }  // namespace nano::mesh

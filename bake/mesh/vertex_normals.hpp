@@ -46,4 +46,10 @@ double largest_facet_sag(const ProxyMesh& mesh);
 // The same for triangle t alone.
 double triangle_facet_sag(const ProxyMesh& mesh, std::size_t t);
 
+// Area of the surface the mesh's triangles sweep when each corner moves `distance` Å along its
+// corner normal (the direction the shells stand copies along): where a leaflet lying that far out
+// (negative: in) from the mesh really spreads. ((R + d) / R)² of the mesh's area on a sphere of
+// radius R whose corner normals are radial (to 1e-8 here). The mesh's own area without normals.
+double offset_surface_area(const ProxyMesh& mesh, double distance);
+
 }  // namespace nano::mesh

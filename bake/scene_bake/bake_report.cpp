@@ -75,6 +75,7 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"fraction_of_real_bilayer", lipids / m.real_lipids_per_um2()},
           {"lipids_by_leaflet", {{"outer", m.outer_lipids}, {"inner", m.inner_lipids}}},
           {"mol_percent_by_leaflet", {{"outer", mol_percent_json(m.outer_kinds)}, {"inner", mol_percent_json(m.inner_kinds)}}},
+          {"leaflet_area_um2", {{"outer", m.leaflet_areas().outer}, {"inner", m.leaflet_areas().inner}}},
           {"protein_area_um2", {{"outer", m.outer_protein_um2}, {"inner", m.inner_protein_um2}}},
           {"fraction_of_real_bilayer_beside_proteins", m.fraction_of_real_bilayer_beside_proteins()},
           {"fraction_of_real_leaflet_beside_proteins", {{"outer", leaflets.outer}, {"inner", leaflets.inner}}},
@@ -319,8 +320,8 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
                     "%.0f%% / %.0f%% in the outer / inner leaflet, which they take %.0f%% / %.0f%% of)",
                     c.name.c_str(), m.area_um2, lipids, 100.0 * lipids / m.real_lipids_per_um2(), m.real_lipids_per_um2(),
                     100.0 * m.fraction_of_real_bilayer_beside_proteins(), 100.0 * leaflets.outer,
-                    100.0 * leaflets.inner, 100.0 * m.outer_protein_um2 / m.area_um2,
-                    100.0 * m.inner_protein_um2 / m.area_um2);
+                    100.0 * leaflets.inner, 100.0 * m.outer_protein_um2 / m.leaflet_areas().outer,
+                    100.0 * m.inner_protein_um2 / m.leaflet_areas().inner);
       out << line;
       for (const auto& [name, n] : m.lipids) {
         std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), n / m.area_um2);

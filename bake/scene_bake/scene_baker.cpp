@@ -74,6 +74,21 @@ struct CompartmentBake {
   double shell_margin = 0.0;  // how far copies reach outside the mesh (Å)
 };
 
+// How far the patch's lipid centres stand from its mid-plane, on average, in each leaflet (Å).
+struct LeafletDepths {
+  double outer = 0.0, inner = 0.0;
+};
+LeafletDepths lipid_centre_depths(const BakedLipidPatch& patch) {
+  double sum[2] = {0.0, 0.0};
+  std::size_t count[2] = {0, 0};
+  for (const glm::dvec3& p : patch.positions) {
+    const int side = p.z >= 0.0 ? 0 : 1;
+    sum[side] += std::abs(p.z);
+    ++count[side];
+  }
+  return {count[0] ? sum[0] / static_cast<double>(count[0]) : 0.0, count[1] ? sum[1] / static_cast<double>(count[1]) : 0.0};
+}
+
 MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembrane& m, const BakedWangSet& tiles,
                                  const std::vector<BakedMolecule>& library, const std::optional<BakedLipidPatch>& patch,
                                  const scene::MembraneDescription& membrane) {
@@ -88,6 +103,9 @@ MembraneSummary membrane_summary(const mesh::ProxyMesh& mesh, const BakedMembran
   if (patch) {
     mark(*patch);
     for (const BakedLipidPatch& species : patch->mix) mark(species);
+    const LeafletDepths depths = lipid_centre_depths(*patch);
+    s.outer_area_um2 = mesh::offset_surface_area(mesh, depths.outer) * 1e-8;
+    s.inner_area_um2 = mesh::offset_surface_area(mesh, -depths.inner) * 1e-8;
   }
   if (membrane.lipids) lipid[membrane.lipids->molecule.index] = 1;  // both leaflets: counted as outer
   for (std::size_t i = 0; i < library.size(); ++i) {
@@ -717,9 +735,14 @@ namespace {
 double share(double part, double whole) { return whole > 0.0 ? part / whole : 0.0; }
 }  // namespace
 
+MembraneSummary::ByLeaflet MembraneSummary::leaflet_areas() const {
+  return {outer_area_um2 > 0.0 ? outer_area_um2 : area_um2, inner_area_um2 > 0.0 ? inner_area_um2 : area_um2};
+}
+
 MembraneSummary::ByLeaflet MembraneSummary::real_lipids_beside_proteins() const {
-  return {std::max(0.0, area_um2 - outer_protein_um2) * real_outer_per_um2,
-          std::max(0.0, area_um2 - inner_protein_um2) * real_inner_per_um2};
+  const ByLeaflet area = leaflet_areas();
+  return {std::max(0.0, area.outer - outer_protein_um2) * real_outer_per_um2,
+          std::max(0.0, area.inner - inner_protein_um2) * real_inner_per_um2};
 }
 
 MembraneSummary::ByLeaflet MembraneSummary::fraction_of_real_leaflets_beside_proteins() const {

@@ -48,6 +48,9 @@ inline constexpr double kRealBilayerLipidsPerUm2 = 2.0 / 0.66e-6;
 
 // What a compartment's membrane holds per area, as a structural biologist would count it.
 struct MembraneSummary {
+  struct ByLeaflet {
+    double outer = 0.0, inner = 0.0;
+  };
   double area_um2 = 0.0;                                               // the mesh's surface
   std::vector<std::pair<std::string, std::uint64_t>> lipids;           // species -> kept copies
   std::vector<std::pair<std::string, std::uint64_t>> dropped;          // molecule -> copies dropped (clashing, or beyond a count)
@@ -64,13 +67,15 @@ struct MembraneSummary {
   // Leaflet area the kept proteins take (tiles::leaflet_footprint within kLeafletHalfThickness of
   // the mid-plane), µm²: a real bilayer holds its lipids in the rest.
   double outer_protein_um2 = 0.0, inner_protein_um2 = 0.0;
+  // Each leaflet's own surface, µm²: the mesh moved along its normals to where the leaflet's lipid
+  // centres stand (mesh::offset_surface_area), so that a leaflet on a curved membrane is held against
+  // a real one of its own area (0: the mesh's, as for a lipid fill).
+  double outer_area_um2 = 0.0, inner_area_um2 = 0.0;
+  ByLeaflet leaflet_areas() const;
 
   // Lipids against a real bilayer's count in the area the proteins leave: both leaflets, and each
   // leaflet against a real one of its own composition in the area its proteins leave.
   double fraction_of_real_bilayer_beside_proteins() const;
-  struct ByLeaflet {
-    double outer = 0.0, inner = 0.0;
-  };
   ByLeaflet real_lipids_beside_proteins() const;  // a real leaflet's count in the area its proteins leave
   ByLeaflet fraction_of_real_leaflets_beside_proteins() const;
   double real_lipids_per_um2() const;  // both leaflets

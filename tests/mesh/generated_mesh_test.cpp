@@ -198,6 +198,22 @@ TEST(NormalTurnRate, SphereIsOneOverRadiusFlatIsZero) {
   EXPECT_LT(rbc, 1.0 / 3000.0);
 }
 
+// A leaflet d Å out from a sphere of radius R spreads over ((R + d) / R)² of its area, one d Å in
+// over ((R − d) / R)² (the generated sphere's corner normals are radial, so its facets scale
+// exactly); without normals the offset is the mesh itself.
+TEST(OffsetSurfaceArea, SphereLeafletsScaleAsTheirRadiiSquared) {
+  const double radius = 450.0;
+  const ProxyMesh sphere = make_sphere_mesh(6000, radius);
+  const double mid = offset_surface_area(sphere, 0.0);
+  for (const double d : {12.3, -12.3, 40.0})
+    EXPECT_NEAR(offset_surface_area(sphere, d) / mid, std::pow((radius + d) / radius, 2.0), 1e-7) << d;
+  ProxyMesh bare = sphere;
+  bare.normals.clear();
+  bare.normal_triangles.clear();
+  EXPECT_DOUBLE_EQ(offset_surface_area(bare, 12.3), mid);
+  EXPECT_NEAR(mid, 4.0 * M_PI * radius * radius, 0.01 * mid);
+}
+
 // On a sphere (corner normals radial) a corner normal leans from its face by about ρ/R (ρ: corner to
 // centroid) and the facet sags about ρ²/(2R) below the sphere; both shrink as the mesh is refined.
 TEST(NormalTilt, SphereFacetsTiltAndSagAsTheirSizeSays) {

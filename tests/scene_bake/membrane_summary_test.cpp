@@ -37,6 +37,21 @@ TEST(MembraneSummary, EachLeafletIsHeldAgainstARealOneOfItsCompositionBesideItsP
   EXPECT_NEAR(thin_inner.fraction_of_real_bilayer_beside_proteins(), (177'778.0 + 70'312.0) / (177'778.0 + 140'625.0), 1e-5);
 }
 
+// On a curved membrane each leaflet is held against a real one of its own surface's area (the mesh
+// moved out or in to its lipid centres), proteins taking the same area in it; without those areas
+// (a lipid fill) both leaflets take the mesh's.
+TEST(MembraneSummary, EachLeafletIsJudgedOnItsOwnSurface) {
+  MembraneSummary curved = two_compositions(177'778, 140'625);
+  EXPECT_DOUBLE_EQ(curved.leaflet_areas().outer, 0.1);
+  EXPECT_DOUBLE_EQ(curved.leaflet_areas().inner, 0.1);
+  curved.outer_area_um2 = 0.11;  // a sphere's leaflets: ((R ± d) / R)² of the mid-surface
+  curved.inner_area_um2 = 0.09;
+  EXPECT_NEAR(curved.real_lipids_beside_proteins().outer, (0.11 - 0.02) * 1e8 / 45.0, 1e-6);
+  EXPECT_NEAR(curved.real_lipids_beside_proteins().inner, (0.09 - 0.01) * 1e8 / 64.0, 1e-6);
+  EXPECT_NEAR(curved.fraction_of_real_leaflets_beside_proteins().outer, 177'778.0 / (0.09e8 / 45.0), 1e-6);
+  EXPECT_NEAR(curved.fraction_of_real_leaflets_beside_proteins().inner, 140'625.0 / (0.08e8 / 64.0), 1e-6);
+}
+
 TEST(MembraneSummary, ALeafletProteinsCoverWhollyHasNoShareRatherThanADivisionByZero) {
   MembraneSummary covered = two_compositions(0, 1000);
   covered.outer_protein_um2 = 0.2;  // more than the membrane: no room left in that leaflet
