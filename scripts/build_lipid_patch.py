@@ -797,7 +797,7 @@ def squeeze_to_area(simulation, molecules, target_area, steps, per_leaflet, log)
         minimise(simulation, SQUEEZE_MIN_ITERATIONS)
         simulation.step(100)
         positions, box = positions_and_box(simulation)
-        log(f"  squeeze {step + 1}/{steps}: {box.a * box.b / per_leaflet:.1f} A2 per lipid, D_PP "
+        log(f"  squeeze {step + 1}/{steps}: {box.a * box.b / per_leaflet:.1f} A2 per lipid (mean), D_PP "
             f"{phosphate_thickness(simulation, molecules):.1f} A")
     return positions, box
 
@@ -811,7 +811,7 @@ def relax(simulation, molecules, target_area, args, log):
     log(f"  minimised ({args.min_steps} iterations at most): D_PP {phosphate_thickness(simulation, molecules):.1f} A;"
         f" {time.time() - started:.0f} s")
     simulation.context.setParameter("k_head", HEAD_PULL)
-    squeeze_to_area(simulation, molecules, target_area, args.squeeze_steps, args.per_leaflet, log)
+    squeeze_to_area(simulation, molecules, target_area, args.squeeze_steps, mean_per_leaflet(args), log)
     simulation.context.setVelocitiesToTemperature(TEMPERATURE_K * unit.kelvin, args.seed)
     steered, free = (int(round(ps / 0.002)) for ps in (args.md_ps - args.release_ps, args.release_ps))
     simulation.step(steered)
@@ -1131,6 +1131,15 @@ def chosen_reference(name, composition):
 
 # ---------------------------------------------------------------------------------------------- the build
 
+def mean_per_leaflet(args):
+    return (args.per_leaflet[0] + args.per_leaflet[1]) / 2.0
+
+
+def per_leaflet_text(args):
+    outer, inner = args.per_leaflet
+    return str(outer) if outer == inner else f"{outer},{inner}"
+
+
 def nominal_area(counts):
     """Mean area per molecule of a leaflet from the species' areas (only to size the box)."""
     return sum(SPECIES[r].area * n for r, n in counts.items()) / sum(counts.values())
@@ -1139,7 +1148,7 @@ def nominal_area(counts):
 def canonical_arguments(args):
     """The arguments as the REMARKs record them: every option spelt out, --out by its file name only
     (no folder of this machine)."""
-    parts = [f"--outer {args.outer}", f"--inner {args.inner}", f"--per-leaflet {args.per_leaflet}",
+    parts = [f"--outer {args.outer}", f"--inner {args.inner}", f"--per-leaflet {per_leaflet_text(args)}",
              f"--seed {args.seed}", f"--area-per-molecule {args.area_per_molecule:g}",
              f"--pack-inflation {args.pack_inflation:g}", f"--water-per-lipid {args.water_per_lipid:g}",
              f"--conformers-tried {args.conformers_tried}", f"--conformers-kept {args.conformers_kept}",
@@ -1201,7 +1210,8 @@ def build_patch(args, requests, leaflets, log):
     log(f"conformers ({', '.join(residues)}): {time.time() - started:.0f} s")
     placements = plan_placements(leaflets, conformers, templates, args.water_per_lipid)
     molecules_total = sum(sum(c.values()) for _, c in leaflets)
-    box = box_for(args.area_per_molecule * args.pack_inflation * args.per_leaflet, molecules_total, args.water_per_lipid)
+    box = box_for(args.area_per_molecule * args.pack_inflation * mean_per_leaflet(args), molecules_total,
+                  args.water_per_lipid)
     with tempfile.TemporaryDirectory(prefix="lipid-patch-") as workdir:
         packed, perfect = run_packmol(placements, box, args.seed, args.keep_work or workdir)
     log(f"packmol ({'perfect' if perfect else 'best try, overlaps left to the minimiser'}): {time.time() - started:.0f} s")
@@ -1210,7 +1220,7 @@ def build_patch(args, requests, leaflets, log):
                                       {r: c[0].elements for r, c in conformers.items()}, args.target_dpp)
     restraints = [restraint, stereo_restraint(molecules, species_mols)]
     simulation = create_simulation(topology, residue_templates, atom_types, restraints, packed, args.seed, args.threads)
-    positions, box = relax(simulation, molecules, args.area_per_molecule * args.per_leaflet, args, log)
+    positions, box = relax(simulation, molecules, args.area_per_molecule * mean_per_leaflet(args), args, log)
     log(f"OpenMM done: {time.time() - started:.0f} s")
     checks = build_checks(topology, molecules, species_mols, conformers, positions, box, perfect)
     first_conformer = {r: c[0] for r, c in conformers.items()}
@@ -1242,7 +1252,12 @@ def parse_arguments():
     parser.add_argument("--inner", help="inner leaflet (chain B, -z): NAME=PERCENT,... adding up to 100")
     parser.add_argument("--out", help="the patch to write (.pdb.gz)")
     parser.add_argument("--measure", metavar="FILE", help="only measure this patch (.pdb or .pdb.gz)")
-    parser.add_argument("--per-leaflet", type=int, default=100, help="molecules per leaflet (default 100)")
+    parser.add_argument("--per-leaflet", default="100",
+                        help="molecules per leaflet: N, or OUTER,INNER for a patch to be laid on a curved surface "
+                        "(the shells spread a leaflet lying d out from the mid-surface of radius R by (1 + d/R)^2 in "
+                        "area: the outer leaflet of a patch for that sphere holds that many more molecules in the flat "
+                        "box, the inner (1 - d/R)^2 fewer; the box's area is the target area per molecule times their "
+                        "mean) (default 100)")
     parser.add_argument("--seed", type=int, default=1, help="seed of RDKit, packmol and OpenMM (default 1)")
     parser.add_argument("--area-per-molecule", type=float,
                         help="target Å² per molecule in a leaflet (default: from the species' areas)")
@@ -1273,8 +1288,14 @@ def parse_arguments():
     args = parser.parse_args()
     if not args.measure and not (args.outer and args.inner and args.out):
         parser.error("a build needs --outer, --inner and --out (or use --measure FILE)")
-    if args.per_leaflet < 10:
-        parser.error("--per-leaflet must be at least 10")
+    try:
+        args.per_leaflet = [int(n) for n in args.per_leaflet.split(",")]
+    except ValueError:
+        parser.error(f"--per-leaflet: expected N or OUTER,INNER (whole numbers), got '{args.per_leaflet}'")
+    if len(args.per_leaflet) == 1:
+        args.per_leaflet *= 2
+    if len(args.per_leaflet) != 2 or min(args.per_leaflet) < 10:
+        parser.error("--per-leaflet: one or two counts (outer,inner), each at least 10")
     if not 0 <= args.release_ps <= args.md_ps:
         parser.error("--release-ps must lie between 0 and --md-ps")
     return args
@@ -1296,8 +1317,8 @@ def main():
     if args.measure:
         return measure_mode(args)
     requests = {"A": parse_composition(args.outer, "--outer"), "B": parse_composition(args.inner, "--inner")}
-    leaflets = [("A", leaflet_counts(requests["A"], args.per_leaflet, "--outer")),
-                ("B", leaflet_counts(requests["B"], args.per_leaflet, "--inner"))]
+    leaflets = [("A", leaflet_counts(requests["A"], args.per_leaflet[0], "--outer")),
+                ("B", leaflet_counts(requests["B"], args.per_leaflet[1], "--inner"))]
     args.area_given = args.area_per_molecule is not None
     if args.area_per_molecule is None:
         args.area_per_molecule = round((nominal_area(leaflets[0][1]) + nominal_area(leaflets[1][1])) / 2.0, 1)
