@@ -68,6 +68,7 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
   for (const auto& [name, n] : m.unfit) unfit[name] = n;
   const double lipids = total(m.lipids) / m.area_um2;
   const MembraneSummary::ByLeaflet leaflets = m.fraction_of_real_leaflets_beside_proteins();
+  const MembraneSummary::ByLeaflet areas = m.leaflet_areas();
   return {{"area_um2", m.area_um2},
           {"lipids_per_um2", per_species},
           {"lipids_per_um2_total", lipids},
@@ -75,7 +76,7 @@ nlohmann::ordered_json membrane_json(const MembraneSummary& m) {
           {"fraction_of_real_bilayer", lipids / m.real_lipids_per_um2()},
           {"lipids_by_leaflet", {{"outer", m.outer_lipids}, {"inner", m.inner_lipids}}},
           {"mol_percent_by_leaflet", {{"outer", mol_percent_json(m.outer_kinds)}, {"inner", mol_percent_json(m.inner_kinds)}}},
-          {"leaflet_area_um2", {{"outer", m.leaflet_areas().outer}, {"inner", m.leaflet_areas().inner}}},
+          {"leaflet_area_um2", {{"outer", areas.outer}, {"inner", areas.inner}}},
           {"protein_area_um2", {{"outer", m.outer_protein_um2}, {"inner", m.inner_protein_um2}}},
           {"fraction_of_real_bilayer_beside_proteins", m.fraction_of_real_bilayer_beside_proteins()},
           {"fraction_of_real_leaflet_beside_proteins", {{"outer", leaflets.outer}, {"inner", leaflets.inner}}},
@@ -315,13 +316,14 @@ std::string bake_summary(const BakedScene& scene, const format::Package& package
       const MembraneSummary& m = *c.membrane;
       const double lipids = total(m.lipids) / m.area_um2;
       const MembraneSummary::ByLeaflet leaflets = m.fraction_of_real_leaflets_beside_proteins();
+      const MembraneSummary::ByLeaflet areas = m.leaflet_areas();
       std::snprintf(line, sizeof line,
                     "  %s membrane: %.4g µm², %.3g lipids/µm² (%.0f%% of a real bilayer's %.3g; %.0f%% beside the proteins, "
                     "%.0f%% / %.0f%% in the outer / inner leaflet, which they take %.0f%% / %.0f%% of)",
                     c.name.c_str(), m.area_um2, lipids, 100.0 * lipids / m.real_lipids_per_um2(), m.real_lipids_per_um2(),
                     100.0 * m.fraction_of_real_bilayer_beside_proteins(), 100.0 * leaflets.outer,
-                    100.0 * leaflets.inner, 100.0 * m.outer_protein_um2 / m.leaflet_areas().outer,
-                    100.0 * m.inner_protein_um2 / m.leaflet_areas().inner);
+                    100.0 * leaflets.inner, 100.0 * m.outer_protein_um2 / areas.outer,
+                    100.0 * m.inner_protein_um2 / areas.inner);
       out << line;
       for (const auto& [name, n] : m.lipids) {
         std::snprintf(line, sizeof line, ", %s %.3g", name.c_str(), n / m.area_um2);
