@@ -778,7 +778,7 @@ HEAD_PULL = 5000.0  # kJ/mol/nm², the steering restraint's spring while it is o
 SQUEEZE_MIN_ITERATIONS = 100
 
 
-def squeeze_to_area(simulation, molecules, target_area, steps, per_leaflet, log):
+def squeeze_to_area(simulation, molecules, target_area, steps, mean_per_leaflet, log):
     """Deflate the loosely packed box to the target area in `steps` equal steps: move every molecule's
     centre (not its shape) towards the origin in x and y, minimise, and let the membrane barostat (z free)
     settle the water for 0.2 ps."""
@@ -797,7 +797,7 @@ def squeeze_to_area(simulation, molecules, target_area, steps, per_leaflet, log)
         minimise(simulation, SQUEEZE_MIN_ITERATIONS)
         simulation.step(100)
         positions, box = positions_and_box(simulation)
-        log(f"  squeeze {step + 1}/{steps}: {box.a * box.b / per_leaflet:.1f} A2 per lipid (mean), D_PP "
+        log(f"  squeeze {step + 1}/{steps}: {box.a * box.b / mean_per_leaflet:.1f} A2 per lipid (mean), D_PP "
             f"{phosphate_thickness(simulation, molecules):.1f} A")
     return positions, box
 
