@@ -48,6 +48,10 @@ struct TriangleMapping {
 // ownership partition (every molecule of the chart exactly once).
 enum class SeamRule { apply, ignore };
 
+// Which instances of a tile the enumerator yields: all, or only the set's own copies or only its
+// alternates (tiles::Instance::alternate), told apart before any ownership test.
+enum class Instances { all, originals, alternates };
+
 // One membrane molecule as ownership sees it: which copy, and the UV point that decided.
 struct OwnedPlace {
   glm::ivec2 cell{0};         // UV tile cell (a, b), not wrapped; its tile origin is g = cell·s
@@ -128,7 +132,8 @@ public:
   // A tile whose copies the triangle owns all or none of (tile_cover, exact) skips the per-copy
   // ownership test: most tiles of a large triangle lie wholly inside or outside it.
   template <class F>
-  void for_each_owned_membrane_place(std::size_t t, F&& f, SeamRule rule = SeamRule::apply) const {
+  void for_each_owned_membrane_place(std::size_t t, F&& f, SeamRule rule = SeamRule::apply,
+                                     Instances which = Instances::all) const {
     const TriangleMapping& tm = triangles_[t];
     if (!tm.valid) return;
     const OwnershipCorners corners(tm);
@@ -144,6 +149,7 @@ public:
         const std::vector<tiles::Instance>& instances = set_->tiles[place.tile].instances;
         for (std::size_t k = 0; k < instances.size(); ++k) {
           const tiles::Instance& in = instances[k];
+          if (which != Instances::all && in.alternate != (which == Instances::alternates)) continue;
           // chart_membrane_molecule's uv_m: the point ownership and the seam rule decide on.
           place.uv = gpu::chart_molecule_uv(g, s_over_S_, in.position);
           if (cover == TileCover::some && !corners.owns(place.uv)) continue;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -26,8 +27,7 @@ struct Placed {
   std::uint32_t triangle = 0;
   std::uint32_t key = 0;     // membrane_copy_key(slot, instance)
   std::uint32_t type = 0;
-  bool alternate = false;    // tiles::Instance::alternate: shown only if it fits where its original clashes
-  bool has_alternate = false;
+  bool has_alternate = false;  // tiles::Instance::has_alternate: dropped before a copy without one
 };
 static_assert(sizeof(Placed) <= 96);
 
@@ -201,7 +201,6 @@ Placed placed_copy(const MembraneMapping& mapping, std::size_t t, const OwnedPla
   p.triangle = static_cast<std::uint32_t>(t);
   p.key = key;
   p.type = m.type;
-  p.alternate = in.alternate;
   p.has_alternate = in.has_alternate;
   const gpu::Affine3 transform = mapping.transform_of(t, m);
   p.centre = dvec3(transform.translation);
@@ -209,49 +208,69 @@ Placed placed_copy(const MembraneMapping& mapping, std::size_t t, const OwnedPla
   return p;
 }
 
-// The owned copies to check, in triangle order, less those dropped before. Two passes (which copies
-// of each triangle, then placing them at their offsets) so that the copies of a whole cell are
-// never held twice.
+// Calls take(place, key) for each copy of triangle `tri` to check, less those dropped before: the
+// set's own copies, or its alternates.
+template <class Take>
+void for_each_checked(const MembraneMapping& mapping, const TypeShapes& t, const CheckedRegion& region,
+                      const PruningSettings& settings, bool alternates, std::size_t tri, const Take& take) {
+  const bool whole = region.whole_surface || region.whole_triangle[tri];
+  if (!whole && region.near_seams[tri].empty()) return;
+  const TriangleMapping& tm = mapping.triangle(tri);
+  const std::vector<std::uint32_t>& near_seams = region.near_seams[tri];
+  mapping.for_each_owned_membrane_place(
+      tri,
+      [&](const OwnedPlace& m) {
+        const tiles::Instance& in = mapping.set().tiles[m.tile].instances[m.instance];
+        const std::uint32_t key = mapping.copy_key(tri, m);
+        if (!settings.dropped_before.empty() &&
+            std::binary_search(settings.dropped_before[tri].begin(), settings.dropped_before[tri].end(), key))
+          return;
+        if (!whole) {
+          const dvec3 surface(gpu::chart_position(tm.chart, m.uv));
+          const double reach = t.radius[m.type] + std::abs(double(in.position.z)) + region.reach_other;
+          const auto near = [&](std::uint32_t s) { return point_segment_distance(surface, region.seams[s]) < reach; };
+          if (std::none_of(near_seams.begin(), near_seams.end(), near)) return;
+        }
+        take(m, key);
+      },
+      SeamRule::ignore, alternates ? Instances::alternates : Instances::originals);
+}
+
+// The set's own copies to check, in triangle order. Two passes (which copies of each triangle, then
+// placing them at their offsets) so that the copies of a whole cell are never held twice.
 std::vector<Placed> copies_to_check(const MembraneMapping& mapping, const TypeShapes& t, const CheckedRegion& region,
                                     const PruningSettings& settings, int threads) {
   const std::size_t triangles = mapping.triangle_count();
-  // Calls take(place, key) for each copy of `tri` to check.
-  const auto for_each_checked = [&](std::size_t tri, const auto& take) {
-    const bool whole = region.whole_surface || region.whole_triangle[tri];
-    if (!whole && region.near_seams[tri].empty()) return;
-    const TriangleMapping& tm = mapping.triangle(tri);
-    const std::vector<std::uint32_t>& near_seams = region.near_seams[tri];
-    mapping.for_each_owned_membrane_place(
-        tri,
-        [&](const OwnedPlace& m) {
-          const std::uint32_t key = mapping.copy_key(tri, m);
-          if (!settings.dropped_before.empty() &&
-              std::binary_search(settings.dropped_before[tri].begin(), settings.dropped_before[tri].end(), key))
-            return;
-          if (!whole) {
-            const tiles::Instance& in = mapping.set().tiles[m.tile].instances[m.instance];
-            const dvec3 surface(gpu::chart_position(tm.chart, m.uv));
-            const double reach = t.radius[m.type] + std::abs(double(in.position.z)) + region.reach_other;
-            const auto near = [&](std::uint32_t s) { return point_segment_distance(surface, region.seams[s]) < reach; };
-            if (std::none_of(near_seams.begin(), near_seams.end(), near)) return;
-          }
-          take(m, key);
-        },
-        SeamRule::ignore);
-  };
   std::vector<std::size_t> offset(triangles + 1, 0);
   parallel_for(triangles, threads, [&](std::size_t tri) {
-    for_each_checked(tri, [&](const OwnedPlace&, std::uint32_t) { ++offset[tri + 1]; });
+    for_each_checked(mapping, t, region, settings, false, tri, [&](const OwnedPlace&, std::uint32_t) { ++offset[tri + 1]; });
   });
   for (std::size_t tri = 0; tri < triangles; ++tri) offset[tri + 1] += offset[tri];
   std::vector<Placed> copies(offset[triangles]);
   parallel_for(triangles, threads, [&](std::size_t tri) {
     std::size_t next = offset[tri];
-    for_each_checked(tri, [&](const OwnedPlace& m, std::uint32_t key) {
+    for_each_checked(mapping, t, region, settings, false, tri, [&](const OwnedPlace& m, std::uint32_t key) {
       copies[next++] = placed_copy(mapping, tri, m, key);
     });
   });
   return copies;
+}
+
+// The set's alternates for which wanted(placed) holds, in triangle order. Alternates outnumber the
+// set's own copies (each lipid put aside five ways) and few are wanted: only those are held.
+template <class Wanted>
+std::vector<Placed> alternates_to_check(const MembraneMapping& mapping, const TypeShapes& t, const CheckedRegion& region,
+                                        const PruningSettings& settings, const Wanted& wanted, int threads) {
+  std::vector<std::vector<Placed>> per_triangle(mapping.triangle_count());
+  parallel_for(per_triangle.size(), threads, [&](std::size_t tri) {
+    for_each_checked(mapping, t, region, settings, true, tri, [&](const OwnedPlace& m, std::uint32_t key) {
+      const Placed p = placed_copy(mapping, tri, m, key);
+      if (wanted(p)) per_triangle[tri].push_back(p);
+    });
+  });
+  std::vector<Placed> out;
+  for (std::vector<Placed>& list : per_triangle) out.insert(out.end(), list.begin(), list.end());
+  return out;
 }
 
 // Copies larger than this (1.5 x the median radius: proteins among lipids) are tested copy against
@@ -330,6 +349,7 @@ public:
     for (std::uint32_t i = 0; i < count; ++i) order[fill[cell[i]]++] = i;
     const ChunkAtoms sorted = atoms.permuted(order);
     std::uint64_t pairs = 0;
+    std::unordered_set<std::uint64_t> found;  // a pair of copies once, not once per pair of their atoms
     // Atoms i and j (j after i in the run) of two copies, kept when the chunk owns either.
     const auto measure = [&](std::uint32_t i, std::uint32_t j) {
       if (sorted.copy[i] == sorted.copy[j] || !(sorted.owned[i] | sorted.owned[j])) return;
@@ -337,7 +357,7 @@ public:
       const float limit = clearance_ * (sorted.radius[i] + sorted.radius[j]);
       const glm::vec3 d = sorted.position[i] - sorted.position[j];
       if (glm::dot(d, d) < limit * limit)
-        clashes.emplace_back(std::min(sorted.copy[i], sorted.copy[j]), std::max(sorted.copy[i], sorted.copy[j]));
+        found.insert(std::uint64_t(std::min(sorted.copy[i], sorted.copy[j])) << 32 | std::max(sorted.copy[i], sorted.copy[j]));
     };
     for (std::uint32_t i = 0; i < count; ++i) {
       const glm::ivec3 g = cell_of(sorted.position[i]);
@@ -351,6 +371,8 @@ public:
         for (int y = std::max(g.y - 1, 0); y <= std::min(g.y + 1, n.y - 1); ++y)
           for (std::uint32_t j = start[index(x0, y, g.z + 1)]; j < start[index(x1, y, g.z + 1) + 1]; ++j) measure(i, j);
     }
+    // Alternates put aside 1 Å overlap their neighbours' alternates in nearly every atom.
+    for (const std::uint64_t pair : found) clashes.emplace_back(std::uint32_t(pair >> 32), std::uint32_t(pair));
     measured += pairs;
   }
 
@@ -507,10 +529,47 @@ std::vector<std::vector<std::uint32_t>> conflict_lists(const Found& found, std::
   return conflicts;
 }
 
-// Greedy independent set: proteins (larger radius) first, then the copies of the set proper (those
-// without an alternate before those with one, which lose less when dropped), then the alternates
-// (each only where what it stands in for was dropped), each group the copies with fewer clashes
-// first. An alternate without a clash is shown: its original was dropped before.
+}  // namespace
+
+void swap_one_for_two(const std::vector<std::vector<std::uint32_t>>& conflicts, const std::vector<char>& swappable,
+                      std::vector<char>& kept) {
+  const auto clash = [&](std::uint32_t a, std::uint32_t b) {  // conflict lists are ascending
+    return std::binary_search(conflicts[a].begin(), conflicts[a].end(), b);
+  };
+  std::vector<std::uint32_t> kept_around(conflicts.size(), 0);  // per dropped copy: the kept copies it clashes with
+  for (std::uint32_t i = 0; i < conflicts.size(); ++i)
+    if (!kept[i])
+      for (const std::uint32_t j : conflicts[i]) kept_around[i] += kept[j] ? 1u : 0u;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::uint32_t c = 0; c < conflicts.size(); ++c) {
+      if (!kept[c] || !swappable[c]) continue;
+      std::vector<std::uint32_t> taking;
+      bool needed = false;  // c alone holds out a copy that may not come back
+      for (const std::uint32_t d : conflicts[c]) {
+        if (kept[d] || kept_around[d] != 1) continue;
+        needed = needed || !swappable[d];
+        if (swappable[d] && std::none_of(taking.begin(), taking.end(), [&](std::uint32_t t) { return clash(d, t); }))
+          taking.push_back(d);
+      }
+      if (needed || taking.size() < 2) continue;
+      kept[c] = 0;
+      for (const std::uint32_t j : conflicts[c]) --kept_around[j];  // c's neighbours were all dropped
+      for (const std::uint32_t d : taking) {
+        kept[d] = 1;
+        for (const std::uint32_t j : conflicts[d]) ++kept_around[j];
+      }
+      changed = true;
+    }
+  }
+}
+
+namespace {
+
+// Independent set of the set's own copies: greedy, proteins (larger radius) first, then the lipids
+// (those without an alternate before those with one, which lose less when dropped), each group the
+// copies with fewer clashes first; then swap_one_for_two among the lipids (along a UV seam, where two
+// unrelated tilings meet, the greedy order often keeps the one copy that overlaps two).
 std::vector<char> kept_copies(const std::vector<Placed>& copies, const std::vector<std::vector<std::uint32_t>>& conflicts,
                               const std::vector<double>& radius, double small_limit) {
   std::vector<std::uint32_t> order;
@@ -519,7 +578,6 @@ std::vector<char> kept_copies(const std::vector<Placed>& copies, const std::vect
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     const bool large_a = radius[copies[a].type] > small_limit, large_b = radius[copies[b].type] > small_limit;
     if (large_a != large_b) return large_a;
-    if (!large_a && copies[a].alternate != copies[b].alternate) return copies[b].alternate;
     if (!large_a && copies[a].has_alternate != copies[b].has_alternate) return copies[b].has_alternate;
     if (radius[copies[a].type] != radius[copies[b].type]) return radius[copies[a].type] > radius[copies[b].type];
     if (conflicts[a].size() != conflicts[b].size()) return conflicts[a].size() < conflicts[b].size();
@@ -534,20 +592,126 @@ std::vector<char> kept_copies(const std::vector<Placed>& copies, const std::vect
         break;
       }
   }
+  std::vector<char> lipid(copies.size());
+  for (std::uint32_t i = 0; i < copies.size(); ++i) lipid[i] = radius[copies[i].type] <= small_limit;
+  swap_one_for_two(conflicts, lipid, kept);
   return kept;
 }
 
-// A dropped copy and a shown alternate are both listed with the drops.
+// A dropped copy is listed with the drops.
 void record_drops(const std::vector<Placed>& copies, const std::vector<char>& kept, PrunedMembrane& out) {
   for (std::uint32_t i = 0; i < copies.size(); ++i)
-    if (copies[i].alternate && kept[i]) {
-      out.dropped[copies[i].triangle].push_back(copies[i].key);
-      ++out.alternates_by_type[copies[i].type];
-    } else if (!copies[i].alternate && !kept[i]) {
+    if (!kept[i]) {
       out.dropped[copies[i].triangle].push_back(copies[i].key);
       ++out.dropped_by_type[copies[i].type];
     }
-  for (auto& keys : out.dropped) std::sort(keys.begin(), keys.end());
+}
+
+// Copies binned in cubic cells, for "which stand within d of this point" with d up to the cell.
+class CopyGrid {
+public:
+  CopyGrid(const std::vector<Placed>& copies, double cell) : copies_(copies), cell_(std::max(cell, 1e-3)) {}
+  void add(std::uint32_t i) { cells_[cell_key(cell_of(copies_[i].centre))].push_back(i); }
+  template <class Visit>
+  void around(const dvec3& p, const Visit& visit) const {
+    const glm::ivec3 c = cell_of(p);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (const auto found = cells_.find(cell_key(c + glm::ivec3(dx, dy, dz))); found != cells_.end())
+            for (const std::uint32_t i : found->second) visit(i);
+  }
+
+private:
+  glm::ivec3 cell_of(const dvec3& p) const { return glm::ivec3(glm::floor(p / cell_)); }
+  const std::vector<Placed>& copies_;
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+// Two copies of one molecule type whose centres stand closer than this (Å) hold one place twice. A
+// displaced alternate (its original turned or shifted a few Å, bake/tiles/wang_sets.cpp) may clear
+// the clash rule beside its kept original; it must still never be shown there.
+constexpr double kSamePlace = 6.0;
+
+// The set's copies kept by the first round, by place: whether one of a type holds a place.
+class KeptPlaces {
+public:
+  KeptPlaces(const std::vector<Placed>& copies, const std::vector<char>& kept) : copies_(copies), grid_(copies, kSamePlace) {
+    for (std::uint32_t i = 0; i < copies.size(); ++i)
+      if (kept[i]) grid_.add(i);
+  }
+  bool taken(const Placed& a) const {
+    bool found = false;
+    grid_.around(a.centre, [&](std::uint32_t k) {
+      found = found || (copies_[k].type == a.type && glm::length(copies_[k].centre - a.centre) < kSamePlace);
+    });
+    return found;
+  }
+
+private:
+  const std::vector<Placed>& copies_;
+  CopyGrid grid_;
+};
+
+// The candidate alternates (those whose place no kept copy of their type holds) and the kept copies
+// within reach of them: the set the alternates are decided in. Candidates come first in the list.
+struct AlternateRound {
+  std::vector<Placed> copies;
+  std::size_t candidates = 0;
+};
+
+AlternateRound alternate_round(std::vector<Placed> candidates, const std::vector<Placed>& copies,
+                               const std::vector<char>& kept, const TypeShapes& t) {
+  AlternateRound round;
+  round.copies = std::move(candidates);
+  round.candidates = round.copies.size();
+  if (round.candidates == 0) return round;
+  double widest_alternate = 0.0, widest_kept = 0.0;
+  for (const Placed& a : round.copies) widest_alternate = std::max(widest_alternate, t.radius[a.type]);
+  for (std::uint32_t i = 0; i < copies.size(); ++i)
+    if (kept[i]) widest_kept = std::max(widest_kept, t.radius[copies[i].type]);
+  CopyGrid candidate_grid(round.copies, widest_alternate + widest_kept);
+  for (std::uint32_t i = 0; i < round.candidates; ++i) candidate_grid.add(i);
+  for (std::uint32_t k = 0; k < copies.size(); ++k) {
+    if (!kept[k]) continue;
+    bool near = false;
+    candidate_grid.around(copies[k].centre, [&](std::uint32_t c) {
+      near = near || glm::length(copies[k].centre - round.copies[c].centre) < t.radius[copies[k].type] + t.radius[round.copies[c].type];
+    });
+    if (near) round.copies.push_back(copies[k]);
+  }
+  return round;
+}
+
+// Second round: each candidate alternate, fewer clashes first, is shown where it clashes with no
+// kept copy nor shown alternate and no copy of its type holds its place (kSamePlace). A shown
+// alternate is listed with the drops.
+void show_alternates(const AlternateRound& round, const TypeShapes& t, double small_limit, float clearance, int threads,
+                     PrunedMembrane& out) {
+  const ClashSearch search(round.copies, t, small_limit, clearance);
+  const std::vector<std::vector<std::uint32_t>> conflicts = conflict_lists(find_clashes(search, threads), round.copies.size(), out);
+  std::vector<char> kept(round.copies.size(), 0);
+  CopyGrid shown(round.copies, kSamePlace);
+  for (std::size_t i = round.candidates; i < round.copies.size(); ++i) {
+    kept[i] = 1;
+    shown.add(static_cast<std::uint32_t>(i));
+  }
+  std::vector<std::uint32_t> order(round.candidates);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return conflicts[a].size() < conflicts[b].size(); });
+  for (const std::uint32_t i : order) {
+    const Placed& a = round.copies[i];
+    bool free = std::none_of(conflicts[i].begin(), conflicts[i].end(), [&](std::uint32_t j) { return kept[j] != 0; });
+    shown.around(a.centre, [&](std::uint32_t j) {
+      free = free && !(round.copies[j].type == a.type && glm::length(round.copies[j].centre - a.centre) < kSamePlace);
+    });
+    if (!free) continue;
+    kept[i] = 1;
+    shown.add(i);
+    out.dropped[a.triangle].push_back(a.key);
+    ++out.alternates_by_type[a.type];
+  }
 }
 
 }  // namespace
@@ -575,9 +739,19 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
   if (copies.empty()) return out;
 
   const double small_limit = small_copy_limit(copies, shapes.radius);
-  const ClashSearch search(copies, shapes, small_limit, settings.clearance);
-  const std::vector<std::vector<std::uint32_t>> conflicts = conflict_lists(find_clashes(search, threads), copies.size(), out);
-  record_drops(copies, kept_copies(copies, conflicts, shapes.radius, small_limit), out);
+  std::vector<char> kept;
+  {
+    const ClashSearch search(copies, shapes, small_limit, settings.clearance);
+    kept = kept_copies(copies, conflict_lists(find_clashes(search, threads), copies.size(), out), shapes.radius, small_limit);
+  }
+  record_drops(copies, kept, out);
+  const KeptPlaces kept_places(copies, kept);
+  std::vector<Placed> candidates = alternates_to_check(
+      mapping, shapes, region, settings, [&](const Placed& a) { return !kept_places.taken(a); }, threads);
+  out.checked_copies += candidates.size();
+  if (!candidates.empty())
+    show_alternates(alternate_round(std::move(candidates), copies, kept, shapes), shapes, small_limit, settings.clearance, threads, out);
+  for (auto& keys : out.dropped) std::sort(keys.begin(), keys.end());
   return out;
 }
 
@@ -593,12 +767,12 @@ std::uint64_t limit_copies(const MembraneMapping& mapping, PrunedMembrane& prune
     mapping.for_each_owned_membrane_place(
         t,
         [&](const OwnedPlace& m) {
-          if (m.type != type || mapping.set().tiles[m.tile].instances[m.instance].alternate) return;
+          if (m.type != type) return;
           const std::uint32_t key = mapping.copy_key(t, m);
           if (std::binary_search(dropped.begin(), dropped.end(), key)) return;
           copies.push_back({static_cast<std::uint32_t>(t), key, dvec3(mapping.centre_of(t, m))});
         },
-        SeamRule::ignore);
+        SeamRule::ignore, Instances::originals);
   }
   if (copies.size() <= count) {
     if (kept_on)

@@ -8,8 +8,10 @@
 // independent set that keeps proteins before lipids. The dropped copies are stored per triangle
 // (package sections triangle_drops / dropped_copies) and skipped by the oracle and the shader.
 // A Wang square may also carry alternates (tiles::Instance::alternate): another conformer at the
-// place of a copy the surface may push into a clash. They are tried after every other copy is
-// decided, and those that fit are listed with the drops and shown where their originals are not.
+// place of a copy the surface may push into a clash, the same lipid a hair aside or turned, a lipid
+// the tiles refused beside a protein. They are decided after every other copy, in a second round
+// that places only those whose place no kept copy of their type holds: each is shown (listed with
+// the drops) where it clashes with nothing shown, fewer clashes first.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -65,6 +67,14 @@ struct PrunedMembrane {
 PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyMesh& mesh,
                               const std::vector<tiles::MoleculeType>& types, const PruningSettings& settings,
                               int threads);
+
+// Where an independent set (`kept`: no two copies that clash) keeps one copy whose place two dropped
+// ones could take (each clashing with it alone among the kept, and not with each other; and no
+// unswappable copy that it alone holds out), they take it, until no such copy remains. `conflicts` per copy, ascending, symmetric; only copies marked
+// `swappable` change (the pruning's lipids: its proteins stay as decided). The set stays
+// independent, every dropped copy still clashes with a kept one, and the kept count only grows.
+void swap_one_for_two(const std::vector<std::vector<std::uint32_t>>& conflicts, const std::vector<char>& swappable,
+                      std::vector<char>& kept);
 
 // Keeps at most `count` of the copies of molecule type `type` that the triangles own and `pruned`
 // keeps, spread over the surface (farthest-point sampling from the first in enumeration order: each

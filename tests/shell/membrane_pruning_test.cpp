@@ -31,6 +31,7 @@ struct Copy {
   std::uint32_t triangle, key, type;
   dvec3 centre;
   glm::dmat3 rotation;
+  bool alternate = false;  // tiles::Instance::alternate
 };
 
 // Every owned copy with its key (slot relative to the triangle's replication origin, W of the mapping).
@@ -44,7 +45,8 @@ std::vector<Copy> owned_copies(const MembraneMapping& map) {
         [&](const OwnedMolecule& m) {
           const glm::ivec2 slot = m.cell - origin;
           out.push_back({std::uint32_t(t), (std::uint32_t(slot.x + int(W) * slot.y) << 16) | m.instance, m.type,
-                         dvec3(m.transform.translation), glm::dmat3(m.transform.linear)});
+                         dvec3(m.transform.translation), glm::dmat3(m.transform.linear),
+                         map.set().tiles[m.tile].instances[m.instance].alternate});
         },
         SeamRule::ignore);
   }
@@ -369,4 +371,139 @@ TEST(MembranePruning, AlternatesShowOnlyWhereTheyFit) {
   EXPECT_EQ(p.dropped_by_type[0] + p.dropped_by_type[1], regular_dropped);
   EXPECT_EQ(p.dropped_by_type[thin_type], 0u);
   EXPECT_EQ(clashes(shown, sc->types, 0.6).size(), 0u) << "shown copies clash";
+}
+
+// Alternates of a lipid's own type standing 3 Å aside (bake/tiles/wang_sets.cpp puts lipids 1 Å
+// aside): two stick lipids 3 Å apart do not clash at 0.6 · (r1 + r2) = 2.04 Å, yet they are one place
+// held twice. An alternate is shown only where no copy of its type holds its place, though some are.
+TEST(MembranePruning, AnAlternateNeverSharesItsPlaceWithOneOfItsType) {
+  auto sc = dense(sphere_scene());
+  for (auto& tile : sc->set.tiles) {
+    const std::size_t n = tile.instances.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (tile.instances[i].type != 0) continue;
+      nano::tiles::Instance aside = tile.instances[i];
+      aside.position.x += 3.f;
+      aside.alternate = true;
+      tile.instances.push_back(aside);
+    }
+  }
+  const MembraneMapping map(sc->mesh, sc->set, sc->recipe, sc->k, sc->types, "test", SeamRule::ignore);
+  const PrunedMembrane p = nano::shell::prune_membrane(map, sc->mesh, sc->types, PruningSettings{}, 2);
+  ASSERT_TRUE(p.whole_surface);
+  std::vector<Copy> shown;
+  std::vector<char> shown_alternate;
+  for (const Copy& c : owned_copies(map))
+    if (nano::gpu::membrane_copy_listed_shows(dropped(p, c), c.alternate ? nano::gpu::NANO_INSTANCE_ALTERNATE : 0u)) {
+      shown.push_back(c);
+      shown_alternate.push_back(c.alternate);
+    }
+  std::size_t alternates_shown = 0;
+  for (std::size_t i = 0; i < shown.size(); ++i) {
+    if (!shown_alternate[i]) continue;
+    ++alternates_shown;
+    for (std::size_t j = 0; j < shown.size(); ++j) {
+      if (j == i || shown[j].type != shown[i].type) continue;
+      EXPECT_GE(glm::length(shown[j].centre - shown[i].centre), 3.5) << "an alternate shown where a copy of its type stands";
+    }
+  }
+  EXPECT_GT(alternates_shown, 0u) << "an alternate fits where its lipid was dropped, or the test proves nothing";
+  EXPECT_EQ(p.alternates_by_type[0], alternates_shown);
+  EXPECT_EQ(clashes(shown, sc->types, 0.6).size(), 0u) << "shown copies clash";
+}
+
+// swap_one_for_two on small conflict graphs, against the rule checked by brute force.
+namespace {
+
+using Graph = std::vector<std::vector<std::uint32_t>>;
+
+Graph graph(std::size_t n, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+  Graph g(n);
+  for (const auto& [a, b] : edges) g[a].push_back(b), g[b].push_back(a);
+  for (auto& list : g) std::sort(list.begin(), list.end());
+  return g;
+}
+
+bool clash_in(const Graph& g, std::uint32_t a, std::uint32_t b) { return std::count(g[a].begin(), g[a].end(), b) > 0; }
+
+// A kept swappable copy holding out two swappable dropped ones that clash with nothing else kept nor
+// with each other, and no unswappable one that nothing else holds out.
+bool one_for_two_left(const Graph& g, const std::vector<char>& swappable, const std::vector<char>& kept) {
+  for (std::uint32_t c = 0; c < g.size(); ++c) {
+    if (!kept[c] || !swappable[c]) continue;
+    std::vector<std::uint32_t> alone;
+    bool needed = false;
+    for (const std::uint32_t d : g[c])
+      if (!kept[d] && std::count_if(g[d].begin(), g[d].end(), [&](std::uint32_t x) { return kept[x] != 0; }) == 1) {
+        if (swappable[d]) alone.push_back(d);
+        else needed = true;
+      }
+    if (needed) continue;
+    for (std::size_t i = 0; i < alone.size(); ++i)
+      for (std::size_t j = i + 1; j < alone.size(); ++j)
+        if (!clash_in(g, alone[i], alone[j])) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(SwapOneForTwo, TwoCopiesTakeThePlaceOfTheOneHoldingThemOut) {
+  // 0 - 2 - 1: 2 kept holds out 0 and 1.
+  const Graph path = graph(3, {{0, 2}, {1, 2}});
+  std::vector<char> kept{0, 0, 1};
+  nano::shell::swap_one_for_two(path, {1, 1, 1}, kept);
+  EXPECT_EQ(kept, (std::vector<char>{1, 1, 0}));
+  // The same with 2 a protein: it stays.
+  kept = {0, 0, 1};
+  nano::shell::swap_one_for_two(path, {1, 1, 0}, kept);
+  EXPECT_EQ(kept, (std::vector<char>{0, 0, 1}));
+  // 0 and 1 clash with each other too: only one could take 2's place, nothing changes.
+  kept = {0, 0, 1};
+  nano::shell::swap_one_for_two(graph(3, {{0, 2}, {1, 2}, {0, 1}}), {1, 1, 1}, kept);
+  EXPECT_EQ(kept, (std::vector<char>{0, 0, 1}));
+  // 1 is also held out by 3, kept: 2 holds out 0 alone, nothing changes.
+  kept = {0, 0, 1, 1};
+  nano::shell::swap_one_for_two(graph(4, {{0, 2}, {1, 2}, {1, 3}}), {1, 1, 1, 1}, kept);
+  EXPECT_EQ(kept, (std::vector<char>{0, 0, 1, 1}));
+}
+
+TEST(SwapOneForTwo, RandomGraphsEndIndependentLargerAndWithoutSwapsLeft) {
+  std::uint64_t s = 12345;
+  const auto next = [&](std::uint32_t n) {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    return std::uint32_t((s >> 33) % n);
+  };
+  int improved = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::uint32_t n = 8 + next(40);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (std::uint32_t e = 0; e < 2 * n; ++e) {
+      const std::uint32_t a = next(n), b = next(n);
+      if (a != b && std::none_of(edges.begin(), edges.end(), [&](const auto& x) { return x == std::pair{a, b} || x == std::pair{b, a}; }))
+        edges.emplace_back(a, b);
+    }
+    const Graph g = graph(n, edges);
+    std::vector<char> swappable(n), kept(n, 0);
+    for (std::uint32_t i = 0; i < n; ++i) swappable[i] = next(5) != 0;
+    for (std::uint32_t i = 0; i < n; ++i)  // a greedy maximal set in a random order
+      if (std::none_of(g[i].begin(), g[i].end(), [&](std::uint32_t j) { return kept[j] != 0; })) kept[i] = 1;
+    const std::vector<char> before = kept;
+    nano::shell::swap_one_for_two(g, swappable, kept);
+    for (const auto& [a, b] : edges) EXPECT_FALSE(kept[a] && kept[b]) << "trial " << trial << ": two kept copies clash";
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (!swappable[i]) {
+        EXPECT_EQ(kept[i], before[i]) << "trial " << trial << ": a protein changed";
+      }
+      if (!kept[i]) {
+        EXPECT_TRUE(std::any_of(g[i].begin(), g[i].end(), [&](std::uint32_t j) { return kept[j] != 0; }))
+            << "trial " << trial << ": a dropped copy clashes with nothing kept";
+      }
+    }
+    const auto count = [](const std::vector<char>& k) { return std::count(k.begin(), k.end(), 1); };
+    EXPECT_GE(count(kept), count(before));
+    improved += count(kept) > count(before);
+    EXPECT_FALSE(one_for_two_left(g, swappable, kept)) << "trial " << trial;
+  }
+  EXPECT_GT(improved, 0) << "no trial had a swap to make, or the test proves nothing";
 }
