@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 
@@ -379,6 +380,38 @@ void keep_base_lipids_as_alternates(const std::vector<Instance>& base_lipids, co
     }
 }
 
+// Where the real surface pushes a lipid into a clash (across a UV seam, where a cube-sphere corner
+// squeezes tile space, beside a protein the curvature turns), the same lipid a hair aside or turned
+// about the normal often fits. A membrane pruned on its whole surface keeps these as alternates of
+// each layer lipid, shown only where the lipid itself was dropped (shell/membrane_pruning.hpp). On
+// the virion, 1 Å four ways and a half turn take the worst frontal view from 98.7 % to 99.4 % of
+// its pixels (2 Å: 99.2 %, 3 Å: 99.0 %; eight ways: 99.5 % for a third more copies to check).
+constexpr float kAsideShift = 1.f;  // Å, in tile space
+constexpr int kAsideDirections = 4;
+static_assert(kAsideDirections + 1 == kAlternatesPerLaidLipid, "four ways aside and one half turn");
+
+void add_lipids_aside_as_alternates(FixedLayer& layer) {
+  const std::size_t lipids = layer.copies.size();
+  const auto add = [&](Instance copy) {
+    copy.alternate = true;
+    copy.has_alternate = false;
+    layer.copies.push_back(copy);
+  };
+  for (std::size_t i = 0; i < lipids; ++i) {
+    const Instance lipid = layer.copies[i];
+    if (lipid.alternate) continue;
+    for (int k = 0; k < kAsideDirections; ++k) {
+      const double angle = 2.0 * std::numbers::pi * k / kAsideDirections;
+      Instance aside = lipid;
+      aside.position += kAsideShift * glm::vec3(float(std::cos(angle)), float(std::sin(angle)), 0.f);
+      add(aside);
+    }
+    Instance turned = lipid;
+    turned.rotation = glm::angleAxis(float(std::numbers::pi), glm::vec3(0.f, 0.f, 1.f)) * lipid.rotation;
+    add(turned);
+  }
+}
+
 // One kind per molecule name: the conformers of a lipid share their kind's name.
 std::vector<uint32_t> kinds_by_name(const std::vector<MoleculeType>& types) {
   std::map<std::string, uint32_t> kind;
@@ -402,11 +435,13 @@ FixedLayer lay_patch(const char* what, const LipidPatch& patch, float edge, cons
   layer.copies = repeat_patch(p, largest);
   layer.kind_of_type = kinds_by_name(types);
   layer.refused_stay_as_alternates = surface.rigid();
-  if (patch.mix.empty()) return layer;
   // Only a membrane pruned on its whole surface (tiles packed rigid) can pick alternates.
-  const std::vector<Instance> base_lipids = surface.rigid() ? layer.copies : std::vector<Instance>{};
-  const std::vector<char> taken = mix_species(p, largest, seed, threads, layer.copies);
-  if (!base_lipids.empty()) keep_base_lipids_as_alternates(base_lipids, taken, layer);
+  if (!patch.mix.empty()) {
+    const std::vector<Instance> base_lipids = surface.rigid() ? layer.copies : std::vector<Instance>{};
+    const std::vector<char> taken = mix_species(p, largest, seed, threads, layer.copies);
+    if (!base_lipids.empty()) keep_base_lipids_as_alternates(base_lipids, taken, layer);
+  }
+  if (surface.rigid()) add_lipids_aside_as_alternates(layer);
   return layer;
 }
 

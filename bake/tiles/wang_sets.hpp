@@ -108,6 +108,10 @@ struct SolubleCubeRequest {
 // (the message names it and the best density reached). The lipid fill never throws for density:
 // its achieved value is in `densities` (both leaflets together).
 WangSet make_membrane_tiles(const MembraneTileRequest& request);
+
+// Alternates a membrane packed rigid (SurfaceDistortion::rigid) keeps per lipid of its patch: the
+// lipid 1 Å aside four ways and turned half about the normal, shown where the lipid itself clashes.
+inline constexpr int kAlternatesPerLaidLipid = 5;
 WangSet make_soluble_cubes(const SolubleCubeRequest& request);
 
 }  // namespace nano::tiles

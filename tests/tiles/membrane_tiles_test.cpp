@@ -327,6 +327,60 @@ TEST(MembraneTiles, LipidsAreLaidThroughProteinsDisplacedOnTheSurface) {
   EXPECT_EQ(through.densities[0].achieved, refused.densities[0].achieved) << "the proteins are packed alike";
 }
 
+// How far apart two copies of a tile stand sideways, between nearest images across its edges.
+float sideways_apart(const Instance& a, const Instance& b) {
+  glm::vec2 d = glm::vec2(a.position - b.position);
+  for (int k = 0; k < 2; ++k) d[k] -= kTileEdge * std::round(d[k] / kTileEdge);
+  return glm::length(d);
+}
+
+// Whether `alternate` is `lipid` put aside (bake/tiles/wang_sets.cpp): 1 Å sideways in the same
+// pose, or half a turn about the tile normal in place (each axis of the pose with x and y reversed).
+enum class Aside { no, shifted, turned };
+Aside put_aside(const Instance& lipid, const Instance& alternate) {
+  if (lipid.type != alternate.type || lipid.position.z != alternate.position.z) return Aside::no;
+  const float apart = sideways_apart(lipid, alternate);
+  if (std::abs(apart - 1.f) < 1e-3f && lipid.rotation == alternate.rotation) return Aside::shifted;
+  const glm::mat3 a = glm::mat3_cast(lipid.rotation), b = glm::mat3_cast(alternate.rotation);
+  bool half_turn = apart < 1e-3f;
+  for (int k = 0; k < 3; ++k) half_turn = half_turn && glm::length(b[k] - glm::vec3(-a[k].x, -a[k].y, a[k].z)) < 1e-4f;
+  return half_turn ? Aside::turned : Aside::no;
+}
+
+// Whether some lipid of the tile has `alternate` as its copy put aside.
+bool put_aside_in(const WangTile& t, const Instance& alternate) {
+  return std::any_of(t.instances.begin(), t.instances.end(),
+                     [&](const Instance& o) { return &o != &alternate && put_aside(o, alternate) != Aside::no; });
+}
+
+// A membrane pruned on its whole surface (tiles packed rigid) keeps each layer lipid four ways 1 Å
+// aside and turned half about the normal, as alternates of its type: a lipid the real surface pushes
+// into a clash is shown there a hair away instead, where that fits (shell/membrane_pruning.hpp).
+TEST(MembraneTiles, RigidLayerKeepsEachLipidAsideAndTurnedAsAlternates) {
+  const MembraneTileRequest req = patch_request();
+  ASSERT_TRUE(req.surface.rigid());
+  const WangSet set = make_membrane_tiles(req);
+  std::size_t lipids = 0, complete = 0;
+  for (const WangTile& t : set.tiles)
+    for (const Instance& in : t.instances) {
+      if (in.alternate || in.type == 0) continue;
+      ++lipids;
+      int shifted = 0, turned = 0;
+      for (const Instance& o : t.instances) {
+        if (!o.alternate) continue;
+        const Aside aside = put_aside(in, o);
+        shifted += aside == Aside::shifted;
+        turned += aside == Aside::turned;
+      }
+      EXPECT_LE(shifted, 4);
+      EXPECT_LE(turned, 1);
+      complete += shifted == 4 && turned == 1;
+    }
+  // A protein refuses some of them where they would cross it in the tile.
+  EXPECT_GT(lipids, 0u);
+  EXPECT_GT(complete, lipids * 9 / 10);
+}
+
 // A second species mixed into the patch's places (LipidSpecies): a thinner stick lipid (type 2)
 // taking 40 % of the outer leaflet's places and 80 % of the inner one's. Random tilings stay
 // clash-free at the patch clearance, the species sits only in its leaflets and never above its
@@ -389,12 +443,16 @@ TEST(MembraneTiles, LipidMixTakesPlacesWithoutOpeningHoles) {
       return glm::length(d) < reach(0) + reach(in.type);
     });
   };
-  std::size_t alternates = 0, backed = 0, stand_ins = 0;
+  std::size_t alternates = 0, backed = 0, stand_ins = 0, asides = 0;
   for (const WangTile& t : set.tiles)
     for (const Instance& in : t.instances) {
       if (!in.alternate) {
         backed += in.has_alternate;
         EXPECT_EQ(in.has_alternate, in.type == 2u);
+        continue;
+      }
+      if (put_aside_in(t, in)) {  // a lipid a hair aside or turned
+        ++asides;
         continue;
       }
       const bool beside = in.type == 1u && std::any_of(t.instances.begin(), t.instances.end(), [&](const Instance& o) {
@@ -409,6 +467,7 @@ TEST(MembraneTiles, LipidMixTakesPlacesWithoutOpeningHoles) {
       EXPECT_TRUE(under_a_protein(in)) << "an alternate neither beside a mixed lipid nor where a protein stands";
     }
   EXPECT_GT(stand_ins, 0u);
+  EXPECT_GT(asides, 0u);
   EXPECT_LE(alternates, backed);
   EXPECT_GT(alternates, backed / 2);
   EXPECT_GT(outer[2], 0u);
