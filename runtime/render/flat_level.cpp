@@ -145,9 +145,12 @@ struct FlatLevel::Impl : format::PackageView {
     if (ci.compartment >= compartments.size()) return 0;
     const gpu::Compartment& c = compartments[ci.compartment];
     if (c.membrane_recipe == gpu::NANO_NO_INDEX || c.membrane_tile_count == 0 || !(c.scales.y > 0)) return 0;
+    // A tile's alternates are shown only in place of a dropped copy: its own copies are the density.
     double molecules = 0;
     for (std::uint32_t t = c.membrane_first_tile; t < c.membrane_first_tile + c.membrane_tile_count && t < tiles2d.size(); ++t)
-      molecules += tiles2d[t].instance_count;
+      for (std::uint64_t i = tiles2d[t].first_instance;
+           i < std::uint64_t(tiles2d[t].first_instance) + tiles2d[t].instance_count && i < instances.size(); ++i)
+        molecules += (instances[i].flags & gpu::NANO_INSTANCE_ALTERNATE) == 0u ? 1.0 : 0.0;
     const double area_scale = std::pow(std::abs(glm::determinant(format::instance_transform(ci).linear)), 2.0 / 3.0);
     return molecules / c.membrane_tile_count / (double(c.scales.y) * c.scales.y * area_scale);
   }
