@@ -11,6 +11,7 @@
 #include "bake/scene_bake/compartment_mesh.hpp"
 #include "bake/scene_bake/molecule_measures.hpp"
 #include "bake/scene_bake/named_totals.hpp"
+#include "bake/tiles/wang_sets.hpp"
 
 namespace nano::scene_bake {
 namespace {
@@ -130,17 +131,20 @@ TEST(BakeEstimate, CopiesFollowTheDensityTimesTheAreaAndTheConcentrationTimesThe
 }
 
 // The shells' work: every copy the triangles own before any is dropped (all of a lipid fill's places,
-// not only those kept), on a membrane checked everywhere; a quarter of them on one checked on a
-// quarter of its area (membrane_surface.hpp) and without seams.
+// not only those kept), on a membrane checked everywhere, with each lipid's alternates put aside
+// (tiles::kAlternatesPerLaidLipid, 0.3 of a checked copy's work each); a quarter of the copies on a
+// membrane checked on a quarter of its area (membrane_surface.hpp) and without seams, and no alternates.
 TEST(BakeEstimate, ShellsCheckWhatTheCheckedTrianglesOwn) {
   scene::SceneDescription s = one_membrane_cell_scene();
   s.membranes[0].lipids = scene::LipidFill{.molecule = {"rod", 0}, .area_per_lipid = 65.0};
   scene::CompartmentMeasure measure = measure_compartment(mesh::make_sphere_mesh(5000, 1000.0));
-  const double owned = measure.area * (2.0 / 65.0 + 1000.0 / 1e8);
+  const double lipids = measure.area * 2.0 / 65.0;
+  const double owned = lipids + measure.area * 1000.0 / 1e8;
   const auto shells_work = [&](double checked_share) {
     return stage_work(estimate_bake(s, {rod_molecule({0, 0, 1})}, {std::nullopt}, {{measure, 0.0, checked_share}}, 2), "shells");
   };
-  EXPECT_NEAR(shells_work(1.0), owned, 1e-6 * owned);
+  const double alternates = 0.3 * tiles::kAlternatesPerLaidLipid * lipids;
+  EXPECT_NEAR(shells_work(1.0), owned + alternates, 1e-6 * owned);
   EXPECT_NEAR(shells_work(0.25), 0.25 * owned, 1e-6 * owned);
 }
 
