@@ -3,7 +3,7 @@
 Checks a nanobake --report against expectations written from the biology (BIOLOGY.md), not from
 the baker: `represented_atoms=1.2e12:0.10` means within 10 % of 1.2e12; `copies.rbc.haemoglobin=2.7e8:0.10`
 reads compartment rbc's copies of haemoglobin; `lipids.virion.total` its membrane's lipids in both
-leaflets; `charts.virion.max_stretch` a field of the UV charts the baker made for its mesh;
+leaflets, `lipids.virion.outer` and `.inner` in one; `charts.virion.max_stretch` a field of the UV charts the baker made for its mesh;
 `bilayer.virion.beside_proteins` the share of a real bilayer's lipids it holds beside its
 proteins. Also checks the report's required keys, that every molecule type has beads, and that the
 mesh sections are stored the smaller way (Draco where its streams beat zstd) with consistent sizes.
@@ -23,6 +23,8 @@ def lookup(report, key):
         return entry["represented_atoms"]
     if kind == "lipids" and name == "total":  # both leaflets, every species
         return sum(entry["membrane"]["lipids_by_leaflet"].values())
+    if kind == "lipids" and name in ("outer", "inner"):  # one leaflet, every species
+        return entry["membrane"]["lipids_by_leaflet"][name]
     if kind == "charts":  # the UV charts the baker made: charts (their count), max_stretch, seam_length
         return entry["charts"][name]
     if kind == "bilayer" and name == "beside_proteins":  # share of a real bilayer's lipids
