@@ -634,13 +634,11 @@ private:
 // the clash rule beside its kept original; it must still never be shown there.
 constexpr double kSamePlace = 6.0;
 
-// The set's copies kept by the first round, by place: whether one of a type holds a place.
-class KeptPlaces {
+// Copies by place: whether one of a given type holds a place (kSamePlace).
+class PlaceIndex {
 public:
-  KeptPlaces(const std::vector<Placed>& copies, const std::vector<char>& kept) : copies_(copies), grid_(copies, kSamePlace) {
-    for (std::uint32_t i = 0; i < copies.size(); ++i)
-      if (kept[i]) grid_.add(i);
-  }
+  explicit PlaceIndex(const std::vector<Placed>& copies) : copies_(copies), grid_(copies, kSamePlace) {}
+  void add(std::uint32_t i) { grid_.add(i); }
   bool taken(const Placed& a) const {
     bool found = false;
     grid_.around(a.centre, [&](std::uint32_t k) {
@@ -692,21 +690,15 @@ void show_alternates(const AlternateRound& round, const TypeShapes& t, double sm
   const ClashSearch search(round.copies, t, small_limit, clearance);
   const std::vector<std::vector<std::uint32_t>> conflicts = conflict_lists(find_clashes(search, threads), round.copies.size(), out);
   std::vector<char> kept(round.copies.size(), 0);
-  CopyGrid shown(round.copies, kSamePlace);
-  for (std::size_t i = round.candidates; i < round.copies.size(); ++i) {
-    kept[i] = 1;
-    shown.add(static_cast<std::uint32_t>(i));
-  }
+  std::fill(kept.begin() + std::ptrdiff_t(round.candidates), kept.end(), 1);
+  PlaceIndex shown(round.copies);  // the alternates shown so far (the kept copies' places were taken out before)
   std::vector<std::uint32_t> order(round.candidates);
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return conflicts[a].size() < conflicts[b].size(); });
   for (const std::uint32_t i : order) {
     const Placed& a = round.copies[i];
-    bool free = std::none_of(conflicts[i].begin(), conflicts[i].end(), [&](std::uint32_t j) { return kept[j] != 0; });
-    shown.around(a.centre, [&](std::uint32_t j) {
-      free = free && !(round.copies[j].type == a.type && glm::length(round.copies[j].centre - a.centre) < kSamePlace);
-    });
-    if (!free) continue;
+    if (shown.taken(a) || std::any_of(conflicts[i].begin(), conflicts[i].end(), [&](std::uint32_t j) { return kept[j] != 0; }))
+      continue;
     kept[i] = 1;
     shown.add(i);
     out.dropped[a.triangle].push_back(a.key);
@@ -745,7 +737,9 @@ PrunedMembrane prune_membrane(const MembraneMapping& mapping, const mesh::ProxyM
     kept = kept_copies(copies, conflict_lists(find_clashes(search, threads), copies.size(), out), shapes.radius, small_limit);
   }
   record_drops(copies, kept, out);
-  const KeptPlaces kept_places(copies, kept);
+  PlaceIndex kept_places(copies);
+  for (std::uint32_t i = 0; i < copies.size(); ++i)
+    if (kept[i]) kept_places.add(i);
   std::vector<Placed> candidates = alternates_to_check(
       mapping, shapes, region, settings, [&](const Placed& a) { return !kept_places.taken(a); }, threads);
   out.checked_copies += candidates.size();
