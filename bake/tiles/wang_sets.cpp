@@ -385,7 +385,7 @@ void keep_base_lipids_as_alternates(const std::vector<Instance>& base_lipids, co
 // about the normal often fits. A membrane pruned on its whole surface keeps these as alternates of
 // each layer lipid, shown only where the lipid itself was dropped (shell/membrane_pruning.hpp). On
 // the virion, 1 Å four ways and a half turn take the worst frontal view from 98.7 % to 99.4 % of
-// its pixels (2 Å: 99.2 %, 3 Å: 99.0 %; eight ways: 99.5 % for a third more copies to check).
+// its pixels (2 Å: 99.2 %, 3 Å: 99.1 %; eight ways: 99.5 % for a third more copies to check).
 constexpr float kAsideShift = 1.f;  // Å, in tile space
 constexpr int kAsideDirections = 4;
 static_assert(kAsideDirections + 1 == kAlternatesPerLaidLipid, "four ways aside and one half turn");
